@@ -1,0 +1,22 @@
+//! Ray-primitive geometry: one file per primitive, a closed [`Shape`] enum
+//! that dispatches between them without virtual calls in the hot loop.
+
+mod aabb;
+mod aabox;
+mod cone;
+mod plane;
+mod polygon;
+mod ray;
+mod shape;
+mod sphere;
+mod triangle;
+
+pub use aabb::Aabb;
+pub use aabox::AaBox;
+pub use cone::Cone;
+pub use plane::Plane;
+pub use polygon::{triangulate_polygon, PolygonError};
+pub use ray::Ray;
+pub use shape::{Shape, SurfaceNormal};
+pub use sphere::Sphere;
+pub use triangle::Triangle;

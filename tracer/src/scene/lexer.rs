@@ -1,0 +1,1 @@
+//! Splits scene text into whitespace-separated tokens with line and column.

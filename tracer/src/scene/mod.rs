@@ -1,0 +1,179 @@
+//! The scene document: what an NFF/P3F file says, command by command, before
+//! anything is prepared for rendering. Parsing produces it, the P3F writer
+//! serialises it back, and [`crate::world::World`] is built from it.
+
+mod error;
+mod lexer;
+mod parse;
+mod write;
+
+pub use error::{ParseError, ParseErrorKind};
+pub use parse::{parse_scene, parse_scene_file, Limits};
+pub use write::write_p3f;
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+
+/// The camera exactly as the `v` command states it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct View {
+    pub from: Vec3,
+    pub at: Vec3,
+    pub up: Vec3,
+    /// Full vertical field of view in degrees, between the centres of the top
+    /// and bottom pixel rows.
+    pub angle: f32,
+    /// Near clipping distance for eye rays; may be 0.
+    pub hither: f32,
+    pub width: u32,
+    pub height: u32,
+    /// Lens diameter as a multiple of the pixel size; 0 is a pinhole.
+    pub aperture: f32,
+    /// Focal distance as a multiple of the view-plane distance `|at - from|`.
+    pub focal: f32,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        Self {
+            from: Vec3::new(0.0, 0.0, 5.0),
+            at: Vec3::ZERO,
+            up: Vec3::Y,
+            angle: 45.0,
+            hither: 0.0,
+            width: 512,
+            height: 512,
+            aperture: 0.0,
+            focal: 1.0,
+        }
+    }
+}
+
+/// A surface material (the `f` command). The NFF 8-number form has a white
+/// specular colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    pub diffuse: Vec3,
+    pub kd: f32,
+    pub specular: Vec3,
+    /// Scales both the highlight and the mirror reflection.
+    pub ks: f32,
+    /// Blinn-Phong exponent.
+    pub shine: f32,
+    /// Transmittance; > 0 makes a refracting, two-sided object.
+    pub transmittance: f32,
+    /// Index of refraction, used only when `transmittance > 0`.
+    pub ior: f32,
+}
+
+impl Default for Material {
+    /// Matte white, for objects that come before any `f` command.
+    fn default() -> Self {
+        Self {
+            diffuse: Vec3::ONE,
+            kd: 1.0,
+            specular: Vec3::ONE,
+            ks: 0.0,
+            shine: 1.0,
+            transmittance: 0.0,
+            ior: 1.0,
+        }
+    }
+}
+
+/// A light as the file states it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LightSpec {
+    /// `l x y z [r g b]`; a missing colour is left to [`crate::world`] to
+    /// decide (white at 1/sqrt(number of lights)).
+    Point { position: Vec3, color: Option<Vec3> },
+    /// `al x y z ax ay az w h [r g b]`: a rectangle centred at `centre`
+    /// facing `aim`, `width` by `height`.
+    Area {
+        centre: Vec3,
+        aim: Vec3,
+        width: f32,
+        height: f32,
+        color: Option<Vec3>,
+    },
+}
+
+/// One geometric object as the file states it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Primitive {
+    /// `s`: a negative radius in the file means only the inside is visible;
+    /// `radius` is the absolute value and `inside_only` keeps the flag.
+    Sphere {
+        centre: Vec3,
+        radius: f32,
+        inside_only: bool,
+    },
+    /// `pl`: the infinite plane through three points.
+    Plane { points: [Vec3; 3] },
+    /// `p`: a planar polygon, possibly concave, n >= 3.
+    Polygon { vertices: Vec<Vec3> },
+    /// `pp`: a polygon with a normal per vertex (smooth shading).
+    Patch {
+        vertices: Vec<Vec3>,
+        normals: Vec<Vec3>,
+    },
+    /// `c`: an open cone or cylinder between base and apex.
+    Cone {
+        base: Vec3,
+        base_radius: f32,
+        apex: Vec3,
+        apex_radius: f32,
+    },
+    /// `box`: an axis-aligned box.
+    Box { min: Vec3, max: Vec3 },
+    /// `mesh`: triangles as zero-based vertex indices (the parser has
+    /// resolved 1-based and negative indices and checked the range).
+    Mesh {
+        vertices: Vec<Vec3>,
+        triangles: Vec<[u32; 3]>,
+    },
+}
+
+/// A primitive with the material in force when it was declared.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Object {
+    pub primitive: Primitive,
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+}
+
+/// The whole document. Commands may come in any order in the file; the
+/// document keeps what they declare, not their order (except objects).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    pub view: View,
+    pub background: Vec3,
+    /// `env NAME`: a skybox folder, resolved relative to `base_dir`.
+    pub env: Option<String>,
+    pub lights: Vec<LightSpec>,
+    pub materials: Vec<Material>,
+    pub objects: Vec<Object>,
+    /// `accel k`: 0 none, 1 uniform grid, 2 BVH.
+    pub accel: Option<u32>,
+    /// `spp n`: 0 one centred sample, n > 0 n x n jittered samples.
+    pub spp: Option<u32>,
+    /// Folder of the scene file, for resolving `env`; `None` for in-memory text.
+    pub base_dir: Option<PathBuf>,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Self {
+            view: View::default(),
+            background: Vec3::ZERO,
+            env: None,
+            lights: Vec::new(),
+            materials: Vec::new(),
+            objects: Vec::new(),
+            accel: None,
+            spp: None,
+            base_dir: None,
+        }
+    }
+}
