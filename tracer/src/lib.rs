@@ -3,5 +3,13 @@
 //! and a progressive renderer. It knows nothing of any user interface:
 //! settings go in, images and statistics come out.
 
+pub mod accel;
+pub mod camera;
 pub mod geometry;
+pub mod optics;
+pub mod render;
+pub mod sampling;
 pub mod scene;
+pub mod skybox;
+pub mod stats;
+pub mod world;

@@ -1,0 +1,278 @@
+//! The pinhole / thin-lens camera of `scene-format.md`: `angle` spans the
+//! centres of the top and bottom pixel rows, the view plane lies at
+//! `|at - from|`, the aperture is measured in pixels and the focal plane at
+//! `focal` times the view-plane distance.
+
+use glam::{Vec2, Vec3A};
+
+use crate::geometry::Ray;
+use crate::scene::View;
+
+/// Why a camera cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CameraError {
+    #[error("the image must be at least 1x1 pixels, got {0}x{1}")]
+    EmptyImage(u32, u32),
+    #[error("`from` and `at` coincide, so there is no view direction")]
+    NoViewDirection,
+    #[error("`up` is parallel to the view direction")]
+    UpParallel,
+    #[error("the field of view must be between 0 and 180 degrees, got {0}")]
+    BadAngle(f32),
+    #[error("the aperture must be >= 0 and the focal ratio > 0, got {0} and {1}")]
+    BadLens(f32, f32),
+}
+
+/// A camera ready to generate eye rays for an image of a given size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Camera {
+    eye: Vec3A,
+    /// Unit vectors: image right, image up, view direction.
+    right: Vec3A,
+    up: Vec3A,
+    forward: Vec3A,
+    /// Distance from the eye to the view plane.
+    view_distance: f32,
+    /// World size of one pixel on the view plane.
+    pixel_size: f32,
+    width: u32,
+    height: u32,
+    /// Lens radius in world units (0: pinhole).
+    lens_radius: f32,
+    focal_ratio: f32,
+    hither: f32,
+}
+
+impl Camera {
+    /// A camera for `view` rendering `width` x `height` pixels with the given
+    /// lens (`aperture` in pixels, `focal` as a ratio of the view distance).
+    pub fn new(
+        view: &View,
+        width: u32,
+        height: u32,
+        aperture: f32,
+        focal: f32,
+    ) -> Result<Self, CameraError> {
+        if width == 0 || height == 0 {
+            return Err(CameraError::EmptyImage(width, height));
+        }
+        if !(view.angle > 0.0 && view.angle < 180.0) {
+            return Err(CameraError::BadAngle(view.angle));
+        }
+        if !(aperture >= 0.0 && focal > 0.0 && aperture.is_finite() && focal.is_finite()) {
+            return Err(CameraError::BadLens(aperture, focal));
+        }
+        let eye = Vec3A::from(view.from);
+        let to_at = Vec3A::from(view.at) - eye;
+        let view_distance = to_at.length();
+        if !(view_distance > 0.0 && view_distance.is_finite()) {
+            return Err(CameraError::NoViewDirection);
+        }
+        let forward = to_at / view_distance;
+        let right = forward.cross(Vec3A::from(view.up));
+        if right.length_squared() <= 1e-12 * Vec3A::from(view.up).length_squared() {
+            return Err(CameraError::UpParallel);
+        }
+        let right = right.normalize();
+        let up = right.cross(forward);
+        let plane_height = 2.0 * view_distance * (view.angle.to_radians() * 0.5).tan();
+        let pixel_size = plane_height / (height.max(2) - 1) as f32;
+        Ok(Self {
+            eye,
+            right,
+            up,
+            forward,
+            view_distance,
+            pixel_size,
+            width,
+            height,
+            lens_radius: 0.5 * aperture * pixel_size,
+            focal_ratio: focal,
+            hither: view.hither.max(0.0),
+        })
+    }
+
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Eye rays must not report hits nearer than this (`hither`).
+    pub fn hither(&self) -> f32 {
+        self.hither
+    }
+
+    /// True when the lens has a size, so depth of field is visible.
+    pub fn has_lens(&self) -> bool {
+        self.lens_radius > 0.0
+    }
+
+    /// The point on the view plane at continuous image coordinates `(x, y)`,
+    /// in pixels from the top-left corner: pixel `(i, j)` spans
+    /// `[i, i + 1) x [j, j + 1)` and its centre is at `(i + 0.5, j + 0.5)`.
+    pub fn view_plane_point(&self, x: f32, y: f32) -> Vec3A {
+        let u = (x - 0.5 * self.width as f32) * self.pixel_size;
+        let v = (0.5 * self.height as f32 - y) * self.pixel_size;
+        self.eye + self.forward * self.view_distance + self.right * u + self.up * v
+    }
+
+    /// The eye ray through image point `(x, y)` from the lens point `lens`
+    /// (a point of the unit disk; ignored by a pinhole camera). Every lens
+    /// point's ray meets the others on the focal plane, so it stays sharp.
+    pub fn ray(&self, x: f32, y: f32, lens: Vec2) -> Ray {
+        let target = self.view_plane_point(x, y);
+        if self.lens_radius == 0.0 {
+            return Ray::new(self.eye, target - self.eye);
+        }
+        let focus = self.eye + (target - self.eye) * self.focal_ratio;
+        let origin = self.eye + (self.right * lens.x + self.up * lens.y) * self.lens_radius;
+        Ray::new(origin, focus - origin)
+    }
+
+    /// The continuous image coordinates where the pinhole projection of
+    /// `point` lands, or `None` behind the eye. The inverse of [`Camera::ray`]
+    /// for a pinhole, used by tests and the GUI's picking.
+    pub fn project(&self, point: Vec3A) -> Option<Vec2> {
+        let d = point - self.eye;
+        let depth = d.dot(self.forward);
+        if depth <= 0.0 {
+            return None;
+        }
+        let on_plane = d * (self.view_distance / depth);
+        let u = on_plane.dot(self.right) / self.pixel_size;
+        let v = on_plane.dot(self.up) / self.pixel_size;
+        Some(Vec2::new(
+            u + 0.5 * self.width as f32,
+            0.5 * self.height as f32 - v,
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn view(width: u32, height: u32) -> View {
+        View {
+            from: Vec3::new(1.0, 2.0, 3.0),
+            at: Vec3::new(-2.0, 0.5, -1.0),
+            up: Vec3::new(0.2, 1.0, 0.1),
+            angle: 40.0,
+            hither: 0.0,
+            width,
+            height,
+            aperture: 0.0,
+            focal: 1.0,
+        }
+    }
+
+    #[test]
+    fn centre_ray_of_odd_image_goes_through_at() {
+        let v = view(101, 51);
+        let cam = Camera::new(&v, v.width, v.height, 0.0, 1.0).unwrap();
+        let ray = cam.ray(50.5, 25.5, Vec2::ZERO);
+        let to_at = (Vec3A::from(v.at) - Vec3A::from(v.from)).normalize();
+        assert!(ray.dir.dot(to_at) > 1.0 - 1e-6, "{:?}", ray.dir);
+    }
+
+    #[test]
+    fn top_and_bottom_row_centres_span_the_angle() {
+        let v = view(64, 33);
+        let cam = Camera::new(&v, v.width, v.height, 0.0, 1.0).unwrap();
+        let top = cam.ray(32.0, 0.5, Vec2::ZERO).dir;
+        let bottom = cam.ray(32.0, 32.5, Vec2::ZERO).dir;
+        let angle = top.dot(bottom).clamp(-1.0, 1.0).acos().to_degrees();
+        assert!((angle - 40.0).abs() < 1e-3, "{angle}");
+    }
+
+    #[test]
+    fn corner_rays_make_the_stated_angle_and_width_widens_the_field() {
+        // Square pixels: on a 2:1 image the horizontal span of pixel centres
+        // is twice the vertical one on the view plane.
+        let v = view(65, 33);
+        let cam = Camera::new(&v, v.width, v.height, 0.0, 1.0).unwrap();
+        let centre = cam.view_plane_point(32.5, 16.5);
+        let top_left = cam.view_plane_point(0.5, 0.5);
+        let bottom_left = cam.view_plane_point(0.5, 32.5);
+        let top_right = cam.view_plane_point(64.5, 0.5);
+        let vertical = (top_left - bottom_left).length();
+        let horizontal = (top_right - top_left).length();
+        assert!((horizontal / vertical - 2.0).abs() < 1e-4);
+        let eye = Vec3A::from(v.from);
+        let half = ((top_left + bottom_left) * 0.5 - eye)
+            .normalize()
+            .dot((top_left - eye).normalize())
+            .acos()
+            .to_degrees();
+        assert!((half - 20.0).abs() < 1e-2, "{half}");
+        assert!((centre - Vec3A::from(v.at)).length() < 1e-4);
+    }
+
+    #[test]
+    fn right_is_view_cross_up() {
+        let v = View {
+            from: Vec3::new(0.0, 0.0, 5.0),
+            at: Vec3::ZERO,
+            up: Vec3::Y,
+            ..View::default()
+        };
+        let cam = Camera::new(&v, 11, 11, 0.0, 1.0).unwrap();
+        // Looking down -z with y up, image right is +x.
+        let right_pixel = cam.ray(10.5, 5.5, Vec2::ZERO).dir;
+        assert!(right_pixel.x > 0.0 && right_pixel.y.abs() < 1e-6);
+        let top_pixel = cam.ray(5.5, 0.5, Vec2::ZERO).dir;
+        assert!(top_pixel.y > 0.0);
+    }
+
+    #[test]
+    fn project_inverts_pinhole_ray() {
+        let v = view(80, 60);
+        let cam = Camera::new(&v, v.width, v.height, 0.0, 1.0).unwrap();
+        let ray = cam.ray(12.25, 40.75, Vec2::ZERO);
+        let p = cam.project(ray.at(7.0)).unwrap();
+        assert!((p - Vec2::new(12.25, 40.75)).length() < 1e-3, "{p}");
+    }
+
+    #[test]
+    fn focal_plane_points_are_sharp_and_others_are_not() {
+        let v = view(64, 64);
+        let cam = Camera::new(&v, 64, 64, 20.0, 1.5).unwrap();
+        let d = (Vec3A::from(v.at) - Vec3A::from(v.from)).length();
+        let lenses = [
+            Vec2::new(0.9, 0.0),
+            Vec2::new(-0.5, 0.5),
+            Vec2::new(0.0, -0.95),
+        ];
+        for lens in lenses {
+            let ray = cam.ray(20.5, 30.5, lens);
+            // Where the ray crosses the focal plane (distance 1.5 d along
+            // the view direction), every lens sample agrees.
+            let t = (1.5 * d - (ray.origin - cam.eye).dot(cam.forward)) / ray.dir.dot(cam.forward);
+            let p = cam.project(ray.at(t)).unwrap();
+            assert!((p - Vec2::new(20.5, 30.5)).length() < 1e-2, "{p}");
+            // On the view plane (nearer than focus) they disagree.
+            let t = (d - (ray.origin - cam.eye).dot(cam.forward)) / ray.dir.dot(cam.forward);
+            let q = cam.project(ray.at(t)).unwrap();
+            assert!((q - Vec2::new(20.5, 30.5)).length() > 0.5, "{q}");
+        }
+    }
+
+    #[test]
+    fn degenerate_cameras_are_errors() {
+        let mut v = view(8, 8);
+        v.up = (v.at - v.from) * 2.0;
+        assert_eq!(Camera::new(&v, 8, 8, 0.0, 1.0), Err(CameraError::UpParallel));
+        let mut v = view(8, 8);
+        v.at = v.from;
+        assert_eq!(
+            Camera::new(&v, 8, 8, 0.0, 1.0),
+            Err(CameraError::NoViewDirection)
+        );
+        assert!(Camera::new(&view(8, 8), 0, 8, 0.0, 1.0).is_err());
+        assert!(Camera::new(&view(8, 8), 8, 8, -1.0, 1.0).is_err());
+    }
+}

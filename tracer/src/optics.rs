@@ -1,0 +1,139 @@
+//! The formulas of Whitted shading, free of any scene: mirror reflection,
+//! Snell refraction, Fresnel reflectance and the Blinn-Phong lobe.
+
+use glam::Vec3A;
+
+/// Mirror reflection of the incoming direction `d` about the normal `n`
+/// (both unit; `n` may face either way): `r = d - 2 (d . n) n`.
+#[inline]
+pub fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
+    d - n * (2.0 * d.dot(n))
+}
+
+/// Snell refraction of the incoming unit direction `d` through a surface
+/// with unit normal `n` facing the incoming side (`d . n < 0`), with
+/// `eta = n_incident / n_transmitted`. `None` on total internal reflection.
+#[inline]
+pub fn refract(d: Vec3A, n: Vec3A, eta: f32) -> Option<Vec3A> {
+    let cos_i = -d.dot(n);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((d * eta + n * (eta * cos_i - cos_t)).normalize())
+}
+
+/// Fresnel reflectance of an unpolarised wave at a dielectric boundary
+/// (the exact equations, averaged over both polarisations): `cos_i` is the
+/// cosine of the incidence angle, `eta = n_incident / n_transmitted`.
+/// Returns 1 on total internal reflection.
+pub fn fresnel(cos_i: f32, eta: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    0.5 * (r_s * r_s + r_p * r_p)
+}
+
+/// The Blinn-Phong terms for one light: `(diffuse, specular)` factors,
+/// `n . l` and `(n . h)^shine` with `h` halfway between the light direction
+/// `l` and the direction to the viewer `v` (all unit, `n` facing the viewer).
+#[inline]
+pub fn blinn_phong(n: Vec3A, l: Vec3A, v: Vec3A, shine: f32) -> (f32, f32) {
+    let n_dot_l = n.dot(l).max(0.0);
+    let h = (l + v).normalize_or_zero();
+    let n_dot_h = n.dot(h).max(0.0);
+    let specular = if n_dot_l > 0.0 { n_dot_h.powf(shine) } else { 0.0 };
+    (n_dot_l, specular)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EPS: f32 = 1e-5;
+
+    #[test]
+    fn reflection_mirrors_about_the_normal() {
+        let d = Vec3A::new(1.0, -1.0, 0.0).normalize();
+        let r = reflect(d, Vec3A::Y);
+        assert!((r - Vec3A::new(1.0, 1.0, 0.0).normalize()).length() < EPS);
+        // Either side of the normal gives the same reflection.
+        assert!((reflect(d, Vec3A::NEG_Y) - r).length() < EPS);
+        // The seed's form r = 2 (L . n) n - L with L = -d.
+        let l = -d;
+        assert!((r - (Vec3A::Y * 2.0 * l.dot(Vec3A::Y) - l)).length() < EPS);
+    }
+
+    #[test]
+    fn refraction_obeys_snell() {
+        let n = Vec3A::Y;
+        for deg in [0.0f32, 10.0, 30.0, 45.0, 60.0, 80.0] {
+            let a = deg.to_radians();
+            let d = Vec3A::new(a.sin(), -a.cos(), 0.0);
+            let t = refract(d, n, 1.0 / 1.5).unwrap();
+            assert!((t.length() - 1.0).abs() < EPS);
+            let sin_t = t.x;
+            assert!((a.sin() - 1.5 * sin_t).abs() < 1e-5, "{deg}");
+            assert!(t.y < 0.0, "transmitted ray continues through the surface");
+        }
+        // Normal incidence passes straight through.
+        let t = refract(Vec3A::NEG_Y, n, 1.0 / 1.5).unwrap();
+        assert!((t - Vec3A::NEG_Y).length() < EPS);
+    }
+
+    #[test]
+    fn total_internal_reflection_beyond_the_critical_angle() {
+        let n = Vec3A::Y;
+        let eta = 1.5f32; // from glass into air
+        let critical = (1.0 / eta).asin();
+        let below = critical - 0.01;
+        let above = critical + 0.01;
+        let d = |a: f32| Vec3A::new(a.sin(), -a.cos(), 0.0);
+        assert!(refract(d(below), n, eta).is_some());
+        assert!(refract(d(above), n, eta).is_none());
+        assert_eq!(fresnel(above.cos(), eta), 1.0);
+        assert!(fresnel(below.cos(), eta) < 1.0);
+    }
+
+    #[test]
+    fn fresnel_at_normal_and_grazing_incidence() {
+        // Normal incidence: ((n1 - n2) / (n1 + n2))^2 = 0.04 for glass.
+        assert!((fresnel(1.0, 1.0 / 1.5) - 0.04).abs() < 1e-6);
+        assert!((fresnel(1.0, 1.5) - 0.04).abs() < 1e-6);
+        // Grazing incidence reflects everything.
+        assert!(fresnel(1e-4, 1.0 / 1.5) > 0.99);
+        // Matched media do not reflect.
+        assert!(fresnel(0.7, 1.0) < 1e-12);
+        // Reflectance grows with the angle.
+        let mut last = 0.0;
+        for deg in (0..90).step_by(10) {
+            let r = fresnel((deg as f32).to_radians().cos(), 1.0 / 1.5);
+            assert!(r >= last);
+            last = r;
+        }
+    }
+
+    #[test]
+    fn blinn_phong_values() {
+        let n = Vec3A::Y;
+        let l = Vec3A::new(1.0, 1.0, 0.0).normalize();
+        let v = Vec3A::new(-1.0, 1.0, 0.0).normalize();
+        let (d, s) = blinn_phong(n, l, v, 10.0);
+        assert!((d - std::f32::consts::FRAC_1_SQRT_2).abs() < EPS);
+        // The mirror configuration: h equals n, the highlight peaks at 1.
+        assert!((s - 1.0).abs() < EPS);
+        // Away from the mirror direction it falls off as cos^shine.
+        let v2 = Vec3A::Y;
+        let (_, s2) = blinn_phong(n, l, v2, 10.0);
+        let h = (l + v2).normalize();
+        assert!((s2 - h.dot(n).powf(10.0)).abs() < EPS);
+        // A light behind the surface contributes nothing.
+        assert_eq!(blinn_phong(n, -l, v, 10.0), (0.0, 0.0));
+    }
+}

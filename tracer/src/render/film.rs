@@ -1,0 +1,158 @@
+//! The accumulation buffer: a running sum of samples per pixel, resolved on
+//! demand to an 8-bit image.
+
+use glam::Vec3A;
+
+use super::Encoding;
+
+/// A rectangle of pixels rendered as one unit of work.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Tile {
+    pub x: u32,
+    pub y: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Tile {
+    /// Splits a `width` x `height` image into tiles of at most `size` pixels
+    /// a side, row by row.
+    pub fn grid(width: u32, height: u32, size: u32) -> Vec<Tile> {
+        let size = size.max(1);
+        let mut tiles = Vec::new();
+        for y in (0..height).step_by(size as usize) {
+            for x in (0..width).step_by(size as usize) {
+                tiles.push(Tile {
+                    x,
+                    y,
+                    width: size.min(width - x),
+                    height: size.min(height - y),
+                });
+            }
+        }
+        tiles
+    }
+
+    pub fn pixel_count(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+}
+
+/// Per-pixel sums of linear radiance and sample counts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    sum: Vec<Vec3A>,
+    samples: Vec<u32>,
+}
+
+impl Film {
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        Self {
+            width,
+            height,
+            sum: vec![Vec3A::ZERO; n],
+            samples: vec![0; n],
+        }
+    }
+
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Adds one sample to each pixel of `tile`; `values` is row-major
+    /// within the tile.
+    pub fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
+        for (row, chunk) in values.chunks(tile.width as usize).enumerate() {
+            let start = (tile.y as usize + row) * self.width as usize + tile.x as usize;
+            let sums = &mut self.sum[start..start + chunk.len()];
+            for (s, v) in sums.iter_mut().zip(chunk) {
+                *s += *v;
+            }
+            for n in &mut self.samples[start..start + chunk.len()] {
+                *n += 1;
+            }
+        }
+    }
+
+    /// The mean radiance of pixel `(x, y)`, `None` before its first sample.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<Vec3A> {
+        let i = y as usize * self.width as usize + x as usize;
+        let n = *self.samples.get(i)?;
+        (n > 0).then(|| self.sum[i] / n as f32)
+    }
+
+    /// Resolves the film to RGBA8, row-major from the top-left. Pixels with
+    /// no sample yet are transparent black.
+    pub fn to_rgba8(&self, encoding: Encoding) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.sum.len() * 4);
+        for (sum, &n) in self.sum.iter().zip(&self.samples) {
+            if n == 0 {
+                out.extend_from_slice(&[0, 0, 0, 0]);
+                continue;
+            }
+            let c = *sum / n as f32;
+            out.extend_from_slice(&[
+                encoding.encode(c.x),
+                encoding.encode(c.y),
+                encoding.encode(c.z),
+                255,
+            ]);
+        }
+        out
+    }
+
+    /// Resolves the film to an RGB image.
+    pub fn to_image(&self, encoding: Encoding) -> image::RgbImage {
+        let rgb: Vec<u8> = self
+            .to_rgba8(encoding)
+            .chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
+        image::RgbImage::from_raw(self.width, self.height, rgb)
+            .expect("the buffer holds exactly width * height pixels")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tiles_cover_the_image_once() {
+        let tiles = Tile::grid(70, 33, 16);
+        let mut covered = vec![0u8; 70 * 33];
+        for t in &tiles {
+            for y in t.y..t.y + t.height {
+                for x in t.x..t.x + t.width {
+                    covered[(y * 70 + x) as usize] += 1;
+                }
+            }
+        }
+        assert!(covered.iter().all(|&c| c == 1));
+    }
+
+    #[test]
+    fn film_averages_samples() {
+        let mut film = Film::new(4, 2);
+        let tile = Tile {
+            x: 2,
+            y: 1,
+            width: 2,
+            height: 1,
+        };
+        film.add_tile(&tile, &[Vec3A::ONE, Vec3A::ZERO]);
+        film.add_tile(&tile, &[Vec3A::ZERO, Vec3A::ZERO]);
+        assert_eq!(film.pixel(2, 1), Some(Vec3A::splat(0.5)));
+        assert_eq!(film.pixel(0, 0), None);
+        let rgba = film.to_rgba8(Encoding::Linear);
+        assert_eq!(&rgba[(4 + 2) * 4..(4 + 2) * 4 + 4], &[128, 128, 128, 255]);
+        assert_eq!(&rgba[0..4], &[0, 0, 0, 0]);
+    }
+}

@@ -1,0 +1,45 @@
+//! Rendering: settings in, images and statistics out. A [`RenderJob`] runs
+//! progressive passes in the background; [`render`] is the one-shot form,
+//! the same passes run to completion, so both give the same bits.
+
+mod film;
+mod frame;
+mod job;
+mod settings;
+mod trace;
+
+use std::sync::Arc;
+
+pub use film::{Film, Tile};
+pub use frame::{Frame, TILE_SIZE};
+pub use job::{JobOptions, JobState, RenderError, RenderJob, Snapshot};
+pub use settings::{Encoding, RenderSettings};
+pub use trace::Tracer;
+
+use crate::accel::SceneIndex;
+use crate::stats::RenderStats;
+use crate::world::World;
+
+/// Renders the whole image and waits for it: the progressive passes run to
+/// the target with `threads` workers (`None`: every core).
+pub fn render(
+    world: Arc<World>,
+    index: Arc<SceneIndex>,
+    settings: RenderSettings,
+    threads: Option<usize>,
+) -> Result<(Film, RenderStats), RenderError> {
+    let job = RenderJob::start(
+        world,
+        index,
+        settings,
+        JobOptions {
+            threads,
+            on_progress: None,
+        },
+    )?;
+    let (film, stats, state) = job.wait();
+    match state {
+        JobState::Failed(message) => Err(RenderError::Panicked(message)),
+        _ => Ok((film, stats)),
+    }
+}

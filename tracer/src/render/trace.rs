@@ -1,0 +1,228 @@
+//! Whitted's recursive ray tracing: Blinn-Phong for every light the surface
+//! faces, shadow rays, mirror reflection weighted by the specular colour,
+//! refraction with Fresnel weighting and total internal reflection.
+
+use glam::Vec3A;
+
+use crate::accel::{Hit, SceneIndex};
+use crate::geometry::Ray;
+use crate::optics::{blinn_phong, fresnel, reflect, refract};
+use crate::sampling::{SampleStream, jittered};
+use crate::stats::Counters;
+use crate::world::{Light, Surface, World, perpendicular_basis};
+
+use super::RenderSettings;
+
+/// How shadow rays sample a light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ShadowMode {
+    /// One ray to the light's position (an area light's centre).
+    Hard,
+    /// N x N stratified rays over the light's area, each weighted 1/N^2: the
+    /// seed's soft shadows without anti-aliasing, where a pixel takes one sample.
+    Stratified(u32),
+    /// One ray to a random point of the area per pixel sample: the seed's soft
+    /// shadows with anti-aliasing, where the pixel's samples average them.
+    OnePerSample,
+}
+
+/// Relative offset that lifts secondary ray origins off the surface, scaled
+/// by the magnitude of the hit point's coordinates (float error grows with
+/// it), so scenes of any scale are free of acne without visible gaps.
+const RELATIVE_OFFSET: f32 = 3e-5;
+
+/// Traces rays through one world with one set of settings.
+pub struct Tracer<'a> {
+    world: &'a World,
+    index: &'a SceneIndex,
+    settings: &'a RenderSettings,
+    shadow_mode: ShadowMode,
+    /// Offset floor: a millionth of the scene's size.
+    min_offset: f32,
+}
+
+impl<'a> Tracer<'a> {
+    pub fn new(world: &'a World, index: &'a SceneIndex, settings: &'a RenderSettings) -> Self {
+        let shadow_mode = match (settings.soft_shadows, settings.samples_per_pixel()) {
+            (false, _) => ShadowMode::Hard,
+            (true, 1) => ShadowMode::Stratified(settings.samples.max(1)),
+            (true, _) => ShadowMode::OnePerSample,
+        };
+        let size = if world.bounds.is_empty() {
+            1.0
+        } else {
+            world.bounds.extent().length()
+        };
+        Self {
+            world,
+            index,
+            settings,
+            shadow_mode,
+            min_offset: 1e-6 * size.min(1e30),
+        }
+    }
+
+    /// Radiance along an eye ray, ignoring hits nearer than `t_min` (hither).
+    pub fn trace_eye(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        rng: &mut SampleStream,
+        counters: &mut Counters,
+    ) -> Vec3A {
+        counters.eye_rays += 1;
+        self.trace(ray, t_min, 0, rng, counters)
+    }
+
+    fn trace(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        depth: u32,
+        rng: &mut SampleStream,
+        counters: &mut Counters,
+    ) -> Vec3A {
+        match self
+            .index
+            .closest_hit(&self.world.shapes, ray, t_min, f32::INFINITY, counters)
+        {
+            Some(hit) => self.shade(ray, hit, depth, rng, counters),
+            None => self.world.background(ray.dir),
+        }
+    }
+
+    fn shade(
+        &self,
+        ray: &Ray,
+        hit: Hit,
+        depth: u32,
+        rng: &mut SampleStream,
+        counters: &mut Counters,
+    ) -> Vec3A {
+        let surface = self.world.surface(hit.shape);
+        let p = ray.at(hit.t);
+        let normals = self.world.shapes[hit.shape as usize].normal_at(p);
+        // Orient both normals towards the side the ray came from.
+        let outside = ray.dir.dot(normals.geometric) < 0.0;
+        let ng = if outside {
+            normals.geometric
+        } else {
+            -normals.geometric
+        };
+        let mut ns = if outside {
+            normals.shading
+        } else {
+            -normals.shading
+        };
+        if ns.dot(ng) <= 0.0 {
+            ns = ng;
+        }
+        let offset = self.min_offset + RELATIVE_OFFSET * p.abs().max_element();
+        let above = p + ng * offset;
+
+        let mut color = surface.diffuse * self.settings.ambient;
+        color += self.direct_light(above, ns, -ray.dir, surface, rng, counters);
+        if depth >= self.settings.max_depth {
+            return color;
+        }
+
+        let mut reflect_weight = surface.specular;
+        let mut refraction = None;
+        if surface.transmittance > 0.0 {
+            let ior = if surface.ior > 0.0 { surface.ior } else { 1.0 };
+            let eta = if outside { 1.0 / ior } else { ior };
+            let cos_i = -ray.dir.dot(ns);
+            let kr = fresnel(cos_i, eta);
+            reflect_weight += Vec3A::splat(surface.transmittance * kr);
+            if let Some(dir) = refract(ray.dir, ns, eta).filter(|t| t.dot(ng) < 0.0) {
+                refraction = Some((dir, surface.transmittance * (1.0 - kr)));
+            }
+        }
+
+        if reflect_weight.max_element() > 0.0 {
+            let mut dir = reflect(ray.dir, ns);
+            if dir.dot(ng) <= 0.0 {
+                dir = reflect(ray.dir, ng);
+            }
+            counters.reflection_rays += 1;
+            let bounced = self.trace(&Ray::new(above, dir), 0.0, depth + 1, rng, counters);
+            color += reflect_weight * bounced;
+        }
+        if let Some((dir, weight)) = refraction.filter(|(_, w)| *w > 0.0) {
+            counters.refraction_rays += 1;
+            let below = p - ng * offset;
+            let through = self.trace(&Ray::new(below, dir), 0.0, depth + 1, rng, counters);
+            color += through * weight;
+        }
+        color
+    }
+
+    /// Diffuse and specular light from every light the surface faces, with
+    /// shadow rays from `origin` (already lifted off the surface).
+    fn direct_light(
+        &self,
+        origin: Vec3A,
+        n: Vec3A,
+        to_viewer: Vec3A,
+        surface: &Surface,
+        rng: &mut SampleStream,
+        counters: &mut Counters,
+    ) -> Vec3A {
+        let mut total = Vec3A::ZERO;
+        for light in &self.world.lights {
+            let mut from_light = Vec3A::ZERO;
+            let mut add_sample = |target: Vec3A, weight: f32, counters: &mut Counters| {
+                let to_light = target - origin;
+                let distance = to_light.length();
+                if distance <= 0.0 {
+                    return;
+                }
+                let l = to_light / distance;
+                let (diffuse, specular) = blinn_phong(n, l, to_viewer, surface.shine);
+                if diffuse <= 0.0 {
+                    return;
+                }
+                counters.shadow_rays += 1;
+                let shadow = Ray::new(origin, l);
+                if self
+                    .index
+                    .any_hit(&self.world.shapes, &shadow, 0.0, distance, counters)
+                {
+                    return;
+                }
+                from_light += (surface.diffuse * diffuse + surface.specular * specular) * weight;
+            };
+            match self.shadow_mode {
+                ShadowMode::Hard => add_sample(light.position, 1.0, counters),
+                ShadowMode::Stratified(n) => {
+                    let (u, v) = self.light_area(light, origin);
+                    let weight = 1.0 / (n * n) as f32;
+                    for stratum in 0..n * n {
+                        let s = jittered(stratum, n, rng.next_2d()) - 0.5;
+                        add_sample(light.position + u * s.x + v * s.y, weight, counters);
+                    }
+                }
+                ShadowMode::OnePerSample => {
+                    let (u, v) = self.light_area(light, origin);
+                    let s = rng.next_2d() - 0.5;
+                    add_sample(light.position + u * s.x + v * s.y, 1.0, counters);
+                }
+            }
+            total += from_light * light.color;
+        }
+        total
+    }
+
+    /// The two edge vectors of a light's area as seen from `point`: an area
+    /// light's own rectangle, or for a point light a square of the
+    /// light-size setting facing the point.
+    fn light_area(&self, light: &Light, point: Vec3A) -> (Vec3A, Vec3A) {
+        if let Some(area) = light.area {
+            return area;
+        }
+        let axis = (point - light.position).normalize_or(Vec3A::Y);
+        let (u, v) = perpendicular_basis(axis);
+        let size = self.settings.light_size.max(0.0);
+        (u * size, v * size)
+    }
+}

@@ -1,0 +1,89 @@
+//! Counters of what the renderer does. Each worker thread owns a
+//! [`Counters`] and they are merged per tile, so counting costs an add on a
+//! local struct, never an atomic per ray.
+
+use std::ops::AddAssign;
+use std::time::Duration;
+
+/// Work done while tracing, the same for every acceleration structure so
+/// they compare on equal terms.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    pub eye_rays: u64,
+    pub shadow_rays: u64,
+    pub reflection_rays: u64,
+    pub refraction_rays: u64,
+    /// Ray-primitive intersection tests.
+    pub intersection_tests: u64,
+    /// Closest-hit queries that found a surface.
+    pub hits: u64,
+    /// Acceleration nodes or grid cells visited.
+    pub nodes_visited: u64,
+}
+
+impl Counters {
+    /// Rays of every kind.
+    pub fn total_rays(&self) -> u64 {
+        self.eye_rays + self.shadow_rays + self.reflection_rays + self.refraction_rays
+    }
+}
+
+impl AddAssign for Counters {
+    fn add_assign(&mut self, o: Self) {
+        self.eye_rays += o.eye_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.reflection_rays += o.reflection_rays;
+        self.refraction_rays += o.refraction_rays;
+        self.intersection_tests += o.intersection_tests;
+        self.hits += o.hits;
+        self.nodes_visited += o.nodes_visited;
+    }
+}
+
+/// What a scene holds, for the statistics panel and `render`'s summary.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SceneCounts {
+    /// Objects as the file declares them, by command kind, sorted by name.
+    pub objects_by_kind: Vec<(&'static str, usize)>,
+    /// Primitives the renderer intersects (polygons and meshes become triangles).
+    pub primitives: usize,
+    pub triangles: usize,
+    pub lights: usize,
+}
+
+impl SceneCounts {
+    /// Objects declared in the file, of any kind.
+    pub fn objects(&self) -> usize {
+        self.objects_by_kind.iter().map(|(_, n)| n).sum()
+    }
+}
+
+/// A snapshot of a render's progress and cost.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RenderStats {
+    pub width: u32,
+    pub height: u32,
+    /// Passes completed; each adds one sample to every pixel.
+    pub passes_done: u32,
+    /// Passes that make the target sample count.
+    pub passes_target: u32,
+    pub counters: Counters,
+    /// Duration of each completed pass.
+    pub pass_times: Vec<Duration>,
+    /// Time spent rendering so far (passes, including a partial one).
+    pub render_time: Duration,
+    /// Time spent building the acceleration structure.
+    pub build_time: Duration,
+}
+
+impl RenderStats {
+    /// Rays of all kinds per second of rendering.
+    pub fn rays_per_second(&self) -> f64 {
+        let secs = self.render_time.as_secs_f64();
+        if secs > 0.0 {
+            self.counters.total_rays() as f64 / secs
+        } else {
+            0.0
+        }
+    }
+}

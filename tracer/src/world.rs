@@ -1,0 +1,296 @@
+//! The scene prepared for rendering: polygons and meshes become triangles,
+//! materials are pre-multiplied, lights get their colours and areas, the
+//! skybox is loaded. Built once per scene, shared by every render of it.
+
+use glam::Vec3A;
+
+use crate::geometry::{AaBox, Aabb, Cone, Plane, Shape, Sphere, Triangle, triangulate_polygon};
+use crate::scene::{LightSpec, Material, Primitive, Scene, View};
+use crate::skybox::Skybox;
+use crate::stats::SceneCounts;
+
+/// A material in the form shading wants it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Surface {
+    /// Diffuse colour times Kd.
+    pub diffuse: Vec3A,
+    /// Specular colour times Ks: weights both the highlight and the mirror.
+    pub specular: Vec3A,
+    pub shine: f32,
+    pub transmittance: f32,
+    pub ior: f32,
+}
+
+impl From<&Material> for Surface {
+    fn from(m: &Material) -> Self {
+        Self {
+            diffuse: Vec3A::from(m.diffuse) * m.kd,
+            specular: Vec3A::from(m.specular) * m.ks,
+            shine: m.shine,
+            transmittance: m.transmittance,
+            ior: m.ior,
+        }
+    }
+}
+
+/// A light ready for shading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// The point light's position, or the centre of an area light.
+    pub position: Vec3A,
+    pub color: Vec3A,
+    /// For `al` lights, the rectangle's two edge vectors (full width and
+    /// height); point lights get a square of the "light size" setting when
+    /// soft shadows are on.
+    pub area: Option<(Vec3A, Vec3A)>,
+}
+
+/// Everything the tracer needs about a scene, independent of render settings.
+#[derive(Debug, Clone)]
+pub struct World {
+    pub view: View,
+    pub shapes: Vec<Shape>,
+    /// Index into `surfaces` for each shape.
+    pub shape_surface: Vec<u32>,
+    pub surfaces: Vec<Surface>,
+    pub lights: Vec<Light>,
+    pub background: Vec3A,
+    pub skybox: Option<Skybox>,
+    /// Bounds of all bounded shapes (empty when there are none).
+    pub bounds: Aabb,
+    pub counts: SceneCounts,
+    /// Things the user should know that did not stop the build (a missing
+    /// skybox, degenerate triangles skipped).
+    pub warnings: Vec<String>,
+}
+
+impl World {
+    /// Prepares `scene` for rendering. Never fails: what cannot be rendered
+    /// (degenerate triangles, a missing skybox) is skipped with a warning.
+    pub fn build(scene: &Scene) -> World {
+        let mut builder = Builder::default();
+        let mut kinds: Vec<(&'static str, usize)> = Vec::new();
+        for object in &scene.objects {
+            let kind = builder.add(&object.primitive, object.material);
+            match kinds.iter_mut().find(|(k, _)| *k == kind) {
+                Some((_, n)) => *n += 1,
+                None => kinds.push((kind, 1)),
+            }
+        }
+        kinds.sort_unstable();
+
+        let mut warnings = Vec::new();
+        if builder.degenerate > 0 {
+            warnings.push(format!(
+                "skipped {} degenerate primitive(s) (zero area or zero size)",
+                builder.degenerate
+            ));
+        }
+        let skybox = scene.env.as_ref().and_then(|name| {
+            let dir = scene
+                .base_dir
+                .as_deref()
+                .unwrap_or_else(|| std::path::Path::new("."))
+                .join(name);
+            match Skybox::load(&dir) {
+                Ok(sky) => Some(sky),
+                Err(e) => {
+                    warnings.push(format!("{e}; using the background colour"));
+                    None
+                }
+            }
+        });
+
+        let lights = lights(&scene.lights);
+        let bounds = builder
+            .shapes
+            .iter()
+            .filter_map(Shape::bounds)
+            .fold(Aabb::empty(), |acc, b| acc.union(&b));
+        let triangles = builder
+            .shapes
+            .iter()
+            .filter(|s| matches!(s, Shape::Triangle(_)))
+            .count();
+        let mut surfaces: Vec<Surface> = scene.materials.iter().map(Surface::from).collect();
+        if surfaces.is_empty() {
+            surfaces.push(Surface::from(&Material::default()));
+        }
+        let last = surfaces.len() as u32 - 1;
+        // An index beyond the table can only come from a hand-built scene:
+        // clamp instead of panicking in the hot loop.
+        let shape_surface = builder.materials.iter().map(|&m| m.min(last)).collect();
+        World {
+            view: scene.view.clone(),
+            counts: SceneCounts {
+                objects_by_kind: kinds,
+                primitives: builder.shapes.len(),
+                triangles,
+                lights: lights.len(),
+            },
+            shapes: builder.shapes,
+            shape_surface,
+            surfaces,
+            lights,
+            background: Vec3A::from(scene.background),
+            skybox,
+            bounds,
+            warnings,
+        }
+    }
+
+    /// The surface of shape `index`.
+    #[inline]
+    pub fn surface(&self, shape: u32) -> &Surface {
+        &self.surfaces[self.shape_surface[shape as usize] as usize]
+    }
+
+    /// Radiance seen along a ray that hits nothing.
+    #[inline]
+    pub fn background(&self, dir: Vec3A) -> Vec3A {
+        match &self.skybox {
+            Some(sky) => sky.sample(dir),
+            None => self.background,
+        }
+    }
+}
+
+/// Lights with their colours resolved: NFF leaves a light's intensity to the
+/// renderer, and a light without a colour is white at `1 / sqrt(n)` for `n`
+/// lights in the scene (Eric Haines's suggestion), so adding lights does not
+/// simply wash the image out.
+fn lights(specs: &[LightSpec]) -> Vec<Light> {
+    let default_color = Vec3A::splat(1.0 / (specs.len().max(1) as f32).sqrt());
+    specs
+        .iter()
+        .map(|spec| match *spec {
+            LightSpec::Point { position, color } => Light {
+                position: position.into(),
+                color: color.map_or(default_color, Vec3A::from),
+                area: None,
+            },
+            LightSpec::Area {
+                centre,
+                aim,
+                width,
+                height,
+                color,
+            } => {
+                let centre = Vec3A::from(centre);
+                let normal = (Vec3A::from(aim) - centre).normalize_or(Vec3A::NEG_Y);
+                let (u, v) = perpendicular_basis(normal);
+                Light {
+                    position: centre,
+                    color: color.map_or(default_color, Vec3A::from),
+                    area: Some((u * width, v * height)),
+                }
+            }
+        })
+        .collect()
+}
+
+/// Two unit vectors perpendicular to `n` and to each other.
+pub(crate) fn perpendicular_basis(n: Vec3A) -> (Vec3A, Vec3A) {
+    let helper = if n.x.abs() < 0.9 { Vec3A::X } else { Vec3A::Y };
+    let u = n.cross(helper).normalize();
+    (u, n.cross(u))
+}
+
+#[derive(Default)]
+struct Builder {
+    shapes: Vec<Shape>,
+    materials: Vec<u32>,
+    degenerate: usize,
+}
+
+impl Builder {
+    /// Adds the shapes of one primitive; returns its kind for the counts.
+    fn add(&mut self, primitive: &Primitive, material: u32) -> &'static str {
+        match primitive {
+            Primitive::Sphere { centre, radius, .. } => {
+                self.push(Some(Shape::Sphere(Sphere::new((*centre).into(), *radius))), material);
+                "sphere"
+            }
+            Primitive::Plane { points } => {
+                let plane = Plane::from_points(points.map(Vec3A::from)).map(Shape::Plane);
+                self.push(plane, material);
+                "plane"
+            }
+            Primitive::Polygon { vertices } => {
+                self.add_polygon(vertices, None, material);
+                "polygon"
+            }
+            Primitive::Patch { vertices, normals } => {
+                self.add_polygon(vertices, Some(normals), material);
+                "patch"
+            }
+            Primitive::Cone {
+                base,
+                base_radius,
+                apex,
+                apex_radius,
+            } => {
+                let cone = Cone::new((*base).into(), *base_radius, (*apex).into(), *apex_radius);
+                self.push(cone.map(Shape::Cone), material);
+                "cone"
+            }
+            Primitive::Box { min, max } => {
+                let b = AaBox::new(Vec3A::from(*min), Vec3A::from(*max));
+                self.push(Some(Shape::Box(b)), material);
+                "box"
+            }
+            Primitive::Mesh {
+                vertices,
+                triangles,
+            } => {
+                self.shapes.reserve(triangles.len());
+                self.materials.reserve(triangles.len());
+                for tri in triangles {
+                    let [a, b, c] = tri.map(|i| vertices.get(i as usize).map(|&v| Vec3A::from(v)));
+                    let shape = match (a, b, c) {
+                        (Some(a), Some(b), Some(c)) => Triangle::new(a, b, c).map(Shape::Triangle),
+                        _ => None,
+                    };
+                    self.push(shape, material);
+                }
+                "mesh"
+            }
+        }
+    }
+
+    fn add_polygon(&mut self, vertices: &[glam::Vec3], normals: Option<&[glam::Vec3]>, material: u32) {
+        let points: Vec<Vec3A> = vertices.iter().map(|&v| v.into()).collect();
+        let Ok(triangles) = triangulate_polygon(&points) else {
+            self.degenerate += 1;
+            return;
+        };
+        for [a, b, c] in triangles {
+            let [a, b, c] = [a, b, c].map(|i| i as usize);
+            let corners = [points.get(a), points.get(b), points.get(c)];
+            let [Some(&pa), Some(&pb), Some(&pc)] = corners else {
+                self.degenerate += 1;
+                continue;
+            };
+            let shape = match normals {
+                Some(ns) => match (ns.get(a), ns.get(b), ns.get(c)) {
+                    (Some(&na), Some(&nb), Some(&nc)) => {
+                        Triangle::with_normals(pa, pb, pc, [na.into(), nb.into(), nc.into()])
+                    }
+                    _ => None,
+                },
+                None => Triangle::new(pa, pb, pc),
+            };
+            self.push(shape.map(Shape::Triangle), material);
+        }
+    }
+
+    fn push(&mut self, shape: Option<Shape>, material: u32) {
+        match shape {
+            Some(shape) => {
+                self.shapes.push(shape);
+                self.materials.push(material);
+            }
+            None => self.degenerate += 1,
+        }
+    }
+}
