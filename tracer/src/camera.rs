@@ -265,7 +265,10 @@ mod tests {
     fn degenerate_cameras_are_errors() {
         let mut v = view(8, 8);
         v.up = (v.at - v.from) * 2.0;
-        assert_eq!(Camera::new(&v, 8, 8, 0.0, 1.0), Err(CameraError::UpParallel));
+        assert_eq!(
+            Camera::new(&v, 8, 8, 0.0, 1.0),
+            Err(CameraError::UpParallel)
+        );
         let mut v = view(8, 8);
         v.at = v.from;
         assert_eq!(

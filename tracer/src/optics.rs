@@ -48,7 +48,11 @@ pub fn blinn_phong(n: Vec3A, l: Vec3A, v: Vec3A, shine: f32) -> (f32, f32) {
     let n_dot_l = n.dot(l).max(0.0);
     let h = (l + v).normalize_or_zero();
     let n_dot_h = n.dot(h).max(0.0);
-    let specular = if n_dot_l > 0.0 { n_dot_h.powf(shine) } else { 0.0 };
+    let specular = if n_dot_l > 0.0 {
+        n_dot_h.powf(shine)
+    } else {
+        0.0
+    };
     (n_dot_l, specular)
 }
 

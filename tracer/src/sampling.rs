@@ -79,7 +79,13 @@ pub fn stratum_order(n: u32) -> Vec<u32> {
     let count = n.max(1) * n.max(1);
     let bits = u32::BITS - (count - 1).leading_zeros();
     let mut order: Vec<u32> = (0..1u32 << bits)
-        .map(|i| if bits == 0 { 0 } else { i.reverse_bits() >> (u32::BITS - bits) })
+        .map(|i| {
+            if bits == 0 {
+                0
+            } else {
+                i.reverse_bits() >> (u32::BITS - bits)
+            }
+        })
         .filter(|&s| s < count)
         .collect();
     // Bit reversal over a row-major index spreads rows first; interleave

@@ -208,7 +208,10 @@ impl Builder {
     fn add(&mut self, primitive: &Primitive, material: u32) -> &'static str {
         match primitive {
             Primitive::Sphere { centre, radius, .. } => {
-                self.push(Some(Shape::Sphere(Sphere::new((*centre).into(), *radius))), material);
+                self.push(
+                    Some(Shape::Sphere(Sphere::new((*centre).into(), *radius))),
+                    material,
+                );
                 "sphere"
             }
             Primitive::Plane { points } => {
@@ -258,7 +261,12 @@ impl Builder {
         }
     }
 
-    fn add_polygon(&mut self, vertices: &[glam::Vec3], normals: Option<&[glam::Vec3]>, material: u32) {
+    fn add_polygon(
+        &mut self,
+        vertices: &[glam::Vec3],
+        normals: Option<&[glam::Vec3]>,
+        material: u32,
+    ) {
         let points: Vec<Vec3A> = vertices.iter().map(|&v| v.into()).collect();
         let Ok(triangles) = triangulate_polygon(&points) else {
             self.degenerate += 1;

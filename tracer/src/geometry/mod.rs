@@ -15,7 +15,7 @@ pub use aabb::Aabb;
 pub use aabox::AaBox;
 pub use cone::Cone;
 pub use plane::Plane;
-pub use polygon::{triangulate_polygon, PolygonError};
+pub use polygon::{PolygonError, triangulate_polygon};
 pub use ray::Ray;
 pub use shape::{Shape, SurfaceNormal};
 pub use sphere::Sphere;

@@ -41,7 +41,13 @@ impl Frame {
         } else {
             (0.0, 1.0)
         };
-        let camera = Camera::new(&world.view, settings.width, settings.height, aperture, focal)?;
+        let camera = Camera::new(
+            &world.view,
+            settings.width,
+            settings.height,
+            aperture,
+            focal,
+        )?;
         let spp = settings.samples_per_pixel();
         let n = (spp as f32).sqrt() as u32;
         Ok(Self {

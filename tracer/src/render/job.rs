@@ -14,24 +14,20 @@ use crate::camera::CameraError;
 use crate::stats::{Counters, RenderStats};
 use crate::world::World;
 
+use super::settings::SettingsError;
 use super::{Encoding, Film, Frame, RenderSettings};
 
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    #[error("invalid settings: {0}")]
+    Settings(#[from] SettingsError),
     #[error("invalid camera: {0}")]
     Camera(#[from] CameraError),
     #[error("could not start render threads: {0}")]
     Threads(String),
     #[error("{0}")]
     Panicked(String),
-    #[error("an image of {width}x{height} pixels needs about {bytes} bytes, over the limit of {limit}")]
-    TooLarge {
-        width: u32,
-        height: u32,
-        bytes: u64,
-        limit: u64,
-    },
 }
 
 /// Where a job stands.
@@ -67,13 +63,13 @@ pub struct JobOptions {
     /// Called after every tile and pass, from a render thread, so a viewer
     /// can wake up (e.g. `egui::Context::request_repaint`).
     pub on_progress: Option<Box<dyn Fn() + Send + Sync>>,
+    /// Called with the pass number (from 1) and the film as it stands after
+    /// each completed pass, before the next begins: to record convergence.
+    pub on_pass: Option<PassObserver>,
 }
 
-/// Bytes of memory per pixel the film needs (sum and sample count), used to
-/// refuse absurd resolutions before allocating.
-const FILM_BYTES_PER_PIXEL: u64 = 20;
-/// Largest film the renderer allocates: 4 GiB.
-const MAX_FILM_BYTES: u64 = 4 << 30;
+/// See [`JobOptions::on_pass`].
+pub type PassObserver = Box<dyn Fn(u32, &Film) + Send + Sync>;
 
 struct Progress {
     film: Film,
@@ -87,6 +83,7 @@ struct Shared {
     resumed: Condvar,
     progress: Mutex<Progress>,
     on_progress: Option<Box<dyn Fn() + Send + Sync>>,
+    on_pass: Option<PassObserver>,
 }
 
 impl Shared {
@@ -135,15 +132,7 @@ impl RenderJob {
         settings: RenderSettings,
         options: JobOptions,
     ) -> Result<RenderJob, RenderError> {
-        let bytes = settings.width as u64 * settings.height as u64 * FILM_BYTES_PER_PIXEL;
-        if bytes > MAX_FILM_BYTES {
-            return Err(RenderError::TooLarge {
-                width: settings.width,
-                height: settings.height,
-                bytes,
-                limit: MAX_FILM_BYTES,
-            });
-        }
+        settings.validate()?;
         let frame = Frame::new(world, index.clone(), settings)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads.unwrap_or(0))
@@ -166,6 +155,7 @@ impl RenderJob {
                 state: JobState::Rendering,
             }),
             on_progress: options.on_progress,
+            on_pass: options.on_pass,
         });
         let worker_shared = shared.clone();
         let worker = std::thread::Builder::new()
@@ -302,6 +292,9 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             p.stats.passes_done = pass + 1;
             p.stats.pass_times.push(elapsed);
             p.stats.render_time = rendered;
+            if let Some(observe) = &shared.on_pass {
+                observe(pass + 1, &p.film);
+            }
         }
         shared.notify();
     }

@@ -12,8 +12,11 @@ use std::sync::Arc;
 
 pub use film::{Film, Tile};
 pub use frame::{Frame, TILE_SIZE};
-pub use job::{JobOptions, JobState, RenderError, RenderJob, Snapshot};
-pub use settings::{Encoding, RenderSettings};
+pub use job::{JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
+pub use settings::{
+    Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
+    RenderSettings, SettingsError,
+};
 pub use trace::Tracer;
 
 use crate::accel::SceneIndex;
@@ -34,7 +37,7 @@ pub fn render(
         settings,
         JobOptions {
             threads,
-            on_progress: None,
+            ..JobOptions::default()
         },
     )?;
     let (film, stats, state) = job.wait();

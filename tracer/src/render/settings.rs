@@ -102,6 +102,101 @@ impl RenderSettings {
     }
 }
 
+/// Largest N (N x N samples per pixel).
+pub const MAX_SAMPLES: u32 = 64;
+/// Largest image side, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// Largest image, in pixels (64 Mi: about 1.3 GB of film).
+pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
+/// Deepest recursion allowed.
+pub const MAX_DEPTH: u32 = 64;
+/// Largest grid multiplier (cells grow with its cube).
+pub const MAX_GRID_MULTIPLIER: f32 = 32.0;
+
+/// A setting outside what the renderer accepts.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{name} = {value} is out of range: {expected}")]
+pub struct SettingsError {
+    pub name: &'static str,
+    pub value: String,
+    pub expected: String,
+}
+
+impl RenderSettings {
+    /// Checks every value, so that a bad command line or slider can never
+    /// allocate absurdly or produce NaN images.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let fail = |name: &'static str, value: String, expected: String| {
+            Err(SettingsError {
+                name,
+                value,
+                expected,
+            })
+        };
+        let side = 1..=MAX_IMAGE_SIDE;
+        if !side.contains(&self.width) {
+            return fail(
+                "width",
+                self.width.to_string(),
+                format!("1 to {MAX_IMAGE_SIDE}"),
+            );
+        }
+        if !side.contains(&self.height) {
+            return fail(
+                "height",
+                self.height.to_string(),
+                format!("1 to {MAX_IMAGE_SIDE}"),
+            );
+        }
+        let pixels = self.width as u64 * self.height as u64;
+        if pixels > MAX_IMAGE_PIXELS {
+            return fail(
+                "width x height",
+                pixels.to_string(),
+                format!("at most {MAX_IMAGE_PIXELS} pixels"),
+            );
+        }
+        if !(1..=MAX_SAMPLES).contains(&self.samples) {
+            return fail(
+                "samples",
+                self.samples.to_string(),
+                format!("1 to {MAX_SAMPLES}"),
+            );
+        }
+        if self.max_depth > MAX_DEPTH {
+            return fail(
+                "depth",
+                self.max_depth.to_string(),
+                format!("0 to {MAX_DEPTH}"),
+            );
+        }
+        let checks = [
+            ("ambient", self.ambient, 0.0, f32::MAX),
+            ("light size", self.light_size, 0.0, f32::MAX),
+            ("aperture", self.aperture, 0.0, f32::MAX),
+            (
+                "grid multiplier",
+                self.grid_multiplier,
+                f32::MIN_POSITIVE,
+                MAX_GRID_MULTIPLIER,
+            ),
+        ];
+        for (name, value, min, max) in checks {
+            if !(value >= min && value <= max) {
+                return fail(
+                    name,
+                    value.to_string(),
+                    format!("a number from {min} to {max}"),
+                );
+            }
+        }
+        if !(self.focal > 0.0 && self.focal.is_finite()) {
+            return fail("focal", self.focal.to_string(), "a number > 0".into());
+        }
+        Ok(())
+    }
+}
+
 /// How linear radiance becomes 8-bit values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Encoding {
@@ -139,6 +234,61 @@ mod tests {
         assert_eq!(Encoding::Srgb.encode(0.5), 188);
         assert_eq!(Encoding::Srgb.encode(0.0), 0);
         assert_eq!(Encoding::Srgb.encode(1.0), 255);
+    }
+
+    #[test]
+    fn validation_rejects_out_of_range_values() {
+        assert!(RenderSettings::default().validate().is_ok());
+        let bad = [
+            RenderSettings {
+                width: 0,
+                ..Default::default()
+            },
+            RenderSettings {
+                height: MAX_IMAGE_SIDE + 1,
+                ..Default::default()
+            },
+            RenderSettings {
+                width: 16384,
+                height: 16384,
+                ..Default::default()
+            },
+            RenderSettings {
+                samples: 0,
+                ..Default::default()
+            },
+            RenderSettings {
+                samples: MAX_SAMPLES + 1,
+                ..Default::default()
+            },
+            RenderSettings {
+                max_depth: 1000,
+                ..Default::default()
+            },
+            RenderSettings {
+                ambient: f32::NAN,
+                ..Default::default()
+            },
+            RenderSettings {
+                light_size: -1.0,
+                ..Default::default()
+            },
+            RenderSettings {
+                aperture: f32::INFINITY,
+                ..Default::default()
+            },
+            RenderSettings {
+                focal: 0.0,
+                ..Default::default()
+            },
+            RenderSettings {
+                grid_multiplier: 0.0,
+                ..Default::default()
+            },
+        ];
+        for s in bad {
+            assert!(s.validate().is_err(), "{s:?}");
+        }
     }
 
     #[test]

@@ -8,7 +8,7 @@ mod parse;
 mod write;
 
 pub use error::{ParseError, ParseErrorKind};
-pub use parse::{parse_scene, parse_scene_file, Limits};
+pub use parse::{Limits, parse_scene, parse_scene_file};
 pub use write::write_p3f;
 
 use std::path::PathBuf;

@@ -1,0 +1,183 @@
+//! The command line, as close to what the user typed as possible; turned
+//! into tracer settings in one place ([`SettingsArgs::apply`]).
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use tracer::accel::AccelKind;
+use tracer::render::{Encoding, RenderSettings};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "workbench",
+    version,
+    about = "Whitted Workbench: explore a classic CPU ray tracer",
+    long_about = "Whitted Workbench: explore a classic CPU ray tracer.\n\n\
+                  Subcommands run the renderer headless on NFF/P3F scene files."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene to a PNG file.
+    Render(RenderArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// Where to write the PNG.
+    #[arg(short, long, default_value = "out.png")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Write the image after each pass into this folder, to see convergence.
+    #[arg(long, value_name = "DIR")]
+    pub progressive_out: Option<PathBuf>,
+    /// Print the statistics in this format instead of the summary.
+    #[arg(long, value_name = "FORMAT")]
+    pub stats: Option<StatsFormat>,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum StatsFormat {
+    Json,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum AccelArg {
+    None,
+    Grid,
+    Bvh,
+}
+
+impl From<AccelArg> for AccelKind {
+    fn from(a: AccelArg) -> Self {
+        match a {
+            AccelArg::None => AccelKind::None,
+            AccelArg::Grid => AccelKind::Grid,
+            AccelArg::Bvh => AccelKind::Bvh,
+        }
+    }
+}
+
+/// Overrides of the scene's own settings; anything left out keeps the
+/// scene's value (or the tracer's default).
+#[derive(Args, Debug, Default, Clone)]
+pub struct SettingsArgs {
+    /// Image width in pixels.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Maximum number of bounces (default 4).
+    #[arg(long)]
+    pub depth: Option<u32>,
+    /// Anti-aliasing on (jittered N x N samples per pixel).
+    #[arg(long, overrides_with = "no_aa")]
+    pub aa: bool,
+    /// Anti-aliasing off (one sample at the pixel centre).
+    #[arg(long, overrides_with = "aa")]
+    pub no_aa: bool,
+    /// N: N x N samples per pixel (and lens / soft-shadow strata).
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    /// Soft shadows: lights get an area.
+    #[arg(long)]
+    pub soft_shadows: bool,
+    /// Side of the square a point light becomes with soft shadows (scene units).
+    #[arg(long, value_name = "SIZE")]
+    pub light_size: Option<f32>,
+    /// Depth of field with the scene's (or the given) aperture and focal ratio.
+    #[arg(long)]
+    pub dof: bool,
+    /// Lens diameter in pixels (implies --dof when > 0).
+    #[arg(long)]
+    pub aperture: Option<f32>,
+    /// Focal distance as a multiple of the view-plane distance.
+    #[arg(long)]
+    pub focal: Option<f32>,
+    /// Ambient light intensity (default 0.1).
+    #[arg(long)]
+    pub ambient: Option<f32>,
+    /// Acceleration structure.
+    #[arg(long, value_enum)]
+    pub accel: Option<AccelArg>,
+    /// Uniform grid cell multiplier m.
+    #[arg(long, value_name = "M")]
+    pub grid_m: Option<f32>,
+    /// Seed of the random numbers.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Encode the output with the sRGB curve instead of writing linear values.
+    #[arg(long)]
+    pub srgb: bool,
+}
+
+impl SettingsArgs {
+    /// Applies the overrides to settings taken from the scene.
+    pub fn apply(&self, s: &mut RenderSettings) {
+        if let Some(w) = self.width {
+            s.width = w;
+        }
+        if let Some(h) = self.height {
+            s.height = h;
+        }
+        if let Some(d) = self.depth {
+            s.max_depth = d;
+        }
+        if self.aa {
+            s.antialiasing = true;
+        }
+        if self.no_aa {
+            s.antialiasing = false;
+        }
+        if let Some(n) = self.spp {
+            s.samples = n.max(1);
+        }
+        if self.soft_shadows {
+            s.soft_shadows = true;
+        }
+        if let Some(size) = self.light_size {
+            s.light_size = size;
+        }
+        if let Some(a) = self.aperture {
+            s.aperture = a;
+            s.depth_of_field = a > 0.0;
+        }
+        if self.dof {
+            s.depth_of_field = true;
+        }
+        if let Some(f) = self.focal {
+            s.focal = f;
+        }
+        if let Some(a) = self.ambient {
+            s.ambient = a;
+        }
+        if let Some(a) = self.accel {
+            s.accel = a.into();
+        }
+        if let Some(m) = self.grid_m {
+            s.grid_multiplier = m;
+        }
+        if let Some(seed) = self.seed {
+            s.seed = seed;
+        }
+    }
+
+    pub fn encoding(&self) -> Encoding {
+        if self.srgb {
+            Encoding::Srgb
+        } else {
+            Encoding::Linear
+        }
+    }
+}

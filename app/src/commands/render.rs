@@ -1,0 +1,92 @@
+//! `workbench render`: one image, headless, with the scene's own settings
+//! and the command line's overrides.
+
+use std::io::IsTerminal;
+use std::sync::Arc;
+use std::time::Duration;
+
+use anyhow::{Context, Result};
+use tracer::accel::SceneIndex;
+use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
+
+use crate::cli::{RenderArgs, StatsFormat};
+use crate::load::load_scene;
+use crate::output::save_png;
+use crate::report;
+
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let loaded = load_scene(&args.scene)?;
+    let mut settings = RenderSettings::from_scene(&loaded.scene);
+    args.settings.apply(&mut settings);
+    let encoding = args.settings.encoding();
+
+    let index = Arc::new(SceneIndex::build(&loaded.world.shapes, settings.accel));
+    let on_pass = match &args.progressive_out {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create folder {}", dir.display()))?;
+            let dir = dir.clone();
+            let observer: tracer::render::PassObserver = Box::new(move |pass, film| {
+                let path = dir.join(format!("pass_{pass:04}.png"));
+                if let Err(e) = save_png(&film.to_image(encoding), &path) {
+                    eprintln!("warning: {e:#}");
+                }
+            });
+            Some(observer)
+        }
+        None => None,
+    };
+    let job = RenderJob::start(
+        loaded.world.clone(),
+        index,
+        settings.clone(),
+        JobOptions {
+            threads: args.threads,
+            on_pass,
+            ..JobOptions::default()
+        },
+    )
+    .with_context(|| format!("cannot render {}", args.scene.display()))?;
+
+    if std::io::stderr().is_terminal() {
+        show_progress(&job, &settings);
+    }
+    let (film, stats, state) = job.wait();
+    if let JobState::Failed(message) = state {
+        anyhow::bail!("rendering {} failed: {message}", args.scene.display());
+    }
+    save_png(&film.to_image(encoding), &args.output)?;
+    match args.stats {
+        Some(StatsFormat::Json) => println!("{}", report::json(&stats, &loaded.world.counts)),
+        None => println!(
+            "{} -> {}\n{}",
+            args.scene.display(),
+            args.output.display(),
+            report::summary(&stats, &loaded.world.counts)
+        ),
+    }
+    Ok(())
+}
+
+/// A progress bar on stderr, counting eye rays against the target.
+fn show_progress(job: &RenderJob, settings: &RenderSettings) {
+    let total =
+        settings.width as u64 * settings.height as u64 * settings.samples_per_pixel() as u64;
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {wide_bar} {percent}% {msg}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    while !job.is_finished() {
+        let stats = job.stats();
+        bar.set_position(stats.counters.eye_rays);
+        bar.set_message(format!(
+            "pass {}/{}",
+            stats.passes_done, stats.passes_target
+        ));
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    bar.finish_and_clear();
+}
