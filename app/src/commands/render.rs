@@ -20,7 +20,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     args.settings.apply(&mut settings);
     let encoding = args.settings.encoding();
 
-    let index = Arc::new(SceneIndex::build(&loaded.world.shapes, settings.accel));
+    let index = Arc::new(SceneIndex::build(
+        &loaded.world.shapes,
+        settings.accel,
+        settings.grid_multiplier,
+    ));
     let on_pass = match &args.progressive_out {
         Some(dir) => {
             std::fs::create_dir_all(dir)

@@ -17,6 +17,11 @@ impl BruteForce {
         Self { shapes }
     }
 
+    /// Bytes of the shape list.
+    pub fn memory_bytes(&self) -> usize {
+        self.shapes.len() * 4
+    }
+
     #[inline]
     pub fn closest_hit(
         &self,

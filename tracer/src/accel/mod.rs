@@ -3,6 +3,8 @@
 //! (infinite planes) live outside the structure and are always tested.
 
 mod brute;
+mod bvh;
+mod grid;
 
 use std::time::{Duration, Instant};
 
@@ -10,6 +12,8 @@ use crate::geometry::{Ray, Shape};
 use crate::stats::Counters;
 
 pub use brute::BruteForce;
+pub use bvh::{Bvh, BvhParams};
+pub use grid::{Grid, GridStats};
 
 /// Which structure to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -36,43 +40,87 @@ pub struct Hit {
 #[derive(Debug, Clone)]
 enum Structure {
     None(BruteForce),
+    Grid(Grid),
+    Bvh(Bvh),
+}
+
+/// What was built, for statistics and for deciding whether a settings
+/// change needs a rebuild.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AccelInfo {
+    pub kind: AccelKind,
+    /// The grid multiplier the grid was built with (grid only).
+    pub grid_multiplier: Option<f32>,
+    pub build_time: Duration,
+    /// Bytes of the structure itself (not the world's shapes).
+    pub memory_bytes: usize,
+    /// BVH nodes (BVH only).
+    pub bvh_nodes: Option<usize>,
+    /// Cell statistics (grid only).
+    pub grid: Option<GridStats>,
+    /// Unbounded shapes (planes) tested outside the structure.
+    pub unbounded: usize,
 }
 
 /// An acceleration structure plus the unbounded shapes tested on the side.
 #[derive(Debug, Clone)]
 pub struct SceneIndex {
-    kind: AccelKind,
     unbounded: Vec<u32>,
     structure: Structure,
-    build_time: Duration,
+    info: AccelInfo,
 }
 
 impl SceneIndex {
-    /// Builds the structure `kind` over `shapes`.
-    pub fn build(shapes: &[Shape], kind: AccelKind) -> SceneIndex {
+    /// Builds the structure `kind` over `shapes`; `grid_multiplier` is the
+    /// seed's m, used by the grid only.
+    pub fn build(shapes: &[Shape], kind: AccelKind, grid_multiplier: f32) -> SceneIndex {
         let start = Instant::now();
         let (bounded, unbounded): (Vec<u32>, Vec<u32>) =
             (0..shapes.len() as u32).partition(|&i| shapes[i as usize].bounds().is_some());
         let structure = match kind {
-            AccelKind::None | AccelKind::Grid | AccelKind::Bvh => {
-                Structure::None(BruteForce::new(bounded))
-            }
+            AccelKind::None => Structure::None(BruteForce::new(bounded)),
+            AccelKind::Grid => Structure::Grid(Grid::build(shapes, &bounded, grid_multiplier)),
+            AccelKind::Bvh => Structure::Bvh(Bvh::build(shapes, &bounded, &BvhParams::default())),
+        };
+        let (memory_bytes, bvh_nodes, grid) = match &structure {
+            Structure::None(b) => (b.memory_bytes(), None, None),
+            Structure::Grid(g) => (g.memory_bytes(), None, Some(g.stats())),
+            Structure::Bvh(b) => (b.memory_bytes(), Some(b.node_count()), None),
         };
         SceneIndex {
-            kind,
+            info: AccelInfo {
+                kind,
+                grid_multiplier: (kind == AccelKind::Grid).then_some(grid_multiplier),
+                build_time: start.elapsed(),
+                memory_bytes: memory_bytes + unbounded.len() * 4,
+                bvh_nodes,
+                grid,
+                unbounded: unbounded.len(),
+            },
             unbounded,
             structure,
-            build_time: start.elapsed(),
         }
+    }
+
+    /// What was built and what it cost.
+    pub fn info(&self) -> &AccelInfo {
+        &self.info
     }
 
     /// The structure that was built.
     pub fn kind(&self) -> AccelKind {
-        self.kind
+        self.info.kind
     }
 
     pub fn build_time(&self) -> Duration {
-        self.build_time
+        self.info.build_time
+    }
+
+    /// Whether this index is what `kind` with `grid_multiplier` would build,
+    /// so a render with those settings can reuse it.
+    pub fn matches(&self, kind: AccelKind, grid_multiplier: f32) -> bool {
+        self.info.kind == kind
+            && (kind != AccelKind::Grid || self.info.grid_multiplier == Some(grid_multiplier))
     }
 
     /// The nearest hit with `t` in `(t_min, t_max)`.
@@ -87,6 +135,8 @@ impl SceneIndex {
     ) -> Option<Hit> {
         let mut best = match &self.structure {
             Structure::None(b) => b.closest_hit(shapes, ray, t_min, t_max, counters),
+            Structure::Grid(g) => g.closest_hit(shapes, ray, t_min, t_max, counters),
+            Structure::Bvh(b) => b.closest_hit(ray, t_min, t_max, counters),
         };
         let mut t_max = best.map_or(t_max, |h| h.t);
         for &i in &self.unbounded {
@@ -121,6 +171,8 @@ impl SceneIndex {
         }
         match &self.structure {
             Structure::None(b) => b.any_hit(shapes, ray, t_min, t_max, counters),
+            Structure::Grid(g) => g.any_hit(shapes, ray, t_min, t_max, counters),
+            Structure::Bvh(b) => b.any_hit(ray, t_min, t_max, counters),
         }
     }
 }

@@ -1,0 +1,299 @@
+//! The seed's uniform grid: the scene's bounding box cut into equal cells,
+//! `n = trunc(m * dim * s) + 1` per axis with `s = cbrt(objects / volume)`,
+//! each object listed in every cell its box overlaps, rays walked cell by
+//! cell with Amanatides and Woo's 3D-DDA.
+
+use glam::{IVec3, Vec3A};
+
+use crate::geometry::{Aabb, Ray, Shape};
+use crate::stats::Counters;
+
+use super::Hit;
+
+/// Most cells a grid may have, whatever the multiplier: 16 Mi cells take
+/// 64 MiB of offsets.
+const MAX_CELLS: u64 = 1 << 24;
+
+/// What the grid looks like, for the statistics panel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridStats {
+    pub cells: [u32; 3],
+    pub empty_cells: u64,
+    /// Object references summed over all cells.
+    pub references: u64,
+    /// Mean objects per non-empty cell.
+    pub mean_per_cell: f32,
+}
+
+/// A uniform grid over the bounded shapes.
+#[derive(Debug, Clone)]
+pub struct Grid {
+    bounds: Aabb,
+    cells: IVec3,
+    cell_size: Vec3A,
+    inv_cell_size: Vec3A,
+    /// Cell `i` lists `refs[offsets[i]..offsets[i + 1]]`.
+    offsets: Vec<u32>,
+    refs: Vec<u32>,
+}
+
+/// Slots of the per-ray mailbox: an object spanning several cells is tested
+/// once per ray unless another object evicted it in between.
+const MAILBOX_SLOTS: usize = 16;
+
+impl Grid {
+    /// Builds the grid over shapes `ids` with cell multiplier `m`.
+    pub fn build(shapes: &[Shape], ids: &[u32], m: f32) -> Grid {
+        let boxes: Vec<(u32, Aabb)> = ids
+            .iter()
+            .filter_map(|&id| Some((id, shapes[id as usize].bounds()?)))
+            .collect();
+        let raw = boxes.iter().fold(Aabb::empty(), |b, (_, o)| b.union(o));
+        if boxes.is_empty() {
+            return Grid {
+                bounds: Aabb::new(Vec3A::ZERO, Vec3A::ZERO),
+                cells: IVec3::ONE,
+                cell_size: Vec3A::ONE,
+                inv_cell_size: Vec3A::ONE,
+                offsets: vec![0, 0],
+                refs: Vec::new(),
+            };
+        }
+        // A flat scene has zero volume; give every axis a sliver of the
+        // largest so the cell formula stays finite, and pad the box so
+        // objects on its faces fall inside.
+        let largest = raw.extent().max_element().max(f32::MIN_POSITIVE);
+        let pad = Vec3A::splat(largest * 1e-4);
+        let bounds = Aabb::new(raw.min - pad, raw.max + pad);
+        let cells = cell_counts(bounds.extent(), boxes.len(), m);
+        let cell_size = bounds.extent() / cells.as_vec3a();
+
+        let cell_range = |b: &Aabb| {
+            let to_cell = |p: Vec3A| {
+                (((p - bounds.min) / cell_size).floor().as_ivec3()).clamp(IVec3::ZERO, cells - 1)
+            };
+            (to_cell(b.min), to_cell(b.max))
+        };
+        let index = |c: IVec3| (c.x + cells.x * (c.y + cells.y * c.z)) as usize;
+        let cell_count = (cells.x * cells.y * cells.z) as usize;
+
+        // Two passes: count each cell's objects, then fill the slices.
+        let mut offsets = vec![0u32; cell_count + 1];
+        let for_each_cell = |b: &Aabb, f: &mut dyn FnMut(usize)| {
+            let (lo, hi) = cell_range(b);
+            for z in lo.z..=hi.z {
+                for y in lo.y..=hi.y {
+                    for x in lo.x..=hi.x {
+                        f(index(IVec3::new(x, y, z)));
+                    }
+                }
+            }
+        };
+        for (_, b) in &boxes {
+            for_each_cell(b, &mut |i| offsets[i + 1] += 1);
+        }
+        for i in 0..cell_count {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut cursor = offsets.clone();
+        let mut refs = vec![0u32; offsets[cell_count] as usize];
+        for (id, b) in &boxes {
+            for_each_cell(b, &mut |i| {
+                refs[cursor[i] as usize] = *id;
+                cursor[i] += 1;
+            });
+        }
+        Grid {
+            bounds,
+            cells,
+            cell_size,
+            inv_cell_size: cell_size.recip(),
+            offsets,
+            refs,
+        }
+    }
+
+    pub fn stats(&self) -> GridStats {
+        let cells = self.offsets.len() - 1;
+        let empty = self.offsets.windows(2).filter(|w| w[0] == w[1]).count();
+        let refs = self.refs.len() as u64;
+        GridStats {
+            cells: self.cells.to_array().map(|c| c as u32),
+            empty_cells: empty as u64,
+            references: refs,
+            mean_per_cell: refs as f32 / (cells - empty).max(1) as f32,
+        }
+    }
+
+    /// Bytes used by the cell offsets and references.
+    pub fn memory_bytes(&self) -> usize {
+        (self.offsets.len() + self.refs.len()) * 4
+    }
+
+    /// The nearest hit in `(t_min, t_max)`.
+    #[inline]
+    pub fn closest_hit(
+        &self,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+    ) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut limit = t_max;
+        self.walk(ray, t_min, t_max, counters, |id, counters| {
+            counters.intersection_tests += 1;
+            if let Some(t) = shapes[id as usize].intersect(ray, t_min, limit) {
+                limit = t;
+                best = Some(Hit { t, shape: id });
+            }
+            // Stop once the nearest hit lies before the cell's exit.
+            limit
+        });
+        best
+    }
+
+    /// Whether anything lies on the ray in `(t_min, t_max)`.
+    #[inline]
+    pub fn any_hit(
+        &self,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+    ) -> bool {
+        let mut found = false;
+        self.walk(ray, t_min, t_max, counters, |id, counters| {
+            counters.intersection_tests += 1;
+            if shapes[id as usize].intersect(ray, t_min, t_max).is_some() {
+                found = true;
+                return f32::NEG_INFINITY;
+            }
+            f32::INFINITY
+        });
+        found
+    }
+
+    /// Walks the cells the ray crosses in order (3D-DDA), calling `test`
+    /// once per object (mailboxed). `test` returns the distance of the
+    /// nearest hit so far; the walk stops when that lies within the
+    /// current cell, or beyond `t_max`.
+    #[inline]
+    fn walk(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+        mut test: impl FnMut(u32, &mut Counters) -> f32,
+    ) {
+        let Some((t_enter, _)) = self.bounds.intersect(ray, t_min, t_max) else {
+            return;
+        };
+        let start = ray.at(t_enter);
+        let mut cell = ((start - self.bounds.min) * self.inv_cell_size)
+            .floor()
+            .as_ivec3()
+            .clamp(IVec3::ZERO, self.cells - 1);
+        let positive = glam::BVec3::new(ray.dir.x > 0.0, ray.dir.y > 0.0, ray.dir.z > 0.0);
+        let step = IVec3::select(positive, IVec3::ONE, IVec3::NEG_ONE);
+        let stop = IVec3::select(positive, self.cells, IVec3::NEG_ONE);
+        let next_boundary = self.bounds.min
+            + (cell + IVec3::select(positive, IVec3::ONE, IVec3::ZERO)).as_vec3a() * self.cell_size;
+        // Axes the ray does not move along never cross a boundary.
+        let moving = ray.dir.cmpne(Vec3A::ZERO);
+        let mut t_next = Vec3A::select(
+            moving,
+            (next_boundary - ray.origin) * ray.inv_dir,
+            Vec3A::INFINITY,
+        );
+        let delta = Vec3A::select(
+            moving,
+            (self.cell_size * ray.inv_dir).abs(),
+            Vec3A::INFINITY,
+        );
+        let mut mailbox = [u32::MAX; MAILBOX_SLOTS];
+        let mut nearest = f32::INFINITY;
+        loop {
+            counters.nodes_visited += 1;
+            let i = (cell.x + self.cells.x * (cell.y + self.cells.y * cell.z)) as usize;
+            let (from, to) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            for &id in &self.refs[from..to] {
+                let slot = id as usize % MAILBOX_SLOTS;
+                if mailbox[slot] == id {
+                    continue;
+                }
+                mailbox[slot] = id;
+                nearest = test(id, counters);
+                if nearest == f32::NEG_INFINITY {
+                    return;
+                }
+            }
+            let axis = if t_next.x < t_next.y {
+                if t_next.x < t_next.z { 0 } else { 2 }
+            } else if t_next.y < t_next.z {
+                1
+            } else {
+                2
+            };
+            let exit = t_next[axis];
+            if nearest <= exit || exit >= t_max {
+                return;
+            }
+            cell[axis] += step[axis];
+            if cell[axis] == stop[axis] {
+                return;
+            }
+            t_next[axis] += delta[axis];
+        }
+    }
+}
+
+/// Cells per axis by the seed's formula, shrunk uniformly if the total would
+/// exceed [`MAX_CELLS`].
+fn cell_counts(dim: Vec3A, objects: usize, m: f32) -> IVec3 {
+    let volume = dim.x * dim.y * dim.z;
+    let s = (objects as f32 / volume).cbrt();
+    let mut scale = m;
+    loop {
+        let n = (dim * (scale * s)).min(Vec3A::splat(65_536.0)).as_ivec3() + 1;
+        let total = n.x as u64 * n.y as u64 * n.z as u64;
+        if total <= MAX_CELLS {
+            return n;
+        }
+        scale *= 0.9;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cell_counts_follow_the_seed_formula() {
+        // 1000 objects in a 10 x 5 x 2 box: s = cbrt(1000 / 100) = 2.154.
+        let n = cell_counts(Vec3A::new(10.0, 5.0, 2.0), 1000, 2.0);
+        let s = 10f32.cbrt();
+        assert_eq!(
+            n,
+            IVec3::new(
+                (2.0 * 10.0 * s) as i32 + 1,
+                (2.0 * 5.0 * s) as i32 + 1,
+                (2.0 * 2.0 * s) as i32 + 1
+            )
+        );
+        assert_eq!(n, IVec3::new(44, 22, 9));
+        // m = 1 on a unit cube with 8 objects: 2 per axis plus one.
+        assert_eq!(cell_counts(Vec3A::ONE, 8, 1.0), IVec3::splat(3));
+        // A tiny multiplier still gives at least one cell per axis.
+        assert_eq!(cell_counts(Vec3A::ONE, 8, 0.01), IVec3::ONE);
+    }
+
+    #[test]
+    fn cell_counts_are_capped() {
+        let n = cell_counts(Vec3A::ONE, 10_000_000, 32.0);
+        assert!(n.x as u64 * n.y as u64 * n.z as u64 <= MAX_CELLS);
+    }
+}
