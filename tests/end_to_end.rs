@@ -1,1 +1,139 @@
+//! End-to-end tests: the real `workbench` binary on scene files.
 
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn workbench(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_workbench"))
+        .args(args)
+        .output()
+        .expect("the workbench binary runs")
+}
+
+/// A fresh folder for one test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("workbench-e2e-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A red sphere on a grey floor under one light, seen from above the floor.
+const SMALL_SCENE: &str = "\
+bclr 0.1 0.2 0.4
+v
+from 0 -6 2
+at 0 0 0.5
+up 0 0 1
+angle 40
+hither 0.01
+resolution 48 32
+l 3 -3 6 1 1 1
+f 0.6 0.6 0.6 1 1 1 1 0 10 0 1
+p 4
+-5 -5 0  5 -5 0  5 5 0  -5 5 0
+f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
+s 0 0 1 1
+";
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn render_writes_the_scene_as_a_png() {
+    let dir = scratch("render");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let out = dir.join("small.png");
+    let run = workbench(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(stdout.contains("48x32"), "{stdout}");
+    assert!(stdout.contains("1 sphere"), "{stdout}");
+
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (48, 32));
+    // The top rows see the sky: the background colour, written directly.
+    assert_eq!(img.get_pixel(0, 0).0, [26, 51, 102]);
+    // The centre sees the red sphere.
+    let centre = img.get_pixel(24, 16).0;
+    assert!(centre[0] > 2 * centre[1] && centre[0] > 60, "{centre:?}");
+    // The floor under the sphere, away from the light, is in shadow: darker
+    // than the lit floor in front of it.
+    let lit = img.get_pixel(40, 30).0;
+    assert!(lit[1] > 40, "{lit:?}");
+}
+
+#[test]
+fn overrides_change_the_size_and_stats_come_as_json() {
+    let dir = scratch("json");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let out = dir.join("small.png");
+    let run = workbench(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        "20",
+        "--height",
+        "10",
+        "--depth",
+        "1",
+        "--threads",
+        "1",
+        "--stats",
+        "json",
+    ]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let stats: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(stats["width"], 20);
+    assert_eq!(stats["rays"]["eye"], 200);
+    assert!(stats["rays"]["shadow"].as_u64().unwrap() > 0);
+    assert!(stats["rays"]["reflection"].as_u64().unwrap() > 0);
+    assert_eq!(image::open(&out).unwrap().to_rgb8().dimensions(), (20, 10));
+}
+
+#[test]
+fn a_bad_scene_fails_with_file_line_and_column() {
+    let dir = scratch("bad");
+    let scene = write(&dir, "bad.p3f", "bclr 0 0 0\ns 0 0 0 zero\n");
+    let out = dir.join("bad.png");
+    let run = workbench(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("bad.p3f:2:9"), "{stderr}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_missing_scene_and_an_unwritable_output_are_errors() {
+    let run = workbench(&["render", "/nonexistent/scene.p3f"]);
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("/nonexistent/scene.p3f"));
+
+    let dir = scratch("unwritable");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let run = workbench(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        "/nonexistent/dir/out.png",
+        "--width",
+        "8",
+        "--height",
+        "8",
+    ]);
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("cannot write image /nonexistent/dir/out.png"), "{stderr}");
+}
+
+#[test]
+fn no_arguments_prints_help() {
+    let run = workbench(&[]);
+    assert!(run.status.success());
+    assert!(String::from_utf8_lossy(&run.stdout).contains("render"));
+}
