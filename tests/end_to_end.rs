@@ -47,9 +47,18 @@ fn render_writes_the_scene_as_a_png() {
     let dir = scratch("render");
     let scene = write(&dir, "small.p3f", SMALL_SCENE);
     let out = dir.join("small.png");
-    let run = workbench(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let run = workbench(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     assert!(stdout.contains("48x32"), "{stdout}");
     assert!(stdout.contains("1 sphere"), "{stdout}");
 
@@ -87,7 +96,11 @@ fn overrides_change_the_size_and_stats_come_as_json() {
         "--stats",
         "json",
     ]);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let stats: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert_eq!(stats["width"], 20);
     assert_eq!(stats["rays"]["eye"], 200);
@@ -101,7 +114,12 @@ fn a_bad_scene_fails_with_file_line_and_column() {
     let dir = scratch("bad");
     let scene = write(&dir, "bad.p3f", "bclr 0 0 0\ns 0 0 0 zero\n");
     let out = dir.join("bad.png");
-    let run = workbench(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let run = workbench(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(!run.status.success());
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("bad.p3f:2:9"), "{stderr}");
@@ -128,7 +146,10 @@ fn a_missing_scene_and_an_unwritable_output_are_errors() {
     ]);
     assert!(!run.status.success());
     let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(stderr.contains("cannot write image /nonexistent/dir/out.png"), "{stderr}");
+    assert!(
+        stderr.contains("cannot write image /nonexistent/dir/out.png"),
+        "{stderr}"
+    );
 }
 
 #[test]

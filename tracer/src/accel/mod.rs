@@ -5,6 +5,8 @@
 mod brute;
 mod bvh;
 mod grid;
+#[cfg(test)]
+mod tests;
 
 use std::time::{Duration, Instant};
 

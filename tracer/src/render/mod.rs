@@ -6,6 +6,8 @@ mod film;
 mod frame;
 mod job;
 mod settings;
+#[cfg(test)]
+mod tests;
 mod trace;
 
 use std::sync::Arc;

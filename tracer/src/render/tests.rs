@@ -1,0 +1,291 @@
+//! Behaviour of the progressive renderer and of stochastic sampling.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use glam::Vec3A;
+
+use super::{Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, render};
+use crate::accel::{AccelKind, SceneIndex};
+use crate::scene::{Limits, parse_scene};
+use crate::stats::Counters;
+use crate::world::World;
+
+fn world(text: &str) -> Arc<World> {
+    let scene = parse_scene(text, None, &Limits::default()).expect("test scene parses");
+    Arc::new(World::build(&scene))
+}
+
+fn index(world: &World, kind: AccelKind) -> Arc<SceneIndex> {
+    Arc::new(SceneIndex::build(&world.shapes, kind, 2.0))
+}
+
+/// Spheres of every material over a floor, two lights: exercises shadows,
+/// reflection and refraction.
+const SCENE: &str = "\
+bclr 0.2 0.3 0.5
+v from 0 -5 2 at 0 0 0.5 up 0 0 1 angle 45 hither 0.01 resolution 40 30
+l 3 -3 5 1 1 1
+l -4 -2 3 0.5 0.5 0.5
+f 0.8 0.8 0.8 1 1 1 1 0.2 20 0 1
+p 4 -4 -4 0 4 -4 0 4 4 0 -4 4 0
+f 0.9 0.2 0.1 0.7 1 1 1 0.3 30 0 1
+s -1 0 0.7 0.7
+f 1 1 1 0.1 1 1 1 0.1 100 0.9 1.5
+s 1 -0.5 0.6 0.6
+";
+
+fn settings(width: u32, height: u32) -> RenderSettings {
+    RenderSettings {
+        width,
+        height,
+        antialiasing: true,
+        samples: 3,
+        soft_shadows: true,
+        light_size: 0.8,
+        depth_of_field: true,
+        aperture: 6.0,
+        focal: 1.2,
+        ..RenderSettings::default()
+    }
+}
+
+/// The plan executed by hand, one tile after another on this thread.
+fn sequential(frame: &Frame) -> Film {
+    let mut film = Film::new(frame.settings.width, frame.settings.height);
+    let mut counters = Counters::default();
+    for pass in 0..frame.passes_target() {
+        for tile in &frame.tiles {
+            film.add_tile(tile, &frame.render_tile(pass, tile, &mut counters));
+        }
+    }
+    film
+}
+
+#[test]
+fn progressive_passes_equal_a_sequential_render_bit_for_bit() {
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let s = settings(70, 45);
+    let frame = Frame::new(w.clone(), idx.clone(), s.clone()).unwrap();
+    assert_eq!(frame.passes_target(), 9);
+    let expected = sequential(&frame);
+    for threads in [1, 2] {
+        let (film, stats) = render(w.clone(), idx.clone(), s.clone(), Some(threads)).unwrap();
+        assert_eq!(film, expected, "{threads} thread(s)");
+        assert_eq!(stats.passes_done, 9);
+        assert_eq!(stats.counters.eye_rays, 70 * 45 * 9);
+    }
+}
+
+#[test]
+fn every_structure_renders_the_same_image() {
+    let w = world(SCENE);
+    let s = RenderSettings {
+        soft_shadows: false,
+        depth_of_field: false,
+        ..settings(40, 30)
+    };
+    let films: Vec<Film> = [AccelKind::None, AccelKind::Grid, AccelKind::Bvh]
+        .into_iter()
+        .map(|k| {
+            render(w.clone(), index(&w, k), s.clone(), Some(2))
+                .unwrap()
+                .0
+        })
+        .collect();
+    assert_eq!(films[0], films[1]);
+    assert_eq!(films[0], films[2]);
+}
+
+#[test]
+fn seeds_change_the_noise_but_not_the_picture() {
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let a = render(w.clone(), idx.clone(), settings(40, 30), None)
+        .unwrap()
+        .0;
+    let b = render(
+        w.clone(),
+        idx,
+        RenderSettings {
+            seed: 99,
+            ..settings(40, 30)
+        },
+        None,
+    )
+    .unwrap()
+    .0;
+    assert_ne!(a, b);
+    let mean = |f: &Film| {
+        let mut sum = Vec3A::ZERO;
+        for y in 0..f.height() {
+            for x in 0..f.width() {
+                sum += f.pixel(x, y).unwrap();
+            }
+        }
+        sum / (f.width() * f.height()) as f32
+    };
+    assert!((mean(&a) - mean(&b)).abs().max_element() < 0.02);
+}
+
+/// A white square filling the left part of a one-pixel image, lit only by
+/// ambient light: the pixel's value is the covered fraction.
+fn edge_scene(edge: f32) -> String {
+    // The camera looks down -z from z = 1 at the origin with a 90 degree
+    // field: with one pixel row the view plane is 2 units high, so the
+    // pixel spans x in [-1, 1].
+    format!(
+        "bclr 0 0 0\n\
+         v from 0 0 1 at 0 0 0 up 0 1 0 angle 90 hither 0 resolution 1 1\n\
+         f 1 1 1 1 0 0 0 0 1 0 1\n\
+         p 4 -5 -5 0 {edge} -5 0 {edge} 5 0 -5 5 0\n"
+    )
+}
+
+#[test]
+fn jittered_samples_converge_to_the_covered_fraction() {
+    for (edge, fraction) in [(0.0f32, 0.5f32), (-0.5, 0.25), (0.8, 0.9)] {
+        let w = world(&edge_scene(edge));
+        let mut errors = Vec::new();
+        for n in [2, 4, 8, 16] {
+            let s = RenderSettings {
+                width: 1,
+                height: 1,
+                ambient: 1.0,
+                antialiasing: true,
+                samples: n,
+                ..RenderSettings::default()
+            };
+            let (film, _) = render(w.clone(), index(&w, AccelKind::Bvh), s, Some(1)).unwrap();
+            errors.push((film.pixel(0, 0).unwrap().x - fraction).abs());
+        }
+        assert!(errors[3] < 0.01, "edge {edge}: {errors:?}");
+        assert!(errors[3] <= errors[0] + 1e-6, "edge {edge}: {errors:?}");
+    }
+}
+
+/// A floor with a sphere over it, lit from above: the number of pixels on
+/// the middle row that are neither fully lit nor fully in shadow, compared
+/// with the same floor without the sphere.
+fn penumbra_width(light_size: f32, soft: bool) -> usize {
+    let floor = "bclr 0 0 0\n\
+         v from 0 0 10 at 0 0 0 up 0 1 0 angle 20 hither 0 resolution 81 81\n\
+         l 0 0 6 1 1 1\n\
+         f 1 1 1 1 0 0 0 0 1 0 1\n\
+         p 4 -9 -9 0 9 -9 0 9 9 0 -9 9 0\n";
+    let sphere = "f 0 0 0 0 0 0 0 0 1 0 1\ns 0 0 3 0.4\n";
+    let s = RenderSettings {
+        width: 81,
+        height: 81,
+        ambient: 0.0,
+        soft_shadows: soft,
+        light_size,
+        samples: 8,
+        ..RenderSettings::default()
+    };
+    let row = |text: &str| {
+        let w = world(text);
+        let (film, _) = render(w.clone(), index(&w, AccelKind::Bvh), s.clone(), Some(2)).unwrap();
+        (0..81)
+            .map(|x| film.pixel(x, 40).unwrap().x)
+            .collect::<Vec<f32>>()
+    };
+    let unshadowed = row(floor);
+    let shadowed = row(&format!("{floor}{sphere}"));
+    shadowed
+        .iter()
+        .zip(&unshadowed)
+        .filter(|(v, full)| **v > 0.02 * **full && **v < 0.98 * **full)
+        .count()
+}
+
+#[test]
+fn soft_shadow_penumbra_widens_with_the_light_size() {
+    let hard = penumbra_width(1.0, false);
+    let small = penumbra_width(0.3, true);
+    let large = penumbra_width(1.5, true);
+    assert!(hard <= 2, "hard shadows have no penumbra: {hard}");
+    assert!(small > hard, "{small} vs {hard}");
+    assert!(large > small, "{large} vs {small}");
+}
+
+#[test]
+fn cancellation_stops_a_long_render() {
+    let w = world(SCENE);
+    let s = RenderSettings {
+        samples: 16,
+        ..settings(1024, 1024)
+    };
+    let tiles_done = Arc::new(AtomicU32::new(0));
+    let counter = tiles_done.clone();
+    let job = RenderJob::start(
+        w,
+        index(&world(SCENE), AccelKind::Bvh),
+        s,
+        JobOptions {
+            threads: Some(2),
+            on_progress: Some(Box::new(move || {
+                counter.fetch_add(1, Ordering::Relaxed);
+            })),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    while tiles_done.load(Ordering::Relaxed) == 0 {
+        std::thread::yield_now();
+    }
+    job.cancel();
+    let (_, stats, state) = job.wait();
+    assert_eq!(state, JobState::Cancelled);
+    // Only the tiles in flight when cancelled finish: a few of the 1024 per
+    // pass, none of the other 255 passes.
+    let pixels_per_tile = 32 * 32;
+    assert_eq!(stats.passes_done, 0);
+    assert!(
+        stats.counters.eye_rays <= 16 * pixels_per_tile,
+        "{} eye rays",
+        stats.counters.eye_rays
+    );
+}
+
+#[test]
+fn pause_holds_the_render_until_resumed() {
+    let w = world(SCENE);
+    let job = RenderJob::start(
+        w.clone(),
+        index(&w, AccelKind::Bvh),
+        settings(64, 64),
+        JobOptions::default(),
+    )
+    .unwrap();
+    job.set_paused(true);
+    let before = job.stats().counters.eye_rays;
+    std::thread::sleep(std::time::Duration::from_millis(50));
+    let during = job.stats().counters.eye_rays;
+    // At most the tiles already started when paused complete.
+    assert!(during - before <= 2 * 32 * 32, "{before} -> {during}");
+    assert!(!job.is_finished() || job.stats().passes_done == 9);
+    job.set_paused(false);
+    let (_, stats, state) = job.wait();
+    assert_eq!(state, JobState::Done);
+    assert_eq!(stats.passes_done, 9);
+}
+
+#[test]
+fn invalid_settings_are_refused_before_rendering() {
+    let w = world(SCENE);
+    let s = RenderSettings {
+        width: 0,
+        ..RenderSettings::default()
+    };
+    assert!(
+        RenderJob::start(
+            w.clone(),
+            index(&w, AccelKind::Bvh),
+            s,
+            JobOptions::default()
+        )
+        .is_err()
+    );
+}
