@@ -24,6 +24,25 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
+    /// Time frames of a scene with each acceleration structure.
+    Bench(BenchArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// Frames rendered per structure; the median is reported.
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    /// Structures to measure (default: none, grid, bvh).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub structures: Option<Vec<AccelArg>>,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
 }
 
 #[derive(Args, Debug)]

@@ -13,6 +13,7 @@ fn main() -> std::process::ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
         Some(cli::Command::Render(args)) => commands::render::run(&args),
+        Some(cli::Command::Bench(args)) => commands::bench::run(&args),
         None => {
             // The window is not there yet: say what the binary can do.
             let _ = cli::Cli::command().print_help();
