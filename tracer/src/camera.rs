@@ -3,7 +3,7 @@
 //! `|at - from|`, the aperture is measured in pixels and the focal plane at
 //! `focal` times the view-plane distance.
 
-use glam::{Vec2, Vec3A};
+use glam::{Quat, Vec2, Vec3, Vec3A};
 
 use crate::geometry::Ray;
 use crate::scene::View;
@@ -21,6 +21,86 @@ pub enum CameraError {
     BadAngle(f32),
     #[error("the aperture must be >= 0 and the focal ratio > 0, got {0} and {1}")]
     BadLens(f32, f32),
+}
+
+/// Where the camera stands and looks: what a viewer changes when the user
+/// orbits, pans or dollies. The field of view and lens stay the scene's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraPose {
+    pub from: Vec3,
+    pub at: Vec3,
+    pub up: Vec3,
+}
+
+/// Closest a pitch may bring the view direction to `up`, in radians, so
+/// the camera never becomes degenerate.
+const POLE_MARGIN: f32 = 0.02;
+
+impl CameraPose {
+    /// The pose of a scene's view.
+    pub fn of(view: &View) -> Self {
+        Self {
+            from: view.from,
+            at: view.at,
+            up: view.up,
+        }
+    }
+
+    /// Puts this pose into `view`.
+    pub fn apply(&self, view: &mut View) {
+        view.from = self.from;
+        view.at = self.at;
+        view.up = self.up;
+    }
+
+    /// Turns `from` around `at`: `yaw` radians about `up`, `pitch` radians
+    /// towards `up` (stopping short of it, or of its opposite).
+    pub fn orbit(&self, yaw: f32, pitch: f32) -> Self {
+        let up = self.up.normalize_or(Vec3::Z);
+        let offset = self.from - self.at;
+        let distance = offset.length();
+        if distance == 0.0 {
+            return *self;
+        }
+        let offset = Quat::from_axis_angle(up, yaw) * offset;
+        let elevation = (offset.dot(up) / distance).clamp(-1.0, 1.0).asin();
+        let limit = std::f32::consts::FRAC_PI_2 - POLE_MARGIN;
+        let pitch = (elevation + pitch).clamp(-limit, limit) - elevation;
+        let right = offset.cross(up).normalize_or(Vec3::X);
+        let offset = Quat::from_axis_angle(right, -pitch) * offset;
+        Self {
+            from: self.at + offset,
+            ..*self
+        }
+    }
+
+    /// Slides `from` and `at` together across the view: `dx` to the right
+    /// and `dy` up, both as fractions of the distance to `at`.
+    pub fn pan(&self, dx: f32, dy: f32) -> Self {
+        let forward = self.at - self.from;
+        let distance = forward.length();
+        let right = forward.cross(self.up).normalize_or_zero();
+        let up = right.cross(forward).normalize_or_zero();
+        let shift = (right * dx + up * dy) * distance;
+        Self {
+            from: self.from + shift,
+            at: self.at + shift,
+            up: self.up,
+        }
+    }
+
+    /// Moves `from` towards `at` (factor < 1) or away (factor > 1).
+    pub fn dolly(&self, factor: f32) -> Self {
+        let factor = if factor.is_finite() {
+            factor.clamp(1e-3, 1e3)
+        } else {
+            1.0
+        };
+        Self {
+            from: self.at + (self.from - self.at) * factor,
+            ..*self
+        }
+    }
 }
 
 /// A camera ready to generate eye rays for an image of a given size.
@@ -259,6 +339,36 @@ mod tests {
             let q = cam.project(ray.at(t)).unwrap();
             assert!((q - Vec2::new(20.5, 30.5)).length() > 0.5, "{q}");
         }
+    }
+
+    #[test]
+    fn orbit_keeps_the_distance_and_stops_short_of_the_pole() {
+        let pose = CameraPose::of(&view(8, 8));
+        let distance = (pose.from - pose.at).length();
+        let turned = pose.orbit(0.7, 0.3);
+        assert!(((turned.from - turned.at).length() - distance).abs() < 1e-4);
+        assert_eq!(turned.at, pose.at);
+        let top = pose.orbit(0.0, 10.0);
+        let dir = (top.from - top.at).normalize();
+        let up = pose.up.normalize();
+        assert!(dir.dot(up) < 1.0 - 1e-5 && dir.dot(up) > 0.99);
+        let mut v = view(8, 8);
+        top.apply(&mut v);
+        assert!(Camera::new(&v, 8, 8, 0.0, 1.0).is_ok());
+        // A full turn of yaw comes back.
+        let round = pose.orbit(std::f32::consts::TAU, 0.0);
+        assert!((round.from - pose.from).length() < 1e-4);
+    }
+
+    #[test]
+    fn pan_moves_both_points_and_dolly_changes_the_distance() {
+        let pose = CameraPose::of(&view(8, 8));
+        let panned = pose.pan(0.1, -0.2);
+        assert!(((panned.from - pose.from) - (panned.at - pose.at)).length() < 1e-6);
+        assert!((panned.from - pose.from).length() > 0.0);
+        let closer = pose.dolly(0.5);
+        let d0 = (pose.from - pose.at).length();
+        assert!(((closer.from - closer.at).length() - 0.5 * d0).abs() < 1e-4);
     }
 
     #[test]

@@ -2,11 +2,9 @@
 //! and the command line's overrides.
 
 use std::io::IsTerminal;
-use std::sync::Arc;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use tracer::accel::SceneIndex;
 use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
 
 use crate::cli::{RenderArgs, StatsFormat};
@@ -20,11 +18,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     args.settings.apply(&mut settings);
     let encoding = args.settings.encoding();
 
-    let index = Arc::new(SceneIndex::build(
-        &loaded.world.shapes,
-        settings.accel,
-        settings.grid_multiplier,
-    ));
     let on_pass = match &args.progressive_out {
         Some(dir) => {
             std::fs::create_dir_all(dir)
@@ -42,7 +35,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
     let job = RenderJob::start(
         loaded.world.clone(),
-        index,
+        None,
         settings.clone(),
         JobOptions {
             threads: args.threads,

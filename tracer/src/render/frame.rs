@@ -60,6 +60,22 @@ impl Frame {
         })
     }
 
+    /// The camera `settings` give for `world`: the scene's view, or the
+    /// settings' pose when the user moved the camera; the lens only with
+    /// depth of field on.
+    pub fn camera(world: &World, settings: &RenderSettings) -> Result<Camera, CameraError> {
+        let (aperture, focal) = if settings.depth_of_field {
+            (settings.aperture, settings.focal)
+        } else {
+            (0.0, 1.0)
+        };
+        let mut view = world.view.clone();
+        if let Some(pose) = &settings.camera {
+            pose.apply(&mut view);
+        }
+        Camera::new(&view, settings.width, settings.height, aperture, focal)
+    }
+
     /// Passes that reach the target of N x N samples per pixel (or one).
     pub fn passes_target(&self) -> u32 {
         self.order.len() as u32

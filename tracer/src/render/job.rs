@@ -2,7 +2,7 @@
 //! thread pool, cancellable at any moment, observable at any time.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -33,6 +33,8 @@ pub enum RenderError {
 /// Where a job stands.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum JobState {
+    /// The acceleration structure is being built.
+    Building,
     /// Passes are running (possibly paused between tiles).
     Rendering,
     /// The target was reached (never, when refining past it).
@@ -66,6 +68,9 @@ pub struct JobOptions {
     /// Called with the pass number (from 1) and the film as it stands after
     /// each completed pass, before the next begins: to record convergence.
     pub on_pass: Option<PassObserver>,
+    /// Run render threads at the lowest OS priority, so an interactive
+    /// viewer keeps its share of the cores while every core renders.
+    pub low_priority: bool,
 }
 
 /// See [`JobOptions::on_pass`].
@@ -82,18 +87,25 @@ struct Shared {
     paused: Mutex<bool>,
     resumed: Condvar,
     progress: Mutex<Progress>,
+    index: Mutex<Option<Arc<SceneIndex>>>,
+    version: AtomicU64,
     on_progress: Option<Box<dyn Fn() + Send + Sync>>,
     on_pass: Option<PassObserver>,
 }
 
+/// Locks a mutex, ignoring poisoning: render panics are caught and
+/// reported as [`JobState::Failed`], and the data stays usable.
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
 impl Shared {
     fn progress(&self) -> MutexGuard<'_, Progress> {
-        // A panic while holding the lock is caught and reported as
-        // `JobState::Failed`; the data stays usable.
-        self.progress.lock().unwrap_or_else(PoisonError::into_inner)
+        lock(&self.progress)
     }
 
     fn notify(&self) {
+        self.version.fetch_add(1, Ordering::Relaxed);
         if let Some(f) = &self.on_progress {
             f();
         }
@@ -106,7 +118,7 @@ impl Shared {
     /// Blocks a render thread while the job is paused (until resumed or
     /// cancelled).
     fn wait_while_paused(&self) {
-        let mut paused = self.paused.lock().unwrap_or_else(PoisonError::into_inner);
+        let mut paused = lock(&self.paused);
         while *paused && !self.cancelled() {
             paused = self
                 .resumed
@@ -119,41 +131,59 @@ impl Shared {
 /// A background render. Dropping it cancels it and waits for its threads.
 pub struct RenderJob {
     shared: Arc<Shared>,
-    index: Arc<SceneIndex>,
     worker: Option<JoinHandle<()>>,
 }
 
 impl RenderJob {
-    /// Starts rendering `world` with `settings`, using `index` (built with
-    /// the settings' acceleration) so that several renders can share it.
+    /// Starts rendering `world` with `settings`. `index` is reused when it
+    /// was built with the settings' acceleration (so several renders can
+    /// share one); otherwise the job builds its own on its thread first.
+    /// Bad settings or cameras are refused here, before any thread starts.
     pub fn start(
         world: Arc<World>,
-        index: Arc<SceneIndex>,
+        index: Option<Arc<SceneIndex>>,
         settings: RenderSettings,
         options: JobOptions,
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
-        let frame = Frame::new(world, index.clone(), settings)?;
+        Frame::camera(&world, &settings)?;
+        let low_priority = options.low_priority;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads.unwrap_or(0))
             .thread_name(|i| format!("render-{i}"))
+            .start_handler(move |_| {
+                if low_priority {
+                    // Best effort: a viewer stays responsive either way,
+                    // only less so if the OS refuses.
+                    let _ = thread_priority::set_current_thread_priority(
+                        thread_priority::ThreadPriority::Min,
+                    );
+                }
+            })
             .build()
             .map_err(|e| RenderError::Threads(e.to_string()))?;
+        let index = index.filter(|i| i.matches(settings.accel, settings.grid_multiplier));
         let shared = Arc::new(Shared {
             cancel: AtomicBool::new(false),
             paused: Mutex::new(false),
             resumed: Condvar::new(),
             progress: Mutex::new(Progress {
-                film: Film::new(frame.settings.width, frame.settings.height),
+                film: Film::new(settings.width, settings.height),
                 stats: RenderStats {
-                    width: frame.settings.width,
-                    height: frame.settings.height,
-                    passes_target: frame.passes_target(),
-                    build_time: frame.index.build_time(),
+                    width: settings.width,
+                    height: settings.height,
+                    passes_target: settings.samples_per_pixel(),
+                    build_time: index.as_ref().map(|i| i.build_time()).unwrap_or_default(),
                     ..RenderStats::default()
                 },
-                state: JobState::Rendering,
+                state: if index.is_some() {
+                    JobState::Rendering
+                } else {
+                    JobState::Building
+                },
             }),
+            index: Mutex::new(index.clone()),
+            version: AtomicU64::new(0),
             on_progress: options.on_progress,
             on_pass: options.on_pass,
         });
@@ -161,28 +191,52 @@ impl RenderJob {
         let worker = std::thread::Builder::new()
             .name("render-job".into())
             .spawn(move || {
+                let shared = worker_shared;
                 let outcome = catch_unwind(AssertUnwindSafe(|| {
-                    pool.install(|| run_passes(&frame, &worker_shared))
+                    let index = index.unwrap_or_else(|| {
+                        let built = Arc::new(SceneIndex::build(
+                            &world.shapes,
+                            settings.accel,
+                            settings.grid_multiplier,
+                        ));
+                        *lock(&shared.index) = Some(built.clone());
+                        let mut p = shared.progress();
+                        p.stats.build_time = built.build_time();
+                        p.state = JobState::Rendering;
+                        drop(p);
+                        shared.notify();
+                        built
+                    });
+                    let frame = Frame::new(world, index, settings)
+                        .map_err(|e| format!("invalid camera: {e}"))?;
+                    pool.install(|| run_passes(&frame, &shared));
+                    Ok::<(), String>(())
                 }));
                 let state = match outcome {
-                    Ok(()) if worker_shared.cancelled() => JobState::Cancelled,
-                    Ok(()) => JobState::Done,
+                    Ok(Ok(())) if shared.cancelled() => JobState::Cancelled,
+                    Ok(Ok(())) => JobState::Done,
+                    Ok(Err(message)) => JobState::Failed(message),
                     Err(panic) => JobState::Failed(panic_message(&panic)),
                 };
-                worker_shared.progress().state = state;
-                worker_shared.notify();
+                shared.progress().state = state;
+                shared.notify();
             })
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         Ok(RenderJob {
             shared,
-            index,
             worker: Some(worker),
         })
     }
 
-    /// The acceleration structure this job traces against.
-    pub fn index(&self) -> &Arc<SceneIndex> {
-        &self.index
+    /// The acceleration structure this job traces against, once built.
+    pub fn index(&self) -> Option<Arc<SceneIndex>> {
+        lock(&self.shared.index).clone()
+    }
+
+    /// A number that grows whenever the job makes progress (a tile, a pass,
+    /// a state change): a viewer refreshes its image when it changes.
+    pub fn version(&self) -> u64 {
+        self.shared.version.load(Ordering::Relaxed)
     }
 
     /// Asks the job to stop; render threads finish the tile they are on.
@@ -193,25 +247,20 @@ impl RenderJob {
 
     /// Pauses or resumes the render between tiles.
     pub fn set_paused(&self, paused: bool) {
-        *self
-            .shared
-            .paused
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner) = paused;
+        *lock(&self.shared.paused) = paused;
         self.shared.resumed.notify_all();
     }
 
     pub fn is_paused(&self) -> bool {
-        *self
-            .shared
-            .paused
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
+        *lock(&self.shared.paused)
     }
 
     /// True once the job has stopped (done, cancelled or failed).
     pub fn is_finished(&self) -> bool {
-        self.shared.progress().state != JobState::Rendering
+        !matches!(
+            self.shared.progress().state,
+            JobState::Rendering | JobState::Building
+        )
     }
 
     pub fn state(&self) -> JobState {

@@ -35,7 +35,7 @@ pub fn render(
 ) -> Result<(Film, RenderStats), RenderError> {
     let job = RenderJob::start(
         world,
-        index,
+        Some(index),
         settings,
         JobOptions {
             threads,

@@ -3,6 +3,7 @@
 //! (the output [`Encoding`], zoom) live apart.
 
 use crate::accel::AccelKind;
+use crate::camera::CameraPose;
 use crate::scene::Scene;
 
 /// What to render and how.
@@ -41,6 +42,9 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Keep adding fresh samples after the N x N target is reached.
     pub keep_refining: bool,
+    /// Where the camera is when the user has moved it; `None` keeps the
+    /// scene's own view.
+    pub camera: Option<CameraPose>,
 }
 
 impl Default for RenderSettings {
@@ -61,6 +65,7 @@ impl Default for RenderSettings {
             grid_multiplier: 2.0,
             seed: 0,
             keep_refining: false,
+            camera: None,
         }
     }
 }

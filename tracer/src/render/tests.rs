@@ -221,7 +221,7 @@ fn cancellation_stops_a_long_render() {
     let counter = tiles_done.clone();
     let job = RenderJob::start(
         w,
-        index(&world(SCENE), AccelKind::Bvh),
+        Some(index(&world(SCENE), AccelKind::Bvh)),
         s,
         JobOptions {
             threads: Some(2),
@@ -254,7 +254,7 @@ fn pause_holds_the_render_until_resumed() {
     let w = world(SCENE);
     let job = RenderJob::start(
         w.clone(),
-        index(&w, AccelKind::Bvh),
+        Some(index(&w, AccelKind::Bvh)),
         settings(64, 64),
         JobOptions::default(),
     )
@@ -282,7 +282,7 @@ fn invalid_settings_are_refused_before_rendering() {
     assert!(
         RenderJob::start(
             w.clone(),
-            index(&w, AccelKind::Bvh),
+            Some(index(&w, AccelKind::Bvh)),
             s,
             JobOptions::default()
         )
