@@ -69,6 +69,7 @@ impl Sphere {
 
 #[cfg(test)]
 mod tests {
+    use super::super::ray::strategies::{config, point, unit_vector};
     use super::*;
     use proptest::prelude::*;
 
@@ -160,19 +161,8 @@ mod tests {
         );
     }
 
-    fn unit_vector() -> impl Strategy<Value = Vec3A> {
-        (-1.0f32..1.0, 0.0f32..std::f32::consts::TAU).prop_map(|(z, phi)| {
-            let s = (1.0 - z * z).sqrt();
-            Vec3A::new(s * phi.cos(), s * phi.sin(), z)
-        })
-    }
-
-    fn point() -> impl Strategy<Value = Vec3A> {
-        (-20.0f32..20.0, -20.0f32..20.0, -20.0f32..20.0).prop_map(|(x, y, z)| Vec3A::new(x, y, z))
-    }
-
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 512, rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED), ..ProptestConfig::default() })]
+        #![proptest_config(config())]
 
         #[test]
         fn rays_aimed_at_the_surface_hit_it(
