@@ -169,6 +169,9 @@ mod tests {
     fn empty_box_is_the_union_identity() {
         assert!(Aabb::empty().is_empty());
         assert_eq!(Aabb::empty().half_area(), 0.0);
-        assert_eq!(Aabb::empty().grow(Vec3A::ONE), Aabb::new(Vec3A::ONE, Vec3A::ONE));
+        assert_eq!(
+            Aabb::empty().grow(Vec3A::ONE),
+            Aabb::new(Vec3A::ONE, Vec3A::ONE)
+        );
     }
 }

@@ -46,7 +46,11 @@ impl AaBox {
         let to_min = (point - self.bounds.min).abs();
         let to_max = (self.bounds.max - point).abs();
         let axis = to_min.min(to_max).min_position();
-        let sign = if to_max[axis] < to_min[axis] { 1.0 } else { -1.0 };
+        let sign = if to_max[axis] < to_min[axis] {
+            1.0
+        } else {
+            -1.0
+        };
         let mut n = Vec3A::ZERO;
         n[axis] = sign;
         n
@@ -123,7 +127,11 @@ mod tests {
         for axis in 0..3 {
             for sign in [-1.0f32, 1.0] {
                 let mut p = c;
-                p[axis] = if sign > 0.0 { b.bounds.max[axis] } else { b.bounds.min[axis] };
+                p[axis] = if sign > 0.0 {
+                    b.bounds.max[axis]
+                } else {
+                    b.bounds.min[axis]
+                };
                 let mut want = Vec3A::ZERO;
                 want[axis] = sign;
                 assert_eq!(b.normal_at(p), want, "axis {axis} sign {sign}");

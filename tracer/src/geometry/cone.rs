@@ -33,10 +33,12 @@ impl Cone {
         let (base_radius, apex_radius) = (base_radius.abs(), apex_radius.abs());
         let (axis, height) = (apex - base).normalize_and_length();
         let finite = base.is_finite() && apex.is_finite() && height.is_finite();
-        if !finite || !(height > 0.0) || !base_radius.is_finite() || !apex_radius.is_finite() {
-            return None;
-        }
-        if base_radius == 0.0 && apex_radius == 0.0 {
+        let radii_ok = base_radius.is_finite()
+            && apex_radius.is_finite()
+            && (base_radius > 0.0 || apex_radius > 0.0);
+        // `height > 0.0` is false for NaN as well.
+        let valid = finite && radii_ok && height > 0.0;
+        if !valid {
             return None;
         }
         let slope = (apex_radius - base_radius) / height;
@@ -80,7 +82,8 @@ impl Cone {
         let b = wp.dot(dp) - rw * ks;
         let c = wp.length_squared() - rw * rw;
         let disc = b * b - a * c;
-        if !(disc >= 0.0) {
+        // A NaN discriminant passes on to NaN roots, which the tests reject.
+        if disc < 0.0 {
             return None;
         }
         let q = -(b + disc.sqrt().copysign(b));

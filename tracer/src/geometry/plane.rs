@@ -24,10 +24,8 @@ impl Plane {
         let n = ab.cross(ac);
         let len = n.length();
         // Written positively so NaN input is rejected too.
-        if !(len > COLLINEAR_SINE * ab.length() * ac.length()) || !a.is_finite() {
-            return None;
-        }
-        Some(Self {
+        let valid = len > COLLINEAR_SINE * ab.length() * ac.length() && a.is_finite();
+        valid.then(|| Self {
             point: a,
             normal: n / len,
         })
@@ -77,7 +75,9 @@ mod tests {
     fn collinear_or_coincident_points_give_none() {
         assert!(Plane::from_points([Vec3A::ZERO, Vec3A::X, Vec3A::X * 2.0]).is_none());
         assert!(Plane::from_points([Vec3A::ONE, Vec3A::ONE, Vec3A::X]).is_none());
-        assert!(Plane::from_points([Vec3A::ZERO, Vec3A::X, Vec3A::new(f32::NAN, 1.0, 0.0)]).is_none());
+        assert!(
+            Plane::from_points([Vec3A::ZERO, Vec3A::X, Vec3A::new(f32::NAN, 1.0, 0.0)]).is_none()
+        );
     }
 
     #[test]

@@ -43,7 +43,9 @@ pub fn triangulate_polygon(vertices: &[Vec3A]) -> Result<Vec<[u32; 3]>, PolygonE
     let p0 = vertices[0];
     let (e1, e2) = (vertices[1] - p0, vertices[2] - p0);
     let normal = e1.cross(e2);
-    if !(normal.length() > COLLINEAR_SINE * e1.length() * e2.length()) {
+    // Written positively so NaN counts as degenerate too.
+    let corner = normal.length() > COLLINEAR_SINE * e1.length() * e2.length();
+    if !corner {
         return Err(PolygonError::Degenerate);
     }
     if n == 3 {
@@ -58,9 +60,7 @@ pub fn triangulate_polygon(vertices: &[Vec3A]) -> Result<Vec<[u32; 3]>, PolygonE
             Vec2::new(q.dot(u), q.dot(v))
         })
         .collect();
-    let twice_area: f32 = (0..n)
-        .map(|i| pts[i].perp_dot(pts[(i + 1) % n]))
-        .sum();
+    let twice_area: f32 = (0..n).map(|i| pts[i].perp_dot(pts[(i + 1) % n])).sum();
     let orient = if twice_area < 0.0 { -1.0 } else { 1.0 };
 
     let mut ring = Ring {
@@ -118,7 +118,8 @@ impl Ring {
     /// triangle. Vertices coinciding with a corner point are skipped, so
     /// repeated vertices do not block every ear. NaN makes it `false`.
     fn is_ear(&self, i: usize) -> bool {
-        if !(self.turn(i) > 0.0) {
+        let convex = self.turn(i) > 0.0;
+        if !convex {
             return false;
         }
         let (pa, pc) = (self.prev[i], self.next[i]);
@@ -250,11 +251,20 @@ mod tests {
             triangulate_polygon(&flat(&[(0.0, 0.0), (1.0, 0.0)])),
             Err(PolygonError::TooFewVertices(2))
         );
-        assert_eq!(triangulate_polygon(&[]), Err(PolygonError::TooFewVertices(0)));
+        assert_eq!(
+            triangulate_polygon(&[]),
+            Err(PolygonError::TooFewVertices(0))
+        );
         let collinear = flat(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (1.0, 1.0)]);
-        assert_eq!(triangulate_polygon(&collinear), Err(PolygonError::Degenerate));
+        assert_eq!(
+            triangulate_polygon(&collinear),
+            Err(PolygonError::Degenerate)
+        );
         let repeated = flat(&[(0.0, 0.0), (0.0, 0.0), (2.0, 0.0), (1.0, 1.0)]);
-        assert_eq!(triangulate_polygon(&repeated), Err(PolygonError::Degenerate));
+        assert_eq!(
+            triangulate_polygon(&repeated),
+            Err(PolygonError::Degenerate)
+        );
     }
 
     #[test]
@@ -270,13 +280,27 @@ mod tests {
 
     #[test]
     fn concave_l_shape() {
-        check_flat(&[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]);
+        check_flat(&[
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ]);
     }
 
     #[test]
     fn clockwise_polygon_keeps_its_winding() {
         // Clockwise seen from +z, starting on a convex corner.
-        check_flat(&[(0.0, 2.0), (1.0, 2.0), (1.0, 1.0), (2.0, 1.0), (2.0, 0.0), (0.0, 0.0)]);
+        check_flat(&[
+            (0.0, 2.0),
+            (1.0, 2.0),
+            (1.0, 1.0),
+            (2.0, 1.0),
+            (2.0, 0.0),
+            (0.0, 0.0),
+        ]);
     }
 
     #[test]

@@ -38,11 +38,12 @@ pub(super) mod strategies {
     use proptest::prelude::*;
 
     /// The fixed-seed configuration every geometry property test uses, so
-    /// failures reproduce.
+    /// failures reproduce without regression files in the source tree.
     pub fn config() -> ProptestConfig {
         ProptestConfig {
             cases: 512,
             rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED),
+            failure_persistence: None,
             ..ProptestConfig::default()
         }
     }
@@ -57,8 +58,7 @@ pub(super) mod strategies {
 
     /// A point in the cube `[-20, 20]^3`.
     pub fn point() -> impl Strategy<Value = Vec3A> {
-        (-20.0f32..20.0, -20.0f32..20.0, -20.0f32..20.0)
-            .prop_map(|(x, y, z)| Vec3A::new(x, y, z))
+        (-20.0f32..20.0, -20.0f32..20.0, -20.0f32..20.0).prop_map(|(x, y, z)| Vec3A::new(x, y, z))
     }
 }
 

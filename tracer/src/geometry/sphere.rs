@@ -35,8 +35,9 @@ impl Sphere {
         let b = ray.dir.dot(oc);
         let r2 = self.radius * self.radius;
         let disc = r2 - (oc - ray.dir * b).length_squared();
-        // Written so that NaN (from non-finite input) also leaves here.
-        if !(disc >= 0.0) {
+        // A NaN discriminant (non-finite input) gives NaN roots, which the
+        // interval tests below reject.
+        if disc < 0.0 {
             return None;
         }
         let c = oc.length_squared() - r2;

@@ -31,7 +31,8 @@ impl Triangle {
         let scale = e1.length() * e2.length();
         let area2 = e1.cross(e2).length();
         // Written positively so NaN is rejected as well.
-        if !(area2 > DEGENERATE_SINE * scale) || !scale.is_finite() || !a.is_finite() {
+        let valid = area2 > DEGENERATE_SINE * scale && scale.is_finite() && a.is_finite();
+        if !valid {
             return None;
         }
         Some(Self {
@@ -76,8 +77,8 @@ impl Triangle {
         let inv_det = det.recip();
         let s = ray.origin - self.v0;
         let u = s.dot(p) * inv_det;
-        // Comparisons are written so that NaN fails them.
-        if !(u >= 0.0 && u <= 1.0) {
+        // Range tests are written so that NaN fails them.
+        if !(0.0..=1.0).contains(&u) {
             return None;
         }
         let q = s.cross(self.e1);
@@ -111,10 +112,7 @@ impl Triangle {
     fn barycentric(&self, point: Vec3A, n: Vec3A) -> [f32; 2] {
         let w = point - self.v0;
         let inv = n.length_squared().recip();
-        [
-            w.cross(self.e2).dot(n) * inv,
-            self.e1.cross(w).dot(n) * inv,
-        ]
+        [w.cross(self.e2).dot(n) * inv, self.e1.cross(w).dot(n) * inv]
     }
 
     /// The three vertices, in the stored winding.
@@ -240,7 +238,11 @@ mod tests {
         let (t, ns) = patch();
         for (v, n) in t.vertices().into_iter().zip(ns) {
             let got = t.normal_at(v);
-            assert!((got.shading - n).length() < 1e-6, "{v}: {} vs {n}", got.shading);
+            assert!(
+                (got.shading - n).length() < 1e-6,
+                "{v}: {} vs {n}",
+                got.shading
+            );
             assert_eq!(got.geometric, Vec3A::Z);
         }
         let mid = t.normal_at(Vec3A::new(0.5, 0.0, 0.0)).shading;
@@ -277,8 +279,12 @@ mod tests {
 
     #[test]
     fn bounds_cover_the_vertices() {
-        let t = Triangle::new(Vec3A::new(1.0, -1.0, 0.0), Vec3A::new(-2.0, 0.0, 3.0), Vec3A::Y)
-            .unwrap();
+        let t = Triangle::new(
+            Vec3A::new(1.0, -1.0, 0.0),
+            Vec3A::new(-2.0, 0.0, 3.0),
+            Vec3A::Y,
+        )
+        .unwrap();
         assert_eq!(
             t.bounds(),
             Aabb::new(Vec3A::new(-2.0, -1.0, 0.0), Vec3A::new(1.0, 1.0, 3.0))
