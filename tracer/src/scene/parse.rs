@@ -95,7 +95,7 @@ struct Parser<'a, 'l> {
 impl Parser<'_, '_> {
     fn command(&mut self, token: Token<'_>) -> Result<(), ParseError> {
         match token.text {
-            "v" => self.view(),
+            "v" => self.view(token.pos),
             "b" | "bclr" => self.background(),
             "env" => self.env(),
             "l" => self.point_light(token.pos),

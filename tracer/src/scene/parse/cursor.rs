@@ -15,6 +15,8 @@ pub(super) struct Cursor<'a> {
     /// Tokens not consumed yet, so counts can be checked against the input
     /// before anything is allocated for them.
     remaining: u64,
+    /// Just after the last token taken: where a missing value is reported.
+    last_end: Pos,
     file: Option<&'a Path>,
     /// The command being parsed, named in errors.
     command: Option<&'a str>,
@@ -33,6 +35,7 @@ impl<'a> Cursor<'a> {
         Self {
             lexer,
             remaining: lexer.count().try_into().unwrap_or(u64::MAX),
+            last_end: lexer.pos(),
             file,
             command: None,
         }
@@ -51,13 +54,14 @@ impl<'a> Cursor<'a> {
     pub fn next_token(&mut self) -> Option<Token<'a>> {
         let token = self.lexer.next()?;
         self.remaining = self.remaining.saturating_sub(1);
+        self.last_end = self.lexer.pos();
         Some(token)
     }
 
-    /// The position of the next token, or the end of the input.
+    /// The position of the next token, or just after the last one when
+    /// the input has run out.
     pub fn here(&self) -> Pos {
-        let mut lexer = self.lexer;
-        lexer.next().map_or_else(|| lexer.pos(), |t| t.pos)
+        self.peek().map_or(self.last_end, |t| t.pos)
     }
 
     pub fn error_at(&self, pos: Pos, kind: ParseErrorKind) -> ParseError {

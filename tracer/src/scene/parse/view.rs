@@ -5,6 +5,7 @@ use glam::{DVec3, Vec3};
 
 use super::cursor::looks_numeric;
 use super::{COMMANDS, Parser};
+use crate::scene::lexer::Pos;
 use crate::scene::{ParseError, ParseErrorKind, View};
 
 /// Largest sine of the angle between `up` and the view direction that still
@@ -16,8 +17,7 @@ impl Parser<'_, '_> {
     /// order, until a token that is not one of these labels. A missing field
     /// keeps its [`View::default`] value (aperture 0, focal 1); a repeated
     /// one keeps the last value.
-    pub(super) fn view(&mut self) -> Result<(), ParseError> {
-        let v_pos = self.cursor.here();
+    pub(super) fn view(&mut self, v_pos: Pos) -> Result<(), ParseError> {
         let mut view = View::default();
         let mut at_pos = None;
         let mut up_pos = None;
