@@ -15,7 +15,7 @@ use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene};
 
 /// Every command word, for telling a misspelt `v` field from the next
 /// command. `#` comments are removed by the lexer.
-const COMMANDS: [&str; 16] = [
+pub(super) const COMMANDS: [&str; 16] = [
     "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "accel",
     "spp",
 ];

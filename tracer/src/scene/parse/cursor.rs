@@ -142,11 +142,12 @@ impl<'a> Cursor<'a> {
         limit: usize,
     ) -> Result<(usize, Pos), ParseError> {
         let (value, token) = self.integer(expected)?;
+        let what = expected.strip_prefix("the ").unwrap_or(expected);
         if value < 0 {
             return Err(self.error_at(
                 token.pos,
                 ParseErrorKind::InvalidValue {
-                    what: expected,
+                    what,
                     why: format!("must not be negative, found {value}"),
                 },
             ));
@@ -156,7 +157,7 @@ impl<'a> Cursor<'a> {
             _ => Err(self.error_at(
                 token.pos,
                 ParseErrorKind::AboveLimit {
-                    what: expected,
+                    what,
                     found: token.text.to_string(),
                     limit: limit.try_into().unwrap_or(u64::MAX),
                 },

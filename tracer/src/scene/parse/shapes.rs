@@ -73,8 +73,9 @@ impl Parser<'_, '_> {
             .cursor
             .count(expected, self.limits.max_polygon_vertices)?;
         if count < 3 {
+            let what = expected.strip_prefix("the ").unwrap_or(expected);
             let why = format!("a polygon needs at least 3 vertices, found {count}");
-            return Err(self.invalid(pos, "vertex count", why));
+            return Err(self.invalid(pos, what, why));
         }
         Ok((count, pos))
     }

@@ -41,6 +41,17 @@ fn unknown_command_and_stray_number() {
 }
 
 #[test]
+fn every_command_word_is_dispatched() {
+    for word in crate::scene::parse::COMMANDS {
+        let kind = parse_scene(word, None, &Limits::default()).map_err(|e| e.kind);
+        assert!(
+            !matches!(kind, Err(ParseErrorKind::UnknownCommand(_))),
+            "{word}"
+        );
+    }
+}
+
+#[test]
 fn unknown_view_field() {
     assert_eq!(
         parse_err("v\nfrom 0 0 5\n  fov 45", 3, 3, Some("v")),
@@ -135,13 +146,13 @@ fn invalid_geometry() {
     assert_eq!(
         parse_err("p 2 0 0 0 1 1 1", 1, 3, Some("p")),
         invalid(
-            "vertex count",
+            "polygon vertex count",
             "a polygon needs at least 3 vertices, found 2"
         )
     );
     assert_eq!(
         parse_err("pp -3", 1, 4, Some("pp")),
-        invalid("the patch vertex count", "must not be negative, found -3")
+        invalid("patch vertex count", "must not be negative, found -3")
     );
     assert_eq!(
         parse_err("pl 0 0 0 1 1 1 2 2 2", 1, 1, Some("pl")),
@@ -270,7 +281,7 @@ fn huge_counts_fail_fast_without_allocating() {
     assert_eq!(
         parse_err("mesh 4000000000 1", 1, 6, Some("mesh")),
         ParseErrorKind::AboveLimit {
-            what: "the mesh vertex count",
+            what: "mesh vertex count",
             found: "4000000000".into(),
             limit: 10_000_000
         }
