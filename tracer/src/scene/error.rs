@@ -74,7 +74,7 @@ pub enum ParseErrorKind {
         expected: &'static str,
     },
     /// A command with a variable number of values (`f`, `l`, `al`) got a
-    /// count it does not accept.
+    /// count it does not accept; reported at the command word.
     #[error("expected {expected} numbers, found {found}")]
     WrongNumberCount {
         /// The accepted counts, e.g. "8 (NFF) or 11 (P3F)".

@@ -20,7 +20,10 @@ pub(super) const COMMANDS: [&str; 16] = [
     "spp",
 ];
 
-/// Parses scene text; `file` only labels errors and sets `base_dir`.
+/// Parses scene text; `file` only labels errors and sets `base_dir` (its
+/// folder, `.` for a bare file name). The first problem found is returned,
+/// pointing at the offending token; nothing is allocated from a count before
+/// it has been checked against `limits` and against the rest of the input.
 pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<Scene, ParseError> {
     let size = u64::try_from(text.len()).unwrap_or(u64::MAX);
     if size > limits.max_file_bytes {
