@@ -4,11 +4,16 @@
 
 mod error;
 mod lexer;
+mod limits;
 mod parse;
 mod write;
 
+#[cfg(test)]
+mod tests;
+
 pub use error::{ParseError, ParseErrorKind};
-pub use parse::{Limits, parse_scene, parse_scene_file};
+pub use limits::Limits;
+pub use parse::{parse_scene, parse_scene_file};
 pub use write::write_p3f;
 
 use std::path::PathBuf;

@@ -1,30 +1,182 @@
-//! The NFF/P3F parser.
+//! The NFF/P3F parser: entry points and the command dispatch. The commands
+//! themselves live in the submodules, grouped by what they declare.
 
+mod appearance;
+mod cursor;
+mod shapes;
+mod view;
+
+use std::io::Read;
 use std::path::Path;
 
-use super::{ParseError, Scene};
+use self::cursor::{Cursor, looks_numeric};
+use super::lexer::{Pos, Token};
+use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene};
 
-/// Bounds that protect against hostile or mistaken input.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Limits {
-    /// Largest width or height accepted by `resolution`.
-    pub max_resolution: u32,
+/// Every command word, for telling a misspelt `v` field from the next
+/// command. `#` comments are removed by the lexer.
+pub(super) const COMMANDS: [&str; 16] = [
+    "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "accel",
+    "spp",
+];
+
+/// Parses scene text; `file` only labels errors and sets `base_dir` (its
+/// folder, `.` for a bare file name). The first problem found is returned,
+/// pointing at the offending token; nothing is allocated from a count before
+/// it has been checked against `limits` and against the rest of the input.
+pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<Scene, ParseError> {
+    let size = u64::try_from(text.len()).unwrap_or(u64::MAX);
+    if size > limits.max_file_bytes {
+        return Err(file_error(file, too_large(size, limits)));
+    }
+    let mut parser = Parser {
+        cursor: Cursor::new(text, file),
+        limits,
+        scene: Scene::default(),
+        material: None,
+    };
+    while let Some(token) = parser.cursor.next_token() {
+        parser.cursor.set_command(Some(token.text));
+        parser.command(token)?;
+        parser.cursor.set_command(None);
+    }
+    let mut scene = parser.scene;
+    scene.base_dir = file.map(|f| match f.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+        _ => Path::new(".").to_path_buf(),
+    });
+    Ok(scene)
 }
 
-impl Default for Limits {
-    fn default() -> Self {
-        Self {
-            max_resolution: 16384,
-        }
+/// Reads and parses a scene file. Bytes that are not UTF-8 (a Latin-1
+/// comment, say) are replaced rather than rejected.
+pub fn parse_scene_file(path: &Path, limits: &Limits) -> Result<Scene, ParseError> {
+    let io_error = |e: std::io::Error| file_error(Some(path), ParseErrorKind::Io(e.to_string()));
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let mut bytes = Vec::new();
+    // Read one byte past the limit to notice a too-large (or growing) file
+    // without reading all of it.
+    file.take(limits.max_file_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io_error)?;
+    let size = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
+    if size > limits.max_file_bytes {
+        return Err(file_error(Some(path), too_large(size, limits)));
+    }
+    parse_scene(&String::from_utf8_lossy(&bytes), Some(path), limits)
+}
+
+/// An error about the file as a whole, at line 0, column 0.
+fn file_error(file: Option<&Path>, kind: ParseErrorKind) -> ParseError {
+    ParseError {
+        file: file.map(Path::to_path_buf),
+        line: 0,
+        column: 0,
+        command: None,
+        kind,
     }
 }
 
-/// Parses scene text; `file` only labels errors and sets `base_dir`.
-pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<Scene, ParseError> {
-    todo!("{text} {file:?} {limits:?}")
+fn too_large(size: u64, limits: &Limits) -> ParseErrorKind {
+    ParseErrorKind::AboveLimit {
+        what: "size in bytes",
+        found: format!("{size}+"),
+        limit: limits.max_file_bytes,
+    }
 }
 
-/// Reads and parses a scene file.
-pub fn parse_scene_file(path: &Path, limits: &Limits) -> Result<Scene, ParseError> {
-    todo!("{path:?} {limits:?}")
+/// The state while commands are read: the document so far and the material
+/// in force.
+struct Parser<'a, 'l> {
+    cursor: Cursor<'a>,
+    limits: &'l Limits,
+    scene: Scene,
+    /// Index of the material for following objects; `None` before any `f`.
+    material: Option<u32>,
+}
+
+impl Parser<'_, '_> {
+    fn command(&mut self, token: Token<'_>) -> Result<(), ParseError> {
+        match token.text {
+            "v" => self.view(token.pos),
+            "b" | "bclr" => self.background(),
+            "env" => self.env(),
+            "l" => self.point_light(token.pos),
+            "al" => self.area_light(token.pos),
+            "f" => self.material(token.pos),
+            "s" => self.sphere(token.pos),
+            "pl" => self.plane(token.pos),
+            "p" => self.polygon(token.pos),
+            "pp" => self.patch(token.pos),
+            "c" => self.cone(token.pos),
+            "box" => self.aabox(token.pos),
+            "mesh" => self.mesh(token.pos),
+            "accel" => self.accel(),
+            "spp" => self.spp(),
+            word => {
+                // Not inside any command: the error names none.
+                self.cursor.set_command(None);
+                let kind = if looks_numeric(word) {
+                    ParseErrorKind::UnexpectedNumber(word.to_string())
+                } else {
+                    ParseErrorKind::UnknownCommand(word.to_string())
+                };
+                Err(self.cursor.error_at(token.pos, kind))
+            }
+        }
+    }
+
+    /// Adds an object with the material in force, pushing the default
+    /// material first if no `f` came yet.
+    fn push_object(&mut self, primitive: Primitive, pos: Pos) -> Result<(), ParseError> {
+        let objects = self.scene.objects.len();
+        if objects >= self.limits.max_objects {
+            return Err(self.above_limit("object count", objects, self.limits.max_objects, pos));
+        }
+        let material = match self.material {
+            Some(index) => index,
+            None => self.push_material(super::Material::default(), pos)?,
+        };
+        self.scene.objects.push(Object {
+            primitive,
+            material,
+        });
+        Ok(())
+    }
+
+    /// Adds a material and makes it the one in force.
+    fn push_material(&mut self, material: super::Material, pos: Pos) -> Result<u32, ParseError> {
+        let count = self.scene.materials.len();
+        let index = u32::try_from(count)
+            .ok()
+            .filter(|_| count < self.limits.max_materials);
+        let Some(index) = index else {
+            return Err(self.above_limit("material count", count, self.limits.max_materials, pos));
+        };
+        self.scene.materials.push(material);
+        self.material = Some(index);
+        Ok(index)
+    }
+
+    /// An [`ParseErrorKind::AboveLimit`] for adding one more item to `count`.
+    fn above_limit(&self, what: &'static str, count: usize, limit: usize, pos: Pos) -> ParseError {
+        self.cursor.error_at(
+            pos,
+            ParseErrorKind::AboveLimit {
+                what,
+                found: count.saturating_add(1).to_string(),
+                limit: limit.try_into().unwrap_or(u64::MAX),
+            },
+        )
+    }
+
+    fn invalid(&self, pos: Pos, what: &'static str, why: impl Into<String>) -> ParseError {
+        self.cursor.error_at(
+            pos,
+            ParseErrorKind::InvalidValue {
+                what,
+                why: why.into(),
+            },
+        )
+    }
 }
