@@ -244,7 +244,10 @@ fn cancellation_stops_a_long_render() {
     // thread) may finish: none of the remaining thousands of tiles.
     let pixels_per_tile = 32 * 32;
     let after = stats.counters.eye_rays - at_cancel;
-    assert!(after <= 2 * pixels_per_tile, "{after} eye rays after cancel");
+    assert!(
+        after <= 2 * pixels_per_tile,
+        "{after} eye rays after cancel"
+    );
 }
 
 #[test]
