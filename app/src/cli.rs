@@ -13,11 +13,15 @@ use tracer::render::{Encoding, RenderSettings};
     version,
     about = "Whitted Workbench: explore a classic CPU ray tracer",
     long_about = "Whitted Workbench: explore a classic CPU ray tracer.\n\n\
-                  Subcommands run the renderer headless on NFF/P3F scene files."
+                  Without a subcommand it opens the window; subcommands run the\n\
+                  renderer headless on NFF/P3F scene files."
 )]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// A scene file to open in the window (default: the bundled showcase).
+    #[arg(long, global = false)]
+    pub scene: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]

@@ -1,12 +1,69 @@
-//! Loading a scene file into a world ready to render, with the context a
-//! user needs when it fails.
+//! Loading a scene, from a file or from the scenes embedded in the binary,
+//! into a world ready to render, with the context a user needs when it fails.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use anyhow::Result;
-use tracer::scene::{Limits, Scene, parse_scene_file};
+use anyhow::{Context, Result};
+use serde::{Deserialize, Serialize};
+use tracer::scene::{Limits, Scene, parse_scene, parse_scene_file};
+use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;
+
+use crate::bundled;
+
+/// Where a scene comes from.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SceneSource {
+    /// A file on disk.
+    File(PathBuf),
+    /// A scene embedded in the binary, by name.
+    Bundled(String),
+}
+
+impl SceneSource {
+    /// A short name for titles and lists.
+    pub fn label(&self) -> String {
+        match self {
+            SceneSource::File(path) => path
+                .file_name()
+                .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into()),
+            SceneSource::Bundled(name) => name.clone(),
+        }
+    }
+}
+
+/// Reads and prepares `source`. Warnings from preparing the world stay in
+/// `World::warnings` for the caller to show.
+pub fn load_source(source: &SceneSource) -> Result<(Scene, World)> {
+    match source {
+        SceneSource::File(path) => {
+            // The parse error already names the file, line and column.
+            let scene = parse_scene_file(path, &Limits::default())?;
+            let world = World::build(&scene);
+            Ok((scene, world))
+        }
+        SceneSource::Bundled(name) => {
+            let bundled = bundled::find(name)
+                .with_context(|| format!("no bundled scene called `{name}`"))?;
+            let scene = parse_scene(
+                bundled.text,
+                Some(Path::new(bundled.file)),
+                &Limits::default(),
+            )?;
+            let world = World::build_with_skybox(&scene, embedded_skybox);
+            Ok((scene, world))
+        }
+    }
+}
+
+/// The embedded skybox, whatever folder name the scene gives.
+fn embedded_skybox(name: &str) -> Result<Skybox, SkyboxError> {
+    match bundled::SKYBOX {
+        Some(faces) => Skybox::from_encoded(faces),
+        None => Err(SkyboxError::MissingFolder(PathBuf::from(name))),
+    }
+}
 
 /// A parsed scene and the world built from it.
 pub struct Loaded {
@@ -14,11 +71,9 @@ pub struct Loaded {
     pub world: Arc<World>,
 }
 
-/// Parses `path` and prepares it for rendering; warnings go to stderr.
+/// Parses a scene file for the headless commands; warnings go to stderr.
 pub fn load_scene(path: &Path) -> Result<Loaded> {
-    // The parse error already names the file, line and column.
-    let scene = parse_scene_file(path, &Limits::default())?;
-    let world = World::build(&scene);
+    let (scene, world) = load_source(&SceneSource::File(path.to_path_buf()))?;
     for warning in &world.warnings {
         eprintln!("warning: {}: {warning}", path.display());
     }

@@ -61,6 +61,23 @@ impl Skybox {
         Ok(Skybox { faces })
     }
 
+    /// Decodes six encoded images (PNG or JPEG bytes) in [`FACE_NAMES`]
+    /// order, for skyboxes embedded in a binary.
+    pub fn from_encoded(faces: [&[u8]; 6]) -> Result<Skybox, SkyboxError> {
+        let faces = faces
+            .iter()
+            .zip(FACE_NAMES)
+            .map(|(bytes, name)| {
+                let img = image::load_from_memory(bytes).map_err(|e| SkyboxError::Unreadable {
+                    file: PathBuf::from(name),
+                    message: e.to_string(),
+                })?;
+                Ok(face_from_image(img.to_rgb32f()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Skybox { faces })
+    }
+
     /// Builds a skybox from six faces given as functions of the face's
     /// `(s, t)` coordinates, for generators and tests.
     pub fn from_fn(size: u32, paint: impl Fn(usize, f32, f32) -> Vec3A) -> Skybox {
@@ -136,11 +153,15 @@ fn load_face(file: &Path) -> Result<Face, SkyboxError> {
     let img = image::open(file)
         .map_err(|e| unreadable(e.to_string()))?
         .to_rgb32f();
-    Ok(Face {
+    Ok(face_from_image(img))
+}
+
+fn face_from_image(img: image::Rgb32FImage) -> Face {
+    Face {
         width: img.width(),
         height: img.height(),
         texels: img.pixels().map(|p| Vec3A::from(p.0)).collect(),
-    })
+    }
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use glam::Vec3A;
 
 use crate::geometry::{AaBox, Aabb, Cone, Plane, Shape, Sphere, Triangle, triangulate_polygon};
 use crate::scene::{LightSpec, Material, Primitive, Scene, View};
-use crate::skybox::Skybox;
+use crate::skybox::{Skybox, SkyboxError};
 use crate::stats::SceneCounts;
 
 /// A material in the form shading wants it.
@@ -68,6 +68,22 @@ impl World {
     /// Prepares `scene` for rendering. Never fails: what cannot be rendered
     /// (degenerate triangles, a missing skybox) is skipped with a warning.
     pub fn build(scene: &Scene) -> World {
+        Self::build_with_skybox(scene, |name| {
+            let dir = scene
+                .base_dir
+                .as_deref()
+                .unwrap_or_else(|| std::path::Path::new("."))
+                .join(name);
+            Skybox::load(&dir)
+        })
+    }
+
+    /// Like [`World::build`], with `load_skybox` resolving the `env` name:
+    /// for scenes that do not come from a folder (embedded in a binary).
+    pub fn build_with_skybox(
+        scene: &Scene,
+        load_skybox: impl FnOnce(&str) -> Result<Skybox, SkyboxError>,
+    ) -> World {
         let mut builder = Builder::default();
         let mut kinds: Vec<(&'static str, usize)> = Vec::new();
         for object in &scene.objects {
@@ -87,12 +103,7 @@ impl World {
             ));
         }
         let skybox = scene.env.as_ref().and_then(|name| {
-            let dir = scene
-                .base_dir
-                .as_deref()
-                .unwrap_or_else(|| std::path::Path::new("."))
-                .join(name);
-            match Skybox::load(&dir) {
+            match load_skybox(name) {
                 Ok(sky) => Some(sky),
                 Err(e) => {
                     warnings.push(format!("{e}; using the background colour"));

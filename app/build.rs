@@ -1,0 +1,68 @@
+//! Embeds the project's scenes (`scenes/*.p3f`, `*.nff`) and the skybox
+//! (`assets/skybox/`) in the binary, so the window opens its scenes from any
+//! working directory. The list is generated, so a new scene file needs no
+//! code change.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scenes_dir = root.join("scenes");
+    let sky_dir = root.join("assets").join("skybox");
+    println!("cargo:rerun-if-changed={}", scenes_dir.display());
+    println!("cargo:rerun-if-changed={}", sky_dir.display());
+
+    let mut scenes: Vec<_> = std::fs::read_dir(&scenes_dir)
+        .map(|entries| {
+            entries
+                .filter_map(Result::ok)
+                .map(|e| e.path())
+                .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("p3f" | "nff")))
+                .collect()
+        })
+        .unwrap_or_default();
+    scenes.sort();
+
+    let mut out = String::from("/// Scenes embedded from `scenes/`, sorted by file name.\n");
+    out.push_str("pub const SCENES: &[BundledScene] = &[\n");
+    for path in &scenes {
+        println!("cargo:rerun-if-changed={}", path.display());
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
+        let file = path.file_name().and_then(|s| s.to_str()).unwrap_or("scene");
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        // The first comment line says how the scene was made and what it shows.
+        let description = text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix('#'))
+            .map(str::trim)
+            .unwrap_or("");
+        writeln!(
+            out,
+            "    BundledScene {{ name: {name:?}, file: {file:?}, description: {description:?}, text: include_str!({:?}) }},",
+            path.canonicalize().unwrap_or(path.clone()).display().to_string()
+        )
+        .unwrap();
+    }
+    out.push_str("];\n\n");
+
+    let faces = ["right", "left", "top", "bottom", "front", "back"];
+    let files: Vec<_> = faces
+        .iter()
+        .map(|f| sky_dir.join(format!("{f}.png")))
+        .filter(|p| p.is_file())
+        .collect();
+    out.push_str("/// The skybox faces embedded from `assets/skybox/`, if all six exist.\n");
+    if files.len() == 6 {
+        out.push_str("pub const SKYBOX: Option<[&[u8]; 6]> = Some([\n");
+        for f in &files {
+            let path = f.canonicalize().unwrap_or(f.clone());
+            writeln!(out, "    include_bytes!({:?}),", path.display().to_string()).unwrap();
+        }
+        out.push_str("]);\n");
+    } else {
+        out.push_str("pub const SKYBOX: Option<[&[u8]; 6]> = None;\n");
+    }
+    let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("bundled.rs");
+    std::fs::write(dest, out).unwrap();
+}

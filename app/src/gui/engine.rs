@@ -1,0 +1,243 @@
+//! The window's bridge to the tracer: it owns the scene being shown and the
+//! render job, restarts only what a settings change requires, and loads
+//! scenes off the UI thread. Settings go in; images and statistics come out.
+
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::time::{Duration, Instant};
+
+use tracer::accel::{AccelInfo, SceneIndex};
+use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings, Snapshot};
+use tracer::scene::Scene;
+use tracer::world::World;
+
+use crate::load::{SceneSource, load_source};
+
+/// A scene ready to render, with where it came from.
+pub struct LoadedScene {
+    pub source: SceneSource,
+    pub scene: Scene,
+    pub world: Arc<World>,
+    /// How long parsing and preparing took.
+    pub load_time: Duration,
+}
+
+/// What the engine is doing, for the overlay line.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Activity {
+    /// No scene yet.
+    Idle,
+    /// A scene is being read and prepared.
+    Loading(String),
+    /// The render job's state.
+    Job(JobState),
+}
+
+/// Owns the current scene and its render job.
+pub struct Engine {
+    scene: Option<LoadedScene>,
+    job: Option<RenderJob>,
+    /// Settings of the current job, to decide what a change restarts.
+    settings: Option<RenderSettings>,
+    /// The last acceleration structure built, reused while its kind and
+    /// multiplier stay the same.
+    index: Option<Arc<SceneIndex>>,
+    /// Cancelled jobs still finishing their last tiles; dropped once done
+    /// so the UI thread never waits for them.
+    retired: Vec<RenderJob>,
+    loading: Option<(String, Receiver<Result<LoadedScene, String>>)>,
+    /// Called by render threads to wake the UI.
+    wake: Arc<dyn Fn() + Send + Sync>,
+    /// Render threads' priority: low so the window stays responsive.
+    low_priority: bool,
+    threads: Option<usize>,
+    paused: bool,
+}
+
+impl Engine {
+    /// An engine that calls `wake` whenever there is something new to show.
+    pub fn new(wake: Arc<dyn Fn() + Send + Sync>) -> Self {
+        Self {
+            scene: None,
+            job: None,
+            settings: None,
+            index: None,
+            retired: Vec::new(),
+            loading: None,
+            wake,
+            low_priority: true,
+            threads: None,
+            paused: false,
+        }
+    }
+
+    /// Starts reading `source` on a background thread; the current scene
+    /// keeps rendering until the new one is ready.
+    pub fn load(&mut self, source: SceneSource) {
+        let (tx, rx) = channel();
+        let label = source.label();
+        let wake = self.wake.clone();
+        let spawned = std::thread::Builder::new()
+            .name("scene-loader".into())
+            .spawn(move || {
+                let start = Instant::now();
+                let result = load_source(&source)
+                    .map(|(scene, world)| LoadedScene {
+                        source,
+                        scene,
+                        world: Arc::new(world),
+                        load_time: start.elapsed(),
+                    })
+                    .map_err(|e| format!("{e:#}"));
+                let _ = tx.send(result);
+                wake();
+            });
+        match spawned {
+            Ok(_) => self.loading = Some((label, rx)),
+            Err(e) => {
+                let (tx, rx) = channel();
+                let _ = tx.send(Err(format!("cannot start the scene loader: {e}")));
+                self.loading = Some((label, rx));
+            }
+        }
+    }
+
+    /// Takes a finished load, if any: `Some(Ok(scene))` to be shown with
+    /// [`Engine::show`], `Some(Err(message))` when it failed.
+    pub fn poll_load(&mut self) -> Option<Result<&LoadedScene, String>> {
+        let (_, rx) = self.loading.as_ref()?;
+        match rx.try_recv() {
+            Err(TryRecvError::Empty) => None,
+            Err(TryRecvError::Disconnected) => {
+                self.loading = None;
+                Some(Err("the scene loader stopped unexpectedly".into()))
+            }
+            Ok(result) => {
+                self.loading = None;
+                match result {
+                    Ok(scene) => {
+                        self.retire_job();
+                        self.index = None;
+                        self.settings = None;
+                        self.scene = Some(scene);
+                        self.scene.as_ref().map(Ok)
+                    }
+                    Err(message) => Some(Err(message)),
+                }
+            }
+        }
+    }
+
+    pub fn scene(&self) -> Option<&LoadedScene> {
+        self.scene.as_ref()
+    }
+
+    pub fn is_loading(&self) -> bool {
+        self.loading.is_some()
+    }
+
+    /// Renders the current scene with `settings`, restarting the job only
+    /// when they differ from the running job's.
+    pub fn render(&mut self, settings: &RenderSettings) -> Result<(), String> {
+        if self.settings.as_ref() == Some(settings) && self.job.is_some() {
+            return Ok(());
+        }
+        self.restart(settings)
+    }
+
+    /// Starts a new job with `settings` whatever runs now.
+    pub fn restart(&mut self, settings: &RenderSettings) -> Result<(), String> {
+        let Some(scene) = &self.scene else {
+            return Ok(());
+        };
+        if let Some(job) = &self.job
+            && let Some(index) = job.index()
+        {
+            self.index = Some(index);
+        }
+        self.retire_job();
+        let wake = self.wake.clone();
+        let job = RenderJob::start(
+            scene.world.clone(),
+            self.index.clone(),
+            settings.clone(),
+            JobOptions {
+                threads: self.threads,
+                on_progress: Some(Box::new(move || wake())),
+                low_priority: self.low_priority,
+                ..JobOptions::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        job.set_paused(self.paused);
+        self.job = Some(job);
+        self.settings = Some(settings.clone());
+        Ok(())
+    }
+
+    fn retire_job(&mut self) {
+        if let Some(job) = self.job.take() {
+            job.cancel();
+            self.retired.push(job);
+        }
+    }
+
+    /// Drops cancelled jobs that have finished; call once per frame.
+    pub fn collect_retired(&mut self) {
+        self.retired.retain(|job| !job.is_finished());
+    }
+
+    pub fn set_paused(&mut self, paused: bool) {
+        self.paused = paused;
+        if let Some(job) = &self.job {
+            job.set_paused(paused);
+        }
+    }
+
+    pub fn is_paused(&self) -> bool {
+        self.paused
+    }
+
+    /// Sets the worker threads for the next job (`None`: every core).
+    pub fn set_threads(&mut self, threads: Option<usize>) {
+        self.threads = threads;
+    }
+
+    /// Whether render threads run at low priority (next job on).
+    pub fn set_low_priority(&mut self, low: bool) {
+        self.low_priority = low;
+    }
+
+    /// A number that changes whenever the image or statistics change.
+    pub fn version(&self) -> u64 {
+        self.job.as_ref().map_or(0, |j| j.version())
+    }
+
+    /// The current image and statistics.
+    pub fn snapshot(&self, encoding: Encoding) -> Option<Snapshot> {
+        self.job.as_ref().map(|j| j.snapshot(encoding))
+    }
+
+    /// What was built for the current job, once built.
+    pub fn accel_info(&self) -> Option<AccelInfo> {
+        self.job
+            .as_ref()
+            .and_then(|j| j.index())
+            .map(|i| i.info().clone())
+    }
+
+    pub fn activity(&self) -> Activity {
+        if let Some((label, _)) = &self.loading {
+            return Activity::Loading(label.clone());
+        }
+        match &self.job {
+            Some(job) => Activity::Job(job.state()),
+            None => Activity::Idle,
+        }
+    }
+
+    /// The settings of the running job.
+    pub fn settings(&self) -> Option<&RenderSettings> {
+        self.settings.as_ref()
+    }
+}

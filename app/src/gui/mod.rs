@@ -1,0 +1,1 @@
+pub fn run(_s: Option<std::path::PathBuf>) -> anyhow::Result<()> { Ok(()) }
