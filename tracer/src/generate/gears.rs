@@ -73,7 +73,7 @@ fn hsv(hue: f64, saturation: f64, value: f64) -> Vec3 {
 }
 
 pub(super) fn generate(level: u32, seed: u64) -> Scene {
-    let view = spd_view(Vec3::new(-1.5, -2.9, 3.4), Vec3::new(0.0, 0.0, 0.4));
+    let view = spd_view(Vec3::new(-1.9, -3.7, 4.3), Vec3::new(0.0, 0.0, 0.35));
     let mut b = SceneBuilder::new(view, SPD_BACKGROUND);
     for p in [
         (2.0, 4.0, 4.0),

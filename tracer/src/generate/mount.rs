@@ -2,7 +2,8 @@
 //! A square made of two triangles is subdivided `level` times, each
 //! triangle into four through its edge midpoints; every new midpoint is the
 //! average of its edge's ends plus a Gaussian offset that shrinks with the
-//! edge length as `length^H` (H = 3 - fractal dimension 2.2). A pyramid of
+//! edge length as `length^H` (H = 3 - fractal dimension 2.2); the first
+//! centre point is lifted so the noise rises into a peak. A pyramid of
 //! four glass spheres rests on the slope.
 
 use std::ops::RangeInclusive;
@@ -18,10 +19,12 @@ pub(super) const LEVELS: RangeInclusive<u32> = 0..=9;
 /// Hurst exponent, 3 - the SPD's fractal dimension 2.2.
 const HURST: f64 = 0.8;
 /// Standard deviation of the offset on an edge of length 1.
-const ROUGHNESS: f64 = 0.25;
-const SPHERE_RADIUS: f32 = 0.17;
-/// Where the sphere pyramid stands, in front of the mountain.
-const PYRAMID_AT: (f32, f32) = (-0.8, 0.8);
+const ROUGHNESS: f64 = 0.15;
+/// Extra height of the first centre point, so the noise makes a mountain.
+const PEAK: f64 = 0.45;
+const SPHERE_RADIUS: f32 = 0.12;
+/// Where the sphere pyramid stands: on the slope facing the camera.
+const PYRAMID_AT: (f32, f32) = (-0.45, 0.45);
 
 pub(super) fn triangle_count(level: u32) -> u64 {
     2 * 4u64.pow(level)
@@ -53,6 +56,7 @@ impl Terrain {
             let half = step / 2;
             let length = 2.0 * step as f64 / n as f64;
             let sigma = ROUGHNESS * length.powf(HURST);
+            let lift = if step == n { PEAK } else { 0.0 };
             let mut displace = |h: &mut [f32], (x, y): (usize, usize), a: usize, b: usize| {
                 let mid = 0.5 * (h[a] as f64 + h[b] as f64) + sigma * rng.gaussian();
                 h[y * w + x] = mid as f32;
@@ -73,6 +77,7 @@ impl Terrain {
                 for x in (0..n).step_by(step) {
                     let (a, b) = (y * w + x, (y + step) * w + x + step);
                     displace(&mut h, (x + half, y + half), a, b);
+                    h[(y + half) * w + x + half] += lift as f32;
                 }
             }
             step = half;
