@@ -22,8 +22,8 @@ const TEETH: usize = 36;
 const TIP: f64 = 1.08;
 const ROOT: f64 = 0.9;
 /// Half-widths of a tooth at its root and tip, as fractions of a period.
-const ROOT_HALF: f64 = 0.3;
-const TIP_HALF: f64 = 0.18;
+const ROOT_HALF: f64 = 0.26;
+const TIP_HALF: f64 = 0.12;
 /// Thickness of a gear as a fraction of the layer spacing.
 const THICKNESS: f64 = 0.4;
 const FLOOR: f32 = 2.0;
@@ -188,18 +188,47 @@ mod tests {
         }
     }
 
+    /// Crossing-number point-in-polygon test.
+    fn inside(p: DVec2, poly: &[DVec2]) -> bool {
+        let mut odd = false;
+        for (k, &a) in poly.iter().enumerate() {
+            let b = poly[(k + 1) % poly.len()];
+            if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+                odd = !odd;
+            }
+        }
+        odd
+    }
+
+    /// Whether two outlines' edges cross anywhere.
+    fn edges_cross(a: &[DVec2], b: &[DVec2]) -> bool {
+        let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
+        let edges = |v: &[DVec2]| {
+            let v = v.to_vec();
+            (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()]))
+        };
+        edges(a).any(|(p, q)| {
+            edges(b).any(|(r, s)| {
+                side(p, q, r) * side(p, q, s) < 0.0 && side(r, s, p) * side(r, s, q) < 0.0
+            })
+        })
+    }
+
     #[test]
-    fn neighbours_mesh_without_touching() {
-        // A tooth tip of one gear never enters the other's tip circle
-        // except inside a gap of the other gear.
-        let a = outline(0.3);
-        let b: Vec<DVec2> = outline(0.5 * TAU / TEETH as f64 - 0.3)
-            .into_iter()
-            .map(|p| p + DVec2::new(2.0, 0.0))
-            .collect();
-        for p in a.iter().filter(|p| p.x > 0.8) {
-            let nearest = b.iter().map(|q| q.distance(*p)).fold(f64::MAX, f64::min);
-            assert!(nearest > 0.02, "{p} too close to the other gear");
+    fn neighbours_interleave_without_overlapping() {
+        let period = TAU / TEETH as f64;
+        for turn in (0..20).map(|k| k as f64 * period / 20.0) {
+            for offset in [DVec2::new(2.0, 0.0), DVec2::new(0.0, 2.0)] {
+                let a = outline(turn);
+                let b: Vec<DVec2> = outline(0.5 * period - turn)
+                    .into_iter()
+                    .map(|p| p + offset)
+                    .collect();
+                assert!(a.iter().all(|&p| !inside(p, &b)) && b.iter().all(|&p| !inside(p, &a)));
+                assert!(!edges_cross(&a, &b), "turn {turn}");
+                // Some tooth reaches past the other gear's tip circle.
+                assert!(a.iter().any(|p| p.distance(offset) < TIP));
+            }
         }
     }
 }
