@@ -149,17 +149,19 @@ mod tests {
 
     #[test]
     fn stands_on_the_ground_within_reach() {
-        let scene = generate(12, 9);
-        for o in &scene.objects {
-            if let Primitive::Cone {
-                base,
-                apex,
-                base_radius,
-                apex_radius,
-            } = o.primitive
-            {
-                assert!(base.z >= 0.0 && apex.z > 0.0 && apex.length() < 6.0);
-                assert!(apex_radius < base_radius && apex_radius > 0.0);
+        for seed in 0..6 {
+            let scene = generate(12, seed);
+            for o in &scene.objects {
+                if let Primitive::Cone {
+                    base,
+                    apex,
+                    base_radius,
+                    apex_radius,
+                } = o.primitive
+                {
+                    assert!(base.z >= 0.0 && apex.z > 0.0 && apex.length() < 6.0);
+                    assert!(apex_radius < base_radius && apex_radius > 0.0);
+                }
             }
         }
     }
