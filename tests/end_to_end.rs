@@ -66,13 +66,14 @@ fn render_writes_the_scene_as_a_png() {
     assert_eq!(img.dimensions(), (48, 32));
     // The top rows see the sky: the background colour, written directly.
     assert_eq!(img.get_pixel(0, 0).0, [26, 51, 102]);
-    // The centre sees the red sphere.
-    let centre = img.get_pixel(24, 16).0;
+    // Above the centre the camera sees the red sphere.
+    let centre = img.get_pixel(24, 11).0;
     assert!(centre[0] > 2 * centre[1] && centre[0] > 60, "{centre:?}");
-    // The floor under the sphere, away from the light, is in shadow: darker
-    // than the lit floor in front of it.
+    // The floor behind the sphere, away from the light, is in shadow:
+    // darker than the lit floor in front of it.
     let lit = img.get_pixel(40, 30).0;
-    assert!(lit[1] > 40, "{lit:?}");
+    let shadow = img.get_pixel(20, 19).0;
+    assert!(lit[1] > 2 * shadow[1], "lit {lit:?} vs shadow {shadow:?}");
 }
 
 #[test]

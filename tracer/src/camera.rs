@@ -67,7 +67,7 @@ impl CameraPose {
         let limit = std::f32::consts::FRAC_PI_2 - POLE_MARGIN;
         let pitch = (elevation + pitch).clamp(-limit, limit) - elevation;
         let right = offset.cross(up).normalize_or(Vec3::X);
-        let offset = Quat::from_axis_angle(right, -pitch) * offset;
+        let offset = Quat::from_axis_angle(right, pitch) * offset;
         Self {
             from: self.at + offset,
             ..*self
@@ -282,13 +282,13 @@ mod tests {
         let vertical = (top_left - bottom_left).length();
         let horizontal = (top_right - top_left).length();
         assert!((horizontal / vertical - 2.0).abs() < 1e-4);
+        // The corner ray's angle to the view direction: its offsets on the
+        // view plane are d tan(20 deg) vertically and twice that sideways.
         let eye = Vec3A::from(v.from);
-        let half = ((top_left + bottom_left) * 0.5 - eye)
-            .normalize()
-            .dot((top_left - eye).normalize())
-            .acos()
-            .to_degrees();
-        assert!((half - 20.0).abs() < 1e-2, "{half}");
+        let forward = (Vec3A::from(v.at) - eye).normalize();
+        let corner = (top_left - eye).normalize().dot(forward).acos();
+        let expected = (20f32.to_radians().tan() * 5f32.sqrt()).atan();
+        assert!((corner - expected).abs() < 1e-4, "{corner} vs {expected}");
         assert!((centre - Vec3A::from(v.at)).length() < 1e-4);
     }
 

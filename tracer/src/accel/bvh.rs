@@ -2,7 +2,7 @@
 //! subtrees), flattened into a compact node array with siblings adjacent,
 //! traversed with a small stack, nearer child first.
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3A, Vec4};
 
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
@@ -38,22 +38,50 @@ impl Default for BvhParams {
 /// Deepest tree allowed: traversal's fixed stack holds this many nodes.
 const MAX_DEPTH: usize = 64;
 
-/// A node: 32 bytes, so two siblings share a cache line. `count > 0` marks
-/// a leaf holding primitives `first..first + count`; otherwise the children
-/// are nodes `first` and `first + 1`.
+/// A node: 32 bytes, so two siblings share a cache line, and two aligned
+/// SIMD loads fetch its box. The `w` lanes carry the integers (as float
+/// bits): `count > 0` marks a leaf holding primitives `first..first +
+/// count`; otherwise the children are nodes `first` and `first + 1`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
 struct Node {
-    min: Vec3,
-    first: u32,
-    max: Vec3,
-    count: u32,
+    /// Box minimum; `w` = first.
+    lo: Vec4,
+    /// Box maximum; `w` = count.
+    hi: Vec4,
 }
 
 impl Node {
+    fn new(bounds: Aabb, first: u32, count: u32) -> Self {
+        let (min, max) = if bounds.is_empty() {
+            (Vec3A::ZERO, Vec3A::ZERO)
+        } else {
+            (bounds.min, bounds.max)
+        };
+        Self {
+            lo: min.extend(f32::from_bits(first)),
+            hi: max.extend(f32::from_bits(count)),
+        }
+    }
+
+    #[inline]
+    fn first(&self) -> u32 {
+        self.lo.w.to_bits()
+    }
+
+    #[inline]
+    fn count(&self) -> u32 {
+        self.hi.w.to_bits()
+    }
+
+    #[inline]
+    fn bounds(&self) -> Aabb {
+        Aabb::new(Vec3A::from_vec4(self.lo), Vec3A::from_vec4(self.hi))
+    }
+
     #[inline]
     fn hit(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        Aabb::new(self.min.into(), self.max.into())
+        self.bounds()
             .intersect(ray, t_min, t_max)
             .map(|(near, _)| near)
     }
@@ -90,14 +118,6 @@ enum BuildNode {
     },
 }
 
-impl BuildNode {
-    fn bounds(&self) -> Aabb {
-        match self {
-            BuildNode::Leaf { bounds, .. } | BuildNode::Inner { bounds, .. } => *bounds,
-        }
-    }
-}
-
 impl Bvh {
     /// Builds a hierarchy over the bounded shapes `ids` of `shapes`.
     pub fn build(shapes: &[Shape], ids: &[u32], params: &BvhParams) -> Bvh {
@@ -114,12 +134,7 @@ impl Bvh {
             .collect();
         let root = build_node(&mut prims, 0, 0, params);
         let mut nodes = Vec::with_capacity(2 * prims.len().max(1));
-        nodes.push(Node {
-            min: Vec3::ZERO,
-            first: 0,
-            max: Vec3::ZERO,
-            count: 0,
-        });
+        nodes.push(Node::new(Aabb::empty(), 0, 0));
         flatten(&root, 0, &mut nodes);
         let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
         Bvh {
@@ -155,12 +170,12 @@ impl Bvh {
             if depth > MAX_DEPTH {
                 return Err(format!("node {index} is deeper than {MAX_DEPTH}"));
             }
-            let bounds = Aabb::new(node.min.into(), node.max.into());
+            let bounds = node.bounds();
             let inside = |b: &Aabb| {
                 (b.min.cmpge(bounds.min) & b.max.cmple(bounds.max)).all() || b.is_empty()
             };
-            if node.count > 0 {
-                let range = node.first as usize..(node.first + node.count) as usize;
+            if node.count() > 0 {
+                let range = node.first() as usize..(node.first() + node.count()) as usize;
                 for p in range {
                     let shape = self
                         .shapes
@@ -177,7 +192,7 @@ impl Bvh {
                 if self.shapes.is_empty() {
                     continue;
                 }
-                for child in [node.first as usize, node.first as usize + 1] {
+                for child in [node.first() as usize, node.first() as usize + 1] {
                     let c = self
                         .nodes
                         .get(child)
@@ -185,7 +200,7 @@ impl Bvh {
                     if child <= index {
                         return Err(format!("child {child} of {index} points backwards"));
                     }
-                    if !inside(&Aabb::new(c.min.into(), c.max.into())) {
+                    if !inside(&c.bounds()) {
                         return Err(format!("child {child} is not inside its parent {index}"));
                     }
                     stack.push((child, depth + 1));
@@ -211,7 +226,9 @@ impl Bvh {
             return None;
         }
         let mut best = None;
-        let mut stack = [0u32; MAX_DEPTH + 1];
+        // Deferred far children with their entry distance, so a pop can
+        // skip a node beyond the closest hit without re-testing its box.
+        let mut stack = [(0u32, 0f32); MAX_DEPTH + 1];
         let mut top = 0;
         let mut node = &self.nodes[0];
         node.hit(ray, t_min, t_max)?;
@@ -219,31 +236,29 @@ impl Bvh {
         let mut tests = 0u64;
         loop {
             visited += 1;
-            if node.count > 0 {
-                let first = node.first as usize;
-                let last = first + node.count as usize;
-                tests += node.count as u64;
-                for (i, shape) in self.shapes[first..last].iter().enumerate() {
+            let first = node.first() as usize;
+            let count = node.count() as usize;
+            if count > 0 {
+                tests += count as u64;
+                for (i, shape) in self.shapes[first..first + count].iter().enumerate() {
                     if let Some(t) = shape.intersect(ray, t_min, t_max) {
                         t_max = t;
                         best = Some(first + i);
                     }
                 }
             } else {
-                let left = &self.nodes[node.first as usize];
-                let right = &self.nodes[node.first as usize + 1];
-                let near_left = left.hit(ray, t_min, t_max);
-                let near_right = right.hit(ray, t_min, t_max);
-                match (near_left, near_right) {
+                let left = &self.nodes[first];
+                let right = &self.nodes[first + 1];
+                match (left.hit(ray, t_min, t_max), right.hit(ray, t_min, t_max)) {
                     (Some(l), Some(r)) => {
-                        let (near, far) = if l <= r {
-                            (node.first, node.first + 1)
+                        let (near, far, far_t) = if l <= r {
+                            (left, first + 1, r)
                         } else {
-                            (node.first + 1, node.first)
+                            (right, first, l)
                         };
-                        stack[top] = far;
+                        stack[top] = (far as u32, far_t);
                         top += 1;
-                        node = &self.nodes[near as usize];
+                        node = near;
                         continue;
                     }
                     (Some(_), None) => {
@@ -268,9 +283,9 @@ impl Bvh {
                     });
                 }
                 top -= 1;
-                let candidate = &self.nodes[stack[top] as usize];
-                if candidate.hit(ray, t_min, t_max).is_some() {
-                    node = candidate;
+                let (index, entry) = stack[top];
+                if entry <= t_max {
+                    node = &self.nodes[index as usize];
                     break;
                 }
             }
@@ -295,9 +310,9 @@ impl Bvh {
                 continue;
             }
             visited += 1;
-            if node.count > 0 {
-                let first = node.first as usize;
-                for shape in &self.shapes[first..first + node.count as usize] {
+            if node.count() > 0 {
+                let first = node.first() as usize;
+                for shape in &self.shapes[first..first + node.count() as usize] {
                     tests += 1;
                     if shape.intersect(ray, t_min, t_max).is_some() {
                         found = true;
@@ -305,8 +320,8 @@ impl Bvh {
                     }
                 }
             } else {
-                stack[top] = node.first + 1;
-                stack[top + 1] = node.first;
+                stack[top] = node.first() + 1;
+                stack[top + 1] = node.first();
                 top += 2;
             }
         }
@@ -431,32 +446,18 @@ fn partition(prims: &mut [BuildPrim], left: impl Fn(&BuildPrim) -> bool) -> usiz
 /// Writes `node` into `nodes[index]`, its children into two new adjacent
 /// slots, recursively.
 fn flatten(node: &BuildNode, index: usize, nodes: &mut Vec<Node>) {
-    let b = node.bounds();
-    let (min, max) = if b.is_empty() {
-        (Vec3::ZERO, Vec3::ZERO)
-    } else {
-        (b.min.into(), b.max.into())
-    };
     match node {
-        BuildNode::Leaf { first, count, .. } => {
-            nodes[index] = Node {
-                min,
-                first: *first,
-                max,
-                count: *count,
-            };
-        }
-        BuildNode::Inner { children, .. } => {
+        BuildNode::Leaf {
+            bounds,
+            first,
+            count,
+        } => nodes[index] = Node::new(*bounds, *first, *count),
+        BuildNode::Inner { bounds, children } => {
             let first = nodes.len();
             let blank = nodes[index];
             nodes.push(blank);
             nodes.push(blank);
-            nodes[index] = Node {
-                min,
-                first: first as u32,
-                max,
-                count: 0,
-            };
+            nodes[index] = Node::new(*bounds, first as u32, 0);
             flatten(&children[0], first, nodes);
             flatten(&children[1], first + 1, nodes);
         }

@@ -169,6 +169,7 @@ impl<'a> Tracer<'a> {
         counters: &mut Counters,
     ) -> Vec3A {
         let mut total = Vec3A::ZERO;
+        let has_highlight = surface.specular.max_element() > 0.0;
         for light in &self.world.lights {
             let mut from_light = Vec3A::ZERO;
             let mut add_sample = |target: Vec3A, weight: f32, counters: &mut Counters| {
@@ -178,8 +179,7 @@ impl<'a> Tracer<'a> {
                     return;
                 }
                 let l = to_light / distance;
-                let (diffuse, specular) = blinn_phong(n, l, to_viewer, surface.shine);
-                if diffuse <= 0.0 {
+                if n.dot(l) <= 0.0 {
                     return;
                 }
                 counters.shadow_rays += 1;
@@ -190,6 +190,13 @@ impl<'a> Tracer<'a> {
                 {
                     return;
                 }
+                // The highlight's power is the costliest term: only lit
+                // points of specular surfaces pay for it.
+                let (diffuse, specular) = if has_highlight {
+                    blinn_phong(n, l, to_viewer, surface.shine)
+                } else {
+                    (n.dot(l), 0.0)
+                };
                 from_light += (surface.diffuse * diffuse + surface.specular * specular) * weight;
             };
             match self.shadow_mode {
