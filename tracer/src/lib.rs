@@ -5,6 +5,7 @@
 
 pub mod accel;
 pub mod camera;
+pub mod generate;
 pub mod geometry;
 pub mod optics;
 pub mod render;

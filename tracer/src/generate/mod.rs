@@ -1,0 +1,178 @@
+//! Procedural scenes after Eric Haines's Standard Procedural Databases
+//! (SPD): the classic ray-tracing benchmarks, recomputed here from their
+//! published algorithms so the workbench ships its own scenes at any size.
+//! Each generator builds a [`Scene`] document, ready for
+//! [`crate::scene::write_p3f`]; the same name, level and seed always give
+//! the same scene.
+
+mod balls;
+mod common;
+mod gears;
+mod mount;
+mod rings;
+pub mod sky;
+mod tetra;
+mod tree;
+
+use std::fmt;
+use std::ops::RangeInclusive;
+use std::str::FromStr;
+
+use crate::scene::Scene;
+
+/// The scene families the workbench can generate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum GeneratorName {
+    Balls,
+    Mount,
+    Tetra,
+    Rings,
+    Tree,
+    Gears,
+}
+
+impl GeneratorName {
+    /// Every generator, for listings and exhaustive tests.
+    pub const ALL: [GeneratorName; 6] = [
+        GeneratorName::Balls,
+        GeneratorName::Mount,
+        GeneratorName::Tetra,
+        GeneratorName::Rings,
+        GeneratorName::Tree,
+        GeneratorName::Gears,
+    ];
+
+    /// The name used on the command line (`workbench gen balls`).
+    pub fn name(self) -> &'static str {
+        match self {
+            GeneratorName::Balls => "balls",
+            GeneratorName::Mount => "mount",
+            GeneratorName::Tetra => "tetra",
+            GeneratorName::Rings => "rings",
+            GeneratorName::Tree => "tree",
+            GeneratorName::Gears => "gears",
+        }
+    }
+}
+
+impl fmt::Display for GeneratorName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for GeneratorName {
+    type Err = GenerateError;
+
+    /// Case-insensitive, so `Balls` and `balls` both work on a command line.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        GeneratorName::ALL
+            .into_iter()
+            .find(|g| g.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| GenerateError::UnknownGenerator(s.to_string()))
+    }
+}
+
+/// What to generate: the size (meaning depends on the generator, see
+/// [`level_range`]) and the seed of any randomness.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct GenerateOptions {
+    pub level: u32,
+    pub seed: u64,
+}
+
+/// Why a scene could not be generated.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum GenerateError {
+    #[error("unknown generator `{0}` (expected one of balls, mount, tetra, rings, tree, gears)")]
+    UnknownGenerator(String),
+    #[error("{name} level {level} is outside the valid range {}..={}", range.start(), range.end())]
+    LevelOutOfRange {
+        name: GeneratorName,
+        level: u32,
+        range: RangeInclusive<u32>,
+    },
+}
+
+/// The valid levels of each generator. Counts per level:
+/// - balls 0..=5: sum of 9^k spheres for k = 0..=level (1, 10, 91, 820, 7381, 66430);
+/// - mount 0..=9: 2 * 4^level triangles (level 8 = 131072) plus 4 glass spheres;
+/// - tetra 0..=8: 4^level tetrahedra, 4 triangles each;
+/// - rings 1..=12: a pyramid of `level` layers of k x k groups of 6 rings,
+///   each ring 5 cylinders and 5 spheres;
+/// - tree 1..=16: `level` generations of binary branching, 2^level - 1 cones,
+///   2^(level-1) - 1 joint spheres and 2^(level-1) leaves;
+/// - gears 1..=8: `level` layers of level x level meshing gears, 146
+///   polygons each (two 144-vertex faces, 144 wall quads).
+pub fn level_range(name: GeneratorName) -> RangeInclusive<u32> {
+    match name {
+        GeneratorName::Balls => balls::LEVELS,
+        GeneratorName::Mount => mount::LEVELS,
+        GeneratorName::Tetra => tetra::LEVELS,
+        GeneratorName::Rings => rings::LEVELS,
+        GeneratorName::Tree => tree::LEVELS,
+        GeneratorName::Gears => gears::LEVELS,
+    }
+}
+
+/// The SPD's standard size for each scene (about 10,000 primitives), the
+/// size its published timings refer to.
+pub fn default_level(name: GeneratorName) -> u32 {
+    match name {
+        GeneratorName::Balls => 4,
+        GeneratorName::Mount => 6,
+        GeneratorName::Tetra => 6,
+        GeneratorName::Rings => 7,
+        GeneratorName::Tree => 10,
+        GeneratorName::Gears => 4,
+    }
+}
+
+/// Generates the scene `name` at `options.level`, with randomness drawn
+/// from `options.seed` (only mount, tree and gears use it).
+pub fn generate(name: GeneratorName, options: &GenerateOptions) -> Result<Scene, GenerateError> {
+    let level = options.level;
+    let range = level_range(name);
+    if !range.contains(&level) {
+        return Err(GenerateError::LevelOutOfRange { name, level, range });
+    }
+    let seed = options.seed;
+    Ok(match name {
+        GeneratorName::Balls => balls::generate(level),
+        GeneratorName::Mount => mount::generate(level, seed),
+        GeneratorName::Tetra => tetra::generate(level),
+        GeneratorName::Rings => rings::generate(level),
+        GeneratorName::Tree => tree::generate(level, seed),
+        GeneratorName::Gears => gears::generate(level, seed),
+    })
+}
+
+/// A one-line header for a generated file (the P3F writer cannot store
+/// comments, so callers prepend it as `# ...`): what the scene holds and
+/// the command that regenerates it.
+pub fn describe(name: GeneratorName, level: u32, seed: u64) -> String {
+    let range = level_range(name);
+    let what = if range.contains(&level) {
+        match name {
+            GeneratorName::Balls => balls::describe(level),
+            GeneratorName::Mount => mount::describe(level),
+            GeneratorName::Tetra => tetra::describe(level),
+            GeneratorName::Rings => rings::describe(level),
+            GeneratorName::Tree => tree::describe(level),
+            GeneratorName::Gears => gears::describe(level),
+        }
+    } else {
+        format!("invalid level (valid: {}..={})", range.start(), range.end())
+    };
+    let seed_arg = if seed == 0 {
+        String::new()
+    } else {
+        format!(" --seed {seed}")
+    };
+    format!(
+        "{name} level {level} (seed {seed}): {what}; generated by `workbench gen {name} --level {level}{seed_arg}`"
+    )
+}
+
+#[cfg(test)]
+mod tests;
