@@ -30,6 +30,28 @@ pub enum Command {
     Render(RenderArgs),
     /// Time frames of a scene with each acceleration structure.
     Bench(BenchArgs),
+    /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears)
+    /// as P3F, or the sky cube (`sky`) as six PNG faces.
+    Gen(GenArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct GenArgs {
+    /// balls, mount, tetra, rings, tree, gears or sky.
+    pub name: String,
+    /// Size of the scene (its meaning depends on the generator: for balls,
+    /// level 2 is 91 spheres).
+    #[arg(long)]
+    pub level: Option<u32>,
+    /// Seed of the generator's randomness.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Output file (default: standard output); a folder for `sky`.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Side of each sky face in pixels.
+    #[arg(long, default_value_t = 512)]
+    pub size: u32,
 }
 
 #[derive(Args, Debug)]

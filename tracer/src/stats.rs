@@ -70,6 +70,8 @@ pub struct RenderStats {
     pub counters: Counters,
     /// Duration of each completed pass.
     pub pass_times: Vec<Duration>,
+    /// Rays of all kinds traced in each completed pass.
+    pub pass_rays: Vec<u64>,
     /// Time spent rendering so far (passes, including a partial one).
     pub render_time: Duration,
     /// Time spent building the acceleration structure.

@@ -147,7 +147,7 @@ impl Engine {
 
     /// Starts a new job with `settings` whatever runs now.
     pub fn restart(&mut self, settings: &RenderSettings) -> Result<(), String> {
-        let Some(scene) = &self.scene else {
+        let Some(world) = self.scene.as_ref().map(|s| s.world.clone()) else {
             return Ok(());
         };
         if let Some(job) = &self.job
@@ -158,7 +158,7 @@ impl Engine {
         self.retire_job();
         let wake = self.wake.clone();
         let job = RenderJob::start(
-            scene.world.clone(),
+            world,
             self.index.clone(),
             settings.clone(),
             JobOptions {

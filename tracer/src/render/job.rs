@@ -316,6 +316,7 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             return;
         }
         let start = Instant::now();
+        let rays_before = shared.progress().stats.counters.total_rays();
         frame.tiles.par_iter().for_each(|tile| {
             shared.wait_while_paused();
             if shared.cancelled() {
@@ -340,6 +341,8 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             let mut p = shared.progress();
             p.stats.passes_done = pass + 1;
             p.stats.pass_times.push(elapsed);
+            let rays = p.stats.counters.total_rays() - rays_before;
+            p.stats.pass_rays.push(rays);
             p.stats.render_time = rendered;
             if let Some(observe) = &shared.on_pass {
                 observe(pass + 1, &p.film);

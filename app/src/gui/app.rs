@@ -1,0 +1,659 @@
+//! The workbench window: panels around the live image, with every action
+//! recorded as a [`Command`] and run once at the end of the frame.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::time::{Duration, Instant};
+
+use egui::{Color32, ColorImage, RichText, TextureHandle, TextureOptions, Ui};
+use tracer::camera::CameraPose;
+use tracer::render::{Encoding, JobState, Snapshot};
+
+use crate::bundled;
+use crate::load::SceneSource;
+use crate::output::save_png;
+
+use super::commands::Command;
+use super::engine::{Activity, Engine};
+use super::state::Persisted;
+use super::viewport::{self, Gesture, ViewState, Zoom};
+use super::{controls, scene_picker, stats_panel};
+
+/// Shortest time between two texture uploads: the display refreshes at up
+/// to 30 Hz and never slows the render down.
+const UPLOAD_INTERVAL: Duration = Duration::from_millis(33);
+/// How long after the last wheel dolly the camera counts as moving.
+const MOVE_SETTLE: Duration = Duration::from_millis(250);
+/// How long a notice stays on screen.
+const NOTICE_TIME: Duration = Duration::from_secs(5);
+
+/// Results of background dialogs and saves, delivered to the UI thread.
+enum Reply {
+    Open(PathBuf),
+    Notice(String),
+    Error(String),
+}
+
+/// The application state: persisted settings plus runtime handles.
+pub struct WorkbenchApp {
+    state: Persisted,
+    engine: Engine,
+    view: ViewState,
+    /// The camera after the user moved it; `None` is the scene's own.
+    camera: Option<CameraPose>,
+    texture: Option<TextureHandle>,
+    /// The snapshot on screen: kept for the pixel readout, the overlay,
+    /// the statistics and saving.
+    shown: Option<Snapshot>,
+    shown_version: u64,
+    shown_encoding: Encoding,
+    last_upload: Instant,
+    dragging_camera: bool,
+    moving_until: Option<Instant>,
+    /// Opening a scene adopts its settings; restoring the last session
+    /// keeps the persisted ones.
+    adopt_next_scene: bool,
+    error: Option<String>,
+    notice: Option<(String, Instant)>,
+    help_open: bool,
+    disk_scenes: Vec<PathBuf>,
+    hovered_pixel: Option<(u32, u32)>,
+    frame_interval: f32,
+    last_frame: Option<Instant>,
+    replies: (Sender<Reply>, Receiver<Reply>),
+}
+
+impl WorkbenchApp {
+    /// Creates the app, restoring the persisted state when `storage` has
+    /// one, and starts loading `initial` (or the last scene, or the bundled
+    /// default).
+    pub fn new(
+        ctx: &egui::Context,
+        storage: Option<&dyn eframe::Storage>,
+        initial: Option<SceneSource>,
+    ) -> Self {
+        let state: Persisted = storage
+            .and_then(|s| eframe::get_value(s, eframe::APP_KEY))
+            .unwrap_or_default();
+        let wake_ctx = ctx.clone();
+        let mut app = Self {
+            engine: Engine::new(Arc::new(move || wake_ctx.request_repaint())),
+            view: ViewState::default(),
+            camera: None,
+            texture: None,
+            shown: None,
+            shown_version: 0,
+            shown_encoding: Encoding::Linear,
+            last_upload: Instant::now(),
+            dragging_camera: false,
+            moving_until: None,
+            adopt_next_scene: true,
+            error: None,
+            notice: None,
+            help_open: false,
+            disk_scenes: scene_picker::scene_files(Path::new("scenes")),
+            hovered_pixel: None,
+            frame_interval: 0.0,
+            last_frame: None,
+            replies: channel(),
+            state,
+        };
+        let restoring = initial.is_none() && app.state.last_scene.is_some();
+        let source = initial
+            .or_else(|| app.state.last_scene.clone())
+            .or_else(default_scene);
+        if let Some(source) = source {
+            app.adopt_next_scene = !restoring;
+            app.engine.load(source);
+        }
+        app
+    }
+
+    /// The persisted state (for tests and saving).
+    pub fn state(&self) -> &Persisted {
+        &self.state
+    }
+
+    /// Mutable persisted state, as the side panel edits it.
+    pub fn state_mut(&mut self) -> &mut Persisted {
+        &mut self.state
+    }
+
+    /// The engine, for tests that check what the renderer was asked.
+    pub fn engine(&self) -> &Engine {
+        &self.engine
+    }
+
+    /// The error shown in the window, if any.
+    pub fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+
+    /// Starts loading a scene as the user would open it.
+    pub fn open(&mut self, source: SceneSource) {
+        self.adopt_next_scene = true;
+        self.engine.load(source);
+    }
+
+    /// Writes the displayed render, at its full resolution, to `path`.
+    pub fn save_to(&self, path: &Path) -> anyhow::Result<()> {
+        let snapshot = self
+            .shown
+            .as_ref()
+            .ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))?;
+        let rgb: Vec<u8> = snapshot
+            .rgba
+            .chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
+        let image = image::RgbImage::from_raw(snapshot.width, snapshot.height, rgb)
+            .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))?;
+        save_png(&image, path)
+    }
+
+    fn is_camera_moving(&self) -> bool {
+        self.dragging_camera || self.moving_until.is_some_and(|t| Instant::now() < t)
+    }
+
+    /// Takes finished loads, dialogs and saves.
+    fn receive(&mut self) {
+        if let Some(result) = self.engine.poll_load() {
+            match result {
+                Ok(loaded) => {
+                    let scene = loaded.scene.clone();
+                    let source = loaded.source.clone();
+                    let warnings = loaded.world.warnings.clone();
+                    if self.adopt_next_scene {
+                        self.state.controls.adopt_scene(&scene);
+                    }
+                    self.adopt_next_scene = true;
+                    self.camera = None;
+                    self.view = ViewState::default();
+                    self.error = None;
+                    self.shown = None;
+                    if let SceneSource::File(path) = &source {
+                        self.state.remember(path.clone());
+                    }
+                    self.state.last_scene = Some(source);
+                    if !warnings.is_empty() {
+                        self.notify(warnings.join("; "));
+                    }
+                }
+                Err(message) => self.error = Some(message),
+            }
+        }
+        while let Ok(reply) = self.replies.1.try_recv() {
+            match reply {
+                Reply::Open(path) => self.open(SceneSource::File(path)),
+                Reply::Notice(text) => self.notify(text),
+                Reply::Error(text) => self.error = Some(text),
+            }
+        }
+    }
+
+    fn notify(&mut self, text: String) {
+        self.notice = Some((text, Instant::now()));
+    }
+
+    /// Opens scene files dropped on the window.
+    fn take_dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped = ctx.input(|i| i.raw.dropped_files.clone());
+        for file in dropped {
+            let path = file.path();
+            if scene_picker::is_scene_file(path) {
+                self.open(SceneSource::File(path.to_path_buf()));
+                return;
+            }
+            self.notify(format!(
+                "{} is not a scene file (.p3f or .nff)",
+                path.display()
+            ));
+        }
+    }
+
+    fn run_command(&mut self, command: Command) {
+        let controls = &mut self.state.controls;
+        match command {
+            Command::ToggleAntialiasing => controls.antialiasing ^= true,
+            Command::ToggleSoftShadows => controls.soft_shadows ^= true,
+            Command::ToggleDepthOfField => controls.depth_of_field ^= true,
+            Command::ToggleGrid => controls.toggle_grid(),
+            Command::ToggleKeepRefining => controls.keep_refining ^= true,
+            Command::TogglePause => self.engine.set_paused(!self.engine.is_paused()),
+            Command::Restart => self.restart(),
+            Command::ResetCamera => self.camera = None,
+            Command::ZoomFit => self.view = ViewState::default(),
+            Command::ZoomActualSize => {
+                self.view = ViewState {
+                    zoom: Zoom::Scale(1.0),
+                    ..ViewState::default()
+                }
+            }
+            Command::ToggleStats => self.state.show_stats ^= true,
+            Command::ToggleHelp => self.help_open ^= true,
+            Command::Reload => match self.state.last_scene.clone() {
+                Some(source) => {
+                    self.adopt_next_scene = false;
+                    self.engine.load(source);
+                }
+                None => self.notify("no scene to reload".into()),
+            },
+            Command::Open => self.open_dialog(),
+            Command::Save => self.save_dialog(),
+        }
+    }
+
+    fn restart(&mut self) {
+        if let Some(scene) = self.engine.scene() {
+            let settings = self.state.controls.render_settings(
+                &scene.scene,
+                self.camera,
+                self.is_camera_moving(),
+            );
+            if let Err(e) = self.engine.restart(&settings) {
+                self.error = Some(e);
+            }
+        }
+    }
+
+    /// The native open dialog, on its own thread so the UI keeps drawing.
+    fn open_dialog(&mut self) {
+        let reply = self.replies.0.clone();
+        let spawned = std::thread::Builder::new()
+            .name("open-dialog".into())
+            .spawn(move || {
+                let picked = rfd::FileDialog::new()
+                    .add_filter("Scene files", &["p3f", "nff"])
+                    .set_directory("scenes")
+                    .pick_file();
+                let _ = reply.send(match picked {
+                    Some(path) => Reply::Open(path),
+                    None => Reply::Notice(
+                        "nothing opened (cancelled, or no file dialog on this desktop: \
+                         drop a file on the window instead)"
+                            .into(),
+                    ),
+                });
+            });
+        if spawned.is_err() {
+            self.notify("cannot open a file dialog".into());
+        }
+    }
+
+    /// The native save dialog and the PNG write, off the UI thread.
+    fn save_dialog(&mut self) {
+        let Some(snapshot) = self.shown.clone() else {
+            self.notify("there is no image to save yet".into());
+            return;
+        };
+        if self.is_camera_moving() {
+            self.notify("the camera is moving: save once the render settles".into());
+            return;
+        }
+        let name = self
+            .state
+            .last_scene
+            .as_ref()
+            .map_or_else(|| "render".into(), |s| s.label());
+        let stem = Path::new(&name)
+            .file_stem()
+            .map_or_else(|| "render".into(), |s| s.to_string_lossy().into_owned());
+        let reply = self.replies.0.clone();
+        let spawned = std::thread::Builder::new()
+            .name("save-dialog".into())
+            .spawn(move || {
+                let Some(path) = rfd::FileDialog::new()
+                    .add_filter("PNG image", &["png"])
+                    .set_file_name(format!("{stem}.png"))
+                    .save_file()
+                else {
+                    let _ = reply.send(Reply::Notice(
+                        "not saved (cancelled, or no file dialog on this desktop)".into(),
+                    ));
+                    return;
+                };
+                let rgb: Vec<u8> = snapshot
+                    .rgba
+                    .chunks_exact(4)
+                    .flat_map(|p| [p[0], p[1], p[2]])
+                    .collect();
+                let result = image::RgbImage::from_raw(snapshot.width, snapshot.height, rgb)
+                    .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
+                    .and_then(|img| save_png(&img, &path));
+                let _ = reply.send(match result {
+                    Ok(()) => Reply::Notice(format!("saved {}", path.display())),
+                    Err(e) => Reply::Error(format!("{e:#}")),
+                });
+            });
+        if spawned.is_err() {
+            self.notify("cannot open a file dialog".into());
+        }
+    }
+
+    /// Applies camera gestures from the viewport.
+    fn apply_gestures(&mut self, gestures: &[Gesture]) {
+        let Some(scene) = self.engine.scene() else {
+            return;
+        };
+        let mut pose = self
+            .camera
+            .unwrap_or_else(|| CameraPose::of(&scene.scene.view));
+        for gesture in gestures {
+            pose = match *gesture {
+                Gesture::Orbit { yaw, pitch } => pose.orbit(yaw, pitch),
+                Gesture::Pan { dx, dy } => pose.pan(dx, dy),
+                Gesture::Dolly(factor) => {
+                    self.moving_until = Some(Instant::now() + MOVE_SETTLE);
+                    pose.dolly(factor)
+                }
+            };
+        }
+        if !gestures.is_empty() {
+            self.camera = Some(pose);
+        }
+    }
+
+    /// Keeps the engine rendering what the controls say.
+    fn sync_render(&mut self, ctx: &egui::Context) {
+        let moving = self.is_camera_moving();
+        let Some(scene) = self.engine.scene() else {
+            return;
+        };
+        let settings = self
+            .state
+            .controls
+            .render_settings(&scene.scene, self.camera, moving);
+        if let Err(e) = self.engine.render(&settings) {
+            self.error = Some(e);
+        }
+        if let Some(until) = self.moving_until {
+            let now = Instant::now();
+            if now < until {
+                ctx.request_repaint_after(until - now);
+            } else {
+                self.moving_until = None;
+            }
+        }
+    }
+
+    /// Uploads the render to the GPU when it changed, at most every
+    /// [`UPLOAD_INTERVAL`].
+    fn refresh_texture(&mut self, ctx: &egui::Context) {
+        let version = self.engine.version();
+        let encoding = self.state.controls.encoding();
+        if version == self.shown_version && encoding == self.shown_encoding {
+            return;
+        }
+        let since = self.last_upload.elapsed();
+        if since < UPLOAD_INTERVAL && self.shown.is_some() {
+            ctx.request_repaint_after(UPLOAD_INTERVAL - since);
+            return;
+        }
+        let Some(snapshot) = self.engine.snapshot(encoding) else {
+            return;
+        };
+        let image = ColorImage::from_rgba_unmultiplied(
+            [snapshot.width as usize, snapshot.height as usize],
+            &snapshot.rgba,
+        );
+        let options = TextureOptions {
+            magnification: egui::TextureFilter::Nearest,
+            minification: egui::TextureFilter::Linear,
+            ..TextureOptions::default()
+        };
+        match &mut self.texture {
+            Some(texture) => texture.set(image, options),
+            None => self.texture = Some(ctx.load_texture("render", image, options)),
+        }
+        self.shown = Some(snapshot);
+        self.shown_version = version;
+        self.shown_encoding = encoding;
+        self.last_upload = Instant::now();
+    }
+
+    fn status_line(&self) -> String {
+        let mut parts = Vec::new();
+        if let Some(s) = &self.shown {
+            parts.push(format!(
+                "{} x {} · {} / {} spp · {:.2} s",
+                s.width,
+                s.height,
+                s.stats.passes_done,
+                s.stats.passes_target,
+                s.stats.render_time.as_secs_f64()
+            ));
+        }
+        let state = match self.engine.activity() {
+            Activity::Idle => "no scene".to_string(),
+            Activity::Loading(name) => format!("loading {name}…"),
+            Activity::Job(JobState::Building) => "building acceleration structure…".into(),
+            Activity::Job(JobState::Rendering) if self.engine.is_paused() => "paused".into(),
+            Activity::Job(JobState::Rendering) if self.is_camera_moving() => "preview".into(),
+            Activity::Job(JobState::Rendering) => "rendering".into(),
+            Activity::Job(JobState::Done) => "done".into(),
+            Activity::Job(JobState::Cancelled) => "cancelled".into(),
+            Activity::Job(JobState::Failed(e)) => format!("failed: {e}"),
+        };
+        parts.push(state);
+        parts.join(" · ")
+    }
+
+    fn pixel_readout(&self) -> Option<String> {
+        let (x, y) = self.hovered_pixel?;
+        let s = self.shown.as_ref()?;
+        let i = (y as usize * s.width as usize + x as usize) * 4;
+        let p = s.rgba.get(i..i + 4)?;
+        Some(if p[3] == 0 {
+            format!("({x}, {y}) not rendered yet")
+        } else {
+            format!("({x}, {y}) rgb {} {} {}", p[0], p[1], p[2])
+        })
+    }
+
+    fn help_window(&mut self, ctx: &egui::Context) {
+        let mut open = self.help_open;
+        egui::Window::new("Keyboard shortcuts and mouse")
+            .open(&mut open)
+            .collapsible(false)
+            .resizable(false)
+            .show(ctx, |ui| {
+                egui::Grid::new("help").num_columns(3).striped(true).show(ui, |ui| {
+                    for command in Command::ALL {
+                        ui.monospace(command.shortcut_text(ctx));
+                        ui.label(command.label());
+                        ui.label(command.description());
+                        ui.end_row();
+                    }
+                    for (gesture, what) in [
+                        ("Left drag", "Orbit the camera around its target"),
+                        ("Shift + left drag, middle drag", "Pan the camera"),
+                        ("Ctrl + wheel", "Dolly the camera in and out"),
+                        ("Wheel", "Zoom the image around the cursor"),
+                        ("Right drag", "Pan the image"),
+                    ] {
+                        ui.monospace(gesture);
+                        ui.label("");
+                        ui.label(what);
+                        ui.end_row();
+                    }
+                });
+            });
+        self.help_open = open;
+    }
+
+    fn central(&mut self, ui: &mut Ui) {
+        if let Some(error) = self.error.clone() {
+            egui::Frame::new()
+                .fill(Color32::from_rgb(90, 20, 20))
+                .inner_margin(6.0)
+                .show(ui, |ui| {
+                    ui.horizontal(|ui| {
+                        ui.label(RichText::new(format!("⚠ {error}")).color(Color32::WHITE));
+                        if ui.small_button("✕").on_hover_text("Dismiss").clicked() {
+                            self.error = None;
+                        }
+                    });
+                });
+        }
+        let (size, full) = match &self.shown {
+            Some(s) => (
+                [s.width as usize, s.height as usize],
+                self.full_size().unwrap_or([s.width, s.height]),
+            ),
+            None => ([0, 0], self.full_size().unwrap_or([1, 1])),
+        };
+        let bottom = 22.0;
+        let mut area = ui.available_rect_before_wrap();
+        area.max.y -= bottom;
+        let response = ui
+            .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
+                viewport::show(ui, &mut self.view, self.texture.as_ref(), size, full)
+            })
+            .inner;
+        self.dragging_camera = response.dragging_camera;
+        self.hovered_pixel = response.hovered_pixel;
+        self.apply_gestures(&response.gestures);
+        ui.horizontal(|ui| {
+            ui.label(self.status_line());
+            if let Some(readout) = self.pixel_readout() {
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    ui.monospace(readout);
+                });
+            }
+        });
+    }
+
+    /// The full-resolution size of the current settings.
+    fn full_size(&self) -> Option<[u32; 2]> {
+        let scene = self.engine.scene()?;
+        let s = self
+            .state
+            .controls
+            .render_settings(&scene.scene, self.camera, false);
+        Some([s.width, s.height])
+    }
+
+    fn measure_frame(&mut self) {
+        let now = Instant::now();
+        if let Some(last) = self.last_frame {
+            let dt = (now - last).as_secs_f32();
+            self.frame_interval = if self.frame_interval == 0.0 {
+                dt
+            } else {
+                0.9 * self.frame_interval + 0.1 * dt
+            };
+        }
+        self.last_frame = Some(now);
+    }
+}
+
+/// The bundled showcase scene, or the first bundled scene.
+fn default_scene() -> Option<SceneSource> {
+    bundled::find(bundled::DEFAULT_SCENE)
+        .or(bundled::SCENES.first())
+        .map(|s| SceneSource::Bundled(s.name.to_string()))
+}
+
+impl eframe::App for WorkbenchApp {
+    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.measure_frame();
+        self.engine.collect_retired();
+        self.receive();
+        self.take_dropped_files(&ctx);
+        let mut commands = Command::pressed(&ctx);
+
+        let title = match self.engine.scene() {
+            Some(s) => format!("Whitted Workbench — {}", s.source.label()),
+            None => "Whitted Workbench".into(),
+        };
+        ctx.send_viewport_cmd(egui::ViewportCommand::Title(title));
+
+        egui::Panel::left("controls")
+            .resizable(true)
+            .default_size(270.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let current = self.engine.scene().map(|s| s.source.clone());
+                    if let Some(source) = scene_picker::show(
+                        ui,
+                        current.as_ref(),
+                        &self.disk_scenes,
+                        &self.state.recent,
+                        &mut commands,
+                    ) {
+                        self.open(source);
+                    }
+                    if let Some(loaded) = self.engine.scene() {
+                        ui.small(format!(
+                            "{} objects, {} lights",
+                            loaded.world.counts.objects(),
+                            loaded.world.counts.lights
+                        ));
+                    }
+                    ui.separator();
+                    let paused = self.engine.is_paused();
+                    controls::show(ui, &mut self.state.controls, paused, &mut commands);
+                    ui.separator();
+                    controls::command_button(ui, Command::ToggleHelp, &mut commands);
+                });
+            });
+
+        if self.state.show_stats {
+            egui::Panel::right("statistics")
+                .resizable(true)
+                .default_size(280.0)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        match (&self.shown, self.engine.scene()) {
+                            (Some(shown), Some(scene)) => {
+                                let accel = self.engine.accel_info();
+                                stats_panel::show(
+                                    ui,
+                                    &stats_panel::StatsView {
+                                        stats: &shown.stats,
+                                        counts: &scene.world.counts,
+                                        accel: accel.as_ref(),
+                                        load_time: scene.load_time,
+                                        ui_frame_time: self.frame_interval,
+                                    },
+                                );
+                            }
+                            _ => {
+                                ui.heading("Statistics");
+                                ui.label("Nothing rendered yet.");
+                            }
+                        }
+                    });
+                });
+        }
+
+        egui::CentralPanel::default().show(ui, |ui| self.central(ui));
+
+        if let Some((text, since)) = &self.notice {
+            if since.elapsed() < NOTICE_TIME {
+                let text = text.clone();
+                egui::Area::new(egui::Id::unique("notice"))
+                    .anchor(egui::Align2::CENTER_TOP, [0.0, 12.0])
+                    .show(&ctx, |ui| {
+                        egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(text));
+                    });
+                ctx.request_repaint_after(NOTICE_TIME - since.elapsed());
+            } else {
+                self.notice = None;
+            }
+        }
+        self.help_window(&ctx);
+
+        for command in commands {
+            self.run_command(command);
+        }
+        self.sync_render(&ctx);
+        self.refresh_texture(&ctx);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, eframe::APP_KEY, &self.state);
+    }
+}

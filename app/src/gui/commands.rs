@@ -1,0 +1,196 @@
+//! One table of commands drives the buttons, the keyboard shortcuts and the
+//! help overlay, so they can never disagree.
+
+use egui::{Key, KeyboardShortcut, Modifiers};
+
+/// Everything the user can ask the window to do by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Command {
+    ToggleAntialiasing,
+    ToggleSoftShadows,
+    ToggleDepthOfField,
+    ToggleGrid,
+    TogglePause,
+    Restart,
+    ToggleKeepRefining,
+    Save,
+    Open,
+    Reload,
+    ResetCamera,
+    ZoomFit,
+    ZoomActualSize,
+    ToggleStats,
+    ToggleHelp,
+}
+
+const fn key(key: Key) -> KeyboardShortcut {
+    KeyboardShortcut::new(Modifiers::NONE, key)
+}
+
+impl Command {
+    /// Every command, in the order the help lists them.
+    pub const ALL: [Command; 15] = [
+        Command::ToggleAntialiasing,
+        Command::ToggleSoftShadows,
+        Command::ToggleDepthOfField,
+        Command::ToggleGrid,
+        Command::TogglePause,
+        Command::Restart,
+        Command::ToggleKeepRefining,
+        Command::Save,
+        Command::Open,
+        Command::Reload,
+        Command::ResetCamera,
+        Command::ZoomFit,
+        Command::ZoomActualSize,
+        Command::ToggleStats,
+        Command::ToggleHelp,
+    ];
+
+    /// The name on buttons and in the help.
+    pub fn label(self) -> &'static str {
+        match self {
+            Command::ToggleAntialiasing => "Anti-aliasing",
+            Command::ToggleSoftShadows => "Soft shadows",
+            Command::ToggleDepthOfField => "Depth of field",
+            Command::ToggleGrid => "Uniform grid",
+            Command::TogglePause => "Pause / resume",
+            Command::Restart => "Restart",
+            Command::ToggleKeepRefining => "Keep refining",
+            Command::Save => "Save PNG...",
+            Command::Open => "Open...",
+            Command::Reload => "Reload scene",
+            Command::ResetCamera => "Reset camera",
+            Command::ZoomFit => "Fit to window",
+            Command::ZoomActualSize => "Actual size (1:1)",
+            Command::ToggleStats => "Statistics panel",
+            Command::ToggleHelp => "Help",
+        }
+    }
+
+    /// What it does, for tooltips and the help.
+    pub fn description(self) -> &'static str {
+        match self {
+            Command::ToggleAntialiasing => {
+                "Jittered N x N samples per pixel instead of one at the centre"
+            }
+            Command::ToggleSoftShadows => {
+                "Lights get an area: point lights become squares of the light size"
+            }
+            Command::ToggleDepthOfField => {
+                "Thin lens: aperture in pixels, sharp at the focal ratio times the view distance"
+            }
+            Command::ToggleGrid => "Switch between the uniform grid and the other structure",
+            Command::TogglePause => "Hold the render between tiles, or let it go on",
+            Command::Restart => "Throw away the samples so far and render again",
+            Command::ToggleKeepRefining => "Keep adding fresh samples past the N x N target",
+            Command::Save => "Write the displayed render at full resolution to a PNG file",
+            Command::Open => "Open a scene file (.p3f, .nff); you can also drop one on the window",
+            Command::Reload => "Read the current scene file again",
+            Command::ResetCamera => "Back to the scene file's camera",
+            Command::ZoomFit => "Scale the image to fill the view",
+            Command::ZoomActualSize => "One image pixel per screen pixel",
+            Command::ToggleStats => "Show or hide the statistics panel",
+            Command::ToggleHelp => "List every shortcut",
+        }
+    }
+
+    /// The keys that trigger it; the first is the one shown.
+    pub fn shortcuts(self) -> &'static [KeyboardShortcut] {
+        const CTRL: Modifiers = Modifiers::COMMAND;
+        const A: &[KeyboardShortcut] = &[key(Key::A)];
+        const S: &[KeyboardShortcut] = &[key(Key::S)];
+        const D: &[KeyboardShortcut] = &[key(Key::D)];
+        const G: &[KeyboardShortcut] = &[key(Key::G)];
+        const SPACE: &[KeyboardShortcut] = &[key(Key::Space)];
+        const R: &[KeyboardShortcut] = &[key(Key::R)];
+        const K: &[KeyboardShortcut] = &[key(Key::K)];
+        const CTRL_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::S)];
+        const CTRL_O: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::O)];
+        const F5: &[KeyboardShortcut] = &[key(Key::F5)];
+        const C: &[KeyboardShortcut] = &[key(Key::C)];
+        const F: &[KeyboardShortcut] = &[key(Key::F)];
+        const ONE: &[KeyboardShortcut] = &[key(Key::Num1)];
+        const TAB: &[KeyboardShortcut] = &[key(Key::Tab)];
+        const HELP: &[KeyboardShortcut] = &[key(Key::H), key(Key::Questionmark)];
+        match self {
+            Command::ToggleAntialiasing => A,
+            Command::ToggleSoftShadows => S,
+            Command::ToggleDepthOfField => D,
+            Command::ToggleGrid => G,
+            Command::TogglePause => SPACE,
+            Command::Restart => R,
+            Command::ToggleKeepRefining => K,
+            Command::Save => CTRL_S,
+            Command::Open => CTRL_O,
+            Command::Reload => F5,
+            Command::ResetCamera => C,
+            Command::ZoomFit => F,
+            Command::ZoomActualSize => ONE,
+            Command::ToggleStats => TAB,
+            Command::ToggleHelp => HELP,
+        }
+    }
+
+    /// Whether the shortcut has no modifier, so it must not fire while a
+    /// text field has the keyboard.
+    fn is_plain(shortcut: &KeyboardShortcut) -> bool {
+        shortcut.modifiers == Modifiers::NONE
+    }
+
+    /// The commands whose shortcut was pressed this frame, consuming the
+    /// key presses. Shortcuts with modifiers are checked first so that
+    /// Ctrl+S saves rather than toggling soft shadows.
+    pub fn pressed(ctx: &egui::Context) -> Vec<Command> {
+        let typing = ctx.egui_wants_keyboard_input();
+        let mut found = Vec::new();
+        ctx.input_mut(|input| {
+            for plain in [false, true] {
+                for command in Command::ALL {
+                    for shortcut in command.shortcuts() {
+                        if Self::is_plain(shortcut) != plain || (plain && typing) {
+                            continue;
+                        }
+                        if input.consume_shortcut(shortcut) && !found.contains(&command) {
+                            found.push(command);
+                        }
+                    }
+                }
+            }
+        });
+        found
+    }
+
+    /// The shortcut as text, e.g. "Ctrl+S" or "H / ?".
+    pub fn shortcut_text(self, ctx: &egui::Context) -> String {
+        self.shortcuts()
+            .iter()
+            .map(|s| ctx.format_shortcut(s))
+            .collect::<Vec<_>>()
+            .join(" / ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_two_commands_share_a_shortcut() {
+        let mut seen = Vec::new();
+        for command in Command::ALL {
+            for s in command.shortcuts() {
+                assert!(!seen.contains(s), "{command:?} reuses {s:?}");
+                seen.push(*s);
+            }
+        }
+    }
+
+    #[test]
+    fn the_original_keys_toggle_the_original_features() {
+        assert_eq!(Command::ToggleAntialiasing.shortcuts()[0], key(Key::A));
+        assert_eq!(Command::ToggleSoftShadows.shortcuts()[0], key(Key::S));
+        assert_eq!(Command::ToggleDepthOfField.shortcuts()[0], key(Key::D));
+        assert_eq!(Command::ToggleGrid.shortcuts()[0], key(Key::G));
+    }
+}

@@ -1,0 +1,128 @@
+//! The side panel: feature toggles (through the command table), sliders
+//! with tooltips, and the render actions.
+
+use egui::{Slider, Ui};
+use tracer::render::{MAX_DEPTH, MAX_GRID_MULTIPLIER};
+
+use super::commands::Command;
+use super::state::{AccelChoice, Controls};
+
+/// Largest N offered by the slider (N x N samples per pixel).
+const SLIDER_MAX_SAMPLES: u32 = 16;
+
+/// A toggle bound to a command: clicking it records the command, so the
+/// key and the checkbox do exactly the same thing.
+fn command_toggle(ui: &mut Ui, on: bool, command: Command, commands: &mut Vec<Command>) {
+    let mut value = on;
+    let text = format!("{} ({})", command.label(), command.shortcut_text(ui.ctx()));
+    if ui
+        .checkbox(&mut value, text)
+        .on_hover_text(command.description())
+        .changed()
+    {
+        commands.push(command);
+    }
+}
+
+/// A button bound to a command.
+pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>) {
+    let tip = format!(
+        "{} ({})",
+        command.description(),
+        command.shortcut_text(ui.ctx())
+    );
+    if ui.button(command.label()).on_hover_text(tip).clicked() {
+        commands.push(command);
+    }
+}
+
+/// Draws the controls; toggles and buttons record commands, sliders edit
+/// `controls` directly.
+pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut Vec<Command>) {
+    ui.heading("Rendering");
+    command_toggle(ui, controls.antialiasing, Command::ToggleAntialiasing, commands);
+    command_toggle(ui, controls.soft_shadows, Command::ToggleSoftShadows, commands);
+    command_toggle(ui, controls.depth_of_field, Command::ToggleDepthOfField, commands);
+    command_toggle(
+        ui,
+        controls.accel == AccelChoice::Grid,
+        Command::ToggleGrid,
+        commands,
+    );
+    ui.horizontal(|ui| {
+        ui.label("Acceleration");
+        egui::ComboBox::from_id_salt("accel")
+            .selected_text(controls.accel.label())
+            .show_ui(ui, |ui| {
+                for choice in AccelChoice::ALL {
+                    if ui
+                        .selectable_label(controls.accel == choice, choice.label())
+                        .clicked()
+                    {
+                        controls.set_accel(choice);
+                    }
+                }
+            })
+            .response
+            .on_hover_text("None tests every object; the grid is the seed's; the BVH is the fastest");
+    });
+
+    ui.separator();
+    ui.add(Slider::new(&mut controls.samples, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
+        .on_hover_text("N x N samples per pixel (and strata of the lens and of soft shadows)");
+    ui.add(Slider::new(&mut controls.aperture, 0.0..=64.0).text("Aperture (px)"))
+        .on_hover_text("Lens diameter in pixels; depth of field must be on");
+    ui.add(
+        Slider::new(&mut controls.focal, 0.1..=4.0)
+            .logarithmic(true)
+            .text("Focal ratio"),
+    )
+    .on_hover_text("Distance of the sharp plane as a multiple of the view distance |at - from|");
+    ui.add(
+        Slider::new(&mut controls.grid_multiplier, 0.1..=MAX_GRID_MULTIPLIER)
+            .logarithmic(true)
+            .text("Grid multiplier m"),
+    )
+    .on_hover_text("Cells per axis = trunc(m * dim * cbrt(objects / volume)) + 1; rebuilds the grid");
+    ui.add(Slider::new(&mut controls.max_depth, 0..=MAX_DEPTH.min(16)).text("Max depth"))
+        .on_hover_text("Bounces after the eye ray (reflection and refraction)");
+    ui.add(
+        Slider::new(&mut controls.light_size, 0.0..=4.0)
+            .logarithmic(true)
+            .text("Light size"),
+    )
+    .on_hover_text("Side of the square a point light becomes with soft shadows (scene units)");
+    ui.add(
+        Slider::new(&mut controls.resolution_scale, 0.125..=2.0)
+            .logarithmic(true)
+            .text("Resolution scale"),
+    )
+    .on_hover_text("Image size relative to the scene's resolution");
+    ui.add(Slider::new(&mut controls.ambient, 0.0..=1.0).text("Ambient"))
+        .on_hover_text("Ambient light times each surface's diffuse colour");
+    ui.checkbox(&mut controls.srgb, "sRGB output")
+        .on_hover_text("Display and save with the sRGB curve instead of linear values (no restart)");
+
+    ui.separator();
+    ui.horizontal_wrapped(|ui| {
+        let pause = if paused { "Resume" } else { "Pause" };
+        if ui
+            .button(pause)
+            .on_hover_text(format!(
+                "{} (Space)",
+                Command::TogglePause.description()
+            ))
+            .clicked()
+        {
+            commands.push(Command::TogglePause);
+        }
+        command_button(ui, Command::Restart, commands);
+        command_button(ui, Command::ResetCamera, commands);
+    });
+    command_toggle(ui, controls.keep_refining, Command::ToggleKeepRefining, commands);
+    ui.horizontal_wrapped(|ui| {
+        command_button(ui, Command::Save, commands);
+        command_button(ui, Command::ZoomFit, commands);
+        command_button(ui, Command::ZoomActualSize, commands);
+    });
+}

@@ -1,0 +1,116 @@
+//! The statistics panel: live numbers from the renderer and a plot of time
+//! and speed per pass.
+
+use egui::Ui;
+use egui_plot::{Legend, Line, Plot, PlotPoints};
+use tracer::accel::AccelInfo;
+use tracer::stats::{RenderStats, SceneCounts};
+
+use crate::report::{describe_objects, si};
+
+/// Everything the panel shows.
+pub struct StatsView<'a> {
+    pub stats: &'a RenderStats,
+    pub counts: &'a SceneCounts,
+    pub accel: Option<&'a AccelInfo>,
+    pub load_time: std::time::Duration,
+    /// The UI's own recent frame time, seconds.
+    pub ui_frame_time: f32,
+}
+
+fn row(ui: &mut Ui, name: &str, value: String) {
+    ui.label(name);
+    ui.monospace(value);
+    ui.end_row();
+}
+
+pub fn show(ui: &mut Ui, view: &StatsView) {
+    let s = view.stats;
+    let c = &s.counters;
+    ui.heading("Statistics");
+    egui::Grid::new("stats")
+        .num_columns(2)
+        .striped(true)
+        .show(ui, |ui| {
+            row(ui, "Resolution", format!("{} x {}", s.width, s.height));
+            row(
+                ui,
+                "Samples per pixel",
+                format!("{} / {}", s.passes_done, s.passes_target),
+            );
+            row(ui, "Render time", format!("{:.3} s", s.render_time.as_secs_f64()));
+            if let Some(last) = s.pass_times.last() {
+                row(ui, "Last pass", format!("{:.1} ms", last.as_secs_f64() * 1e3));
+            }
+            row(ui, "Rays", si(c.total_rays() as f64));
+            row(ui, "  eye", si(c.eye_rays as f64));
+            row(ui, "  shadow", si(c.shadow_rays as f64));
+            row(ui, "  reflection", si(c.reflection_rays as f64));
+            row(ui, "  refraction", si(c.refraction_rays as f64));
+            row(ui, "Rays per second", si(s.rays_per_second()));
+            row(ui, "Intersection tests", si(c.intersection_tests as f64));
+            row(
+                ui,
+                "Tests per ray",
+                format!("{:.2}", c.intersection_tests as f64 / c.total_rays().max(1) as f64),
+            );
+            if let Some(a) = view.accel {
+                row(ui, "Acceleration", format!("{:?}", a.kind).to_lowercase());
+                row(ui, "  build time", format!("{:.1} ms", a.build_time.as_secs_f64() * 1e3));
+                row(ui, "  memory", format!("{}B", si(a.memory_bytes as f64)));
+                if let Some(nodes) = a.bvh_nodes {
+                    row(ui, "  BVH nodes", nodes.to_string());
+                }
+                if let Some(g) = &a.grid {
+                    row(
+                        ui,
+                        "  grid cells",
+                        format!("{} x {} x {}", g.cells[0], g.cells[1], g.cells[2]),
+                    );
+                    row(ui, "  empty cells", si(g.empty_cells as f64));
+                    row(ui, "  references", si(g.references as f64));
+                    row(ui, "  per non-empty cell", format!("{:.2}", g.mean_per_cell));
+                }
+                row(
+                    ui,
+                    "  nodes per ray",
+                    format!("{:.2}", c.nodes_visited as f64 / c.total_rays().max(1) as f64),
+                );
+            }
+            row(ui, "Objects", describe_objects(view.counts));
+            row(ui, "Primitives", view.counts.primitives.to_string());
+            row(ui, "Lights", view.counts.lights.to_string());
+            row(ui, "Scene load", format!("{:.1} ms", view.load_time.as_secs_f64() * 1e3));
+            row(ui, "UI frame", format!("{:.1} ms", view.ui_frame_time * 1e3));
+        });
+
+    if s.pass_times.len() > 1 {
+        ui.separator();
+        let times: PlotPoints = s
+            .pass_times
+            .iter()
+            .enumerate()
+            .map(|(i, t)| [i as f64 + 1.0, t.as_secs_f64() * 1e3])
+            .collect();
+        Plot::new("pass_times")
+            .height(120.0)
+            .legend(Legend::default())
+            .x_axis_label("pass")
+            .allow_scroll(false)
+            .show(ui, |plot| {
+                plot.line(Line::new("ms per pass", times));
+            });
+        let mut rays = Vec::new();
+        for (i, (t, n)) in s.pass_times.iter().zip(&s.pass_rays).enumerate() {
+            rays.push([i as f64 + 1.0, *n as f64 / t.as_secs_f64().max(1e-9) / 1e6]);
+        }
+        Plot::new("pass_rays")
+            .height(120.0)
+            .legend(Legend::default())
+            .x_axis_label("pass")
+            .allow_scroll(false)
+            .show(ui, |plot| {
+                plot.line(Line::new("Mrays/s", PlotPoints::from(rays)));
+            });
+    }
+}

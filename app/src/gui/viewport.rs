@@ -1,0 +1,164 @@
+//! The image view: fit or zoom with crisp pixels, pan, the pixel under the
+//! cursor, and camera gestures that it reports to the app rather than acting
+//! on itself.
+
+use egui::{Color32, Pos2, Rect, Sense, TextureHandle, Vec2, pos2, vec2};
+
+/// How the image is scaled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Zoom {
+    /// As large as the view allows.
+    Fit,
+    /// Screen pixels per image pixel.
+    Scale(f32),
+}
+
+/// A camera gesture made over the image.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Gesture {
+    /// Left drag: turn around `at` (radians).
+    Orbit { yaw: f32, pitch: f32 },
+    /// Shift + left drag or middle drag: slide the camera (fractions of the
+    /// distance to `at`).
+    Pan { dx: f32, dy: f32 },
+    /// Ctrl + wheel or pinch: move towards `at` (factor < 1) or away.
+    Dolly(f32),
+}
+
+/// Zoom and pan of the view; never restarts the render.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewState {
+    pub zoom: Zoom,
+    /// Offset of the image centre from the view centre, in points.
+    pub offset: Vec2,
+}
+
+impl Default for ViewState {
+    fn default() -> Self {
+        Self {
+            zoom: Zoom::Fit,
+            offset: Vec2::ZERO,
+        }
+    }
+}
+
+/// What happened over the image this frame.
+#[derive(Debug, Default)]
+pub struct ViewportResponse {
+    pub gestures: Vec<Gesture>,
+    /// True while a camera drag is in progress.
+    pub dragging_camera: bool,
+    /// The image pixel under the cursor, in the displayed image's pixels.
+    pub hovered_pixel: Option<(u32, u32)>,
+}
+
+/// Shows `texture` (an image of `image_size` pixels standing for a render
+/// of `full_size`) in `rect`.
+pub fn show(
+    ui: &mut egui::Ui,
+    view: &mut ViewState,
+    texture: Option<&TextureHandle>,
+    image_size: [usize; 2],
+    full_size: [u32; 2],
+) -> ViewportResponse {
+    let rect = ui.available_rect_before_wrap();
+    let response = ui.allocate_rect(rect, Sense::click_and_drag());
+    ui.painter()
+        .rect_filled(rect, 0.0, Color32::from_gray(24));
+    let mut out = ViewportResponse::default();
+
+    // The displayed size follows the full-resolution render, so a preview
+    // at a quarter of the resolution fills the same area.
+    let full = vec2(full_size[0].max(1) as f32, full_size[1].max(1) as f32);
+    let pixels_per_point = ui.ctx().pixels_per_point();
+    let scale = match view.zoom {
+        Zoom::Fit => (rect.width() / full.x).min(rect.height() / full.y).max(1e-3),
+        Zoom::Scale(s) => s / pixels_per_point,
+    };
+    let image_rect = Rect::from_center_size(rect.center() + view.offset, full * scale);
+
+    if let Some(texture) = texture {
+        ui.painter().with_clip_rect(rect).image(
+            texture.id(),
+            image_rect,
+            Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
+            Color32::WHITE,
+        );
+    }
+
+    // Mouse wheel: zoom around the cursor; Ctrl + wheel: dolly.
+    if response.hovered() {
+        let (scroll, zoom_delta, modifiers) =
+            ui.input(|i| (i.smooth_scroll_delta, i.zoom_delta(), i.modifiers));
+        if zoom_delta != 1.0 {
+            out.gestures.push(Gesture::Dolly(1.0 / zoom_delta));
+        } else if scroll.y != 0.0 && !modifiers.any() {
+            let factor = (scroll.y * 0.002).exp();
+            let new_scale = (scale * factor).clamp(0.02, 64.0);
+            if let Some(pointer) = response.hover_pos() {
+                // Keep the image point under the cursor where it is.
+                let from_centre = pointer - (rect.center() + view.offset);
+                view.offset += from_centre - from_centre * (new_scale / scale);
+            }
+            view.zoom = Zoom::Scale(new_scale * pixels_per_point);
+        }
+    }
+
+    // Drags: left orbits, shift+left or middle pans the camera, right pans
+    // the view.
+    let delta = response.drag_delta();
+    let shift = ui.input(|i| i.modifiers.shift);
+    if response.dragged_by(egui::PointerButton::Secondary) {
+        view.offset += delta;
+    } else if response.dragged_by(egui::PointerButton::Middle)
+        || (response.dragged_by(egui::PointerButton::Primary) && shift)
+    {
+        out.dragging_camera = true;
+        if delta != Vec2::ZERO {
+            out.gestures.push(Gesture::Pan {
+                dx: -delta.x / image_rect.width().max(1.0),
+                dy: delta.y / image_rect.height().max(1.0),
+            });
+        }
+    } else if response.dragged_by(egui::PointerButton::Primary) {
+        out.dragging_camera = true;
+        if delta != Vec2::ZERO {
+            out.gestures.push(Gesture::Orbit {
+                yaw: -delta.x * 0.01,
+                pitch: delta.y * 0.01,
+            });
+        }
+    }
+
+    if let Some(pointer) = response.hover_pos() {
+        out.hovered_pixel = pixel_at(pointer, image_rect, image_size);
+    }
+    out
+}
+
+/// The image pixel at screen point `p`, for an image of `size` pixels drawn
+/// in `image_rect`.
+fn pixel_at(p: Pos2, image_rect: Rect, size: [usize; 2]) -> Option<(u32, u32)> {
+    if !image_rect.contains(p) || size[0] == 0 || size[1] == 0 {
+        return None;
+    }
+    let u = (p.x - image_rect.min.x) / image_rect.width();
+    let v = (p.y - image_rect.min.y) / image_rect.height();
+    let x = ((u * size[0] as f32) as usize).min(size[0] - 1);
+    let y = ((v * size[1] as f32) as usize).min(size[1] - 1);
+    Some((x as u32, y as u32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixel_under_the_cursor() {
+        let r = Rect::from_min_size(pos2(10.0, 20.0), vec2(200.0, 100.0));
+        assert_eq!(pixel_at(pos2(10.0, 20.0), r, [64, 32]), Some((0, 0)));
+        assert_eq!(pixel_at(pos2(209.9, 119.9), r, [64, 32]), Some((63, 31)));
+        assert_eq!(pixel_at(pos2(110.0, 70.0), r, [64, 32]), Some((32, 16)));
+        assert_eq!(pixel_at(pos2(5.0, 70.0), r, [64, 32]), None);
+    }
+}
