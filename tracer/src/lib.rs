@@ -6,6 +6,7 @@
 pub mod accel;
 pub mod camera;
 pub mod geometry;
+pub mod metrics;
 pub mod optics;
 pub mod render;
 pub mod sampling;
