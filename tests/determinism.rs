@@ -47,7 +47,12 @@ fn render(scene: &Path, out: &Path, threads: u32, seed: u32) -> Vec<u8> {
         .arg("-o")
         .arg(out)
         .args(["--soft-shadows", "--aa", "--dof", "--depth", "3"])
-        .args(["--threads", &threads.to_string(), "--seed", &seed.to_string()])
+        .args([
+            "--threads",
+            &threads.to_string(),
+            "--seed",
+            &seed.to_string(),
+        ])
         .output()
         .expect("the workbench binary runs");
     assert!(
