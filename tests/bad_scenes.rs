@@ -162,7 +162,8 @@ fn a_folder_or_missing_file_is_an_error_not_a_panic() {
 fn out_of_range_overrides_are_refused_by_name() {
     let dir = scratch("settings");
     let out = dir.join("out.png");
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 7] = [
+        (&["--threads", "20000"], "at most 1024 threads, found 20000"),
         (&["--width", "0"], "width = 0 is out of range"),
         (&["--width", "100000"], "width = 100000 is out of range"),
         (
@@ -183,4 +184,105 @@ fn out_of_range_overrides_are_refused_by_name() {
         assert!(stderr.contains(message), "{args:?}: {stderr}");
         assert!(!out.exists(), "{args:?}");
     }
+}
+
+#[test]
+fn primitives_are_counted_as_triangles_and_bounded_before_allocation() {
+    let limits = Limits {
+        max_primitives: 5,
+        ..Limits::default()
+    };
+    // A pentagon is 3 triangles, a sphere 1: 4 so far; the mesh's 2 would
+    // make 6, refused at its triangle count before anything is reserved.
+    let text = "p 5\n0 0 0 1 0 0 1 1 0 0.5 2 0 0 1 0\ns 0 0 0 1\nmesh 3 2\n";
+    let err = parse_scene(text, None, &limits).unwrap_err();
+    assert_eq!((err.line, err.column), (4, 8), "{err}");
+    assert!(err.to_string().contains("primitive count"), "{err}");
+    assert!(
+        err.to_string().contains("6 exceeds the limit of 5"),
+        "{err}"
+    );
+    assert!(parse_scene("s 0 0 0 1\n".repeat(5).as_str(), None, &limits).is_ok());
+}
+
+/// A scene that renders despite problems, with what stderr must warn about.
+fn renders_with_warning(dir: &Path, scene: &str, warning: &str) {
+    let path = dir.join("scene.p3f");
+    std::fs::write(&path, scene).unwrap();
+    let out = dir.join("out.png");
+    let run = render(
+        path.to_str().unwrap(),
+        &out,
+        &["--width", "8", "--height", "8"],
+    );
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(stderr.contains("warning: "), "{stderr}");
+    assert!(
+        stderr.contains(warning),
+        "expected `{warning}` in: {stderr}"
+    );
+    assert!(out.exists());
+}
+
+const SKY_SCENE: &str = "bclr 0.5 0.5 0.5\nenv sky\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n";
+
+#[test]
+fn a_missing_skybox_folder_is_a_warning_and_falls_back_to_the_background() {
+    let dir = scratch("sky-missing");
+    renders_with_warning(&dir, SKY_SCENE, "using the background colour");
+    let image = image::open(dir.join("out.png")).unwrap().to_rgb8();
+    assert_eq!(image.get_pixel(0, 0).0, [128, 128, 128]);
+}
+
+#[test]
+fn unreadable_or_oversized_skybox_faces_are_warnings() {
+    let dir = scratch("sky-bad");
+    let sky = dir.join("sky");
+    std::fs::create_dir_all(&sky).unwrap();
+    for face in ["right", "left", "top", "bottom", "front", "back"] {
+        image::RgbImage::new(2, 2)
+            .save(sky.join(format!("{face}.png")))
+            .unwrap();
+    }
+    // Not an image at all.
+    std::fs::write(sky.join("top.png"), "this is not a PNG").unwrap();
+    renders_with_warning(&dir, SKY_SCENE, "skybox face");
+    // A PNG header that claims 100000 x 100000 pixels: refused from the
+    // header, before anything is decoded or allocated.
+    let mut png = Vec::new();
+    image::RgbImage::new(1, 1)
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    png[16..20].copy_from_slice(&100_000u32.to_be_bytes());
+    png[20..24].copy_from_slice(&100_000u32.to_be_bytes());
+    let crc = crc32(&png[12..29]);
+    png[29..33].copy_from_slice(&crc.to_be_bytes());
+    std::fs::write(sky.join("top.png"), &png).unwrap();
+    renders_with_warning(&dir, SKY_SCENE, "100000x100000 is outside 1x1..4096x4096");
+}
+
+/// The CRC-32 that PNG chunks carry, so a patched header stays valid.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+#[test]
+fn degenerate_triangles_are_skipped_with_a_warning() {
+    let dir = scratch("degenerate");
+    // The second triangle repeats a vertex; the third is a sliver along x.
+    let scene = "v from 0 0 5 at 0 0 0\nl 0 0 5\n\
+                 mesh 4 3\n0 0 0  1 0 0  0 1 0  2 0 0\n1 2 3  1 1 2  1 2 4\n";
+    renders_with_warning(&dir, scene, "skipped 2 degenerate primitive(s)");
 }

@@ -16,6 +16,7 @@ use tracer::world::World;
 fn limits() -> Limits {
     Limits {
         max_objects: 2_000,
+        max_primitives: 20_000,
         max_mesh_triangles: 20_000,
         max_mesh_vertices: 20_000,
         max_polygon_vertices: 2_000,
@@ -26,9 +27,11 @@ fn limits() -> Limits {
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    let Ok(scene) = parse_scene(&text, None, &limits()) else {
+    let Ok(mut scene) = parse_scene(&text, None, &limits()) else {
         return;
     };
+    // No file system access from the fuzzer: `env` would load real folders.
+    scene.env = None;
     let world = Arc::new(World::build(&scene));
     let mut settings = RenderSettings::from_scene(&scene);
     settings.width = settings.width.min(8);
