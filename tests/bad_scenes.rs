@@ -286,3 +286,43 @@ fn degenerate_triangles_are_skipped_with_a_warning() {
                  mesh 4 3\n0 0 0  1 0 0  0 1 0  2 0 0\n1 2 3  1 1 2  1 2 4\n";
     renders_with_warning(&dir, scene, "skipped 2 degenerate primitive(s)");
 }
+
+/// Huge but finite numbers, tiny ones, flat and overlapping infinite-ish
+/// bounds: accepted by the parser, and every structure must render them in
+/// bounded time (the grid once looped forever on such bounds).
+const ABSURD_SCENE: &str = "\
+v from 0 0 5 at 0 0 0 up 0 1 0 resolution 8 8 aperture 1e30
+l 3e38 3e38 3e38
+al 0 -3e38 0 0 0 0 3e38 3e38
+f 1e30 1e30 1e30 3e38 3e38 3e38 3e38 3e38 3e38 1 3e38
+s 0 0 0 3e38
+s 1e-30 0 0 1e-30
+box -3e38 -3e38 -3e38 3e38 3e38 3e38
+mesh 3 1 -3e38 0 0 3e38 0 0 0 3e38 1e-38 1 2 3
+c 0 0 0 3e38 0 3e38 0 1
+pl 0 0 0 3e38 0 0 0 0 3e38
+p 3 0 0 0 1e-38 0 0 0 1e-38 0
+";
+
+#[test]
+fn absurd_but_finite_numbers_render_with_every_structure() {
+    let dir = scratch("absurd");
+    let scene = dir.join("absurd.p3f");
+    std::fs::write(&scene, ABSURD_SCENE).unwrap();
+    let out = dir.join("out.png");
+    for accel in ["none", "grid", "bvh"] {
+        let start = std::time::Instant::now();
+        let run = render(
+            scene.to_str().unwrap(),
+            &out,
+            &["--accel", accel, "--soft-shadows", "--aa", "--spp", "2"],
+        );
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{accel}: {stderr}");
+        assert!(
+            start.elapsed().as_secs() < 30,
+            "{accel} took {:?}",
+            start.elapsed()
+        );
+    }
+}

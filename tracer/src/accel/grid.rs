@@ -281,14 +281,20 @@ fn cell_counts(dim: Vec3A, objects: usize, m: f32) -> IVec3 {
     let volume = dim.x * dim.y * dim.z;
     let s = (objects as f32 / volume).cbrt();
     let mut scale = m;
-    loop {
-        let n = (dim * (scale * s)).min(Vec3A::splat(65_536.0)).as_ivec3() + 1;
+    // Bounded: absurd scenes (infinite extents, NaN from inf * 0) once made
+    // this loop spin forever, as NaN never shrinks.
+    for _ in 0..1000 {
+        let wanted = dim * (scale * s);
+        // NaN counts as no cells (`cmpge` is false for it).
+        let wanted = Vec3A::select(wanted.cmpge(Vec3A::ZERO), wanted, Vec3A::ZERO);
+        let n = wanted.min(Vec3A::splat(65_536.0)).as_ivec3() + 1;
         let total = n.x as u64 * n.y as u64 * n.z as u64;
         if total <= MAX_CELLS {
             return n;
         }
         scale *= 0.9;
     }
+    IVec3::ONE
 }
 
 #[cfg(test)]
@@ -326,6 +332,23 @@ mod tests {
         let stats = grid.stats();
         assert!(stats.references <= MAX_REFERENCES, "{stats:?}");
         assert!(stats.references >= 30_000, "{stats:?}");
+    }
+
+    #[test]
+    fn cell_counts_of_absurd_extents_are_finite() {
+        for dim in [
+            Vec3A::INFINITY,
+            Vec3A::NAN,
+            Vec3A::new(f32::INFINITY, 1.0, 1.0),
+            Vec3A::splat(3e38),
+        ] {
+            let n = cell_counts(dim, 10, 2.0);
+            assert!(n.cmpge(IVec3::ONE).all(), "{dim}: {n}");
+            assert!(
+                n.x as u64 * n.y as u64 * n.z as u64 <= MAX_CELLS,
+                "{dim}: {n}"
+            );
+        }
     }
 
     #[test]
