@@ -326,3 +326,28 @@ fn absurd_but_finite_numbers_render_with_every_structure() {
         );
     }
 }
+
+#[test]
+fn a_failed_render_or_save_leaves_existing_files_alone_and_no_temporaries() {
+    let dir = scratch("atomic");
+    let out = dir.join("out.png");
+    std::fs::write(&out, b"previous image").unwrap();
+    let run = render("unknown_command.p3f", &out, &[]);
+    assert!(!run.status.success());
+    assert_eq!(std::fs::read(&out).unwrap(), b"previous image");
+
+    // The output's folder is a file: an error naming the path, no panic.
+    let good = dir.join("good.p3f");
+    std::fs::write(&good, "v resolution 8 8\ns 0 0 0 1\n").unwrap();
+    let blocked = out.join("inside.png");
+    let run = render(good.to_str().unwrap(), &blocked, &[]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert!(stderr.contains("cannot write image"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+}
