@@ -67,7 +67,7 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
 }
 
@@ -81,7 +81,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
     /// Write the image after each pass into this folder, to see convergence.
     #[arg(long, value_name = "DIR")]
@@ -225,4 +225,18 @@ impl SettingsArgs {
             Encoding::Linear
         }
     }
+}
+
+/// Most worker threads accepted: starting and stopping threads costs more
+/// than they render beyond this (20 000 threads took over a minute for an
+/// 8 x 8 image).
+pub const MAX_THREADS: usize = 1024;
+
+/// `--threads N` with N in 0..=[`MAX_THREADS`] (0: every core).
+fn thread_count(text: &str) -> Result<usize, String> {
+    let n: usize = text.parse().map_err(|e| format!("{e}"))?;
+    if n > MAX_THREADS {
+        return Err(format!("at most {MAX_THREADS} threads, found {n}"));
+    }
+    Ok(n)
 }

@@ -43,7 +43,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             ..JobOptions::default()
         },
     )
-    .with_context(|| format!("cannot render {}", args.scene.display()))?;
+    // The message only: the error's source repeats it, and `{:#}` would
+    // print it twice.
+    .map_err(|e| anyhow::anyhow!("cannot render {}: {e}", args.scene.display()))?;
 
     if std::io::stderr().is_terminal() {
         show_progress(&job, &settings);

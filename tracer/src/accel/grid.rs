@@ -14,6 +14,12 @@ use super::Hit;
 /// 64 MiB of offsets.
 const MAX_CELLS: u64 = 1 << 24;
 
+/// Most object references a grid may hold (512 MiB): many large, overlapping
+/// objects would otherwise each be listed in nearly every cell (30 000
+/// spheres at one spot asked for 7.5 G references). Above it the cells are
+/// made coarser until it fits; real scenes stay far below.
+const MAX_REFERENCES: u64 = 1 << 27;
+
 /// What the grid looks like, for the statistics panel.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridStats {
@@ -65,15 +71,24 @@ impl Grid {
         let largest = raw.extent().max_element().max(f32::MIN_POSITIVE);
         let pad = Vec3A::splat(largest * 1e-4);
         let bounds = Aabb::new(raw.min - pad, raw.max + pad);
-        let cells = cell_counts(bounds.extent(), boxes.len(), m);
+        let mut cells = cell_counts(bounds.extent(), boxes.len(), m);
+        // Count references before allocating them: coarser cells until they fit.
+        loop {
+            let refs: u64 = boxes
+                .iter()
+                .map(|(_, b)| {
+                    let (lo, hi) = cell_range(&bounds, cells, b);
+                    (hi - lo + 1).as_i64vec3().element_product() as u64
+                })
+                .sum();
+            if refs <= MAX_REFERENCES || cells == IVec3::ONE {
+                break;
+            }
+            let shrink = (MAX_REFERENCES as f64 / refs as f64).cbrt().min(0.9);
+            cells = (cells.as_dvec3() * shrink).as_ivec3().max(IVec3::ONE);
+        }
         let cell_size = bounds.extent() / cells.as_vec3a();
-
-        let cell_range = |b: &Aabb| {
-            let to_cell = |p: Vec3A| {
-                (((p - bounds.min) / cell_size).floor().as_ivec3()).clamp(IVec3::ZERO, cells - 1)
-            };
-            (to_cell(b.min), to_cell(b.max))
-        };
+        let cell_range = |b: &Aabb| cell_range(&bounds, cells, b);
         let index = |c: IVec3| (c.x + cells.x * (c.y + cells.y * c.z)) as usize;
         let cell_count = (cells.x * cells.y * cells.z) as usize;
 
@@ -251,20 +266,35 @@ impl Grid {
     }
 }
 
+/// The first and last cell (inclusive) that box `b` overlaps.
+fn cell_range(bounds: &Aabb, cells: IVec3, b: &Aabb) -> (IVec3, IVec3) {
+    let cell_size = bounds.extent() / cells.as_vec3a();
+    let to_cell = |p: Vec3A| {
+        (((p - bounds.min) / cell_size).floor().as_ivec3()).clamp(IVec3::ZERO, cells - 1)
+    };
+    (to_cell(b.min), to_cell(b.max))
+}
+
 /// Cells per axis by the seed's formula, shrunk uniformly if the total would
 /// exceed [`MAX_CELLS`].
 fn cell_counts(dim: Vec3A, objects: usize, m: f32) -> IVec3 {
     let volume = dim.x * dim.y * dim.z;
     let s = (objects as f32 / volume).cbrt();
     let mut scale = m;
-    loop {
-        let n = (dim * (scale * s)).min(Vec3A::splat(65_536.0)).as_ivec3() + 1;
+    // Bounded: absurd scenes (infinite extents, NaN from inf * 0) once made
+    // this loop spin forever, as NaN never shrinks.
+    for _ in 0..1000 {
+        let wanted = dim * (scale * s);
+        // NaN counts as no cells (`cmpge` is false for it).
+        let wanted = Vec3A::select(wanted.cmpge(Vec3A::ZERO), wanted, Vec3A::ZERO);
+        let n = wanted.min(Vec3A::splat(65_536.0)).as_ivec3() + 1;
         let total = n.x as u64 * n.y as u64 * n.z as u64;
         if total <= MAX_CELLS {
             return n;
         }
         scale *= 0.9;
     }
+    IVec3::ONE
 }
 
 #[cfg(test)]
@@ -289,6 +319,36 @@ mod tests {
         assert_eq!(cell_counts(Vec3A::ONE, 8, 1.0), IVec3::splat(3));
         // A tiny multiplier still gives at least one cell per axis.
         assert_eq!(cell_counts(Vec3A::ONE, 8, 0.01), IVec3::ONE);
+    }
+
+    #[test]
+    fn many_overlapping_objects_get_coarser_cells_not_billions_of_references() {
+        use crate::geometry::Sphere;
+        let shapes: Vec<Shape> = (0..30_000)
+            .map(|_| Shape::Sphere(Sphere::new(Vec3A::ZERO, 1.0)))
+            .collect();
+        let ids: Vec<u32> = (0..shapes.len() as u32).collect();
+        let grid = Grid::build(&shapes, &ids, 2.0);
+        let stats = grid.stats();
+        assert!(stats.references <= MAX_REFERENCES, "{stats:?}");
+        assert!(stats.references >= 30_000, "{stats:?}");
+    }
+
+    #[test]
+    fn cell_counts_of_absurd_extents_are_finite() {
+        for dim in [
+            Vec3A::INFINITY,
+            Vec3A::NAN,
+            Vec3A::new(f32::INFINITY, 1.0, 1.0),
+            Vec3A::splat(3e38),
+        ] {
+            let n = cell_counts(dim, 10, 2.0);
+            assert!(n.cmpge(IVec3::ONE).all(), "{dim}: {n}");
+            assert!(
+                n.x as u64 * n.y as u64 * n.z as u64 <= MAX_CELLS,
+                "{dim}: {n}"
+            );
+        }
     }
 
     #[test]

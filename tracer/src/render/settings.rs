@@ -91,7 +91,8 @@ impl RenderSettings {
                 Some(1) => AccelKind::Grid,
                 _ => AccelKind::Bvh,
             },
-            light_size: 0.1 * (view.at - view.from).length(),
+            // Finite even for absurd (huge but finite) camera coordinates.
+            light_size: (0.1 * (view.at - view.from).length()).min(f32::MAX),
             ..Self::default()
         }
     }

@@ -23,6 +23,12 @@ pub struct Limits {
     pub max_mesh_triangles: usize,
     /// Most objects in a scene: 10 million.
     pub max_objects: usize,
+    /// Most primitives in a scene once polygons and meshes count as their
+    /// triangles: 20 million. Each costs about 300 bytes at peak while the
+    /// world and its BVH are built, so this bounds that to about 6 GiB; the
+    /// per-mesh and per-object limits alone would not (a 512 MiB file can
+    /// hold 90 million `1 2 3` triangles).
+    pub max_primitives: usize,
     /// Most `f` materials in a scene: 10 million.
     pub max_materials: usize,
     /// Most lights (`l` and `al`) in a scene: 65536; every light costs a
@@ -41,6 +47,7 @@ impl Default for Limits {
             max_mesh_vertices: 10_000_000,
             max_mesh_triangles: 10_000_000,
             max_objects: 10_000_000,
+            max_primitives: 20_000_000,
             max_materials: 10_000_000,
             max_lights: 1 << 16,
         }

@@ -34,6 +34,7 @@ pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<S
         limits,
         scene: Scene::default(),
         material: None,
+        primitives: 0,
     };
     while let Some(token) = parser.cursor.next_token() {
         parser.cursor.set_command(Some(token.text));
@@ -53,6 +54,15 @@ pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<S
 pub fn parse_scene_file(path: &Path, limits: &Limits) -> Result<Scene, ParseError> {
     let io_error = |e: std::io::Error| file_error(Some(path), ParseErrorKind::Io(e.to_string()));
     let file = std::fs::File::open(path).map_err(io_error)?;
+    // Refuse a file known to be too large before reading any of it.
+    let known_size = file
+        .metadata()
+        .ok()
+        .filter(|m| m.is_file())
+        .map(|m| m.len());
+    if let Some(size) = known_size.filter(|&size| size > limits.max_file_bytes) {
+        return Err(file_error(Some(path), too_large(size, limits)));
+    }
     let mut bytes = Vec::new();
     // Read one byte past the limit to notice a too-large (or growing) file
     // without reading all of it.
@@ -93,6 +103,8 @@ struct Parser<'a, 'l> {
     scene: Scene,
     /// Index of the material for following objects; `None` before any `f`.
     material: Option<u32>,
+    /// Primitives so far, polygons and meshes counted as their triangles.
+    primitives: usize,
 }
 
 impl Parser<'_, '_> {
@@ -133,6 +145,15 @@ impl Parser<'_, '_> {
         if objects >= self.limits.max_objects {
             return Err(self.above_limit("object count", objects, self.limits.max_objects, pos));
         }
+        let primitives = match &primitive {
+            Primitive::Polygon { vertices } | Primitive::Patch { vertices, .. } => {
+                vertices.len().saturating_sub(2)
+            }
+            Primitive::Mesh { triangles, .. } => triangles.len(),
+            _ => 1,
+        };
+        self.check_primitives(primitives, pos)?;
+        self.primitives += primitives;
         let material = match self.material {
             Some(index) => index,
             None => self.push_material(super::Material::default(), pos)?,
@@ -142,6 +163,23 @@ impl Parser<'_, '_> {
             material,
         });
         Ok(())
+    }
+
+    /// Whether `more` primitives still fit under [`Limits::max_primitives`];
+    /// meshes ask before reserving memory for their triangles.
+    fn check_primitives(&self, more: usize, pos: Pos) -> Result<(), ParseError> {
+        let total = self.primitives.saturating_add(more);
+        if total <= self.limits.max_primitives {
+            return Ok(());
+        }
+        Err(self.cursor.error_at(
+            pos,
+            ParseErrorKind::AboveLimit {
+                what: "primitive count (polygons and meshes as triangles)",
+                found: total.to_string(),
+                limit: self.limits.max_primitives.try_into().unwrap_or(u64::MAX),
+            },
+        ))
     }
 
     /// Adds a material and makes it the one in force.

@@ -145,6 +145,7 @@ impl Parser<'_, '_> {
         if triangle_count == 0 {
             return Err(self.invalid(nt_pos, "mesh triangle count", "a mesh needs a triangle"));
         }
+        self.check_primitives(triangle_count, nt_pos)?;
         self.cursor
             .ensure_input("mesh vertex count", vertex_count, 3, nv_pos)?;
         let mut vertices = Vec::with_capacity(vertex_count);

@@ -69,7 +69,11 @@ impl Parser<'_, '_> {
             }
         }
         check_camera(&view).map_err(|why| {
-            let pos = if why == FROM_IS_AT { at_pos } else { up_pos };
+            let pos = if why == FROM_IS_AT || why == TOO_FAR {
+                at_pos
+            } else {
+                up_pos
+            };
             let kind = ParseErrorKind::DegenerateCamera(why);
             self.cursor.error_at(pos.unwrap_or(v_pos), kind)
         })?;
@@ -139,14 +143,21 @@ impl Parser<'_, '_> {
 }
 
 const FROM_IS_AT: &str = "`from` and `at` are the same point";
+const TOO_FAR: &str = "`from` and `at` are too far apart (their distance overflows)";
 
 /// Whether the camera has a view direction and an `up` not parallel to it.
 /// Computed in f64 so extreme but finite coordinates cannot overflow.
 fn check_camera(view: &View) -> Result<(), &'static str> {
     let wide = |v: Vec3| v.as_dvec3();
     let direction: DVec3 = wide(view.at) - wide(view.from);
-    if direction == DVec3::ZERO {
+    // The renderer works in f32: a distance that underflows to 0 or
+    // overflows to infinity there leaves no view direction either.
+    let length = (view.at - view.from).length();
+    if direction == DVec3::ZERO || length == 0.0 {
         return Err(FROM_IS_AT);
+    }
+    if !length.is_finite() {
+        return Err(TOO_FAR);
     }
     let up = wide(view.up);
     if up == DVec3::ZERO {
