@@ -25,9 +25,10 @@ impl SceneSource {
     /// A short name for titles and lists.
     pub fn label(&self) -> String {
         match self {
-            SceneSource::File(path) => path
-                .file_name()
-                .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into()),
+            SceneSource::File(path) => path.file_name().map_or_else(
+                || path.display().to_string(),
+                |n| n.to_string_lossy().into(),
+            ),
             SceneSource::Bundled(name) => name.clone(),
         }
     }
@@ -44,8 +45,8 @@ pub fn load_source(source: &SceneSource) -> Result<(Scene, World)> {
             Ok((scene, world))
         }
         SceneSource::Bundled(name) => {
-            let bundled = bundled::find(name)
-                .with_context(|| format!("no bundled scene called `{name}`"))?;
+            let bundled =
+                bundled::find(name).with_context(|| format!("no bundled scene called `{name}`"))?;
             let scene = parse_scene(
                 bundled.text,
                 Some(Path::new(bundled.file)),

@@ -102,13 +102,11 @@ impl World {
                 builder.degenerate
             ));
         }
-        let skybox = scene.env.as_ref().and_then(|name| {
-            match load_skybox(name) {
-                Ok(sky) => Some(sky),
-                Err(e) => {
-                    warnings.push(format!("{e}; using the background colour"));
-                    None
-                }
+        let skybox = scene.env.as_ref().and_then(|name| match load_skybox(name) {
+            Ok(sky) => Some(sky),
+            Err(e) => {
+                warnings.push(format!("{e}; using the background colour"));
+                None
             }
         });
 

@@ -27,7 +27,11 @@ pub fn run(args: &GenArgs) -> Result<()> {
             seed: args.seed,
         },
     )?;
-    let text = format!("# {}\n{}", describe(name, level, args.seed), write_p3f(&scene));
+    let text = format!(
+        "# {}\n{}",
+        describe(name, level, args.seed),
+        write_p3f(&scene)
+    );
     match &args.output {
         Some(path) => std::fs::write(path, text)
             .with_context(|| format!("cannot write {}", path.display()))?,

@@ -40,9 +40,24 @@ pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>
 /// `controls` directly.
 pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut Vec<Command>) {
     ui.heading("Rendering");
-    command_toggle(ui, controls.antialiasing, Command::ToggleAntialiasing, commands);
-    command_toggle(ui, controls.soft_shadows, Command::ToggleSoftShadows, commands);
-    command_toggle(ui, controls.depth_of_field, Command::ToggleDepthOfField, commands);
+    command_toggle(
+        ui,
+        controls.antialiasing,
+        Command::ToggleAntialiasing,
+        commands,
+    );
+    command_toggle(
+        ui,
+        controls.soft_shadows,
+        Command::ToggleSoftShadows,
+        commands,
+    );
+    command_toggle(
+        ui,
+        controls.depth_of_field,
+        Command::ToggleDepthOfField,
+        commands,
+    );
     command_toggle(
         ui,
         controls.accel == AccelChoice::Grid,
@@ -64,7 +79,9 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
                 }
             })
             .response
-            .on_hover_text("None tests every object; the grid is the seed's; the BVH is the fastest");
+            .on_hover_text(
+                "None tests every object; the grid is the seed's; the BVH is the fastest",
+            );
     });
 
     ui.separator();
@@ -83,7 +100,9 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
             .logarithmic(true)
             .text("Grid multiplier m"),
     )
-    .on_hover_text("Cells per axis = trunc(m * dim * cbrt(objects / volume)) + 1; rebuilds the grid");
+    .on_hover_text(
+        "Cells per axis = trunc(m * dim * cbrt(objects / volume)) + 1; rebuilds the grid",
+    );
     ui.add(Slider::new(&mut controls.max_depth, 0..=MAX_DEPTH.min(16)).text("Max depth"))
         .on_hover_text("Bounces after the eye ray (reflection and refraction)");
     ui.add(
@@ -101,17 +120,16 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
     ui.add(Slider::new(&mut controls.ambient, 0.0..=1.0).text("Ambient"))
         .on_hover_text("Ambient light times each surface's diffuse colour");
     ui.checkbox(&mut controls.srgb, "sRGB output")
-        .on_hover_text("Display and save with the sRGB curve instead of linear values (no restart)");
+        .on_hover_text(
+            "Display and save with the sRGB curve instead of linear values (no restart)",
+        );
 
     ui.separator();
     ui.horizontal_wrapped(|ui| {
         let pause = if paused { "Resume" } else { "Pause" };
         if ui
             .button(pause)
-            .on_hover_text(format!(
-                "{} (Space)",
-                Command::TogglePause.description()
-            ))
+            .on_hover_text(format!("{} (Space)", Command::TogglePause.description()))
             .clicked()
         {
             commands.push(Command::TogglePause);
@@ -119,7 +137,12 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
         command_button(ui, Command::Restart, commands);
         command_button(ui, Command::ResetCamera, commands);
     });
-    command_toggle(ui, controls.keep_refining, Command::ToggleKeepRefining, commands);
+    command_toggle(
+        ui,
+        controls.keep_refining,
+        Command::ToggleKeepRefining,
+        commands,
+    );
     ui.horizontal_wrapped(|ui| {
         command_button(ui, Command::Save, commands);
         command_button(ui, Command::ZoomFit, commands);

@@ -36,7 +36,13 @@ pub fn run(scene: Option<PathBuf>) -> anyhow::Result<()> {
     eframe::run_native(
         "Whitted Workbench",
         options,
-        Box::new(move |cc| Ok(Box::new(WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial)))),
+        Box::new(move |cc| {
+            Ok(Box::new(WorkbenchApp::new(
+                &cc.egui_ctx,
+                cc.storage,
+                initial,
+            )))
+        }),
     )
     .map_err(|e| {
         anyhow::anyhow!(

@@ -38,9 +38,17 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                 "Samples per pixel",
                 format!("{} / {}", s.passes_done, s.passes_target),
             );
-            row(ui, "Render time", format!("{:.3} s", s.render_time.as_secs_f64()));
+            row(
+                ui,
+                "Render time",
+                format!("{:.3} s", s.render_time.as_secs_f64()),
+            );
             if let Some(last) = s.pass_times.last() {
-                row(ui, "Last pass", format!("{:.1} ms", last.as_secs_f64() * 1e3));
+                row(
+                    ui,
+                    "Last pass",
+                    format!("{:.1} ms", last.as_secs_f64() * 1e3),
+                );
             }
             row(ui, "Rays", si(c.total_rays() as f64));
             row(ui, "  eye", si(c.eye_rays as f64));
@@ -52,11 +60,18 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
             row(
                 ui,
                 "Tests per ray",
-                format!("{:.2}", c.intersection_tests as f64 / c.total_rays().max(1) as f64),
+                format!(
+                    "{:.2}",
+                    c.intersection_tests as f64 / c.total_rays().max(1) as f64
+                ),
             );
             if let Some(a) = view.accel {
                 row(ui, "Acceleration", format!("{:?}", a.kind).to_lowercase());
-                row(ui, "  build time", format!("{:.1} ms", a.build_time.as_secs_f64() * 1e3));
+                row(
+                    ui,
+                    "  build time",
+                    format!("{:.1} ms", a.build_time.as_secs_f64() * 1e3),
+                );
                 row(ui, "  memory", format!("{}B", si(a.memory_bytes as f64)));
                 if let Some(nodes) = a.bvh_nodes {
                     row(ui, "  BVH nodes", nodes.to_string());
@@ -69,19 +84,34 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                     );
                     row(ui, "  empty cells", si(g.empty_cells as f64));
                     row(ui, "  references", si(g.references as f64));
-                    row(ui, "  per non-empty cell", format!("{:.2}", g.mean_per_cell));
+                    row(
+                        ui,
+                        "  per non-empty cell",
+                        format!("{:.2}", g.mean_per_cell),
+                    );
                 }
                 row(
                     ui,
                     "  nodes per ray",
-                    format!("{:.2}", c.nodes_visited as f64 / c.total_rays().max(1) as f64),
+                    format!(
+                        "{:.2}",
+                        c.nodes_visited as f64 / c.total_rays().max(1) as f64
+                    ),
                 );
             }
             row(ui, "Objects", describe_objects(view.counts));
             row(ui, "Primitives", view.counts.primitives.to_string());
             row(ui, "Lights", view.counts.lights.to_string());
-            row(ui, "Scene load", format!("{:.1} ms", view.load_time.as_secs_f64() * 1e3));
-            row(ui, "UI frame", format!("{:.1} ms", view.ui_frame_time * 1e3));
+            row(
+                ui,
+                "Scene load",
+                format!("{:.1} ms", view.load_time.as_secs_f64() * 1e3),
+            );
+            row(
+                ui,
+                "UI frame",
+                format!("{:.1} ms", view.ui_frame_time * 1e3),
+            );
         });
 
     if s.pass_times.len() > 1 {

@@ -63,8 +63,7 @@ pub fn show(
 ) -> ViewportResponse {
     let rect = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
-    ui.painter()
-        .rect_filled(rect, 0.0, Color32::from_gray(24));
+    ui.painter().rect_filled(rect, 0.0, Color32::from_gray(24));
     let mut out = ViewportResponse::default();
 
     // The displayed size follows the full-resolution render, so a preview
@@ -72,7 +71,9 @@ pub fn show(
     let full = vec2(full_size[0].max(1) as f32, full_size[1].max(1) as f32);
     let pixels_per_point = ui.ctx().pixels_per_point();
     let scale = match view.zoom {
-        Zoom::Fit => (rect.width() / full.x).min(rect.height() / full.y).max(1e-3),
+        Zoom::Fit => (rect.width() / full.x)
+            .min(rect.height() / full.y)
+            .max(1e-3),
         Zoom::Scale(s) => s / pixels_per_point,
     };
     let image_rect = Rect::from_center_size(rect.center() + view.offset, full * scale);
