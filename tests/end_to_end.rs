@@ -154,8 +154,11 @@ fn a_missing_scene_and_an_unwritable_output_are_errors() {
 }
 
 #[test]
-fn no_arguments_prints_help() {
-    let run = workbench(&[]);
+fn help_lists_the_subcommands() {
+    let run = workbench(&["--help"]);
     assert!(run.status.success());
-    assert!(String::from_utf8_lossy(&run.stdout).contains("render"));
+    let out = String::from_utf8_lossy(&run.stdout);
+    for sub in ["render", "bench", "gen"] {
+        assert!(out.contains(sub), "{out}");
+    }
 }
