@@ -142,12 +142,8 @@ impl WorkbenchApp {
             .shown
             .as_ref()
             .ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))?;
-        let rgb: Vec<u8> = snapshot
-            .rgba
-            .chunks_exact(4)
-            .flat_map(|p| [p[0], p[1], p[2]])
-            .collect();
-        let image = image::RgbImage::from_raw(snapshot.width, snapshot.height, rgb)
+        let image = snapshot
+            .to_image()
             .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))?;
         save_png(&image, path)
     }
@@ -313,12 +309,8 @@ impl WorkbenchApp {
                     ));
                     return;
                 };
-                let rgb: Vec<u8> = snapshot
-                    .rgba
-                    .chunks_exact(4)
-                    .flat_map(|p| [p[0], p[1], p[2]])
-                    .collect();
-                let result = image::RgbImage::from_raw(snapshot.width, snapshot.height, rgb)
+                let result = snapshot
+                    .to_image()
                     .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
                     .and_then(|img| save_png(&img, &path));
                 let _ = reply.send(match result {

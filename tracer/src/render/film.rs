@@ -110,14 +110,19 @@ impl Film {
 
     /// Resolves the film to an RGB image.
     pub fn to_image(&self, encoding: Encoding) -> image::RgbImage {
-        let rgb: Vec<u8> = self
-            .to_rgba8(encoding)
-            .chunks_exact(4)
-            .flat_map(|p| [p[0], p[1], p[2]])
-            .collect();
-        image::RgbImage::from_raw(self.width, self.height, rgb)
+        rgba_to_rgb_image(self.width, self.height, &self.to_rgba8(encoding))
             .expect("the buffer holds exactly width * height pixels")
     }
+}
+
+/// Drops the alpha of a row-major RGBA8 buffer: the form images are saved
+/// in. `None` when the buffer does not hold `width * height` pixels.
+pub fn rgba_to_rgb_image(width: u32, height: u32, rgba: &[u8]) -> Option<image::RgbImage> {
+    let rgb: Vec<u8> = rgba
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    image::RgbImage::from_raw(width, height, rgb)
 }
 
 #[cfg(test)]

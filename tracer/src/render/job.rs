@@ -57,6 +57,13 @@ pub struct Snapshot {
     pub paused: bool,
 }
 
+impl Snapshot {
+    /// The image without alpha, ready to save.
+    pub fn to_image(&self) -> Option<image::RgbImage> {
+        super::film::rgba_to_rgb_image(self.width, self.height, &self.rgba)
+    }
+}
+
 /// Options that change how a job runs but not the image it makes.
 #[derive(Default)]
 pub struct JobOptions {
