@@ -484,8 +484,9 @@ impl WorkbenchApp {
                 .inner_margin(6.0)
                 .show(ui, |ui| {
                     ui.horizontal(|ui| {
-                        ui.label(RichText::new(format!("⚠ {error}")).color(Color32::WHITE));
-                        if ui.small_button("✕").on_hover_text("Dismiss").clicked() {
+                        ui.label(RichText::new("Error").strong().color(Color32::WHITE));
+                        ui.label(RichText::new(&error).color(Color32::WHITE));
+                        if ui.small_button("Dismiss").clicked() {
                             self.error = None;
                         }
                     });

@@ -1,0 +1,224 @@
+//! The window driven as a user would, with `egui_kittest`: clicks on
+//! labelled widgets, key presses, dropped files. Each test checks what the
+//! renderer was asked to do, not only what the widgets show.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::thread::sleep;
+use std::time::{Duration, Instant};
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+use tracer::accel::AccelKind;
+use tracer::render::{JobState, RenderSettings};
+use workbench::gui::{Activity, WorkbenchApp};
+use workbench::load::SceneSource;
+
+/// Long enough for any render in these tests on a slow CI machine; only a
+/// guard against hanging, never a measure of speed.
+const PATIENCE: Duration = Duration::from_secs(180);
+
+/// The window on the bundled `balls_low`, rendered small so tests are quick.
+fn window() -> Harness<'static, WorkbenchApp> {
+    let mut harness = Harness::builder()
+        .with_size([1280.0, 820.0])
+        .build_eframe(|cc| {
+            WorkbenchApp::new(
+                &cc.egui_ctx,
+                None,
+                Some(SceneSource::Bundled("balls_low".into())),
+            )
+        });
+    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    wait_for(&mut harness, "the scene to load", |app| {
+        app.engine().settings().is_some()
+    });
+    harness
+}
+
+/// Steps the window until `done` holds (the render runs on other threads).
+fn wait_for(
+    harness: &mut Harness<'static, WorkbenchApp>,
+    what: &str,
+    done: impl Fn(&WorkbenchApp) -> bool,
+) {
+    let start = Instant::now();
+    loop {
+        harness.step();
+        if done(harness.state()) {
+            return;
+        }
+        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
+        sleep(Duration::from_millis(5));
+    }
+}
+
+fn render_settings(harness: &Harness<'static, WorkbenchApp>) -> RenderSettings {
+    harness
+        .state()
+        .engine()
+        .settings()
+        .cloned()
+        .expect("a render job")
+}
+
+fn is_done(app: &WorkbenchApp) -> bool {
+    app.engine().activity() == Activity::Job(JobState::Done)
+}
+
+/// Runs enough frames for a command to reach the engine.
+fn settle(harness: &mut Harness<'static, WorkbenchApp>) {
+    harness.run_steps(3);
+}
+
+#[test]
+fn the_window_opens_the_requested_scene_and_renders_it() {
+    let mut harness = window();
+    harness.get_by_label("balls_low");
+    wait_for(&mut harness, "the render to finish", is_done);
+    let settings = render_settings(&harness);
+    assert_eq!((settings.width, settings.height), (64, 64));
+}
+
+#[test]
+fn each_toggle_changes_the_renderer_by_its_label_and_by_its_key() {
+    type Flag = fn(&RenderSettings) -> bool;
+    let toggles: [(&str, egui::Key, Flag); 4] = [
+        ("Anti-aliasing", egui::Key::A, |s| s.antialiasing),
+        ("Soft shadows", egui::Key::S, |s| s.soft_shadows),
+        ("Depth of field", egui::Key::D, |s| s.depth_of_field),
+        ("Uniform grid", egui::Key::G, |s| s.accel == AccelKind::Grid),
+    ];
+    let mut harness = window();
+    for (label, key, flag) in toggles {
+        let before = flag(&render_settings(&harness));
+        harness
+            .get_by_role_and_label(Role::CheckBox, &format!("{label} ({key:?})"))
+            .click();
+        settle(&mut harness);
+        assert_eq!(
+            flag(&render_settings(&harness)),
+            !before,
+            "clicking {label}"
+        );
+        harness.key_press(key);
+        settle(&mut harness);
+        assert_eq!(flag(&render_settings(&harness)), before, "pressing {key:?}");
+    }
+}
+
+#[test]
+fn the_acceleration_choice_reaches_the_renderer() {
+    let mut harness = window();
+    for (choice, kind) in [
+        ("None", AccelKind::None),
+        ("Uniform grid", AccelKind::Grid),
+        ("BVH", AccelKind::Bvh),
+    ] {
+        harness.get_by_role(Role::ComboBox).click();
+        settle(&mut harness);
+        harness.get_by_role_and_label(Role::Button, choice).click();
+        settle(&mut harness);
+        assert_eq!(render_settings(&harness).accel, kind, "choosing {choice}");
+    }
+}
+
+#[test]
+fn sliders_change_the_render_settings() {
+    let mut harness = window();
+    let before = render_settings(&harness);
+    for label in ["Samples N", "Max depth", "Grid multiplier m"] {
+        harness.get_by_role_and_label(Role::Slider, label).focus();
+        settle(&mut harness);
+        harness.key_press(egui::Key::ArrowRight);
+        settle(&mut harness);
+    }
+    let after = render_settings(&harness);
+    assert_eq!(after.samples, before.samples + 1);
+    assert_eq!(after.max_depth, before.max_depth + 1);
+    assert!(after.grid_multiplier > before.grid_multiplier);
+}
+
+#[test]
+fn picking_a_scene_in_the_list_renders_it() {
+    let mut harness = window();
+    harness.get_by_label("tetra").click();
+    wait_for(&mut harness, "tetra to load", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source == SceneSource::Bundled("tetra".into()))
+    });
+    wait_for(&mut harness, "tetra to render", is_done);
+}
+
+/// A file dropped on the window, as the native integration delivers it.
+#[derive(Debug)]
+struct DroppedPath(PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
+    let dir = std::env::temp_dir().join(format!("workbench-gui-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let broken: PathBuf = dir.join("broken.p3f");
+    std::fs::write(&broken, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
+
+    let mut harness = window();
+    wait_for(&mut harness, "the first render", is_done);
+    harness
+        .input_mut()
+        .dropped_files
+        .push(Arc::new(DroppedPath(broken.clone())));
+    wait_for(&mut harness, "the error", |app| app.error().is_some());
+    let error = harness.state().error().unwrap().to_string();
+    assert!(error.contains("broken.p3f"), "{error}");
+    assert!(
+        error.contains(":5:7"),
+        "the error names line and column: {error}"
+    );
+    harness.get_by_label_contains("broken.p3f:5:7");
+    let scene = harness.state().engine().scene().expect("the old scene");
+    assert_eq!(scene.source, SceneSource::Bundled("balls_low".into()));
+    assert_eq!(
+        harness.state().engine().activity(),
+        Activity::Job(JobState::Done)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn the_statistics_panel_shows_the_work_done() {
+    let mut harness = window();
+    wait_for(&mut harness, "the render to finish", is_done);
+    harness.run_steps(3);
+    for name in ["Rays", "  eye", "  shadow", "Intersection tests"] {
+        let value = statistic(&harness, name);
+        assert!(
+            !value.is_empty() && value != "0",
+            "{name} shows {value:?} after a finished render"
+        );
+    }
+}
+
+/// The value shown next to `name` in the statistics panel.
+fn statistic(harness: &Harness<'static, WorkbenchApp>, name: &str) -> String {
+    let texts: Vec<String> = harness
+        .get_all_by_role(Role::Label)
+        .filter_map(|n| n.accesskit_node().label().or(n.accesskit_node().value()))
+        .collect();
+    let at = texts
+        .iter()
+        .position(|t| t == name)
+        .unwrap_or_else(|| panic!("no statistic {name:?} among {texts:?}"));
+    texts[at + 1].clone()
+}
