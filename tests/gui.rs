@@ -54,6 +54,16 @@ fn wait_for(
     }
 }
 
+/// Waits until the render is done and its last image is drawn (uploads
+/// are throttled, and panels are drawn before the upload of a frame).
+fn wait_for_final_image(harness: &mut Harness<'static, WorkbenchApp>) {
+    wait_for(harness, "the render to finish", is_done);
+    wait_for(harness, "the final image on screen", |app| {
+        app.is_display_current()
+    });
+    harness.step();
+}
+
 fn render_settings(harness: &Harness<'static, WorkbenchApp>) -> RenderSettings {
     harness
         .state()
@@ -152,6 +162,16 @@ fn picking_a_scene_in_the_list_renders_it() {
     wait_for(&mut harness, "tetra to render", is_done);
 }
 
+/// Writes a scene whose line 5, column 7 is wrong, in a folder of its own
+/// named after `test`.
+fn broken_scene(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("workbench-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("broken.p3f");
+    std::fs::write(&path, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
+    path
+}
+
 /// A file dropped on the window, as the native integration delivers it.
 #[derive(Debug)]
 struct DroppedPath(PathBuf);
@@ -168,10 +188,7 @@ impl egui::DroppedFile for DroppedPath {
 
 #[test]
 fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
-    let dir = std::env::temp_dir().join(format!("workbench-gui-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let broken: PathBuf = dir.join("broken.p3f");
-    std::fs::write(&broken, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
+    let broken = broken_scene("drop");
 
     let mut harness = window();
     wait_for(&mut harness, "the first render", is_done);
@@ -193,14 +210,13 @@ fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
         harness.state().engine().activity(),
         Activity::Job(JobState::Done)
     );
-    std::fs::remove_dir_all(&dir).ok();
+    std::fs::remove_dir_all(broken.parent().unwrap()).ok();
 }
 
 #[test]
 fn the_statistics_panel_shows_the_work_done() {
     let mut harness = window();
-    wait_for(&mut harness, "the render to finish", is_done);
-    harness.run_steps(3);
+    wait_for_final_image(&mut harness);
     for name in ["Rays", "  eye", "  shadow", "Intersection tests"] {
         let value = statistic(&harness, name);
         assert!(
@@ -221,4 +237,134 @@ fn statistic(harness: &Harness<'static, WorkbenchApp>, name: &str) -> String {
         .position(|t| t == name)
         .unwrap_or_else(|| panic!("no statistic {name:?} among {texts:?}"));
     texts[at + 1].clone()
+}
+
+/// Where the window snapshots live; `UPDATE_SNAPSHOTS=1 cargo test --test
+/// gui` rewrites them on purpose (look at them before committing).
+const SNAPSHOTS: &str = "../tests/snapshots";
+
+/// The window drawn by wgpu (Mesa's software Vulkan or GL on CI).
+fn drawn_window() -> Harness<'static, WorkbenchApp> {
+    let mut harness = Harness::builder()
+        .with_size([1100.0, 700.0])
+        .wgpu()
+        .build_eframe(|cc| {
+            WorkbenchApp::new(
+                &cc.egui_ctx,
+                None,
+                Some(SceneSource::Bundled("balls_low".into())),
+            )
+        });
+    harness.state_mut().state_mut().controls.resolution_scale = 0.5;
+    harness
+}
+
+/// Paints over values that change from run to run (times, speeds), so the
+/// snapshot compares layout, labels and the deterministic image.
+fn mask_timings(harness: &mut Harness<'static, WorkbenchApp>) {
+    let mut rects = Vec::new();
+    for name in [
+        "Render time",
+        "Last pass",
+        "Rays per second",
+        "  build time",
+        "Scene load",
+        "UI frame",
+    ] {
+        if let Some(rect) = value_rect(harness, name) {
+            // To the panel's edge: the text's own width varies too.
+            rects.push(rect.with_max_x(f32::INFINITY));
+        }
+    }
+    rects.extend(
+        harness
+            .query_all_by_label_contains(" spp")
+            .map(|n| n.rect())
+            .collect::<Vec<_>>(),
+    );
+    // The pass plots, below the last row of the statistics.
+    if let Some(last_row) = value_rect(harness, "UI frame") {
+        let name = harness.get_by_label("UI frame").rect();
+        rects.push(egui::Rect::from_min_max(
+            egui::pos2(name.left(), last_row.bottom() + 2.0),
+            egui::pos2(f32::INFINITY, f32::INFINITY),
+        ));
+    }
+    for rect in rects {
+        harness.mask(rect);
+    }
+}
+
+/// The rectangle of the value shown next to `name` in the statistics.
+fn value_rect(harness: &Harness<'static, WorkbenchApp>, name: &str) -> Option<egui::Rect> {
+    let labels: Vec<_> = harness.get_all_by_role(Role::Label).collect();
+    let at = labels.iter().position(|n| {
+        n.accesskit_node()
+            .label()
+            .or(n.accesskit_node().value())
+            .as_deref()
+            == Some(name)
+    })?;
+    labels.get(at + 1).map(|n| n.rect())
+}
+
+fn snapshot(harness: &mut Harness<'static, WorkbenchApp>, name: &str) {
+    harness.snapshot_options(
+        name,
+        &egui_kittest::SnapshotOptions::new().output_path(SNAPSHOTS),
+    );
+}
+
+#[test]
+fn snapshot_of_a_finished_render() {
+    let mut harness = drawn_window();
+    wait_for(&mut harness, "the render to finish", is_done);
+    // A few more frames: the last texture upload waits for its interval.
+    wait_for_final_image(&mut harness);
+    harness.run_steps(2);
+    mask_timings(&mut harness);
+    snapshot(&mut harness, "window_done");
+}
+
+#[test]
+fn snapshot_while_rendering() {
+    let mut harness = drawn_window();
+    {
+        let controls = &mut harness.state_mut().state_mut().controls;
+        controls.antialiasing = true;
+        controls.samples = 16;
+        controls.keep_refining = true;
+    }
+    // How far the render got changes every count in the statistics; the
+    // finished-render snapshot covers that panel.
+    harness.state_mut().state_mut().show_stats = false;
+    wait_for(&mut harness, "the first pass on screen", |app| {
+        app.shown_passes().is_some_and(|p| p >= 1)
+    });
+    assert_eq!(
+        harness.state().engine().activity(),
+        Activity::Job(JobState::Rendering)
+    );
+    harness.run_steps(2);
+    // The image and the pass plots depend on how far the render got.
+    let render = harness.get_by_role_and_label(Role::Image, "Render").rect();
+    harness.mask(render);
+    mask_timings(&mut harness);
+    snapshot(&mut harness, "window_rendering");
+}
+
+#[test]
+fn snapshot_with_an_error_shown() {
+    // A relative path from the test's working directory (app/), so the
+    // message, and how it wraps, is the same on every machine.
+    let broken = PathBuf::from("../tests/bad_scenes/camera_angle_180.p3f");
+    let mut harness = drawn_window();
+    wait_for(&mut harness, "the render to finish", is_done);
+    harness.state_mut().open(SceneSource::File(broken.clone()));
+    wait_for(&mut harness, "the error", |app| app.error().is_some());
+    wait_for_final_image(&mut harness);
+    harness.run_steps(2);
+    harness.get_by_label_contains("camera_angle_180.p3f:3:7");
+    mask_timings(&mut harness);
+    snapshot(&mut harness, "window_error");
 }

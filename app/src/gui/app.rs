@@ -130,6 +130,17 @@ impl WorkbenchApp {
         self.error.as_deref()
     }
 
+    /// Samples per pixel of the image on screen, once there is one.
+    pub fn shown_passes(&self) -> Option<u32> {
+        self.shown.as_ref().map(|s| s.stats.passes_done)
+    }
+
+    /// Whether the screen shows the renderer's latest image (uploads are
+    /// throttled, so it may lag a little behind).
+    pub fn is_display_current(&self) -> bool {
+        self.shown.is_some() && self.shown_version == self.engine.version()
+    }
+
     /// Starts loading a scene as the user would open it.
     pub fn open(&mut self, source: SceneSource) {
         self.adopt_next_scene = true;
@@ -483,13 +494,18 @@ impl WorkbenchApp {
                 .fill(Color32::from_rgb(90, 20, 20))
                 .inner_margin(6.0)
                 .show(ui, |ui| {
+                    // Long messages (paths, parser context) wrap inside the
+                    // panel instead of widening it.
+                    ui.set_width(ui.available_width());
                     ui.horizontal(|ui| {
                         ui.label(RichText::new("Error").strong().color(Color32::WHITE));
-                        ui.label(RichText::new(&error).color(Color32::WHITE));
-                        if ui.small_button("Dismiss").clicked() {
-                            self.error = None;
-                        }
+                        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                            if ui.small_button("Dismiss").clicked() {
+                                self.error = None;
+                            }
+                        });
                     });
+                    ui.add(egui::Label::new(RichText::new(&error).color(Color32::WHITE)).wrap());
                 });
         }
         let (size, full) = match &self.shown {

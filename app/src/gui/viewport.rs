@@ -63,6 +63,9 @@ pub fn show(
 ) -> ViewportResponse {
     let rect = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
+    // Named for screen readers (and for tests that look for the image).
+    response
+        .widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Image, true, "Render"));
     ui.painter().rect_filled(rect, 0.0, Color32::from_gray(24));
     let mut out = ViewportResponse::default();
 
