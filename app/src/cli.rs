@@ -22,6 +22,34 @@ pub struct Cli {
     /// A scene file to open in the window (default: the bundled showcase).
     #[arg(long, global = false)]
     pub scene: Option<PathBuf>,
+    /// Save a screenshot of the window to this PNG file once the render is
+    /// done (or an error is shown), then close.
+    #[arg(long, value_name = "PNG")]
+    pub screenshot: Option<PathBuf>,
+    /// Take the screenshot this many seconds after opening instead.
+    #[arg(long, value_name = "SECONDS", requires = "screenshot")]
+    pub screenshot_after: Option<f64>,
+}
+
+impl Cli {
+    /// The window's screenshot request, checked: a delay must be a finite,
+    /// non-negative number of seconds.
+    pub fn screenshot_plan(&self) -> anyhow::Result<Option<crate::gui::ScreenshotPlan>> {
+        let Some(path) = &self.screenshot else {
+            return Ok(None);
+        };
+        let after =
+            match self.screenshot_after {
+                None => None,
+                Some(s) => Some(std::time::Duration::try_from_secs_f64(s).map_err(|_| {
+                    anyhow::anyhow!("--screenshot-after {s}: not a delay in seconds")
+                })?),
+            };
+        Ok(Some(crate::gui::ScreenshotPlan {
+            path: path.clone(),
+            after,
+        }))
+    }
 }
 
 #[derive(Subcommand, Debug)]

@@ -19,7 +19,9 @@ pub fn run() -> std::process::ExitCode {
         Some(cli::Command::Render(args)) => commands::render::run(&args),
         Some(cli::Command::Bench(args)) => commands::bench::run(&args),
         Some(cli::Command::Gen(args)) => commands::generate::run(&args),
-        None => gui::run(cli.scene),
+        None => cli
+            .screenshot_plan()
+            .and_then(|plan| gui::run(cli.scene, plan)),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -16,6 +16,7 @@ use crate::output::save_png;
 
 use super::commands::Command;
 use super::engine::{Activity, Engine};
+use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::Persisted;
 use super::viewport::{self, Gesture, ViewState, Zoom};
 use super::{controls, scene_picker, stats_panel};
@@ -33,6 +34,7 @@ enum Reply {
     Open(PathBuf),
     Notice(String),
     Error(String),
+    Screenshot(Result<PathBuf, String>),
 }
 
 /// The application state: persisted settings plus runtime handles.
@@ -62,6 +64,9 @@ pub struct WorkbenchApp {
     frame_interval: f32,
     last_frame: Option<Instant>,
     replies: (Sender<Reply>, Receiver<Reply>),
+    opened_at: Instant,
+    screenshot: Option<(ScreenshotPlan, ScreenshotOutcome)>,
+    screenshot_requested: bool,
 }
 
 impl WorkbenchApp {
@@ -97,6 +102,9 @@ impl WorkbenchApp {
             frame_interval: 0.0,
             last_frame: None,
             replies: channel(),
+            opened_at: Instant::now(),
+            screenshot: None,
+            screenshot_requested: false,
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
@@ -108,6 +116,13 @@ impl WorkbenchApp {
             app.engine.load(source);
         }
         app
+    }
+
+    /// Takes a screenshot as `plan` says, reports it in `outcome` and closes
+    /// the window.
+    pub fn with_screenshot(mut self, plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
+        self.screenshot = Some((plan, outcome));
+        self
     }
 
     /// The persisted state (for tests and saving).
@@ -163,8 +178,8 @@ impl WorkbenchApp {
         self.dragging_camera || self.moving_until.is_some_and(|t| Instant::now() < t)
     }
 
-    /// Takes finished loads, dialogs and saves.
-    fn receive(&mut self) {
+    /// Takes finished loads, dialogs, saves and screenshots.
+    fn receive(&mut self, ctx: &egui::Context) {
         if let Some(result) = self.engine.poll_load() {
             match result {
                 Ok(loaded) => {
@@ -195,6 +210,14 @@ impl WorkbenchApp {
                 Reply::Open(path) => self.open(SceneSource::File(path)),
                 Reply::Notice(text) => self.notify(text),
                 Reply::Error(text) => self.error = Some(text),
+                Reply::Screenshot(result) => {
+                    if let Some((_, outcome)) = &self.screenshot
+                        && let Ok(mut slot) = outcome.lock()
+                    {
+                        *slot = Some(result);
+                    }
+                    ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+                }
             }
         }
     }
@@ -546,6 +569,45 @@ impl WorkbenchApp {
         Some([s.width, s.height])
     }
 
+    /// Asks for the screenshot of `--screenshot` once it is due.
+    fn take_screenshot_when_due(&mut self, ctx: &egui::Context) {
+        let Some((plan, _)) = &self.screenshot else {
+            return;
+        };
+        if self.screenshot_requested {
+            return;
+        }
+        let due = match plan.after {
+            Some(delay) => {
+                let elapsed = self.opened_at.elapsed();
+                if elapsed < delay {
+                    ctx.request_repaint_after(delay - elapsed);
+                }
+                elapsed >= delay
+            }
+            None => {
+                !self.engine.is_loading()
+                    && (self.error.is_some()
+                        || (self.engine.activity() == Activity::Job(JobState::Done)
+                            && self.is_display_current()))
+            }
+        };
+        if !due {
+            return;
+        }
+        self.screenshot_requested = true;
+        let path = plan.path.clone();
+        let reply = self.replies.0.clone();
+        let wake = ctx.clone();
+        ctx.request_screenshot(move |image| {
+            let result = screenshot::save(&image, &path)
+                .map(|()| path)
+                .map_err(|e| format!("{e:#}"));
+            let _ = reply.send(Reply::Screenshot(result));
+            wake.request_repaint();
+        });
+    }
+
     fn measure_frame(&mut self) {
         let now = Instant::now();
         if let Some(last) = self.last_frame {
@@ -572,7 +634,7 @@ impl eframe::App for WorkbenchApp {
         let ctx = ui.ctx().clone();
         self.measure_frame();
         self.engine.collect_retired();
-        self.receive();
+        self.receive(&ctx);
         self.take_dropped_files(&ctx);
         let mut commands = Command::pressed(&ctx);
 
@@ -663,6 +725,7 @@ impl eframe::App for WorkbenchApp {
         }
         self.sync_render(&ctx);
         self.refresh_texture(&ctx);
+        self.take_screenshot_when_due(&ctx);
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

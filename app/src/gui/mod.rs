@@ -6,6 +6,7 @@ mod commands;
 mod controls;
 mod engine;
 mod scene_picker;
+mod screenshot;
 mod state;
 mod stats_panel;
 mod viewport;
@@ -15,13 +16,15 @@ use std::path::PathBuf;
 pub use app::WorkbenchApp;
 pub use commands::Command;
 pub use engine::{Activity, Engine};
+pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
 
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default)
-/// and runs until it is closed.
-pub fn run(scene: Option<PathBuf>) -> anyhow::Result<()> {
+/// and runs until it is closed, or until the screenshot of `screenshot` is
+/// taken.
+pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("Whitted Workbench")
@@ -33,15 +36,18 @@ pub fn run(scene: Option<PathBuf>) -> anyhow::Result<()> {
         ..eframe::NativeOptions::default()
     };
     let initial = scene.map(SceneSource::File);
+    let outcome = ScreenshotOutcome::default();
+    let app_outcome = outcome.clone();
+    let plan = screenshot.clone();
     eframe::run_native(
         "Whitted Workbench",
         options,
         Box::new(move |cc| {
-            Ok(Box::new(WorkbenchApp::new(
-                &cc.egui_ctx,
-                cc.storage,
-                initial,
-            )))
+            let app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
+            Ok(Box::new(match plan {
+                Some(plan) => app.with_screenshot(plan, app_outcome),
+                None => app,
+            }))
         }),
     )
     .map_err(|e| {
@@ -49,5 +55,20 @@ pub fn run(scene: Option<PathBuf>) -> anyhow::Result<()> {
             "cannot open the window: {e}\n(no display? the headless commands still work: \
              see `workbench --help`)"
         )
-    })
+    })?;
+    let Some(plan) = screenshot else {
+        return Ok(());
+    };
+    let taken = outcome.lock().ok().and_then(|mut slot| slot.take());
+    match taken {
+        Some(Ok(path)) => {
+            println!("saved screenshot {}", path.display());
+            Ok(())
+        }
+        Some(Err(e)) => Err(anyhow::anyhow!(e)),
+        None => anyhow::bail!(
+            "the window closed before the screenshot {} was taken",
+            plan.path.display()
+        ),
+    }
 }
