@@ -393,6 +393,12 @@ impl WorkbenchApp {
         if let Err(e) = self.engine.render(&settings) {
             self.error = Some(e);
         }
+        if let Some(failure) = self.engine.take_failure() {
+            self.error = Some(format!(
+                "the render failed: {failure}. The image so far stays; change a setting or \
+                 press R to render again"
+            ));
+        }
         if let Some(until) = self.moving_until {
             let now = Instant::now();
             if now < until {

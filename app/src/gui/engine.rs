@@ -52,6 +52,8 @@ pub struct Engine {
     low_priority: bool,
     threads: Option<usize>,
     paused: bool,
+    /// Whether the current job's failure was handed out already.
+    failure_taken: bool,
 }
 
 impl Engine {
@@ -68,6 +70,7 @@ impl Engine {
             low_priority: true,
             threads: None,
             paused: false,
+            failure_taken: false,
         }
     }
 
@@ -171,6 +174,7 @@ impl Engine {
         .map_err(|e| e.to_string())?;
         job.set_paused(self.paused);
         self.job = Some(job);
+        self.failure_taken = false;
         self.settings = Some(settings.clone());
         Ok(())
     }
@@ -236,8 +240,73 @@ impl Engine {
         }
     }
 
+    /// Why the current job failed (a panic in the tracer, an invalid
+    /// camera), once per job, so the window reports it a single time.
+    pub fn take_failure(&mut self) -> Option<String> {
+        if self.failure_taken {
+            return None;
+        }
+        match self.job.as_ref()?.state() {
+            JobState::Failed(message) => {
+                self.failure_taken = true;
+                Some(message)
+            }
+            _ => None,
+        }
+    }
+
     /// The settings of the running job.
     pub fn settings(&self) -> Option<&RenderSettings> {
         self.settings.as_ref()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::{AtomicU32, Ordering};
+
+    use super::*;
+
+    fn wait_until(engine: &mut Engine, done: impl Fn(&mut Engine) -> bool) {
+        let start = Instant::now();
+        while !done(engine) {
+            assert!(start.elapsed() < Duration::from_secs(120), "gave up");
+            std::thread::sleep(Duration::from_millis(2));
+        }
+    }
+
+    #[test]
+    fn a_panicking_render_is_reported_once_and_the_next_render_works() {
+        // The wake-up callback runs on the render threads; its third call
+        // panics, standing for a bug in the tracer.
+        let calls = Arc::new(AtomicU32::new(0));
+        let counter = calls.clone();
+        let mut engine = Engine::new(Arc::new(move || {
+            if counter.fetch_add(1, Ordering::Relaxed) == 2 {
+                panic!("a bug in the tracer");
+            }
+        }));
+        engine.load(SceneSource::Bundled("balls_low".into()));
+        wait_until(&mut engine, |e| e.poll_load().is_some());
+        let settings = RenderSettings {
+            width: 64,
+            height: 64,
+            ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+        };
+        engine.render(&settings).unwrap();
+        wait_until(&mut engine, |e| {
+            matches!(e.activity(), Activity::Job(JobState::Failed(_)))
+        });
+        let failure = engine.take_failure().expect("the failure");
+        assert!(failure.contains("a bug in the tracer"), "{failure}");
+        assert_eq!(engine.take_failure(), None, "reported once");
+
+        engine.restart(&settings).unwrap();
+        wait_until(&mut engine, |e| {
+            e.activity() == Activity::Job(JobState::Done)
+        });
+        assert_eq!(engine.take_failure(), None);
+        let snapshot = engine.snapshot(Encoding::Linear).unwrap();
+        assert_eq!(snapshot.stats.passes_done, snapshot.stats.passes_target);
     }
 }

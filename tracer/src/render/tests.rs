@@ -290,3 +290,38 @@ fn invalid_settings_are_refused_before_rendering() {
         .is_err()
     );
 }
+
+#[test]
+fn a_panic_inside_a_job_is_reported_and_what_was_rendered_stays() {
+    let w = world(SCENE);
+    let tiles = Arc::new(AtomicU32::new(0));
+    let counter = tiles.clone();
+    let job = RenderJob::start(
+        w.clone(),
+        Some(index(&w, AccelKind::Bvh)),
+        settings(64, 64),
+        JobOptions {
+            threads: Some(2),
+            // Progress callbacks run on the render threads: a panic there
+            // stands for any bug in the tracer.
+            on_progress: Some(Box::new(move || {
+                if counter.fetch_add(1, Ordering::Relaxed) == 3 {
+                    panic!("a bug in the tracer");
+                }
+            })),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    while !job.is_finished() {
+        std::thread::yield_now();
+    }
+    let snapshot = job.snapshot(super::Encoding::Linear);
+    assert_eq!(snapshot.rgba.len(), 64 * 64 * 4);
+    let (_, stats, state) = job.wait();
+    assert_eq!(
+        state,
+        JobState::Failed("render thread panicked: a bug in the tracer".into())
+    );
+    assert!(stats.counters.eye_rays > 0);
+}
