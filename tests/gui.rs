@@ -59,7 +59,7 @@ fn wait_for(
 fn wait_for_final_image(harness: &mut Harness<'static, WorkbenchApp>) {
     wait_for(harness, "the render to finish", is_done);
     wait_for(harness, "the final image on screen", |app| {
-        app.is_display_current()
+        app.is_display_current() && app.is_catalog_complete()
     });
     harness.step();
 }
@@ -339,7 +339,7 @@ fn snapshot_while_rendering() {
     // finished-render snapshot covers that panel.
     harness.state_mut().state_mut().show_stats = false;
     wait_for(&mut harness, "the first pass on screen", |app| {
-        app.shown_passes().is_some_and(|p| p >= 1)
+        app.shown_passes().is_some_and(|p| p >= 1) && app.is_catalog_complete()
     });
     assert_eq!(
         harness.state().engine().activity(),

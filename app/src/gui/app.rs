@@ -60,6 +60,7 @@ pub struct WorkbenchApp {
     notice: Option<(String, Instant)>,
     help_open: bool,
     disk_scenes: Vec<PathBuf>,
+    catalog: scene_picker::Catalog,
     hovered_pixel: Option<(u32, u32)>,
     frame_interval: f32,
     last_frame: Option<Instant>,
@@ -98,6 +99,10 @@ impl WorkbenchApp {
             notice: None,
             help_open: false,
             disk_scenes: scene_picker::scene_files(Path::new("scenes")),
+            catalog: {
+                let ctx = ctx.clone();
+                scene_picker::Catalog::spawn(move || ctx.request_repaint())
+            },
             hovered_pixel: None,
             frame_interval: 0.0,
             last_frame: None,
@@ -148,6 +153,11 @@ impl WorkbenchApp {
     /// Samples per pixel of the image on screen, once there is one.
     pub fn shown_passes(&self) -> Option<u32> {
         self.shown.as_ref().map(|s| s.stats.passes_done)
+    }
+
+    /// Whether the scene list has the object count of every bundled scene.
+    pub fn is_catalog_complete(&self) -> bool {
+        self.catalog.is_complete()
     }
 
     /// Whether the screen shows the renderer's latest image (uploads are
@@ -658,6 +668,7 @@ impl eframe::App for WorkbenchApp {
                     let current = self.engine.scene().map(|s| s.source.clone());
                     if let Some(source) = scene_picker::show(
                         ui,
+                        &self.catalog,
                         current.as_ref(),
                         &self.disk_scenes,
                         &self.state.recent,

@@ -1,15 +1,83 @@
 //! Choosing a scene: the bundled ones, files in `scenes/` on disk, recent
 //! files, and a native open dialog.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
-use egui::Ui;
+use egui::{RichText, Ui};
+use tracer::scene::{Limits, Primitive, Scene, parse_scene};
 
 use crate::bundled;
 use crate::load::SceneSource;
+use crate::report::si;
 
 use super::commands::Command;
 use super::controls::command_button;
+
+/// Object counts of the bundled scenes, parsed once on a background thread
+/// so the list opens at once even with a 262k-triangle mesh among them.
+#[derive(Clone, Default)]
+pub struct Catalog {
+    /// A size summary per scene name; `None` for a scene that does not parse.
+    summaries: Arc<Mutex<HashMap<&'static str, Option<String>>>>,
+}
+
+impl Catalog {
+    /// Starts counting; `wake` asks the window to redraw as counts arrive.
+    pub fn spawn(wake: impl Fn() + Send + 'static) -> Self {
+        let catalog = Catalog::default();
+        let summaries = catalog.summaries.clone();
+        // Without the thread the list simply shows no counts.
+        let _ = std::thread::Builder::new()
+            .name("scene-catalog".into())
+            .spawn(move || {
+                for scene in bundled::SCENES {
+                    let parsed =
+                        parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());
+                    if let Ok(mut summaries) = summaries.lock() {
+                        summaries.insert(scene.name, parsed.ok().map(|s| summary(&s)));
+                    }
+                    wake();
+                }
+            });
+        catalog
+    }
+
+    /// How big the bundled scene `name` is, once counted.
+    pub fn summary(&self, name: &str) -> Option<String> {
+        self.summaries.lock().ok()?.get(name).cloned().flatten()
+    }
+
+    /// Whether every bundled scene was counted.
+    pub fn is_complete(&self) -> bool {
+        self.summaries
+            .lock()
+            .is_ok_and(|counts| counts.len() == bundled::SCENES.len())
+    }
+}
+
+/// "93 objects", or "1 object, 262.1k triangles" when meshes hide the size.
+fn summary(scene: &Scene) -> String {
+    let objects = scene.objects.len();
+    let triangles: usize = scene
+        .objects
+        .iter()
+        .map(|o| match &o.primitive {
+            Primitive::Mesh { triangles, .. } => triangles.len(),
+            _ => 0,
+        })
+        .sum();
+    let plural = if objects == 1 { "" } else { "s" };
+    if triangles == 0 {
+        format!("{objects} object{plural}")
+    } else {
+        format!(
+            "{objects} object{plural}, {} triangles",
+            si(triangles as f64)
+        )
+    }
+}
 
 /// Scene files in `dir` (not recursive), sorted.
 pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
@@ -36,6 +104,7 @@ pub fn is_scene_file(path: &Path) -> bool {
 /// Draws the picker; returns the scene the user chose, if any.
 pub fn show(
     ui: &mut Ui,
+    catalog: &Catalog,
     current: Option<&SceneSource>,
     disk_scenes: &[PathBuf],
     recent: &[PathBuf],
@@ -55,8 +124,16 @@ pub fn show(
                 let source = SceneSource::Bundled(scene.name.to_string());
                 let selected = current == Some(&source);
                 let response = ui
-                    .selectable_label(selected, scene.name)
-                    .on_hover_text(scene.description);
+                    .horizontal(|ui| {
+                        let response = ui
+                            .selectable_label(selected, scene.name)
+                            .on_hover_text(scene.description);
+                        if let Some(summary) = catalog.summary(scene.name) {
+                            ui.weak(summary);
+                        }
+                        response
+                    })
+                    .inner;
                 if response.clicked() {
                     chosen = Some(source);
                 }
@@ -78,6 +155,11 @@ pub fn show(
                 }
             }
         });
+    if let Some(SceneSource::Bundled(name)) = current
+        && let Some(scene) = bundled::find(name)
+    {
+        ui.label(RichText::new(scene.description).small().weak());
+    }
     if !recent.is_empty() {
         ui.collapsing("Recent files", |ui| {
             for path in recent {
