@@ -269,7 +269,8 @@ fn mask_timings(harness: &mut Harness<'static, WorkbenchApp>) {
         "Rays per second",
         "  build time",
         "Scene load",
-        "UI frame",
+        "UI frames per second",
+        "UI work per frame",
     ] {
         if let Some(rect) = value_rect(harness, name) {
             // To the panel's edge: the text's own width varies too.
@@ -283,8 +284,8 @@ fn mask_timings(harness: &mut Harness<'static, WorkbenchApp>) {
             .collect::<Vec<_>>(),
     );
     // The pass plots, below the last row of the statistics.
-    if let Some(last_row) = value_rect(harness, "UI frame") {
-        let name = harness.get_by_label("UI frame").rect();
+    if let Some(last_row) = value_rect(harness, "UI work per frame") {
+        let name = harness.get_by_label("UI work per frame").rect();
         rects.push(egui::Rect::from_min_max(
             egui::pos2(name.left(), last_row.bottom() + 2.0),
             egui::pos2(f32::INFINITY, f32::INFINITY),

@@ -16,6 +16,7 @@ use crate::output::save_png;
 
 use super::commands::Command;
 use super::engine::{Activity, Engine};
+use super::frame_meter::FrameMeter;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::Persisted;
 use super::viewport::{self, Gesture, ViewState, Zoom};
@@ -62,8 +63,10 @@ pub struct WorkbenchApp {
     disk_scenes: Vec<PathBuf>,
     catalog: scene_picker::Catalog,
     hovered_pixel: Option<(u32, u32)>,
-    frame_interval: f32,
-    last_frame: Option<Instant>,
+    frame_meter: FrameMeter,
+    /// The title last given to the window, to send it only when it changes
+    /// (every viewport command asks for one more frame).
+    title: String,
     replies: (Sender<Reply>, Receiver<Reply>),
     opened_at: Instant,
     screenshot: Option<(ScreenshotPlan, ScreenshotOutcome)>,
@@ -104,8 +107,8 @@ impl WorkbenchApp {
                 scene_picker::Catalog::spawn(move || ctx.request_repaint())
             },
             hovered_pixel: None,
-            frame_interval: 0.0,
-            last_frame: None,
+            frame_meter: FrameMeter::default(),
+            title: String::new(),
             replies: channel(),
             opened_at: Instant::now(),
             screenshot: None,
@@ -623,19 +626,6 @@ impl WorkbenchApp {
             wake.request_repaint();
         });
     }
-
-    fn measure_frame(&mut self) {
-        let now = Instant::now();
-        if let Some(last) = self.last_frame {
-            let dt = (now - last).as_secs_f32();
-            self.frame_interval = if self.frame_interval == 0.0 {
-                dt
-            } else {
-                0.9 * self.frame_interval + 0.1 * dt
-            };
-        }
-        self.last_frame = Some(now);
-    }
 }
 
 /// The bundled showcase scene, or the first bundled scene.
@@ -648,7 +638,7 @@ fn default_scene() -> Option<SceneSource> {
 impl eframe::App for WorkbenchApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
-        self.measure_frame();
+        self.frame_meter.begin();
         self.engine.collect_retired();
         self.receive(&ctx);
         self.take_dropped_files(&ctx);
@@ -658,7 +648,10 @@ impl eframe::App for WorkbenchApp {
             Some(s) => format!("Whitted Workbench — {}", s.source.label()),
             None => "Whitted Workbench".into(),
         };
-        ctx.send_viewport_cmd(egui::ViewportCommand::Title(title));
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
 
         egui::Panel::left("controls")
             .resizable(true)
@@ -707,7 +700,7 @@ impl eframe::App for WorkbenchApp {
                                         counts: &scene.world.counts,
                                         accel: accel.as_ref(),
                                         load_time: scene.load_time,
-                                        ui_frame_time: self.frame_interval,
+                                        frame_meter: &self.frame_meter,
                                     },
                                 );
                             }
@@ -743,6 +736,7 @@ impl eframe::App for WorkbenchApp {
         self.sync_render(&ctx);
         self.refresh_texture(&ctx);
         self.take_screenshot_when_due(&ctx);
+        self.frame_meter.end();
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -5,6 +5,7 @@ mod app;
 mod commands;
 mod controls;
 mod engine;
+mod frame_meter;
 mod scene_picker;
 mod screenshot;
 mod state;

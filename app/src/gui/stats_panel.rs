@@ -8,14 +8,16 @@ use tracer::stats::{RenderStats, SceneCounts};
 
 use crate::report::{describe_objects, si};
 
+use super::frame_meter::FrameMeter;
+
 /// Everything the panel shows.
 pub struct StatsView<'a> {
     pub stats: &'a RenderStats,
     pub counts: &'a SceneCounts,
     pub accel: Option<&'a AccelInfo>,
     pub load_time: std::time::Duration,
-    /// The UI's own recent frame time, seconds.
-    pub ui_frame_time: f32,
+    /// The window's own frame rate and work per frame.
+    pub frame_meter: &'a FrameMeter,
 }
 
 fn row(ui: &mut Ui, name: &str, value: String) {
@@ -109,8 +111,13 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
             );
             row(
                 ui,
-                "UI frame",
-                format!("{:.1} ms", view.ui_frame_time * 1e3),
+                "UI frames per second",
+                view.frame_meter.frames_per_second().to_string(),
+            );
+            row(
+                ui,
+                "UI work per frame",
+                format!("{:.1} ms", view.frame_meter.work_per_frame() * 1e3),
             );
         });
 
