@@ -271,6 +271,7 @@ fn mask_timings(harness: &mut Harness<'static, WorkbenchApp>) {
         "Scene load",
         "UI frames per second",
         "UI work per frame",
+        "UI paint per frame",
     ] {
         if let Some(rect) = value_rect(harness, name) {
             // To the panel's edge: the text's own width varies too.
@@ -284,8 +285,8 @@ fn mask_timings(harness: &mut Harness<'static, WorkbenchApp>) {
             .collect::<Vec<_>>(),
     );
     // The pass plots, below the last row of the statistics.
-    if let Some(last_row) = value_rect(harness, "UI work per frame") {
-        let name = harness.get_by_label("UI work per frame").rect();
+    if let Some(last_row) = value_rect(harness, "UI paint per frame") {
+        let name = harness.get_by_label("UI paint per frame").rect();
         rects.push(egui::Rect::from_min_max(
             egui::pos2(name.left(), last_row.bottom() + 2.0),
             egui::pos2(f32::INFINITY, f32::INFINITY),

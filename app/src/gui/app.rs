@@ -16,15 +16,12 @@ use crate::output::save_png;
 
 use super::commands::Command;
 use super::engine::{Activity, Engine};
-use super::frame_meter::FrameMeter;
+use super::frame_meter::{FrameMeter, ProgressPace};
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::Persisted;
 use super::viewport::{self, Gesture, ViewState, Zoom};
 use super::{controls, scene_picker, stats_panel};
 
-/// Shortest time between two texture uploads: the display refreshes at up
-/// to 30 Hz and never slows the render down.
-const UPLOAD_INTERVAL: Duration = Duration::from_millis(33);
 /// How long after the last wheel dolly the camera counts as moving.
 const MOVE_SETTLE: Duration = Duration::from_millis(250);
 /// How long a notice stays on screen.
@@ -64,6 +61,8 @@ pub struct WorkbenchApp {
     catalog: scene_picker::Catalog,
     hovered_pixel: Option<(u32, u32)>,
     frame_meter: FrameMeter,
+    /// How often render progress may redraw the window (see [`FrameMeter`]).
+    progress_pace: ProgressPace,
     /// The title last given to the window, to send it only when it changes
     /// (every viewport command asks for one more frame).
     title: String,
@@ -86,8 +85,11 @@ impl WorkbenchApp {
             .and_then(|s| eframe::get_value(s, eframe::APP_KEY))
             .unwrap_or_default();
         let wake_ctx = ctx.clone();
+        let progress_pace = ProgressPace::default();
+        let pace = progress_pace.clone();
         let mut app = Self {
-            engine: Engine::new(Arc::new(move || wake_ctx.request_repaint())),
+            engine: Engine::new(Arc::new(move || wake_ctx.request_repaint_after(pace.get()))),
+            progress_pace,
             view: ViewState::default(),
             camera: None,
             texture: None,
@@ -422,8 +424,7 @@ impl WorkbenchApp {
         }
     }
 
-    /// Uploads the render to the GPU when it changed, at most every
-    /// [`UPLOAD_INTERVAL`].
+    /// Uploads the render to the GPU when it changed, at the progress pace.
     fn refresh_texture(&mut self, ctx: &egui::Context) {
         let version = self.engine.version();
         let encoding = self.state.controls.encoding();
@@ -431,8 +432,9 @@ impl WorkbenchApp {
             return;
         }
         let since = self.last_upload.elapsed();
-        if since < UPLOAD_INTERVAL && self.shown.is_some() {
-            ctx.request_repaint_after(UPLOAD_INTERVAL - since);
+        let interval = self.progress_pace.get();
+        if since < interval && self.shown.is_some() {
+            ctx.request_repaint_after(interval - since);
             return;
         }
         let Some(snapshot) = self.engine.snapshot(encoding) else {
@@ -737,6 +739,7 @@ impl eframe::App for WorkbenchApp {
         self.refresh_texture(&ctx);
         self.take_screenshot_when_due(&ctx);
         self.frame_meter.end();
+        self.progress_pace.set(self.frame_meter.progress_interval());
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -33,6 +33,10 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
             .with_min_inner_size([640.0, 400.0])
             .with_drag_and_drop(true),
         renderer: eframe::Renderer::Wgpu,
+        // The render is shown exactly as computed (the pixel readout and a
+        // screenshot match the saved PNG), and software rasterizers paint
+        // faster without the per-fragment noise.
+        dithering: false,
         persist_window: true,
         ..eframe::NativeOptions::default()
     };

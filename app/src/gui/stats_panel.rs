@@ -119,6 +119,14 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                 "UI work per frame",
                 format!("{:.1} ms", view.frame_meter.work_per_frame() * 1e3),
             );
+            row(
+                ui,
+                "UI paint per frame",
+                format!(
+                    "{:.1} ms",
+                    view.frame_meter.paint_time().as_secs_f64() * 1e3
+                ),
+            );
         });
 
     if s.pass_times.len() > 1 {
