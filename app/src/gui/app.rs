@@ -46,7 +46,7 @@ pub struct WorkbenchApp {
     /// The snapshot on screen: kept for the pixel readout, the overlay,
     /// the statistics and saving.
     shown: Option<Snapshot>,
-    shown_version: u64,
+    shown_version: (u64, u64),
     shown_encoding: Encoding,
     last_upload: Instant,
     dragging_camera: bool,
@@ -94,7 +94,7 @@ impl WorkbenchApp {
             camera: None,
             texture: None,
             shown: None,
-            shown_version: 0,
+            shown_version: (0, 0),
             shown_encoding: Encoding::Linear,
             last_upload: Instant::now(),
             dragging_camera: false,
@@ -474,9 +474,9 @@ impl WorkbenchApp {
         let state = match self.engine.activity() {
             Activity::Idle => "no scene".to_string(),
             Activity::Loading(name) => format!("loading {name}…"),
+            Activity::Job(_) if self.is_camera_moving() => "preview (camera moving)".into(),
             Activity::Job(JobState::Building) => "building acceleration structure…".into(),
             Activity::Job(JobState::Rendering) if self.engine.is_paused() => "paused".into(),
-            Activity::Job(JobState::Rendering) if self.is_camera_moving() => "preview".into(),
             Activity::Job(JobState::Rendering) => "rendering".into(),
             Activity::Job(JobState::Done) => "done".into(),
             Activity::Job(JobState::Cancelled) => "cancelled".into(),

@@ -54,6 +54,9 @@ pub struct Engine {
     paused: bool,
     /// Whether the current job's failure was handed out already.
     failure_taken: bool,
+    /// Jobs started so far: part of [`Engine::version`], as every job
+    /// counts its own versions from zero.
+    jobs_started: u64,
 }
 
 impl Engine {
@@ -71,6 +74,7 @@ impl Engine {
             threads: None,
             paused: false,
             failure_taken: false,
+            jobs_started: 0,
         }
     }
 
@@ -175,6 +179,7 @@ impl Engine {
         job.set_paused(self.paused);
         self.job = Some(job);
         self.failure_taken = false;
+        self.jobs_started += 1;
         self.settings = Some(settings.clone());
         Ok(())
     }
@@ -212,9 +217,13 @@ impl Engine {
         self.low_priority = low;
     }
 
-    /// A number that changes whenever the image or statistics change.
-    pub fn version(&self) -> u64 {
-        self.job.as_ref().map_or(0, |j| j.version())
+    /// A number that changes whenever the image or statistics change,
+    /// including when a new job replaces one that reached the same count.
+    pub fn version(&self) -> (u64, u64) {
+        (
+            self.jobs_started,
+            self.job.as_ref().map_or(0, |j| j.version()),
+        )
     }
 
     /// The current image and statistics.
