@@ -6,9 +6,9 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::{Duration, Instant};
 
-use egui::{Color32, ColorImage, RichText, TextureHandle, TextureOptions, Ui};
+use egui::{Color32, RichText, Ui};
 use tracer::camera::CameraPose;
-use tracer::render::{Encoding, JobState, Snapshot};
+use tracer::render::JobState;
 
 use crate::bundled;
 use crate::load::SceneSource;
@@ -17,6 +17,7 @@ use crate::output::save_png;
 use super::commands::Command;
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
+use super::live_image::LiveImage;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::Persisted;
 use super::viewport::{self, Gesture, ViewState, Zoom};
@@ -42,13 +43,8 @@ pub struct WorkbenchApp {
     view: ViewState,
     /// The camera after the user moved it; `None` is the scene's own.
     camera: Option<CameraPose>,
-    texture: Option<TextureHandle>,
-    /// The snapshot on screen: kept for the pixel readout, the overlay,
-    /// the statistics and saving.
-    shown: Option<Snapshot>,
-    shown_version: (u64, u64),
-    shown_encoding: Encoding,
-    last_upload: Instant,
+    /// The render on screen.
+    image: LiveImage,
     dragging_camera: bool,
     moving_until: Option<Instant>,
     /// Opening a scene adopts its settings; restoring the last session
@@ -92,11 +88,7 @@ impl WorkbenchApp {
             progress_pace,
             view: ViewState::default(),
             camera: None,
-            texture: None,
-            shown: None,
-            shown_version: (0, 0),
-            shown_encoding: Encoding::Linear,
-            last_upload: Instant::now(),
+            image: LiveImage::new("render"),
             dragging_camera: false,
             moving_until: None,
             adopt_next_scene: true,
@@ -157,7 +149,7 @@ impl WorkbenchApp {
 
     /// Samples per pixel of the image on screen, once there is one.
     pub fn shown_passes(&self) -> Option<u32> {
-        self.shown.as_ref().map(|s| s.stats.passes_done)
+        self.image.shown().map(|s| s.stats.passes_done)
     }
 
     /// Whether the scene list has the object count of every bundled scene.
@@ -168,7 +160,7 @@ impl WorkbenchApp {
     /// Whether the screen shows the renderer's latest image (uploads are
     /// throttled, so it may lag a little behind).
     pub fn is_display_current(&self) -> bool {
-        self.shown.is_some() && self.shown_version == self.engine.version()
+        self.image.is_current(&self.engine)
     }
 
     /// Starts loading a scene as the user would open it.
@@ -180,8 +172,8 @@ impl WorkbenchApp {
     /// Writes the displayed render, at its full resolution, to `path`.
     pub fn save_to(&self, path: &Path) -> anyhow::Result<()> {
         let snapshot = self
-            .shown
-            .as_ref()
+            .image
+            .shown()
             .ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))?;
         let image = snapshot
             .to_image()
@@ -208,7 +200,7 @@ impl WorkbenchApp {
                     self.camera = None;
                     self.view = ViewState::default();
                     self.error = None;
-                    self.shown = None;
+                    self.image.forget();
                     if let SceneSource::File(path) = &source {
                         self.state.remember(path.clone());
                     }
@@ -328,7 +320,7 @@ impl WorkbenchApp {
 
     /// The native save dialog and the PNG write, off the UI thread.
     fn save_dialog(&mut self) {
-        let Some(snapshot) = self.shown.clone() else {
+        let Some(snapshot) = self.image.shown().cloned() else {
             self.notify("there is no image to save yet".into());
             return;
         };
@@ -426,42 +418,14 @@ impl WorkbenchApp {
 
     /// Uploads the render to the GPU when it changed, at the progress pace.
     fn refresh_texture(&mut self, ctx: &egui::Context) {
-        let version = self.engine.version();
         let encoding = self.state.controls.encoding();
-        if version == self.shown_version && encoding == self.shown_encoding {
-            return;
-        }
-        let since = self.last_upload.elapsed();
-        let interval = self.progress_pace.get();
-        if since < interval && self.shown.is_some() {
-            ctx.request_repaint_after(interval - since);
-            return;
-        }
-        let Some(snapshot) = self.engine.snapshot(encoding) else {
-            return;
-        };
-        let image = ColorImage::from_rgba_unmultiplied(
-            [snapshot.width as usize, snapshot.height as usize],
-            &snapshot.rgba,
-        );
-        let options = TextureOptions {
-            magnification: egui::TextureFilter::Nearest,
-            minification: egui::TextureFilter::Linear,
-            ..TextureOptions::default()
-        };
-        match &mut self.texture {
-            Some(texture) => texture.set(image, options),
-            None => self.texture = Some(ctx.load_texture("render", image, options)),
-        }
-        self.shown = Some(snapshot);
-        self.shown_version = version;
-        self.shown_encoding = encoding;
-        self.last_upload = Instant::now();
+        self.image
+            .refresh(ctx, &self.engine, encoding, self.progress_pace.get());
     }
 
     fn status_line(&self) -> String {
         let mut parts = Vec::new();
-        if let Some(s) = &self.shown {
+        if let Some(s) = self.image.shown() {
             parts.push(format!(
                 "{} x {} · {} / {} spp · {:.2} s",
                 s.width,
@@ -488,7 +452,7 @@ impl WorkbenchApp {
 
     fn pixel_readout(&self) -> Option<String> {
         let (x, y) = self.hovered_pixel?;
-        let s = self.shown.as_ref()?;
+        let s = self.image.shown()?;
         let i = (y as usize * s.width as usize + x as usize) * 4;
         let p = s.rgba.get(i..i + 4)?;
         Some(if p[3] == 0 {
@@ -552,7 +516,7 @@ impl WorkbenchApp {
                     ui.add(egui::Label::new(RichText::new(&error).color(Color32::WHITE)).wrap());
                 });
         }
-        let (size, full) = match &self.shown {
+        let (size, full) = match self.image.shown() {
             Some(s) => (
                 [s.width as usize, s.height as usize],
                 self.full_size().unwrap_or([s.width, s.height]),
@@ -564,7 +528,7 @@ impl WorkbenchApp {
         area.max.y -= bottom;
         let response = ui
             .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
-                viewport::show(ui, &mut self.view, self.texture.as_ref(), size, full)
+                viewport::show(ui, &mut self.view, self.image.texture(), None, size, full)
             })
             .inner;
         self.dragging_camera = response.dragging_camera;
@@ -692,7 +656,7 @@ impl eframe::App for WorkbenchApp {
                 .default_size(280.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
-                        match (&self.shown, self.engine.scene()) {
+                        match (self.image.shown(), self.engine.scene()) {
                             (Some(shown), Some(scene)) => {
                                 let accel = self.engine.accel_info();
                                 stats_panel::show(

@@ -14,6 +14,7 @@ use tracer::world::World;
 use crate::load::{SceneSource, load_source};
 
 /// A scene ready to render, with where it came from.
+#[derive(Clone)]
 pub struct LoadedScene {
     pub source: SceneSource,
     pub scene: Scene,
@@ -123,16 +124,22 @@ impl Engine {
                 self.loading = None;
                 match result {
                     Ok(scene) => {
-                        self.retire_job();
-                        self.index = None;
-                        self.settings = None;
-                        self.scene = Some(scene);
+                        self.show(scene);
                         self.scene.as_ref().map(Ok)
                     }
                     Err(message) => Some(Err(message)),
                 }
             }
         }
+    }
+
+    /// Makes `scene` the current scene (loaded elsewhere, e.g. by the
+    /// other side of a comparison); nothing renders until asked.
+    pub fn show(&mut self, scene: LoadedScene) {
+        self.retire_job();
+        self.index = None;
+        self.settings = None;
+        self.scene = Some(scene);
     }
 
     pub fn scene(&self) -> Option<&LoadedScene> {

@@ -6,6 +6,7 @@ mod commands;
 mod controls;
 mod engine;
 mod frame_meter;
+mod live_image;
 mod scene_picker;
 mod screenshot;
 mod state;

@@ -52,12 +52,22 @@ pub struct ViewportResponse {
     pub hovered_pixel: Option<(u32, u32)>,
 }
 
+/// A second image drawn right of a draggable divider (the compare mode's
+/// split view).
+pub struct SplitWith<'a> {
+    pub texture: &'a TextureHandle,
+    /// Where the divider is, as a fraction of the image width.
+    pub at: &'a mut f32,
+}
+
 /// Shows `texture` (an image of `image_size` pixels standing for a render
-/// of `full_size`) in `rect`.
+/// of `full_size`) in the available space, and `split`'s image right of its
+/// divider.
 pub fn show(
     ui: &mut egui::Ui,
     view: &mut ViewState,
     texture: Option<&TextureHandle>,
+    split: Option<SplitWith<'_>>,
     image_size: [usize; 2],
     full_size: [u32; 2],
 ) -> ViewportResponse {
@@ -81,13 +91,32 @@ pub fn show(
     };
     let image_rect = Rect::from_center_size(rect.center() + view.offset, full * scale);
 
+    let whole = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
     if let Some(texture) = texture {
-        ui.painter().with_clip_rect(rect).image(
-            texture.id(),
-            image_rect,
-            Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
-            Color32::WHITE,
-        );
+        ui.painter()
+            .with_clip_rect(rect)
+            .image(texture.id(), image_rect, whole, Color32::WHITE);
+    }
+    if let Some(split) = split {
+        let x = image_rect.min.x + image_rect.width() * *split.at;
+        let right = Rect::from_min_max(pos2(x, rect.min.y), rect.max);
+        let painter = ui.painter().with_clip_rect(rect.intersect(right));
+        painter.image(split.texture.id(), image_rect, whole, Color32::WHITE);
+        let top = pos2(x, image_rect.min.y.max(rect.min.y));
+        let bottom = pos2(x, image_rect.max.y.min(rect.max.y));
+        ui.painter()
+            .with_clip_rect(rect)
+            .line_segment([top, bottom], (2.0, Color32::WHITE));
+        // Created after the view's own response, so it wins the drag.
+        let handle = Rect::from_min_max(top - vec2(6.0, 0.0), bottom + vec2(6.0, 0.0));
+        let divider = ui
+            .interact(handle, response.id.with("split"), Sense::drag())
+            .on_hover_cursor(egui::CursorIcon::ResizeHorizontal);
+        if divider.dragged()
+            && let Some(p) = divider.interact_pointer_pos()
+        {
+            *split.at = ((p.x - image_rect.min.x) / image_rect.width().max(1.0)).clamp(0.0, 1.0);
+        }
     }
 
     // Mouse wheel: zoom around the cursor; Ctrl + wheel: dolly.
