@@ -72,9 +72,8 @@ pub fn diff_heatmap(a: &RgbImage, b: &RgbImage, gain: f32) -> Result<RgbImage, S
     }))
 }
 
-/// Black -> red -> yellow -> white as `t` goes from 0 to 1: the colours of
-/// [`diff_heatmap`], for drawing its legend.
-pub fn heat(t: f32) -> Rgb<u8> {
+/// Black -> red -> yellow -> white as `t` goes from 0 to 1.
+fn heat(t: f32) -> Rgb<u8> {
     let channel = |start: f32| ((t * 3.0 - start).clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
     Rgb([channel(0.0), channel(1.0), channel(2.0)])
 }
