@@ -15,11 +15,12 @@ use crate::load::SceneSource;
 use crate::output::save_png;
 
 use super::commands::Command;
+use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
 use super::live_image::LiveImage;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
-use super::state::Persisted;
+use super::state::{Controls, Persisted};
 use super::viewport::{self, Gesture, ViewState, Zoom};
 use super::{controls, scene_picker, stats_panel};
 
@@ -45,6 +46,10 @@ pub struct WorkbenchApp {
     camera: Option<CameraPose>,
     /// The render on screen.
     image: LiveImage,
+    /// The B side while comparing.
+    compare: Option<Compare>,
+    /// For wake-ups from render threads of jobs started later.
+    repaint_ctx: egui::Context,
     dragging_camera: bool,
     moving_until: Option<Instant>,
     /// Opening a scene adopts its settings; restoring the last session
@@ -89,6 +94,8 @@ impl WorkbenchApp {
             view: ViewState::default(),
             camera: None,
             image: LiveImage::new("render"),
+            compare: None,
+            repaint_ctx: ctx.clone(),
             dragging_camera: false,
             moving_until: None,
             adopt_next_scene: true,
@@ -201,6 +208,9 @@ impl WorkbenchApp {
                     self.view = ViewState::default();
                     self.error = None;
                     self.image.forget();
+                    if let (Some(compare), Some(loaded)) = (&mut self.compare, self.engine.scene()) {
+                        compare.show_scene(loaded);
+                    }
                     if let SceneSource::File(path) = &source {
                         self.state.remember(path.clone());
                     }
@@ -249,8 +259,17 @@ impl WorkbenchApp {
         }
     }
 
+    /// The controls the side panel and the toggles edit: B's while
+    /// comparing with B selected, else A's.
+    fn active_controls(&mut self) -> &mut Controls {
+        match &mut self.compare {
+            Some(compare) if compare.editing_b => &mut compare.controls,
+            _ => &mut self.state.controls,
+        }
+    }
+
     fn run_command(&mut self, command: Command) {
-        let controls = &mut self.state.controls;
+        let controls = self.active_controls();
         match command {
             Command::ToggleAntialiasing => controls.antialiasing ^= true,
             Command::ToggleSoftShadows => controls.soft_shadows ^= true,
@@ -269,6 +288,12 @@ impl WorkbenchApp {
             }
             Command::ToggleStats => self.state.show_stats ^= true,
             Command::ToggleHelp => self.help_open ^= true,
+            Command::ToggleCompare => self.toggle_compare(),
+            Command::SwapSides => self.swap_sides(),
+            Command::CopyAToB => match &mut self.compare {
+                Some(compare) => compare.controls = self.state.controls.clone(),
+                None => self.notify("copy A to B: turn compare mode on first (B)".into()),
+            },
             Command::Reload => match self.state.last_scene.clone() {
                 Some(source) => {
                     self.adopt_next_scene = false;
@@ -281,6 +306,29 @@ impl WorkbenchApp {
         }
     }
 
+    fn toggle_compare(&mut self) {
+        if self.compare.take().is_none() {
+            let ctx = self.repaint_ctx.clone();
+            let pace = self.progress_pace.clone();
+            self.compare = Some(Compare::new(
+                Arc::new(move || ctx.request_repaint_after(pace.get())),
+                &self.state.controls,
+                self.engine.scene(),
+            ));
+        }
+    }
+
+    /// Exchanges A and B, renders and all, so nothing re-renders.
+    fn swap_sides(&mut self) {
+        let Some(compare) = &mut self.compare else {
+            self.notify("swap: turn compare mode on first (B)".into());
+            return;
+        };
+        std::mem::swap(&mut self.engine, &mut compare.engine);
+        std::mem::swap(&mut self.image, &mut compare.image);
+        std::mem::swap(&mut self.state.controls, &mut compare.controls);
+    }
+
     fn restart(&mut self) {
         if let Some(scene) = self.engine.scene() {
             let settings = self.state.controls.render_settings(
@@ -289,6 +337,13 @@ impl WorkbenchApp {
                 self.is_camera_moving(),
             );
             if let Err(e) = self.engine.restart(&settings) {
+                self.error = Some(e);
+            }
+            let moving = self.is_camera_moving();
+            if let Some(compare) = &mut self.compare
+                && let Some(settings) = compare.settings(self.camera, moving)
+                && let Err(e) = compare.engine.restart(&settings)
+            {
                 self.error = Some(e);
             }
         }
@@ -400,6 +455,11 @@ impl WorkbenchApp {
         if let Err(e) = self.engine.render(&settings) {
             self.error = Some(e);
         }
+        if let Some(compare) = &mut self.compare
+            && let Err(e) = compare.sync(self.camera, moving)
+        {
+            self.error = Some(e);
+        }
         if let Some(failure) = self.engine.take_failure() {
             self.error = Some(format!(
                 "the render failed: {failure}. The image so far stays; change a setting or \
@@ -421,6 +481,9 @@ impl WorkbenchApp {
         let encoding = self.state.controls.encoding();
         self.image
             .refresh(ctx, &self.engine, encoding, self.progress_pace.get());
+        if let Some(compare) = &mut self.compare {
+            compare.refresh(ctx, (&self.engine, &self.image), self.progress_pace.get());
+        }
     }
 
     fn status_line(&self) -> String {
@@ -523,12 +586,50 @@ impl WorkbenchApp {
             ),
             None => ([0, 0], self.full_size().unwrap_or([1, 1])),
         };
+        if let Some(compare) = &mut self.compare {
+            compare_header(ui, compare, &self.state.controls, self.engine.scene(), self.camera);
+        }
         let bottom = 22.0;
         let mut area = ui.available_rect_before_wrap();
         area.max.y -= bottom;
+        let flip_held = ui.input(|i| i.key_down(FLIP_KEY));
         let response = ui
             .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
-                viewport::show(ui, &mut self.view, self.image.texture(), None, size, full)
+                let Some(compare) = &mut self.compare else {
+                    return viewport::show(ui, &mut self.view, self.image.texture(), None, size, full);
+                };
+                let b = compare.image.texture();
+                match compare.view {
+                    CompareView::SideBySide => {
+                        let half = egui::vec2(ui.available_width() / 2.0 - 2.0, ui.available_height());
+                        ui.horizontal(|ui| {
+                            let left = ui
+                                .allocate_ui(half, |ui| {
+                                    viewport::show(ui, &mut self.view, self.image.texture(), None, size, full)
+                                })
+                                .inner;
+                            let right = ui
+                                .allocate_ui(half, |ui| viewport::show(ui, &mut self.view, b, None, size, full))
+                                .inner;
+                            left.merge(right)
+                        })
+                        .inner
+                    }
+                    CompareView::Split => {
+                        let split = b.map(|texture| viewport::SplitWith {
+                            texture,
+                            at: &mut compare.split,
+                        });
+                        viewport::show(ui, &mut self.view, self.image.texture(), split, size, full)
+                    }
+                    CompareView::Flip => {
+                        let texture = if flip_held { b } else { self.image.texture() };
+                        viewport::show(ui, &mut self.view, texture, None, size, full)
+                    }
+                    CompareView::Difference => {
+                        viewport::show(ui, &mut self.view, compare.difference(), None, size, full)
+                    }
+                }
             })
             .inner;
         self.dragging_camera = response.dragging_camera;
@@ -594,6 +695,54 @@ impl WorkbenchApp {
     }
 }
 
+/// "A: grid off", "B: grid on, m = 4": what differs between the sides.
+fn compare_labels(
+    compare: &Compare,
+    controls_a: &Controls,
+    scene: Option<&super::engine::LoadedScene>,
+    camera: Option<CameraPose>,
+) -> Option<(String, String)> {
+    let b = compare.settings(camera, false)?;
+    let a = controls_a.render_settings(&scene?.scene, camera, false);
+    Some(compare::labels(&a, &b))
+}
+
+/// Hold it to see B in the compare mode's flip view.
+const FLIP_KEY: egui::Key = egui::Key::X;
+
+/// Above the images in compare mode: the view, what each side is, and the
+/// difference view's gain and legend.
+fn compare_header(
+    ui: &mut Ui,
+    compare: &mut Compare,
+    controls_a: &Controls,
+    scene: Option<&super::engine::LoadedScene>,
+    camera: Option<CameraPose>,
+) {
+    ui.horizontal(|ui| {
+        for view in CompareView::ALL {
+            ui.selectable_value(&mut compare.view, view, view.label());
+        }
+        if compare.view == CompareView::Flip {
+            ui.weak("hold X to see B");
+        }
+    });
+    if let Some((label_a, label_b)) = compare_labels(compare, controls_a, scene, camera) {
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new(label_a).strong());
+            ui.label("·");
+            ui.label(RichText::new(label_b).strong());
+        });
+    }
+    if compare.view == CompareView::Difference {
+        ui.horizontal(|ui| {
+            ui.add(egui::Slider::new(&mut compare.gain, 1.0..=64.0).logarithmic(true).text("Amplification"))
+                .on_hover_text("Multiplies |A - B| before colouring, so small differences show");
+            compare::legend(ui, compare.gain);
+        });
+    }
+}
+
 /// The bundled showcase scene, or the first bundled scene.
 fn default_scene() -> Option<SceneSource> {
     bundled::find(bundled::DEFAULT_SCENE)
@@ -644,7 +793,26 @@ impl eframe::App for WorkbenchApp {
                     }
                     ui.separator();
                     let paused = self.engine.is_paused();
-                    controls::show(ui, &mut self.state.controls, paused, &mut commands);
+                    controls::command_toggle(
+                        ui,
+                        self.compare.is_some(),
+                        Command::ToggleCompare,
+                        &mut commands,
+                    );
+                    if let Some(compare) = &mut self.compare {
+                        ui.horizontal(|ui| {
+                            ui.label("Editing");
+                            ui.selectable_value(&mut compare.editing_b, false, "A");
+                            ui.selectable_value(&mut compare.editing_b, true, "B");
+                            controls::command_button(ui, Command::SwapSides, &mut commands);
+                            controls::command_button(ui, Command::CopyAToB, &mut commands);
+                        });
+                    }
+                    let controls = match &mut self.compare {
+                        Some(compare) if compare.editing_b => &mut compare.controls,
+                        _ => &mut self.state.controls,
+                    };
+                    controls::show(ui, controls, paused, &mut commands);
                     ui.separator();
                     controls::command_button(ui, Command::ToggleHelp, &mut commands);
                 });
@@ -656,6 +824,18 @@ impl eframe::App for WorkbenchApp {
                 .default_size(280.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
+                        if let Some(compare) = &self.compare {
+                            ui.heading("Comparison");
+                            let labels = compare_labels(
+                                compare,
+                                &self.state.controls,
+                                self.engine.scene(),
+                                self.camera,
+                            )
+                            .unwrap_or_default();
+                            compare::show_numbers(ui, self.image.shown(), compare, &labels);
+                            ui.separator();
+                        }
                         match (self.image.shown(), self.engine.scene()) {
                             (Some(shown), Some(scene)) => {
                                 let accel = self.engine.accel_info();

@@ -21,6 +21,9 @@ pub enum Command {
     ZoomActualSize,
     ToggleStats,
     ToggleHelp,
+    ToggleCompare,
+    SwapSides,
+    CopyAToB,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -29,7 +32,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 15] = [
+    pub const ALL: [Command; 18] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -44,6 +47,9 @@ impl Command {
         Command::ZoomFit,
         Command::ZoomActualSize,
         Command::ToggleStats,
+        Command::ToggleCompare,
+        Command::SwapSides,
+        Command::CopyAToB,
         Command::ToggleHelp,
     ];
 
@@ -65,6 +71,9 @@ impl Command {
             Command::ZoomActualSize => "Actual size (1:1)",
             Command::ToggleStats => "Statistics panel",
             Command::ToggleHelp => "Help",
+            Command::ToggleCompare => "Compare A/B",
+            Command::SwapSides => "Swap A and B",
+            Command::CopyAToB => "Copy A to B",
         }
     }
 
@@ -92,6 +101,11 @@ impl Command {
             Command::ZoomActualSize => "One image pixel per screen pixel",
             Command::ToggleStats => "Show or hide the statistics panel",
             Command::ToggleHelp => "List every shortcut",
+            Command::ToggleCompare => {
+                "Render a second settings set B beside A, same scene and camera"
+            }
+            Command::SwapSides => "Exchange the two sides, images included",
+            Command::CopyAToB => "Give B the settings of A",
         }
     }
 
@@ -113,6 +127,9 @@ impl Command {
         const ONE: &[KeyboardShortcut] = &[key(Key::Num1)];
         const TAB: &[KeyboardShortcut] = &[key(Key::Tab)];
         const HELP: &[KeyboardShortcut] = &[key(Key::H), key(Key::Questionmark)];
+        const B: &[KeyboardShortcut] = &[key(Key::B)];
+        const W: &[KeyboardShortcut] = &[key(Key::W)];
+        const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
             Command::ToggleSoftShadows => S,
@@ -129,6 +146,9 @@ impl Command {
             Command::ZoomActualSize => ONE,
             Command::ToggleStats => TAB,
             Command::ToggleHelp => HELP,
+            Command::ToggleCompare => B,
+            Command::SwapSides => W,
+            Command::CopyAToB => SHIFT_B,
         }
     }
 

@@ -12,7 +12,7 @@ const SLIDER_MAX_SAMPLES: u32 = 16;
 
 /// A toggle bound to a command: clicking it records the command, so the
 /// key and the checkbox do exactly the same thing.
-fn command_toggle(ui: &mut Ui, on: bool, command: Command, commands: &mut Vec<Command>) {
+pub fn command_toggle(ui: &mut Ui, on: bool, command: Command, commands: &mut Vec<Command>) {
     let mut value = on;
     let text = format!("{} ({})", command.label(), command.shortcut_text(ui.ctx()));
     if ui

@@ -3,6 +3,7 @@
 
 mod app;
 mod commands;
+mod compare;
 mod controls;
 mod engine;
 mod frame_meter;

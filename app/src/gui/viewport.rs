@@ -52,6 +52,16 @@ pub struct ViewportResponse {
     pub hovered_pixel: Option<(u32, u32)>,
 }
 
+impl ViewportResponse {
+    /// What happened over either of two views showing the same camera.
+    pub fn merge(mut self, other: ViewportResponse) -> ViewportResponse {
+        self.gestures.extend(other.gestures);
+        self.dragging_camera |= other.dragging_camera;
+        self.hovered_pixel = self.hovered_pixel.or(other.hovered_pixel);
+        self
+    }
+}
+
 /// A second image drawn right of a draggable divider (the compare mode's
 /// split view).
 pub struct SplitWith<'a> {

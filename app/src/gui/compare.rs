@@ -1,0 +1,318 @@
+//! Compare mode: a second settings set B renders the same scene from the
+//! same camera beside A, shown side by side, split by a divider, flipped, or
+//! as a difference heat map, with the numbers that say what B costs and
+//! changes (time, rays, speed ratio, MSE, PSNR, FLIP).
+
+use std::sync::mpsc::{Receiver, channel};
+use std::sync::Arc;
+
+use egui::{Color32, ColorImage, RichText, TextureHandle, TextureOptions, Ui};
+use image::RgbImage;
+use tracer::camera::CameraPose;
+use tracer::metrics::{self, Palette};
+use tracer::render::{JobState, RenderSettings, Snapshot};
+
+use crate::compare::{Heatmap, Metrics, measure};
+use crate::describe::side_labels;
+
+use super::engine::{Activity, Engine, LoadedScene};
+use super::live_image::LiveImage;
+use super::state::Controls;
+
+/// How the two renders are shown.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CompareView {
+    SideBySide,
+    /// A left of a draggable divider, B right of it.
+    Split,
+    /// A, or B while the flip key is held.
+    Flip,
+    /// |A - B| as a heat map.
+    Difference,
+}
+
+impl CompareView {
+    pub const ALL: [CompareView; 4] = [
+        CompareView::SideBySide,
+        CompareView::Split,
+        CompareView::Flip,
+        CompareView::Difference,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            CompareView::SideBySide => "Side by side",
+            CompareView::Split => "Split",
+            CompareView::Flip => "Flip",
+            CompareView::Difference => "Difference",
+        }
+    }
+}
+
+/// The B side and how the comparison is shown.
+pub struct Compare {
+    /// Renders B.
+    pub engine: Engine,
+    pub controls: Controls,
+    pub image: LiveImage,
+    pub view: CompareView,
+    /// Divider of the split view, as a fraction of the image width.
+    pub split: f32,
+    /// Amplification of the difference heat map.
+    pub gain: f32,
+    /// Whether the side panel edits B (else A).
+    pub editing_b: bool,
+    difference: Option<TextureHandle>,
+    /// Versions of the images the difference map was made from, and its gain.
+    difference_of: Option<((u64, u64), (u64, u64), f32)>,
+    /// Metrics of the last pair of finished images, and the versions they
+    /// belong to; FLIP runs on its own thread.
+    metrics: Option<Result<Metrics, String>>,
+    metrics_of: Option<((u64, u64), (u64, u64))>,
+    pending: Option<Receiver<Result<Metrics, String>>>,
+}
+
+impl Compare {
+    /// B starts as a copy of A, on A's scene.
+    pub fn new(
+        wake: Arc<dyn Fn() + Send + Sync>,
+        controls: &Controls,
+        scene: Option<&LoadedScene>,
+    ) -> Self {
+        let mut engine = Engine::new(wake);
+        if let Some(scene) = scene {
+            engine.show(scene.clone());
+        }
+        Self {
+            engine,
+            controls: controls.clone(),
+            image: LiveImage::new("render B"),
+            view: CompareView::SideBySide,
+            split: 0.5,
+            gain: 8.0,
+            editing_b: true,
+            difference: None,
+            difference_of: None,
+            metrics: None,
+            metrics_of: None,
+            pending: None,
+        }
+    }
+
+    /// A opened another scene: B follows.
+    pub fn show_scene(&mut self, scene: &LoadedScene) {
+        self.engine.show(scene.clone());
+        self.image.forget();
+        self.forget_results();
+    }
+
+    fn forget_results(&mut self) {
+        self.metrics = None;
+        self.metrics_of = None;
+        self.pending = None;
+        self.difference_of = None;
+    }
+
+    /// B's render settings, seen from the shared camera.
+    pub fn settings(&self, camera: Option<CameraPose>, moving: bool) -> Option<RenderSettings> {
+        let scene = self.engine.scene()?;
+        Some(self.controls.render_settings(&scene.scene, camera, moving))
+    }
+
+    /// Keeps B rendering what its controls say.
+    pub fn sync(&mut self, camera: Option<CameraPose>, moving: bool) -> Result<(), String> {
+        match self.settings(camera, moving) {
+            Some(settings) => self.engine.render(&settings),
+            None => Ok(()),
+        }
+    }
+
+    /// Uploads B's image, and refreshes the difference map and the metrics
+    /// when either side changed.
+    pub fn refresh(&mut self, ctx: &egui::Context, a: (&Engine, &LiveImage), interval: std::time::Duration) {
+        self.image
+            .refresh(ctx, &self.engine, self.controls.encoding(), interval);
+        let (engine_a, image_a) = a;
+        let versions = (engine_a.version(), self.engine.version());
+        if let (Some(sa), Some(sb)) = (image_a.shown(), self.image.shown()) {
+            if self.view == CompareView::Difference
+                && self.difference_of != Some((versions.0, versions.1, self.gain))
+            {
+                self.difference = difference_texture(ctx, sa, sb, self.gain, self.difference.take());
+                self.difference_of = Some((versions.0, versions.1, self.gain));
+            }
+            let both_done = is_done(engine_a) && is_done(&self.engine);
+            if both_done
+                && image_a.is_current(engine_a)
+                && self.image.is_current(&self.engine)
+                && self.metrics_of != Some(versions)
+            {
+                self.metrics_of = Some(versions);
+                self.metrics = None;
+                self.pending = measure_in_background(sa, sb, ctx.clone());
+            }
+        }
+        if let Some(rx) = &self.pending
+            && let Ok(result) = rx.try_recv()
+        {
+            self.metrics = Some(result);
+            self.pending = None;
+        }
+    }
+
+    /// The difference heat map, once made.
+    pub fn difference(&self) -> Option<&TextureHandle> {
+        self.difference.as_ref()
+    }
+
+    /// The image metrics of the finished pair, if computed.
+    pub fn metrics(&self) -> Option<&Result<Metrics, String>> {
+        self.metrics.as_ref()
+    }
+
+    /// Whether the metrics are being computed.
+    pub fn is_measuring(&self) -> bool {
+        self.pending.is_some()
+    }
+}
+
+fn is_done(engine: &Engine) -> bool {
+    engine.activity() == Activity::Job(JobState::Done)
+}
+
+fn rgb(snapshot: &Snapshot) -> Option<RgbImage> {
+    snapshot.to_image()
+}
+
+/// MSE, PSNR and FLIP of the two images on a thread of their own (FLIP
+/// takes a noticeable fraction of a second on a large image).
+fn measure_in_background(
+    a: &Snapshot,
+    b: &Snapshot,
+    ctx: egui::Context,
+) -> Option<Receiver<Result<Metrics, String>>> {
+    let (a, b) = (rgb(a)?, rgb(b)?);
+    let (tx, rx) = channel();
+    std::thread::Builder::new()
+        .name("compare-metrics".into())
+        .spawn(move || {
+            let result = measure(&a, &b, Heatmap::Absolute)
+                .map(|(metrics, _)| metrics)
+                .map_err(|e| format!("{e:#}"));
+            let _ = tx.send(result);
+            ctx.request_repaint();
+        })
+        .ok()?;
+    Some(rx)
+}
+
+/// |A - B| amplified by `gain`, as a texture (reusing `texture`).
+fn difference_texture(
+    ctx: &egui::Context,
+    a: &Snapshot,
+    b: &Snapshot,
+    gain: f32,
+    texture: Option<TextureHandle>,
+) -> Option<TextureHandle> {
+    let map = metrics::diff_heatmap(&rgb(a)?, &rgb(b)?, gain).ok()?;
+    let image = ColorImage::from_rgb([map.width() as usize, map.height() as usize], map.as_raw());
+    let options = TextureOptions::NEAREST;
+    Some(match texture {
+        Some(mut texture) => {
+            texture.set(image, options);
+            texture
+        }
+        None => ctx.load_texture("difference", image, options),
+    })
+}
+
+/// The labels of A and B: what differs, side by side.
+pub fn labels(a: &RenderSettings, b: &RenderSettings) -> (String, String) {
+    let (a, b) = side_labels(a, b);
+    (format!("A: {a}"), format!("B: {b}"))
+}
+
+/// The numbers of both sides and their difference.
+pub fn show_numbers(ui: &mut Ui, a: Option<&Snapshot>, compare: &Compare, labels: &(String, String)) {
+    let b = compare.image.shown();
+    egui::Grid::new("compare_numbers")
+        .num_columns(3)
+        .striped(true)
+        .show(ui, |ui| {
+            ui.label("");
+            ui.strong("A");
+            ui.strong("B");
+            ui.end_row();
+            let row = |ui: &mut Ui, name: &str, f: &dyn Fn(&Snapshot) -> String| {
+                ui.label(name);
+                ui.monospace(a.map_or_else(|| "–".into(), f));
+                ui.monospace(b.map_or_else(|| "–".into(), f));
+                ui.end_row();
+            };
+            row(ui, "Time", &|s| format!("{:.3} s", s.stats.render_time.as_secs_f64()));
+            row(ui, "Samples", &|s| {
+                format!("{} / {}", s.stats.passes_done, s.stats.passes_target)
+            });
+            row(ui, "Rays", &|s| crate::report::si(s.stats.counters.total_rays() as f64));
+            row(ui, "Rays per second", &|s| {
+                crate::report::si(s.stats.rays_per_second())
+            });
+        });
+    if let (Some(a), Some(b)) = (a, b) {
+        let ratio = a.stats.render_time.as_secs_f64() / b.stats.render_time.as_secs_f64().max(1e-9);
+        ui.label(format!("Speed ratio A/B: {ratio:.2} (above 1: B is faster)"));
+    }
+    ui.label(RichText::new(&labels.0).small());
+    ui.label(RichText::new(&labels.1).small());
+    ui.separator();
+    match compare.metrics() {
+        Some(Ok(m)) => {
+            egui::Grid::new("compare_metrics").num_columns(2).show(ui, |ui| {
+                ui.label("MSE");
+                ui.monospace(format!("{:.3}", m.mse));
+                ui.end_row();
+                ui.label("PSNR");
+                ui.monospace(if m.psnr.is_finite() {
+                    format!("{:.2} dB", m.psnr)
+                } else {
+                    "∞ (identical)".into()
+                });
+                ui.end_row();
+                ui.label("FLIP");
+                ui.monospace(format!("{:.4}", m.flip));
+                ui.end_row();
+            });
+        }
+        Some(Err(e)) => {
+            ui.colored_label(Color32::LIGHT_RED, e);
+        }
+        None if compare.is_measuring() => {
+            ui.label("Measuring the difference…");
+        }
+        None => {
+            ui.weak("MSE, PSNR and FLIP once both renders are done");
+        }
+    }
+}
+
+/// A colour bar from 0 to `1 / gain` of the full range, for the difference
+/// view.
+pub fn legend(ui: &mut Ui, gain: f32) {
+    ui.horizontal(|ui| {
+        ui.label("0");
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(160.0, 12.0), egui::Sense::hover());
+        let steps = 32;
+        for i in 0..steps {
+            let t = i as f32 / (steps - 1) as f32;
+            let c = Palette::Heat.colour(t).0;
+            let x0 = rect.min.x + rect.width() * i as f32 / steps as f32;
+            let x1 = rect.min.x + rect.width() * (i + 1) as f32 / steps as f32;
+            ui.painter().rect_filled(
+                egui::Rect::from_min_max(egui::pos2(x0, rect.min.y), egui::pos2(x1, rect.max.y)),
+                0.0,
+                Color32::from_rgb(c[0], c[1], c[2]),
+            );
+        }
+        ui.label(format!("{:.0}+ levels", 255.0 / gain.max(1e-3)));
+    });
+}
