@@ -207,6 +207,27 @@ mod tests {
     }
 
     #[test]
+    fn the_readme_lists_every_command_with_its_shortcut() {
+        let readme = include_str!("../../../README.md");
+        let ctx = egui::Context::default();
+        let table: String = Command::ALL
+            .iter()
+            .map(|c| {
+                format!(
+                    "| `{}` | {} | {} |\n",
+                    c.shortcut_text(&ctx),
+                    c.label(),
+                    c.description()
+                )
+            })
+            .collect();
+        assert!(
+            readme.contains(&table),
+            "README.md's table of shortcuts should read:\n{table}"
+        );
+    }
+
+    #[test]
     fn the_original_keys_toggle_the_original_features() {
         assert_eq!(Command::ToggleAntialiasing.shortcuts()[0], key(Key::A));
         assert_eq!(Command::ToggleSoftShadows.shortcuts()[0], key(Key::S));
