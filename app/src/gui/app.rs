@@ -15,6 +15,7 @@ use crate::load::SceneSource;
 use crate::output::save_png;
 
 use super::commands::Command;
+use super::bench_window::BenchWindow;
 use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
@@ -48,6 +49,7 @@ pub struct WorkbenchApp {
     image: LiveImage,
     /// The B side while comparing.
     compare: Option<Compare>,
+    bench: BenchWindow,
     /// For wake-ups from render threads of jobs started later.
     repaint_ctx: egui::Context,
     dragging_camera: bool,
@@ -95,6 +97,7 @@ impl WorkbenchApp {
             camera: None,
             image: LiveImage::new("render"),
             compare: None,
+            bench: BenchWindow::default(),
             repaint_ctx: ctx.clone(),
             dragging_camera: false,
             moving_until: None,
@@ -289,6 +292,7 @@ impl WorkbenchApp {
             Command::ToggleStats => self.state.show_stats ^= true,
             Command::ToggleHelp => self.help_open ^= true,
             Command::ToggleCompare => self.toggle_compare(),
+            Command::ToggleBenchmark => self.bench.open ^= true,
             Command::SwapSides => self.swap_sides(),
             Command::CopyAToB => match &mut self.compare {
                 Some(compare) => compare.controls = self.state.controls.clone(),
@@ -303,6 +307,30 @@ impl WorkbenchApp {
             },
             Command::Open => self.open_dialog(),
             Command::Save => self.save_dialog(),
+        }
+    }
+
+    /// The benchmark matrix window, started on the current scene, camera
+    /// and size.
+    fn benchmark_window(&mut self, ctx: &egui::Context) {
+        self.bench.receive(ctx);
+        if !self.bench.open {
+            return;
+        }
+        let name = self
+            .engine
+            .scene()
+            .map_or_else(|| "no scene".into(), |s| s.source.label());
+        let mut start = false;
+        self.bench.show(ctx, &name, &mut start);
+        if start && let Some(scene) = self.engine.scene() {
+            let base = self
+                .state
+                .controls
+                .render_settings(&scene.scene, self.camera, false);
+            let wake = ctx.clone();
+            self.bench
+                .start(scene.world.clone(), &base, move || wake.request_repaint());
         }
     }
 
@@ -875,6 +903,7 @@ impl eframe::App for WorkbenchApp {
             }
         }
         self.help_window(&ctx);
+        self.benchmark_window(&ctx);
 
         for command in commands {
             self.run_command(command);

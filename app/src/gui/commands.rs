@@ -24,6 +24,7 @@ pub enum Command {
     ToggleCompare,
     SwapSides,
     CopyAToB,
+    ToggleBenchmark,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -32,7 +33,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 18] = [
+    pub const ALL: [Command; 19] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -50,6 +51,7 @@ impl Command {
         Command::ToggleCompare,
         Command::SwapSides,
         Command::CopyAToB,
+        Command::ToggleBenchmark,
         Command::ToggleHelp,
     ];
 
@@ -74,6 +76,7 @@ impl Command {
             Command::ToggleCompare => "Compare A/B",
             Command::SwapSides => "Swap A and B",
             Command::CopyAToB => "Copy A to B",
+            Command::ToggleBenchmark => "Benchmark matrix",
         }
     }
 
@@ -106,6 +109,9 @@ impl Command {
             }
             Command::SwapSides => "Exchange the two sides, images included",
             Command::CopyAToB => "Give B the settings of A",
+            Command::ToggleBenchmark => {
+                "Time every structure x shadows x sampling on this scene, as the seed's table"
+            }
         }
     }
 
@@ -129,6 +135,7 @@ impl Command {
         const HELP: &[KeyboardShortcut] = &[key(Key::H), key(Key::Questionmark)];
         const B: &[KeyboardShortcut] = &[key(Key::B)];
         const W: &[KeyboardShortcut] = &[key(Key::W)];
+        const M: &[KeyboardShortcut] = &[key(Key::M)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -149,6 +156,7 @@ impl Command {
             Command::ToggleCompare => B,
             Command::SwapSides => W,
             Command::CopyAToB => SHIFT_B,
+            Command::ToggleBenchmark => M,
         }
     }
 

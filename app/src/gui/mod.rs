@@ -2,6 +2,7 @@
 //! renderer. `engine` is the only part that talks to the tracer.
 
 mod app;
+mod bench_window;
 mod commands;
 mod compare;
 mod controls;
