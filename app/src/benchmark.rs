@@ -65,6 +65,10 @@ pub enum Sampling {
     AntialiasingDof,
 }
 
+/// The seed measured its matrix with N = 4 (4 x 4 samples per pixel); a
+/// scene's own `spp` is its everyday choice, not the benchmark's.
+pub const MATRIX_SAMPLES: u32 = 4;
+
 /// Aperture (pixels) of the matrix's depth-of-field rows when the scene
 /// has none, so those rows blur and sample a lens as the seed's did.
 pub const MATRIX_APERTURE: f32 = 8.0;
@@ -73,7 +77,7 @@ pub const MATRIX_APERTURE: f32 = 8.0;
 /// hard then soft shadows, each with one sample, AA, and AA with DOF; the
 /// seed measured none and grid (12 rows), the workbench adds BVH (18).
 /// Everything else (size, N, light size, lens, depth, seed) comes from
-/// `base`.
+/// `base`: set its `samples` to [`MATRIX_SAMPLES`] for the seed's N.
 pub fn matrix(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -> Vec<Case> {
     let mut cases = Vec::new();
     for &accel in accels {

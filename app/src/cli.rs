@@ -67,11 +67,10 @@ unless the options ask for more: build time, memory, frame time, rays/s and
 work per ray.
 
 --matrix reproduces the seed report's timing table (Figure 5.1): for each
-structure, hard and soft shadows, each with one sample, anti-aliasing (N x N,
-N from --spp or the scene, 4 by default) and anti-aliasing with depth of
-field (the scene's aperture, or 8 pixels when it has none). 18 rows for
-none, grid and bvh. Other options (size, light size, focal, ...) apply to
-every row.")]
+structure, hard and soft shadows, each with one sample, anti-aliasing (N x N
+with the seed's N = 4, or --spp N) and anti-aliasing with depth of field
+(the scene's aperture, or 8 pixels when it has none): 18 rows for none, grid
+and bvh. Other options (size, light size, focal, ...) apply to every row.")]
 pub struct BenchArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,

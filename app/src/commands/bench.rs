@@ -27,6 +27,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         None => vec![AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
     };
     let (cases, layout) = if args.matrix {
+        if args.settings.spp.is_none() {
+            settings.samples = benchmark::MATRIX_SAMPLES;
+        }
         (
             benchmark::matrix(&settings, &accels, encoding),
             Layout::Matrix,
