@@ -1,22 +1,8 @@
 //! End-to-end tests: the real `workbench` binary on scene files.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn workbench(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_workbench"))
-        .args(args)
-        .output()
-        .expect("the workbench binary runs")
-}
-
-/// A fresh folder for one test's files.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-e2e-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use common::{scratch, workbench, write};
 
 /// A red sphere on a grey floor under one light, seen from above the floor.
 const SMALL_SCENE: &str = "\
@@ -35,12 +21,6 @@ p 4
 f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
 s 0 0 1 1
 ";
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 #[test]
 fn render_writes_the_scene_as_a_png() {
@@ -158,7 +138,7 @@ fn help_lists_the_subcommands() {
     let run = workbench(&["--help"]);
     assert!(run.status.success());
     let out = String::from_utf8_lossy(&run.stdout);
-    for sub in ["render", "bench", "gen"] {
+    for sub in ["render", "bench", "compare", "gen"] {
         assert!(out.contains(sub), "{out}");
     }
 }

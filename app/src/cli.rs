@@ -7,6 +7,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 
+use crate::compare::Heatmap;
+
 #[derive(Parser, Debug)]
 #[command(
     name = "workbench",
@@ -56,8 +58,12 @@ impl Cli {
 pub enum Command {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
-    /// Time frames of a scene with each acceleration structure.
+    /// Time frames of a scene with each acceleration structure, or the
+    /// seed's whole timing matrix (--matrix).
     Bench(BenchArgs),
+    /// Render a scene with two settings (A and B) and compare them: times,
+    /// rays, MSE, PSNR, FLIP and an A | B | difference image.
+    Compare(CompareArgs),
     /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears)
     /// as P3F, or the sky cube (`sky`) as six PNG faces.
     Gen(GenArgs),
@@ -83,20 +89,124 @@ pub struct GenArgs {
 }
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+By default one row per structure, one sample per pixel and hard shadows
+unless the options ask for more: build time, memory, frame time, rays/s and
+work per ray.
+
+--matrix reproduces the seed report's timing table (Figure 5.1): for each
+structure, hard and soft shadows, each with one sample, anti-aliasing (N x N
+with the seed's N = 4, or --spp N) and anti-aliasing with depth of field
+(the scene's aperture, or 8 pixels when it has none): 18 rows for none, grid
+and bvh. Other options (size, light size, focal, ...) apply to every row.")]
 pub struct BenchArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,
-    /// Frames rendered per structure; the median is reported.
+    /// Frames rendered per row; the median, min..max and median absolute
+    /// deviation are reported.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
     /// Structures to measure (default: none, grid, bvh).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub structures: Option<Vec<AccelArg>>,
+    /// Measure the seed's matrix: structure x soft shadows x {one sample,
+    /// AA, AA with depth of field}.
+    #[arg(long)]
+    pub matrix: bool,
+    /// How to print the table.
+    #[arg(long, value_enum, default_value_t = TableFormat::Text)]
+    pub format: TableFormat,
+    /// Write each row's image into this folder (e.g. grid_soft_aa4_dof.png).
+    #[arg(long, value_name = "DIR")]
+    pub images: Option<PathBuf>,
+    /// Scale the --images down so their longer side is at most PX pixels.
+    #[arg(long, value_name = "PX", value_parser = clap::value_parser!(u32).range(1..))]
+    pub thumbnail: Option<u32>,
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum TableFormat {
+    /// Aligned columns.
+    Text,
+    /// A Markdown table.
+    Md,
+    /// Comma-separated values with plain numbers.
+    Csv,
+    /// Every measurement as JSON.
+    Json,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Each side starts from the scene's settings, then the options given to
+compare itself (for both sides), then its own --a / --b flags, e.g.
+
+  workbench compare scene.p3f --width 256 --height 256 \\
+      --a \"--accel none\" --b \"--accel grid --grid-m 4 --aa --spp 4\"
+
+The image is A | B | difference, with a legend bar under the difference
+(0 on the left, the largest value on the right).")]
+pub struct CompareArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// Side A: flags of `workbench render` in one string (e.g. "--aa --spp 4").
+    #[arg(
+        long,
+        value_name = "FLAGS",
+        default_value = "",
+        allow_hyphen_values = true
+    )]
+    pub a: String,
+    /// Side B: flags of `workbench render` in one string.
+    #[arg(
+        long,
+        value_name = "FLAGS",
+        default_value = "",
+        allow_hyphen_values = true
+    )]
+    pub b: String,
+    /// Where to write the A | B | difference PNG.
+    #[arg(short, long, default_value = "compare.png")]
+    pub output: PathBuf,
+    /// What the difference panel shows.
+    #[arg(long, value_enum, default_value_t = HeatmapArg::Flip)]
+    pub heatmap: HeatmapArg,
+    /// How to print the times and metrics.
+    #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+    pub format: MetricsFormat,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = thread_count)]
+    pub threads: Option<usize>,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum HeatmapArg {
+    /// FLIP's perceptual error map.
+    Flip,
+    /// The largest channel difference, amplified 8 times.
+    Abs,
+}
+
+impl From<HeatmapArg> for Heatmap {
+    fn from(h: HeatmapArg) -> Self {
+        match h {
+            HeatmapArg::Flip => Heatmap::Flip,
+            HeatmapArg::Abs => Heatmap::Absolute,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum MetricsFormat {
+    Text,
+    Json,
 }
 
 #[derive(Args, Debug)]
@@ -195,7 +305,30 @@ pub struct SettingsArgs {
     pub srgb: bool,
 }
 
+/// The settings flags alone, to read `compare --a "..."` strings with the
+/// same definition as `render`.
+#[derive(Parser, Debug)]
+#[command(no_binary_name = true, disable_help_flag = true)]
+struct SettingsLine {
+    #[command(flatten)]
+    settings: SettingsArgs,
+}
+
 impl SettingsArgs {
+    /// Reads settings flags from one string, as `workbench render` takes
+    /// them ("--accel grid --grid-m 4 --aa"). Values never hold spaces, so
+    /// whitespace separates the words. The error names the bad flag or
+    /// value, e.g. "unexpected argument '--fast' found".
+    pub fn parse_str(text: &str) -> Result<SettingsArgs, String> {
+        SettingsLine::try_parse_from(text.split_whitespace())
+            .map(|line| line.settings)
+            .map_err(|e| {
+                let message = e.render().to_string();
+                let first = message.lines().next().unwrap_or_default();
+                first.strip_prefix("error: ").unwrap_or(first).to_string()
+            })
+    }
+
     /// Applies the overrides to settings taken from the scene.
     pub fn apply(&self, s: &mut RenderSettings) {
         if let Some(w) = self.width {
@@ -267,4 +400,40 @@ fn thread_count(text: &str) -> Result<usize, String> {
         return Err(format!("at most {MAX_THREADS} threads, found {n}"));
     }
     Ok(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_parse_from_a_string() {
+        let args = SettingsArgs::parse_str("--accel grid  --grid-m 4 --aa --spp 4").unwrap();
+        let mut s = RenderSettings::default();
+        args.apply(&mut s);
+        assert_eq!(s.accel, AccelKind::Grid);
+        assert_eq!(
+            (s.grid_multiplier, s.antialiasing, s.samples),
+            (4.0, true, 4)
+        );
+        assert!(SettingsArgs::parse_str("").is_ok());
+        assert!(SettingsArgs::parse_str("  ").is_ok());
+    }
+
+    #[test]
+    fn a_bad_settings_string_names_the_flag() {
+        let unknown = SettingsArgs::parse_str("--aa --fast").unwrap_err();
+        assert!(unknown.contains("'--fast'"), "{unknown}");
+        let value = SettingsArgs::parse_str("--spp many").unwrap_err();
+        assert!(value.contains("--spp") && value.contains("many"), "{value}");
+        let choice = SettingsArgs::parse_str("--accel octree").unwrap_err();
+        assert!(
+            choice.contains("--accel") && choice.contains("octree"),
+            "{choice}"
+        );
+        let positional = SettingsArgs::parse_str("scene.p3f").unwrap_err();
+        assert!(positional.contains("scene.p3f"), "{positional}");
+        // Not `render`'s own flags: the threads and output belong to compare.
+        assert!(SettingsArgs::parse_str("--threads 2").is_err());
+    }
 }

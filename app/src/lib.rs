@@ -1,9 +1,13 @@
 //! The Whitted Workbench application: the command line, the headless
 //! commands and the window. The binary only calls [`run`].
 
+pub mod bench_report;
+pub mod benchmark;
 pub mod bundled;
 pub mod cli;
 pub mod commands;
+pub mod compare;
+pub mod describe;
 pub mod gui;
 pub mod load;
 pub mod output;
@@ -18,6 +22,7 @@ pub fn run() -> std::process::ExitCode {
     let result = match cli.command {
         Some(cli::Command::Render(args)) => commands::render::run(&args),
         Some(cli::Command::Bench(args)) => commands::bench::run(&args),
+        Some(cli::Command::Compare(args)) => commands::compare::run(&args),
         Some(cli::Command::Gen(args)) => commands::generate::run(&args),
         None => cli
             .screenshot_plan()

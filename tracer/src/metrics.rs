@@ -1,6 +1,8 @@
-//! Image comparison: mean squared error, PSNR and a difference heat map on
-//! 8-bit RGB images. Used by the golden-image tests and for comparing two
-//! renders (A/B) of the same scene.
+//! Image comparison: mean squared error, PSNR, NVIDIA's perceptual FLIP and
+//! heat maps of where images differ, on 8-bit RGB images. Used by the
+//! golden-image tests and for comparing two renders (A/B) of the same scene.
+
+use std::sync::OnceLock;
 
 use image::{Rgb, RgbImage};
 
@@ -68,14 +70,98 @@ pub fn diff_heatmap(a: &RgbImage, b: &RgbImage, gain: f32) -> Result<RgbImage, S
     Ok(RgbImage::from_fn(a.width(), a.height(), |x, y| {
         let (p, q) = (a.get_pixel(x, y).0, b.get_pixel(x, y).0);
         let d = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap_or(0);
-        heat((f32::from(d) / 255.0 * gain).min(1.0))
+        Palette::Heat.colour(f32::from(d) / 255.0 * gain)
     }))
 }
 
-/// Black -> red -> yellow -> white as `t` goes from 0 to 1.
-fn heat(t: f32) -> Rgb<u8> {
-    let channel = |start: f32| ((t * 3.0 - start).clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
-    Rgb([channel(0.0), channel(1.0), channel(2.0)])
+/// The colour scales of the heat maps, public so a viewer or an exported
+/// image can draw the matching legend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Palette {
+    /// Black -> red -> yellow -> white: [`diff_heatmap`].
+    Heat,
+    /// FLIP's own magma scale (black -> purple -> orange -> pale yellow):
+    /// [`flip_map`].
+    Magma,
+}
+
+impl Palette {
+    /// The colour of `t` in 0..=1 (clamped; NaN is 0).
+    pub fn colour(self, t: f32) -> Rgb<u8> {
+        let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+        match self {
+            Palette::Heat => {
+                let channel = |start: f32| ((t * 3.0 - start).clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+                Rgb([channel(0.0), channel(1.0), channel(2.0)])
+            }
+            Palette::Magma => {
+                let lut = magma();
+                let i = (t * (lut.len() - 1) as f32 + 0.5) as usize;
+                lut[i.min(lut.len() - 1)]
+            }
+        }
+    }
+}
+
+/// The 256 colours of FLIP's magma map, read once from the reference code.
+fn magma() -> &'static [Rgb<u8>] {
+    static LUT: OnceLock<Vec<Rgb<u8>>> = OnceLock::new();
+    LUT.get_or_init(|| {
+        nv_flip::magma_lut()
+            .to_vec()
+            .chunks_exact(3)
+            .map(|c| Rgb([c[0], c[1], c[2]]))
+            .collect()
+    })
+}
+
+/// Per-pixel FLIP errors in 0..=1, row-major, by NVIDIA's reference code.
+/// Images are taken as sRGB-encoded, as they are displayed.
+fn flip_errors(a: &RgbImage, b: &RgbImage) -> Result<Vec<f32>, SizeMismatch> {
+    same_size(a, b)?;
+    let (w, h) = a.dimensions();
+    // The reference code is not written for empty images.
+    if w == 0 || h == 0 {
+        return Ok(Vec::new());
+    }
+    let image = |i: &RgbImage| nv_flip::FlipImageRgb8::with_data(w, h, i.as_raw());
+    let errors = nv_flip::flip(image(a), image(b), nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    Ok(errors.to_vec())
+}
+
+/// Mean FLIP error (NVIDIA's perceptual difference, 0 for identical images,
+/// up to 1): unlike MSE it weighs what a viewer notices at a normal viewing
+/// distance (67 pixels per degree), so sampling noise counts less than a
+/// moved edge. Empty images have a FLIP of 0.
+pub fn flip(a: &RgbImage, b: &RgbImage) -> Result<f32, SizeMismatch> {
+    Ok(mean(&flip_errors(a, b)?))
+}
+
+/// FLIP's mean and its error map drawn with [`Palette::Magma`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlipMap {
+    pub mean: f32,
+    pub image: RgbImage,
+}
+
+/// [`flip`] with the per-pixel error map, to show where the difference is.
+pub fn flip_map(a: &RgbImage, b: &RgbImage) -> Result<FlipMap, SizeMismatch> {
+    let errors = flip_errors(a, b)?;
+    let width = a.width() as usize;
+    let image = RgbImage::from_fn(a.width(), a.height(), |x, y| {
+        Palette::Magma.colour(errors[y as usize * width + x as usize])
+    });
+    Ok(FlipMap {
+        mean: mean(&errors),
+        image,
+    })
+}
+
+fn mean(values: &[f32]) -> f32 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    (values.iter().map(|&v| f64::from(v)).sum::<f64>() / values.len() as f64) as f32
 }
 
 #[cfg(test)]
@@ -119,6 +205,73 @@ mod tests {
         assert_eq!(err.b, (2, 3));
         assert!(psnr(&flat(1, 1, 0), &flat(2, 1, 0)).is_err());
         assert!(diff_heatmap(&flat(1, 1, 0), &flat(2, 1, 0), 1.0).is_err());
+        assert!(flip(&flat(1, 1, 0), &flat(2, 1, 0)).is_err());
+        assert!(flip_map(&flat(1, 1, 0), &flat(1, 2, 0)).is_err());
+    }
+
+    /// A grey ramp with a darker disc: something with edges for FLIP.
+    fn picture(w: u32, h: u32, disc: u8) -> RgbImage {
+        RgbImage::from_fn(w, h, |x, y| {
+            let (dx, dy) = (x as f32 - w as f32 / 2.0, y as f32 - h as f32 / 2.0);
+            let v = if dx * dx + dy * dy < (w * w / 16) as f32 {
+                disc
+            } else {
+                (x * 255 / w.max(1)) as u8
+            };
+            Rgb([v, v / 2, 255 - v])
+        })
+    }
+
+    #[test]
+    fn flip_is_zero_for_identical_images_and_grows_with_the_difference() {
+        let a = picture(32, 24, 40);
+        assert_eq!(flip(&a, &a), Ok(0.0));
+        let small = flip(&a, &picture(32, 24, 60)).unwrap();
+        let large = flip(&a, &picture(32, 24, 250)).unwrap();
+        assert!(
+            small > 0.0 && small < large && large <= 1.0,
+            "{small} {large}"
+        );
+        let empty = RgbImage::new(0, 0);
+        assert_eq!(flip(&empty, &empty), Ok(0.0));
+        // Images smaller than FLIP's filters still compare.
+        assert!(flip(&flat(1, 1, 0), &flat(1, 1, 255)).unwrap() > 0.0);
+        assert!(flip(&flat(1, 5, 0), &flat(1, 5, 9)).unwrap() > 0.0);
+    }
+
+    #[test]
+    fn flip_map_is_dark_where_equal_and_bright_where_different() {
+        let a = picture(32, 32, 40);
+        let b = picture(32, 32, 250);
+        let map = flip_map(&a, &b).unwrap();
+        assert_eq!(map.mean, flip(&a, &b).unwrap());
+        assert_eq!(map.image.dimensions(), (32, 32));
+        let brightness = |p: &Rgb<u8>| p.0.iter().map(|&c| u32::from(c)).sum::<u32>();
+        // The disc changed, the corner did not.
+        assert!(brightness(map.image.get_pixel(16, 16)) > brightness(map.image.get_pixel(0, 0)));
+        assert_eq!(*map.image.get_pixel(0, 0), Palette::Magma.colour(0.0));
+        let same = flip_map(&a, &a).unwrap();
+        assert_eq!(same.mean, 0.0);
+    }
+
+    #[test]
+    fn palettes_run_from_dark_to_bright_and_clamp() {
+        for palette in [Palette::Heat, Palette::Magma] {
+            let sum = |t: f32| {
+                palette
+                    .colour(t)
+                    .0
+                    .iter()
+                    .map(|&c| u32::from(c))
+                    .sum::<u32>()
+            };
+            assert!(sum(0.0) < sum(0.5) && sum(0.5) < sum(1.0), "{palette:?}");
+            assert_eq!(palette.colour(-3.0), palette.colour(0.0));
+            assert_eq!(palette.colour(7.0), palette.colour(1.0));
+            assert_eq!(palette.colour(f32::NAN), palette.colour(0.0));
+        }
+        assert_eq!(Palette::Heat.colour(0.0).0, [0, 0, 0]);
+        assert_eq!(Palette::Heat.colour(1.0).0, [255, 255, 255]);
     }
 
     #[test]

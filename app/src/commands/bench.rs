@@ -1,46 +1,59 @@
-//! `workbench bench`: build each acceleration structure over a scene and
-//! time frames with it, so the structures compare on the same work.
+//! `workbench bench`: time frames of a scene, one row per acceleration
+//! structure or the seed's whole timing matrix, as a table or JSON.
 
-use std::sync::Arc;
-use std::time::Duration;
+use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result};
-use tracer::accel::{AccelKind, SceneIndex};
-use tracer::render::{RenderSettings, render};
+use tracer::accel::AccelKind;
+use tracer::render::RenderSettings;
 
-use crate::cli::BenchArgs;
+use crate::bench_report::{Format, Layout, table};
+use crate::benchmark::{self, Measurement, RunOptions};
+use crate::cli::{BenchArgs, TableFormat};
 use crate::load::load_scene;
-use crate::report::si;
-
-/// One structure's measurements.
-struct Row {
-    kind: AccelKind,
-    build: Duration,
-    memory: usize,
-    frame_median: Duration,
-    frame_min: Duration,
-    frame_max: Duration,
-    rays: u64,
-    tests_per_ray: f64,
-    nodes_per_ray: f64,
-}
+use crate::output::save_png;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let loaded = load_scene(&args.scene)?;
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     // A benchmark frame is one sample per pixel with hard shadows unless
-    // the command line asks for more.
+    // the command line (or the matrix) asks for more.
     settings.antialiasing = false;
     settings.depth_of_field = false;
     args.settings.apply(&mut settings);
+    let encoding = args.settings.encoding();
+    let accels: Vec<AccelKind> = match &args.structures {
+        Some(list) => list.iter().map(|&a| a.into()).collect(),
+        None => vec![AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
+    };
+    let (cases, layout) = if args.matrix {
+        if args.settings.spp.is_none() {
+            settings.samples = benchmark::MATRIX_SAMPLES;
+        }
+        (
+            benchmark::matrix(&settings, &accels, encoding),
+            Layout::Matrix,
+        )
+    } else {
+        (
+            benchmark::structures(&settings, &accels, encoding),
+            Layout::Structures,
+        )
+    };
     let runs = args.runs.max(1);
-    println!(
-        "{}: {}x{}, {} samples/pixel, soft shadows {}, depth {}, {} run(s) per structure, {} thread(s)",
+    let format = match args.format {
+        TableFormat::Text => Format::Text,
+        TableFormat::Md => Format::Markdown,
+        TableFormat::Csv => Format::Csv,
+        TableFormat::Json => Format::Json,
+    };
+    // The header would break CSV and JSON; it goes to stderr for those.
+    let header = format!(
+        "{}: {}x{}, N = {}, depth {}, {} run(s) per row, {} thread(s)",
         args.scene.display(),
         settings.width,
         settings.height,
-        settings.samples_per_pixel(),
-        if settings.soft_shadows { "on" } else { "off" },
+        settings.samples,
         settings.max_depth,
         runs,
         args.threads.map_or_else(
@@ -48,79 +61,47 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             |t| t.to_string()
         ),
     );
-    let kinds: Vec<AccelKind> = match &args.structures {
-        Some(list) => list.iter().map(|&a| a.into()).collect(),
-        None => vec![AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
-    };
-    let mut rows = Vec::new();
-    for kind in kinds {
-        let index = Arc::new(SceneIndex::build(
-            &loaded.world.shapes,
-            kind,
-            settings.grid_multiplier,
-        ));
-        let settings = RenderSettings {
-            accel: kind,
-            ..settings.clone()
-        };
-        let mut times = Vec::new();
-        let mut last = None;
-        for _ in 0..runs {
-            let (_, stats) = render(
-                loaded.world.clone(),
-                index.clone(),
-                settings.clone(),
-                args.threads,
-            )
-            .with_context(|| format!("cannot render {}", args.scene.display()))?;
-            times.push(stats.render_time);
-            last = Some(stats);
-        }
-        let stats = last.context("no run")?;
-        times.sort_unstable();
-        let rays = stats.counters.total_rays();
-        rows.push(Row {
-            kind,
-            build: index.build_time(),
-            memory: index.info().memory_bytes,
-            frame_median: times[times.len() / 2],
-            frame_min: times[0],
-            frame_max: times[times.len() - 1],
-            rays,
-            tests_per_ray: stats.counters.intersection_tests as f64 / rays.max(1) as f64,
-            nodes_per_ray: stats.counters.nodes_visited as f64 / rays.max(1) as f64,
-        });
+    match format {
+        Format::Text | Format::Markdown => println!("{header}\n"),
+        Format::Csv | Format::Json => eprintln!("{header}"),
     }
-    print_table(&rows);
+    if let Some(dir) = &args.images {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create folder {}", dir.display()))?;
+    }
+    let labels = cases.iter().map(|c| c.label.clone()).collect();
+    let mut progress = super::runner_progress(labels, runs);
+    let outcome = benchmark::run(
+        &loaded.world,
+        &cases,
+        RunOptions {
+            runs,
+            threads: args.threads,
+        },
+        &AtomicBool::new(false),
+        &mut progress,
+    )
+    .with_context(|| format!("cannot benchmark {}", args.scene.display()))?;
+    if let Some(dir) = &args.images {
+        for m in &outcome.measurements {
+            save_image(m, dir, args.thumbnail)?;
+        }
+    }
+    print!("{}", table(&outcome.measurements, layout, format));
     Ok(())
 }
 
-fn print_table(rows: &[Row]) {
-    println!(
-        "{:<6} {:>10} {:>10} {:>12} {:>17} {:>9} {:>11} {:>11} {:>11}",
-        "accel",
-        "build ms",
-        "memory",
-        "frame ms",
-        "min..max ms",
-        "rays",
-        "rays/s",
-        "tests/ray",
-        "nodes/ray"
-    );
-    for r in rows {
-        let ms = |d: Duration| d.as_secs_f64() * 1e3;
-        println!(
-            "{:<6} {:>10.2} {:>10} {:>12.1} {:>17} {:>9} {:>11} {:>11.2} {:>11.2}",
-            format!("{:?}", r.kind).to_lowercase(),
-            ms(r.build),
-            format!("{}B", si(r.memory as f64)),
-            ms(r.frame_median),
-            format!("{:.1}..{:.1}", ms(r.frame_min), ms(r.frame_max)),
-            si(r.rays as f64),
-            si(r.rays as f64 / r.frame_median.as_secs_f64().max(1e-9)),
-            r.tests_per_ray,
-            r.nodes_per_ray,
-        );
+/// Writes a row's image as `DIR/<stem>.png`, scaled down to `thumbnail`.
+fn save_image(m: &Measurement, dir: &std::path::Path, thumbnail: Option<u32>) -> Result<()> {
+    let path = dir.join(format!("{}.png", m.case.file_stem()));
+    match thumbnail {
+        Some(side) if side < m.image.width().max(m.image.height()) => {
+            let scale = f64::from(side) / f64::from(m.image.width().max(m.image.height()));
+            let size = |v: u32| ((f64::from(v) * scale).round() as u32).max(1);
+            let small =
+                image::imageops::thumbnail(&m.image, size(m.image.width()), size(m.image.height()));
+            save_png(&small, &path)
+        }
+        _ => save_png(&m.image, &path),
     }
 }

@@ -29,6 +29,17 @@ pub enum AccelKind {
     Bvh,
 }
 
+impl AccelKind {
+    /// The name the command line and reports use: `none`, `grid`, `bvh`.
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelKind::None => "none",
+            AccelKind::Grid => "grid",
+            AccelKind::Bvh => "bvh",
+        }
+    }
+}
+
 /// The closest surface a ray meets.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {

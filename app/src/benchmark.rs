@@ -1,0 +1,450 @@
+//! Measuring renders: a list of cases (settings), each rendered a number of
+//! times with progress reports and cancellation, and the seed report's
+//! timing matrix (Figure 5.1) as such a list. The command line and the
+//! window share it; nothing here prints.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use anyhow::{Context, Result, bail};
+use image::RgbImage;
+use tracer::accel::{AccelInfo, AccelKind, SceneIndex};
+use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings};
+use tracer::stats::RenderStats;
+use tracer::world::World;
+
+use crate::describe::describe;
+
+/// One configuration to measure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// What the row is called in reports and progress messages.
+    pub label: String,
+    pub settings: RenderSettings,
+    /// How the kept image is encoded (does not change the timing).
+    pub encoding: Encoding,
+}
+
+impl Case {
+    /// A case labelled with [`describe`].
+    pub fn new(settings: RenderSettings, encoding: Encoding) -> Self {
+        Self {
+            label: describe(&settings),
+            settings,
+            encoding,
+        }
+    }
+
+    /// A file name for the case's image, unique within a matrix, e.g.
+    /// `grid_soft_aa4_dof`.
+    pub fn file_stem(&self) -> String {
+        let s = &self.settings;
+        let mut stem = s.accel.name().to_string();
+        if s.soft_shadows {
+            stem.push_str("_soft");
+        }
+        if s.antialiasing {
+            stem.push_str(&format!("_aa{}", s.samples));
+        }
+        if s.depth_of_field {
+            stem.push_str("_dof");
+        }
+        stem
+    }
+}
+
+/// The sampling column of the seed's matrix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sampling {
+    /// One sample per pixel.
+    Single,
+    /// Jittered N x N anti-aliasing.
+    Antialiasing,
+    /// Anti-aliasing and depth of field (the seed only measured DOF with AA).
+    AntialiasingDof,
+}
+
+/// The seed measured its matrix with N = 4 (4 x 4 samples per pixel); a
+/// scene's own `spp` is its everyday choice, not the benchmark's.
+pub const MATRIX_SAMPLES: u32 = 4;
+
+/// Aperture (pixels) of the matrix's depth-of-field rows when the scene
+/// has none, so those rows blur and sample a lens as the seed's did.
+pub const MATRIX_APERTURE: f32 = 8.0;
+
+/// The seed's timing table (Figure 5.1) over `accels`: for each structure,
+/// hard then soft shadows, each with one sample, AA, and AA with DOF; the
+/// seed measured none and grid (12 rows), the workbench adds BVH (18).
+/// Everything else (size, N, light size, lens, depth, seed) comes from
+/// `base`: set its `samples` to [`MATRIX_SAMPLES`] for the seed's N.
+pub fn matrix(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for &accel in accels {
+        for soft_shadows in [false, true] {
+            for sampling in [
+                Sampling::Single,
+                Sampling::Antialiasing,
+                Sampling::AntialiasingDof,
+            ] {
+                let dof = sampling == Sampling::AntialiasingDof;
+                let settings = RenderSettings {
+                    accel,
+                    soft_shadows,
+                    antialiasing: sampling != Sampling::Single,
+                    depth_of_field: dof,
+                    aperture: if dof && base.aperture <= 0.0 {
+                        MATRIX_APERTURE
+                    } else {
+                        base.aperture
+                    },
+                    ..base.clone()
+                };
+                cases.push(Case::new(settings, encoding));
+            }
+        }
+    }
+    cases
+}
+
+/// `base` with each structure in turn: today's `workbench bench` table.
+pub fn structures(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -> Vec<Case> {
+    accels
+        .iter()
+        .map(|&accel| {
+            let settings = RenderSettings {
+                accel,
+                ..base.clone()
+            };
+            Case {
+                label: accel.name().to_string(),
+                settings,
+                encoding,
+            }
+        })
+        .collect()
+}
+
+/// How to run the cases.
+#[derive(Debug, Clone, Copy)]
+pub struct RunOptions {
+    /// Frames per case (at least one).
+    pub runs: usize,
+    /// Worker threads; `None` uses every core.
+    pub threads: Option<usize>,
+}
+
+/// What the runner reports while it works, for a progress bar or a table
+/// that fills in.
+#[derive(Debug)]
+pub enum Event<'a> {
+    /// Frame `run` of case `case` is `fraction` (0..=1) done.
+    Rendering {
+        case: usize,
+        run: usize,
+        fraction: f32,
+    },
+    /// Every frame of case `case` is done.
+    Measured {
+        case: usize,
+        measurement: &'a Measurement,
+    },
+}
+
+/// A case's results.
+#[derive(Debug, Clone)]
+pub struct Measurement {
+    pub case: Case,
+    /// Render time of each frame (the structure's build excluded), in run
+    /// order.
+    pub times: Vec<Duration>,
+    /// The last frame's statistics (every frame does the same work).
+    pub stats: RenderStats,
+    /// The structure traced against, with its build time and memory.
+    pub index: AccelInfo,
+    /// The last frame's image.
+    pub image: RgbImage,
+}
+
+impl Measurement {
+    /// The median frame time: what the reports call the frame time.
+    pub fn median(&self) -> Duration {
+        median(&self.times)
+    }
+
+    pub fn min(&self) -> Duration {
+        self.times.iter().copied().min().unwrap_or_default()
+    }
+
+    pub fn max(&self) -> Duration {
+        self.times.iter().copied().max().unwrap_or_default()
+    }
+
+    /// Median absolute deviation from the median: a spread that one
+    /// disturbed frame on a shared machine does not inflate.
+    pub fn mad(&self) -> Duration {
+        let m = self.median();
+        let deviations: Vec<Duration> = self.times.iter().map(|&t| t.abs_diff(m)).collect();
+        median(&deviations)
+    }
+
+    /// Rays of every kind in one frame.
+    pub fn rays(&self) -> u64 {
+        self.stats.counters.total_rays()
+    }
+
+    /// Rays per second at the median frame time.
+    pub fn rays_per_second(&self) -> f64 {
+        self.rays() as f64 / self.median().as_secs_f64().max(1e-9)
+    }
+}
+
+fn median(values: &[Duration]) -> Duration {
+    let mut sorted = values.to_vec();
+    sorted.sort_unstable();
+    match sorted.len() {
+        0 => Duration::ZERO,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => (sorted[n / 2 - 1] + sorted[n / 2]) / 2,
+    }
+}
+
+/// The cases measured so far, and whether the run stopped early.
+#[derive(Debug, Clone, Default)]
+pub struct Outcome {
+    pub measurements: Vec<Measurement>,
+    pub cancelled: bool,
+}
+
+/// How often a waiting runner looks at the render and the cancel flag.
+/// Frame times come from the render itself, so polling does not skew them.
+const POLL: Duration = Duration::from_millis(10);
+
+/// Renders every case `options.runs` times, in order. Structures are built
+/// once and shared by the cases that use them. Setting `cancel` stops the
+/// frame under way between tiles; the cases finished by then are returned
+/// with `cancelled` set. Blocks: a window runs it on a thread of its own.
+pub fn run(
+    world: &Arc<World>,
+    cases: &[Case],
+    options: RunOptions,
+    cancel: &AtomicBool,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Outcome> {
+    let mut indices: Vec<Arc<SceneIndex>> = Vec::new();
+    let mut outcome = Outcome::default();
+    for (case_no, case) in cases.iter().enumerate() {
+        let settings = &case.settings;
+        let index = match indices
+            .iter()
+            .find(|i| i.matches(settings.accel, settings.grid_multiplier))
+        {
+            Some(index) => index.clone(),
+            None => {
+                let index = Arc::new(SceneIndex::build(
+                    &world.shapes,
+                    settings.accel,
+                    settings.grid_multiplier,
+                ));
+                indices.push(index.clone());
+                index
+            }
+        };
+        let mut times = Vec::new();
+        let mut last = None;
+        for run in 0..options.runs.max(1) {
+            let job = RenderJob::start(
+                world.clone(),
+                Some(index.clone()),
+                settings.clone(),
+                JobOptions {
+                    threads: options.threads,
+                    ..JobOptions::default()
+                },
+            )
+            .map_err(|e| anyhow::anyhow!("{}: {e}", case.label))?;
+            let samples = u64::from(settings.width)
+                * u64::from(settings.height)
+                * u64::from(settings.samples_per_pixel());
+            while !job.is_finished() {
+                if cancel.load(Ordering::Relaxed) {
+                    job.cancel();
+                }
+                let fraction = job.stats().counters.eye_rays as f32 / samples.max(1) as f32;
+                on_event(Event::Rendering {
+                    case: case_no,
+                    run,
+                    fraction: fraction.min(1.0),
+                });
+                std::thread::sleep(POLL);
+            }
+            let (film, stats, state) = job.wait();
+            match state {
+                JobState::Failed(message) => bail!("{}: render failed: {message}", case.label),
+                JobState::Cancelled => {
+                    outcome.cancelled = true;
+                    return Ok(outcome);
+                }
+                _ => {}
+            }
+            times.push(stats.render_time);
+            last = Some((film, stats));
+        }
+        let (film, stats) = last.context("no frame was rendered")?;
+        let measurement = Measurement {
+            case: case.clone(),
+            times,
+            stats,
+            index: index.info().clone(),
+            image: film.to_image(case.encoding),
+        };
+        on_event(Event::Measured {
+            case: case_no,
+            measurement: &measurement,
+        });
+        outcome.measurements.push(measurement);
+        if cancel.load(Ordering::Relaxed) {
+            outcome.cancelled = true;
+            break;
+        }
+    }
+    Ok(outcome)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ALL: [AccelKind; 3] = [AccelKind::None, AccelKind::Grid, AccelKind::Bvh];
+
+    #[test]
+    fn the_matrix_has_the_seed_reports_shape() {
+        let base = RenderSettings::default();
+        let cases = matrix(&base, &ALL, Encoding::Linear);
+        assert_eq!(cases.len(), 18);
+        // The seed's order: structure, then shadows, then sampling.
+        let first: Vec<String> = cases[..6].iter().map(Case::file_stem).collect();
+        assert_eq!(
+            first,
+            [
+                "none",
+                "none_aa4",
+                "none_aa4_dof",
+                "none_soft",
+                "none_soft_aa4",
+                "none_soft_aa4_dof"
+            ]
+        );
+        assert_eq!(cases[6].settings.accel, AccelKind::Grid);
+        assert_eq!(cases[17].file_stem(), "bvh_soft_aa4_dof");
+        let dof = &cases[2].settings;
+        assert!(dof.antialiasing && dof.aperture == MATRIX_APERTURE);
+        // A scene's own lens is kept.
+        let lens = RenderSettings {
+            aperture: 3.0,
+            ..base
+        };
+        assert_eq!(
+            matrix(&lens, &ALL, Encoding::Linear)[2].settings.aperture,
+            3.0
+        );
+        assert_eq!(matrix(&lens, &[AccelKind::Grid], Encoding::Linear).len(), 6);
+    }
+
+    fn world() -> Arc<World> {
+        let text = "v\nfrom 0 -5 1\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0.01\n\
+                    resolution 12 8\nl 2 -2 4\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n";
+        let scene =
+            tracer::scene::parse_scene(text, None, &tracer::scene::Limits::default()).unwrap();
+        Arc::new(World::build(&scene))
+    }
+
+    #[test]
+    fn the_runner_reports_each_case_and_shares_structures() {
+        let world = world();
+        let base = RenderSettings {
+            width: 12,
+            height: 8,
+            ..RenderSettings::default()
+        };
+        let cases = matrix(&base, &[AccelKind::Grid], Encoding::Linear);
+        let mut measured = Vec::new();
+        let mut fractions_ok = true;
+        let options = RunOptions {
+            runs: 2,
+            threads: Some(1),
+        };
+        let outcome = run(
+            &world,
+            &cases,
+            options,
+            &AtomicBool::new(false),
+            &mut |e| match e {
+                Event::Rendering { fraction, .. } => {
+                    fractions_ok &= (0.0..=1.0).contains(&fraction)
+                }
+                Event::Measured { case, measurement } => {
+                    measured.push((case, measurement.times.len()))
+                }
+            },
+        )
+        .unwrap();
+        assert!(!outcome.cancelled && fractions_ok);
+        assert_eq!(measured, (0..6).map(|c| (c, 2)).collect::<Vec<_>>());
+        let m = &outcome.measurements[4];
+        assert_eq!(m.image.dimensions(), (12, 8));
+        assert_eq!(m.stats.counters.eye_rays, 12 * 8 * 16);
+        assert_eq!(m.index.kind, AccelKind::Grid);
+        // One grid, built once, for all six rows.
+        let build = outcome.measurements[0].index.build_time;
+        assert!(
+            outcome
+                .measurements
+                .iter()
+                .all(|m| m.index.build_time == build)
+        );
+    }
+
+    #[test]
+    fn a_cancelled_run_stops_early() {
+        let cases = structures(
+            &RenderSettings::default(),
+            &[AccelKind::None, AccelKind::Bvh],
+            Encoding::Linear,
+        );
+        let options = RunOptions {
+            runs: 3,
+            threads: Some(1),
+        };
+        let outcome = run(
+            &world(),
+            &cases,
+            options,
+            &AtomicBool::new(true),
+            &mut |_| {},
+        )
+        .unwrap();
+        assert!(outcome.cancelled);
+        assert!(outcome.measurements.is_empty());
+    }
+
+    #[test]
+    fn statistics_of_the_frame_times() {
+        let ms = Duration::from_millis;
+        let m = |times: Vec<Duration>| Measurement {
+            case: Case::new(RenderSettings::default(), Encoding::Linear),
+            times,
+            stats: RenderStats::default(),
+            index: SceneIndex::build(&[], AccelKind::None, 1.0).info().clone(),
+            image: RgbImage::new(1, 1),
+        };
+        let odd = m(vec![ms(30), ms(10), ms(20), ms(100), ms(25)]);
+        assert_eq!(odd.median(), ms(25));
+        assert_eq!((odd.min(), odd.max()), (ms(10), ms(100)));
+        // Deviations 5, 15, 5, 75, 0: median 5.
+        assert_eq!(odd.mad(), ms(5));
+        let even = m(vec![ms(10), ms(20)]);
+        assert_eq!(even.median(), ms(15));
+        assert_eq!(m(vec![]).median(), Duration::ZERO);
+    }
+}

@@ -1,0 +1,118 @@
+//! `workbench compare`: one scene, two settings, one A | B | difference PNG
+//! and the times and metrics of both sides.
+
+use std::sync::atomic::AtomicBool;
+
+use anyhow::{Context, Result, anyhow};
+use tracer::render::RenderSettings;
+
+use crate::benchmark::{Case, Measurement};
+use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
+use crate::compare::{self, Comparison, Heatmap};
+use crate::load::load_scene;
+use crate::output::save_png;
+use crate::report::si;
+
+pub fn run(args: &CompareArgs) -> Result<()> {
+    let loaded = load_scene(&args.scene)?;
+    let base = RenderSettings::from_scene(&loaded.scene);
+    let side = |name: &str, flags: &str| -> Result<Case> {
+        let own =
+            SettingsArgs::parse_str(flags).map_err(|e| anyhow!("--{name} \"{flags}\": {e}"))?;
+        let mut settings = base.clone();
+        args.settings.apply(&mut settings);
+        own.apply(&mut settings);
+        let encoding = if own.srgb {
+            own.encoding()
+        } else {
+            args.settings.encoding()
+        };
+        Ok(Case {
+            label: name.to_uppercase(),
+            settings,
+            encoding,
+        })
+    };
+    let (a, b) = (side("a", &args.a)?, side("b", &args.b)?);
+    let heatmap = Heatmap::from(args.heatmap);
+    let mut progress = super::runner_progress(vec!["A".into(), "B".into()], 1);
+    let comparison = compare::run(
+        &loaded.world,
+        a,
+        b,
+        args.threads,
+        heatmap,
+        &AtomicBool::new(false),
+        &mut progress,
+    )
+    .with_context(|| format!("cannot compare on {}", args.scene.display()))?
+    .context("the comparison was cancelled")?;
+    let c = &comparison;
+    save_png(
+        &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
+        &args.output,
+    )?;
+    match args.format {
+        MetricsFormat::Text => print!("{}", text(args, c, heatmap)),
+        MetricsFormat::Json => println!("{}", json(args, c)),
+    }
+    Ok(())
+}
+
+fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
+    let side = |name: &str, label: &str, m: &Measurement| {
+        format!(
+            "{name}: {label}\n   {:.3} s, {}x{}, {} samples/pixel, {} rays, {} rays/s\n",
+            m.median().as_secs_f64(),
+            m.case.settings.width,
+            m.case.settings.height,
+            m.case.settings.samples_per_pixel(),
+            si(m.rays() as f64),
+            si(m.rays_per_second()),
+        )
+    };
+    let ratio = c.time_ratio();
+    let speed = if ratio >= 1.0 {
+        format!("B is {ratio:.2}x faster")
+    } else {
+        format!("A is {:.2}x faster", 1.0 / ratio.max(1e-9))
+    };
+    format!(
+        "{} -> {} (A | B | {})\n{}{}time A/B: {ratio:.3} ({speed})\nMSE {:.3}, PSNR {:.2} dB, FLIP {:.4}\n",
+        args.scene.display(),
+        args.output.display(),
+        heatmap.legend(),
+        side("A", &c.labels.0, &c.a),
+        side("B", &c.labels.1, &c.b),
+        c.metrics.mse,
+        c.metrics.psnr,
+        c.metrics.flip,
+    )
+}
+
+/// The times and metrics as one JSON object; PSNR is null for identical
+/// images (infinite).
+fn json(args: &CompareArgs, c: &Comparison) -> String {
+    let side = |label: &str, m: &Measurement| {
+        serde_json::json!({
+            "label": label,
+            "seconds": m.median().as_secs_f64(),
+            "width": m.case.settings.width,
+            "height": m.case.settings.height,
+            "samples_per_pixel": m.case.settings.samples_per_pixel(),
+            "rays": m.rays(),
+            "rays_per_second": m.rays_per_second(),
+        })
+    };
+    let value = serde_json::json!({
+        "scene": args.scene.display().to_string(),
+        "output": args.output.display().to_string(),
+        "a": side(&c.labels.0, &c.a),
+        "b": side(&c.labels.1, &c.b),
+        "time_ratio_a_over_b": c.time_ratio(),
+        "mse": c.metrics.mse,
+        "psnr": c.metrics.psnr,
+        "flip": c.metrics.flip,
+    });
+    serde_json::to_string_pretty(&value).unwrap_or_default()
+}

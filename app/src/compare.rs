@@ -1,0 +1,184 @@
+//! A/B comparison: render one scene with two settings, measure both, and
+//! say how the images differ (MSE, PSNR, FLIP and a heat map). The command
+//! line and the window share it.
+
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use anyhow::{Context, Result};
+use image::{Rgb, RgbImage};
+use tracer::metrics::{self, Palette};
+use tracer::world::World;
+
+use crate::benchmark::{self, Case, Event, Measurement, RunOptions};
+use crate::describe::side_labels;
+
+/// How the difference panel is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Heatmap {
+    /// FLIP's per-pixel perceptual error, 0 to 1, in magma.
+    Flip,
+    /// The largest channel difference times [`ABSOLUTE_GAIN`], black to
+    /// white: shows any difference, even one nobody would notice.
+    Absolute,
+}
+
+/// Gain of [`Heatmap::Absolute`]: a difference of 32 levels is full red.
+pub const ABSOLUTE_GAIN: f32 = 8.0;
+
+impl Heatmap {
+    /// The colour scale, for a legend.
+    pub fn palette(self) -> Palette {
+        match self {
+            Heatmap::Flip => Palette::Magma,
+            Heatmap::Absolute => Palette::Heat,
+        }
+    }
+
+    /// What the legend's ends mean.
+    pub fn legend(self) -> String {
+        match self {
+            Heatmap::Flip => "FLIP error, 0 (black) to 1 (pale yellow)".into(),
+            Heatmap::Absolute => format!(
+                "largest channel difference, 0 (black) to {:.0} levels or more (white)",
+                255.0 / ABSOLUTE_GAIN
+            ),
+        }
+    }
+}
+
+/// How far apart two images are.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Metrics {
+    /// Mean squared error in 8-bit units.
+    pub mse: f64,
+    /// Peak signal-to-noise ratio in dB; infinite for identical images.
+    pub psnr: f64,
+    /// Mean FLIP error, 0 to 1.
+    pub flip: f32,
+}
+
+/// The metrics of `a` against `b` and the heat map of their difference.
+pub fn measure(a: &RgbImage, b: &RgbImage, heatmap: Heatmap) -> Result<(Metrics, RgbImage)> {
+    let mismatch = || "the two sides differ in size";
+    let mse = metrics::mse(a, b).with_context(mismatch)?;
+    let flip = metrics::flip_map(a, b).with_context(mismatch)?;
+    let metrics = Metrics {
+        mse,
+        psnr: metrics::psnr(a, b).with_context(mismatch)?,
+        flip: flip.mean,
+    };
+    let map = match heatmap {
+        Heatmap::Flip => flip.image,
+        Heatmap::Absolute => metrics::diff_heatmap(a, b, ABSOLUTE_GAIN).with_context(mismatch)?,
+    };
+    Ok((metrics, map))
+}
+
+/// A finished comparison.
+#[derive(Debug, Clone)]
+pub struct Comparison {
+    pub a: Measurement,
+    pub b: Measurement,
+    /// What differs, as each side has it (see [`side_labels`]).
+    pub labels: (String, String),
+    pub metrics: Metrics,
+    pub heatmap: RgbImage,
+}
+
+impl Comparison {
+    /// A's frame time over B's: above 1 when B is faster.
+    pub fn time_ratio(&self) -> f64 {
+        self.a.median().as_secs_f64() / self.b.median().as_secs_f64().max(1e-9)
+    }
+}
+
+/// Renders `a` then `b` once each (progress reported as cases 0 and 1) and
+/// compares them. `None` when `cancel` stopped it.
+pub fn run(
+    world: &Arc<World>,
+    a: Case,
+    b: Case,
+    threads: Option<usize>,
+    heatmap: Heatmap,
+    cancel: &AtomicBool,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Option<Comparison>> {
+    let labels = side_labels(&a.settings, &b.settings);
+    let options = RunOptions { runs: 1, threads };
+    let outcome = benchmark::run(world, &[a, b], options, cancel, on_event)?;
+    let [a, b]: [Measurement; 2] = match outcome.measurements.try_into() {
+        Ok(sides) if !outcome.cancelled => sides,
+        _ => return Ok(None),
+    };
+    let (metrics, heatmap) = measure(&a.image, &b.image, heatmap)?;
+    Ok(Some(Comparison {
+        a,
+        b,
+        labels,
+        metrics,
+        heatmap,
+    }))
+}
+
+/// Gap between panels, in pixels.
+const GAP: u32 = 4;
+const BACKGROUND: Rgb<u8> = Rgb([32, 32, 32]);
+
+/// A | B | heat map side by side on a dark background, with a legend bar of
+/// `palette` (0 on the left, 1 on the right) under the heat map. The images
+/// must have one size.
+pub fn compose(a: &RgbImage, b: &RgbImage, heat: &RgbImage, palette: Palette) -> RgbImage {
+    let (w, h) = a.dimensions();
+    let bar = (h / 16).clamp(4, 24);
+    let mut out = RgbImage::from_pixel(3 * w + 2 * GAP, h + GAP + bar, BACKGROUND);
+    for (i, panel) in [a, b, heat].into_iter().enumerate() {
+        image::imageops::replace(&mut out, panel, i64::from(i as u32 * (w + GAP)), 0);
+    }
+    let left = 2 * (w + GAP);
+    for x in 0..w {
+        let colour = palette.colour(x as f32 / (w.max(2) - 1) as f32);
+        for y in h + GAP..h + GAP + bar {
+            out.put_pixel(left + x, y, colour);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn composition_places_the_panels_and_the_legend() {
+        let a = RgbImage::from_pixel(10, 8, Rgb([200, 0, 0]));
+        let b = RgbImage::from_pixel(10, 8, Rgb([0, 200, 0]));
+        let (m, heat) = measure(&a, &b, Heatmap::Absolute).unwrap();
+        assert!(m.mse > 0.0 && m.flip > 0.0 && m.psnr.is_finite());
+        let out = compose(&a, &b, &heat, Palette::Heat);
+        assert_eq!(out.dimensions(), (3 * 10 + 2 * GAP, 8 + GAP + 4));
+        assert_eq!(out.get_pixel(0, 0), &Rgb([200, 0, 0]));
+        assert_eq!(out.get_pixel(10, 0), &BACKGROUND);
+        assert_eq!(out.get_pixel(10 + GAP, 7), &Rgb([0, 200, 0]));
+        assert_eq!(out.get_pixel(2 * (10 + GAP), 0), &Rgb([255, 255, 255]));
+        // The legend runs from the palette's 0 to its 1.
+        let y = 8 + GAP;
+        assert_eq!(out.get_pixel(2 * (10 + GAP), y), &Palette::Heat.colour(0.0));
+        assert_eq!(
+            out.get_pixel(3 * 10 + 2 * GAP - 1, y),
+            &Palette::Heat.colour(1.0)
+        );
+        // Nothing under A and B.
+        assert_eq!(out.get_pixel(0, y), &BACKGROUND);
+    }
+
+    #[test]
+    fn identical_images_measure_zero() {
+        let a = RgbImage::from_pixel(6, 6, Rgb([10, 20, 30]));
+        let (m, heat) = measure(&a, &a, Heatmap::Flip).unwrap();
+        assert_eq!((m.mse, m.flip), (0.0, 0.0));
+        assert_eq!(m.psnr, f64::INFINITY);
+        assert!(heat.pixels().all(|p| *p == Palette::Magma.colour(0.0)));
+        assert!(measure(&a, &RgbImage::new(5, 6), Heatmap::Flip).is_err());
+    }
+}
