@@ -14,8 +14,8 @@ use crate::bundled;
 use crate::load::SceneSource;
 use crate::output::save_png;
 
-use super::commands::Command;
 use super::bench_window::BenchWindow;
+use super::commands::Command;
 use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
@@ -211,7 +211,8 @@ impl WorkbenchApp {
                     self.view = ViewState::default();
                     self.error = None;
                     self.image.forget();
-                    if let (Some(compare), Some(loaded)) = (&mut self.compare, self.engine.scene()) {
+                    if let (Some(compare), Some(loaded)) = (&mut self.compare, self.engine.scene())
+                    {
                         compare.show_scene(loaded);
                     }
                     if let SceneSource::File(path) = &source {
@@ -615,7 +616,13 @@ impl WorkbenchApp {
             None => ([0, 0], self.full_size().unwrap_or([1, 1])),
         };
         if let Some(compare) = &mut self.compare {
-            compare_header(ui, compare, &self.state.controls, self.engine.scene(), self.camera);
+            compare_header(
+                ui,
+                compare,
+                &self.state.controls,
+                self.engine.scene(),
+                self.camera,
+            );
         }
         let bottom = 22.0;
         let mut area = ui.available_rect_before_wrap();
@@ -624,20 +631,37 @@ impl WorkbenchApp {
         let response = ui
             .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
                 let Some(compare) = &mut self.compare else {
-                    return viewport::show(ui, &mut self.view, self.image.texture(), None, size, full);
+                    return viewport::show(
+                        ui,
+                        &mut self.view,
+                        self.image.texture(),
+                        None,
+                        size,
+                        full,
+                    );
                 };
                 let b = compare.image.texture();
                 match compare.view {
                     CompareView::SideBySide => {
-                        let half = egui::vec2(ui.available_width() / 2.0 - 2.0, ui.available_height());
+                        let half =
+                            egui::vec2(ui.available_width() / 2.0 - 2.0, ui.available_height());
                         ui.horizontal(|ui| {
                             let left = ui
                                 .allocate_ui(half, |ui| {
-                                    viewport::show(ui, &mut self.view, self.image.texture(), None, size, full)
+                                    viewport::show(
+                                        ui,
+                                        &mut self.view,
+                                        self.image.texture(),
+                                        None,
+                                        size,
+                                        full,
+                                    )
                                 })
                                 .inner;
                             let right = ui
-                                .allocate_ui(half, |ui| viewport::show(ui, &mut self.view, b, None, size, full))
+                                .allocate_ui(half, |ui| {
+                                    viewport::show(ui, &mut self.view, b, None, size, full)
+                                })
                                 .inner;
                             left.merge(right)
                         })
@@ -764,8 +788,12 @@ fn compare_header(
     }
     if compare.view == CompareView::Difference {
         ui.horizontal(|ui| {
-            ui.add(egui::Slider::new(&mut compare.gain, 1.0..=64.0).logarithmic(true).text("Amplification"))
-                .on_hover_text("Multiplies |A - B| before colouring, so small differences show");
+            ui.add(
+                egui::Slider::new(&mut compare.gain, 1.0..=64.0)
+                    .logarithmic(true)
+                    .text("Amplification"),
+            )
+            .on_hover_text("Multiplies |A - B| before colouring, so small differences show");
             compare::legend(ui, compare.gain);
         });
     }

@@ -5,9 +5,9 @@
 //! images.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::sync::Arc;
 
 use egui::{ColorImage, TextureHandle, TextureOptions, Ui};
 use egui_plot::{Bar, BarChart, Plot};
@@ -26,7 +26,11 @@ const THUMBNAIL: u32 = 64;
 
 /// What the benchmark thread tells the window.
 enum Update {
-    Progress { case: usize, run: usize, fraction: f32 },
+    Progress {
+        case: usize,
+        run: usize,
+        fraction: f32,
+    },
     Measured(Box<Measurement>),
     Finished(Result<bool, String>),
 }
@@ -238,7 +242,10 @@ impl BenchWindow {
                         let m = &row.measurement;
                         let [w, h] = row.thumbnail.size();
                         let fit = 48.0 / w.max(h).max(1) as f32;
-                        ui.image((row.thumbnail.id(), egui::vec2(w as f32 * fit, h as f32 * fit)));
+                        ui.image((
+                            row.thumbnail.id(),
+                            egui::vec2(w as f32 * fit, h as f32 * fit),
+                        ));
                         ui.label(&m.case.label);
                         ui.monospace(format!("{:.1} ms", m.median().as_secs_f64() * 1e3));
                         ui.monospace(format!(
@@ -264,10 +271,15 @@ impl BenchWindow {
         let spawned = std::thread::Builder::new()
             .name("bench-export".into())
             .spawn(move || {
-                let result = match rfd::FileDialog::new().set_title("Export the benchmark to").pick_folder() {
+                let result = match rfd::FileDialog::new()
+                    .set_title("Export the benchmark to")
+                    .pick_folder()
+                {
                     Some(dir) => write_export(&dir.join(format!("bench-{stem}")), &measurements)
                         .map_err(|e| format!("{e:#}")),
-                    None => Err("not exported (cancelled, or no file dialog on this desktop)".into()),
+                    None => {
+                        Err("not exported (cancelled, or no file dialog on this desktop)".into())
+                    }
                 };
                 let _ = tx.send(result);
             });
@@ -283,8 +295,11 @@ pub fn write_export(dir: &Path, measurements: &[Measurement]) -> anyhow::Result<
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for (name, format) in [("table.md", Format::Markdown), ("table.csv", Format::Csv)] {
         let path = dir.join(name);
-        std::fs::write(&path, bench_report::table(measurements, Layout::Matrix, format))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        std::fs::write(
+            &path,
+            bench_report::table(measurements, Layout::Matrix, format),
+        )
+        .with_context(|| format!("cannot write {}", path.display()))?;
     }
     for m in measurements {
         save_png(&m.image, &dir.join(format!("{}.png", m.case.file_stem())))?;
@@ -331,7 +346,10 @@ fn thumbnail(ctx: &egui::Context, m: &Measurement) -> TextureHandle {
     let scale = THUMBNAIL as f32 / w.max(h).max(1) as f32;
     let size = |n: u32| ((n as f32 * scale).round() as u32).max(1);
     let small = image::imageops::resize(&m.image, size(w), size(h), FilterType::Triangle);
-    let image = ColorImage::from_rgb([small.width() as usize, small.height() as usize], small.as_raw());
+    let image = ColorImage::from_rgb(
+        [small.width() as usize, small.height() as usize],
+        small.as_raw(),
+    );
     ctx.load_texture(
         format!("bench {}", m.case.file_stem()),
         image,

@@ -193,7 +193,11 @@ impl Command {
     pub fn shortcut_text(self, ctx: &egui::Context) -> String {
         self.shortcuts()
             .iter()
-            .map(|s| ctx.format_shortcut(s))
+            .map(|s| match s.logical_key {
+                // egui spells it out as "Questionmark".
+                Key::Questionmark => "?".to_string(),
+                _ => ctx.format_shortcut(s),
+            })
             .collect::<Vec<_>>()
             .join(" / ")
     }

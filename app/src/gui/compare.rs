@@ -3,8 +3,8 @@
 //! as a difference heat map, with the numbers that say what B costs and
 //! changes (time, rays, speed ratio, MSE, PSNR, FLIP).
 
-use std::sync::mpsc::{Receiver, channel};
 use std::sync::Arc;
+use std::sync::mpsc::{Receiver, channel};
 
 use egui::{Color32, ColorImage, RichText, TextureHandle, TextureOptions, Ui};
 use image::RgbImage;
@@ -15,7 +15,7 @@ use tracer::render::{JobState, RenderSettings, Snapshot};
 use crate::compare::{Heatmap, Metrics, measure};
 use crate::describe::side_labels;
 
-use super::engine::{Activity, Engine, LoadedScene};
+use super::engine::{Activity, Engine, LoadedScene, Version};
 use super::live_image::LiveImage;
 use super::state::Controls;
 
@@ -64,11 +64,11 @@ pub struct Compare {
     pub editing_b: bool,
     difference: Option<TextureHandle>,
     /// Versions of the images the difference map was made from, and its gain.
-    difference_of: Option<((u64, u64), (u64, u64), f32)>,
+    difference_of: Option<(Version, Version, f32)>,
     /// Metrics of the last pair of finished images, and the versions they
     /// belong to; FLIP runs on its own thread.
     metrics: Option<Result<Metrics, String>>,
-    metrics_of: Option<((u64, u64), (u64, u64))>,
+    metrics_of: Option<(Version, Version)>,
     pending: Option<Receiver<Result<Metrics, String>>>,
 }
 
@@ -129,7 +129,12 @@ impl Compare {
 
     /// Uploads B's image, and refreshes the difference map and the metrics
     /// when either side changed.
-    pub fn refresh(&mut self, ctx: &egui::Context, a: (&Engine, &LiveImage), interval: std::time::Duration) {
+    pub fn refresh(
+        &mut self,
+        ctx: &egui::Context,
+        a: (&Engine, &LiveImage),
+        interval: std::time::Duration,
+    ) {
         self.image
             .refresh(ctx, &self.engine, self.controls.encoding(), interval);
         let (engine_a, image_a) = a;
@@ -138,7 +143,8 @@ impl Compare {
             if self.view == CompareView::Difference
                 && self.difference_of != Some((versions.0, versions.1, self.gain))
             {
-                self.difference = difference_texture(ctx, sa, sb, self.gain, self.difference.take());
+                self.difference =
+                    difference_texture(ctx, sa, sb, self.gain, self.difference.take());
                 self.difference_of = Some((versions.0, versions.1, self.gain));
             }
             let both_done = is_done(engine_a) && is_done(&self.engine);
@@ -233,7 +239,12 @@ pub fn labels(a: &RenderSettings, b: &RenderSettings) -> (String, String) {
 }
 
 /// The numbers of both sides and their difference.
-pub fn show_numbers(ui: &mut Ui, a: Option<&Snapshot>, compare: &Compare, labels: &(String, String)) {
+pub fn show_numbers(
+    ui: &mut Ui,
+    a: Option<&Snapshot>,
+    compare: &Compare,
+    labels: &(String, String),
+) {
     let b = compare.image.shown();
     egui::Grid::new("compare_numbers")
         .num_columns(3)
@@ -249,39 +260,47 @@ pub fn show_numbers(ui: &mut Ui, a: Option<&Snapshot>, compare: &Compare, labels
                 ui.monospace(b.map_or_else(|| "–".into(), f));
                 ui.end_row();
             };
-            row(ui, "Time", &|s| format!("{:.3} s", s.stats.render_time.as_secs_f64()));
+            row(ui, "Time", &|s| {
+                format!("{:.3} s", s.stats.render_time.as_secs_f64())
+            });
             row(ui, "Samples", &|s| {
                 format!("{} / {}", s.stats.passes_done, s.stats.passes_target)
             });
-            row(ui, "Rays", &|s| crate::report::si(s.stats.counters.total_rays() as f64));
+            row(ui, "Rays", &|s| {
+                crate::report::si(s.stats.counters.total_rays() as f64)
+            });
             row(ui, "Rays per second", &|s| {
                 crate::report::si(s.stats.rays_per_second())
             });
         });
     if let (Some(a), Some(b)) = (a, b) {
         let ratio = a.stats.render_time.as_secs_f64() / b.stats.render_time.as_secs_f64().max(1e-9);
-        ui.label(format!("Speed ratio A/B: {ratio:.2} (above 1: B is faster)"));
+        ui.label(format!(
+            "Speed ratio A/B: {ratio:.2} (above 1: B is faster)"
+        ));
     }
     ui.label(RichText::new(&labels.0).small());
     ui.label(RichText::new(&labels.1).small());
     ui.separator();
     match compare.metrics() {
         Some(Ok(m)) => {
-            egui::Grid::new("compare_metrics").num_columns(2).show(ui, |ui| {
-                ui.label("MSE");
-                ui.monospace(format!("{:.3}", m.mse));
-                ui.end_row();
-                ui.label("PSNR");
-                ui.monospace(if m.psnr.is_finite() {
-                    format!("{:.2} dB", m.psnr)
-                } else {
-                    "∞ (identical)".into()
+            egui::Grid::new("compare_metrics")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("MSE");
+                    ui.monospace(format!("{:.3}", m.mse));
+                    ui.end_row();
+                    ui.label("PSNR");
+                    ui.monospace(if m.psnr.is_finite() {
+                        format!("{:.2} dB", m.psnr)
+                    } else {
+                        "∞ (identical)".into()
+                    });
+                    ui.end_row();
+                    ui.label("FLIP");
+                    ui.monospace(format!("{:.4}", m.flip));
+                    ui.end_row();
                 });
-                ui.end_row();
-                ui.label("FLIP");
-                ui.monospace(format!("{:.4}", m.flip));
-                ui.end_row();
-            });
         }
         Some(Err(e)) => {
             ui.colored_label(Color32::LIGHT_RED, e);

@@ -13,6 +13,9 @@ use tracer::world::World;
 
 use crate::load::{SceneSource, load_source};
 
+/// Identifies what an engine shows: (jobs started, the job's own version).
+pub type Version = (u64, u64);
+
 /// A scene ready to render, with where it came from.
 #[derive(Clone)]
 pub struct LoadedScene {
@@ -226,7 +229,7 @@ impl Engine {
 
     /// A number that changes whenever the image or statistics change,
     /// including when a new job replaces one that reached the same count.
-    pub fn version(&self) -> (u64, u64) {
+    pub fn version(&self) -> Version {
         (
             self.jobs_started,
             self.job.as_ref().map_or(0, |j| j.version()),

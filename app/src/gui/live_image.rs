@@ -7,14 +7,14 @@ use std::time::{Duration, Instant};
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use tracer::render::{Encoding, Snapshot};
 
-use super::engine::Engine;
+use super::engine::{Engine, Version};
 
 pub struct LiveImage {
     /// The texture's name for egui.
     name: &'static str,
     texture: Option<TextureHandle>,
     shown: Option<Snapshot>,
-    version: (u64, u64),
+    version: Version,
     encoding: Encoding,
     last_upload: Instant,
 }
