@@ -12,7 +12,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::AccelKind;
 use tracer::render::{JobState, RenderSettings};
-use workbench::gui::{Activity, WorkbenchApp};
+use workbench::gui::{Activity, Compare, CompareView, WorkbenchApp};
 use workbench::load::SceneSource;
 
 /// Long enough for any render in these tests on a slow CI machine; only a
@@ -369,4 +369,149 @@ fn snapshot_with_an_error_shown() {
     harness.get_by_label_contains("camera_angle_180.p3f:3:7");
     mask_timings(&mut harness);
     snapshot(&mut harness, "window_error");
+}
+
+fn comparison<'a>(harness: &'a Harness<'static, WorkbenchApp>) -> &'a Compare {
+    harness.state().comparison().expect("compare mode is on")
+}
+
+fn both_done_and_measured(app: &WorkbenchApp) -> bool {
+    app.comparison().is_some_and(|c| {
+        c.engine.activity() == Activity::Job(JobState::Done)
+            && c.metrics().is_some()
+            && is_done(app)
+    })
+}
+
+#[test]
+fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
+    let mut harness = window();
+    harness.key_press(egui::Key::B);
+    settle(&mut harness);
+    // B starts as a copy of A; the keys now edit B.
+    assert_eq!(
+        comparison(&harness).controls,
+        harness.state().state().controls
+    );
+    harness.key_press(egui::Key::G);
+    settle(&mut harness);
+    assert_eq!(
+        comparison(&harness).engine.settings().unwrap().accel,
+        AccelKind::Grid
+    );
+    assert_eq!(render_settings(&harness).accel, AccelKind::Bvh, "A stays");
+
+    // Grid and BVH find the same hits: the same image.
+    wait_for(
+        &mut harness,
+        "both sides and their metrics",
+        both_done_and_measured,
+    );
+    let same = comparison(&harness).metrics().unwrap().clone().unwrap();
+    assert_eq!(same.mse, 0.0);
+    assert_eq!(same.flip, 0.0);
+    assert!(
+        harness
+            .query_all_by_label_contains("B: grid on")
+            .next()
+            .is_some(),
+        "B is labelled by what differs"
+    );
+
+    // Soft shadows on B change the image.
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Soft shadows (S)")
+        .click();
+    settle(&mut harness);
+    wait_for(&mut harness, "B with soft shadows", |app| {
+        both_done_and_measured(app)
+            && app
+                .comparison()
+                .is_some_and(|c| c.engine.settings().is_some_and(|s| s.soft_shadows))
+    });
+    let differ = comparison(&harness).metrics().unwrap().clone().unwrap();
+    assert!(differ.mse > 0.0 && differ.flip > 0.0, "{differ:?}");
+    assert!(differ.psnr.is_finite());
+
+    for view in CompareView::ALL {
+        harness
+            .get_by_role_and_label(Role::Button, view.label())
+            .click();
+        settle(&mut harness);
+        assert_eq!(comparison(&harness).view, view);
+    }
+    wait_for(&mut harness, "the difference map", |app| {
+        app.comparison().is_some_and(|c| c.difference().is_some())
+    });
+
+    // Swap: A now has B's settings, renders and all.
+    harness
+        .get_by_role_and_label(Role::Button, "Swap A and B")
+        .click();
+    settle(&mut harness);
+    let a = render_settings(&harness);
+    assert!(a.soft_shadows && a.accel == AccelKind::Grid);
+    assert!(!comparison(&harness).engine.settings().unwrap().soft_shadows);
+    // Copy A to B makes them equal again.
+    harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::B);
+    settle(&mut harness);
+    assert_eq!(
+        comparison(&harness).engine.settings(),
+        harness.state().engine().settings()
+    );
+}
+
+#[test]
+fn the_benchmark_matrix_fills_every_row_with_consistent_images() {
+    let mut harness = window();
+    harness.key_press(egui::Key::M);
+    settle(&mut harness);
+    let runs = harness.get_by_role_and_label(Role::Slider, "runs each");
+    runs.focus();
+    settle(&mut harness);
+    for _ in 0..4 {
+        harness.key_press(egui::Key::ArrowLeft);
+        settle(&mut harness);
+    }
+    harness.get_by_role_and_label(Role::Button, "Run").click();
+    settle(&mut harness);
+    assert!(harness.state().benchmark().is_running());
+    wait_for(&mut harness, "the matrix", |app| {
+        !app.benchmark().is_running()
+    });
+    let rows: Vec<_> = harness
+        .state()
+        .benchmark()
+        .measurements()
+        .cloned()
+        .collect();
+    assert_eq!(
+        rows.len(),
+        18,
+        "3 structures x 2 shadow modes x 3 samplings"
+    );
+    for row in &rows {
+        assert_eq!(row.times.len(), 1);
+        assert_eq!(row.case.settings.width, 64);
+    }
+    // The same sampling gives the same image whatever the structure.
+    for row in &rows {
+        let twin = rows
+            .iter()
+            .find(|r| {
+                r.case.settings.accel == AccelKind::Bvh
+                    && r.case.file_stem().ends_with(
+                        row.case
+                            .file_stem()
+                            .trim_start_matches(row.case.settings.accel.name()),
+                    )
+            })
+            .expect("a BVH row of the same sampling");
+        assert!(
+            twin.image == row.image,
+            "{} differs from {}",
+            row.case.label,
+            twin.case.label
+        );
+    }
 }

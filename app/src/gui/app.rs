@@ -152,6 +152,16 @@ impl WorkbenchApp {
         &self.engine
     }
 
+    /// The B side, while comparing.
+    pub fn comparison(&self) -> Option<&Compare> {
+        self.compare.as_ref()
+    }
+
+    /// The benchmark matrix window.
+    pub fn benchmark(&self) -> &BenchWindow {
+        &self.bench
+    }
+
     /// The error shown in the window, if any.
     pub fn error(&self) -> Option<&str> {
         self.error.as_deref()

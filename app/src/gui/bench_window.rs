@@ -83,7 +83,8 @@ impl BenchWindow {
     }
 
     /// Starts the matrix over `world` with `base` settings (the current
-    /// scene, camera and sizes); `wake` asks the window to redraw.
+    /// scene, camera and sizes; N is the seed's 4); `wake` asks the window
+    /// to redraw.
     pub fn start(
         &mut self,
         world: Arc<World>,
@@ -91,8 +92,12 @@ impl BenchWindow {
         wake: impl Fn() + Send + 'static,
     ) {
         self.stop();
+        let base = RenderSettings {
+            samples: benchmark::MATRIX_SAMPLES,
+            ..base.clone()
+        };
         self.cases = benchmark::matrix(
-            base,
+            &base,
             &[AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
             Encoding::Srgb,
         );

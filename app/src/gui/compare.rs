@@ -139,6 +139,12 @@ impl Compare {
             .refresh(ctx, &self.engine, self.controls.encoding(), interval);
         let (engine_a, image_a) = a;
         let versions = (engine_a.version(), self.engine.version());
+        if self.metrics_of.is_some_and(|of| of != versions) {
+            // A side changed: the metrics no longer describe what is shown.
+            self.metrics = None;
+            self.metrics_of = None;
+            self.pending = None;
+        }
         if let (Some(sa), Some(sb)) = (image_a.shown(), self.image.shown()) {
             if self.view == CompareView::Difference
                 && self.difference_of != Some((versions.0, versions.1, self.gain))

@@ -18,7 +18,9 @@ mod viewport;
 use std::path::PathBuf;
 
 pub use app::WorkbenchApp;
+pub use bench_window::BenchWindow;
 pub use commands::Command;
+pub use compare::{Compare, CompareView};
 pub use engine::{Activity, Engine};
 pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
