@@ -7,7 +7,12 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 fn main() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    // Read when the script runs, not baked in with `env!`: a build script
+    // reused from a build cache made in another checkout (a git worktree
+    // seeded with a copied `target/`) would otherwise embed that
+    // checkout's scenes and sky.
+    let manifest_dir = std::env::var_os("CARGO_MANIFEST_DIR").unwrap();
+    let root = Path::new(&manifest_dir).join("..");
     let scenes_dir = root.join("scenes");
     let sky_dir = root.join("assets").join("skybox");
     println!("cargo:rerun-if-changed={}", scenes_dir.display());

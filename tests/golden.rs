@@ -50,8 +50,9 @@ fn scenes() -> Vec<PathBuf> {
     found
 }
 
-/// The scene's own settings at golden size: aspect ratio kept, seed 0,
-/// at most `MAX_SAMPLES`, every core (renders do not depend on threads).
+/// The scene's own settings at golden size: aspect ratio and lens kept,
+/// seed 0, at most `MAX_SAMPLES`, every core (renders do not depend on
+/// threads).
 fn render_small(path: &Path) -> Result<image::RgbImage, String> {
     let scene = parse_scene_file(path, &Limits::default()).map_err(|e| e.to_string())?;
     let mut settings = RenderSettings::from_scene(&scene);
@@ -59,6 +60,11 @@ fn render_small(path: &Path) -> Result<image::RgbImage, String> {
     let scale = f64::from(SIDE) / f64::from(w.max(h));
     settings.width = ((f64::from(w) * scale).round() as u32).max(1);
     settings.height = ((f64::from(h) * scale).round() as u32).max(1);
+    // The aperture counts pixels of the scene's own resolution: keep the
+    // lens the same size in the scene, or a 64-pixel golden of a 512-pixel
+    // scene gets a lens eight times wider and shows nothing but blur.
+    let pixel_ratio = f64::from(settings.height.max(2) - 1) / f64::from(h.max(2) - 1);
+    settings.aperture = (f64::from(settings.aperture) * pixel_ratio) as f32;
     settings.samples = settings.samples.min(MAX_SAMPLES);
     settings.seed = 0;
     let world = Arc::new(World::build(&scene));

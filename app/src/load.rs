@@ -83,3 +83,47 @@ pub fn load_scene(path: &Path) -> Result<Loaded> {
         world: Arc::new(world),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The repository's `scenes/` folder.
+    fn scenes_dir() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes")
+    }
+
+    /// The window opens the default scene from the binary, where no
+    /// `assets/` folder need exist next to it: its `env ../assets/skybox`
+    /// must get the embedded sky, the same one the file on disk finds.
+    #[test]
+    fn the_bundled_default_scene_has_the_same_sky_as_its_file() {
+        let bundled = SceneSource::Bundled(bundled::DEFAULT_SCENE.into());
+        let (scene, world) = load_source(&bundled).unwrap();
+        assert!(scene.env.is_some(), "the default scene should use a skybox");
+        assert!(world.warnings.is_empty(), "{:?}", world.warnings);
+        assert!(world.skybox.is_some());
+
+        let file = scenes_dir().join(format!("{}.p3f", bundled::DEFAULT_SCENE));
+        let (_, from_file) = load_source(&SceneSource::File(file)).unwrap();
+        assert!(from_file.warnings.is_empty(), "{:?}", from_file.warnings);
+        assert_eq!(world.skybox, from_file.skybox);
+    }
+
+    /// Every scene in the picker opens without a warning (no missing sky,
+    /// no degenerate primitive).
+    #[test]
+    fn every_bundled_scene_loads_without_warnings() {
+        assert!(!bundled::SCENES.is_empty());
+        for scene in bundled::SCENES {
+            let (_, world) = load_source(&SceneSource::Bundled(scene.name.into()))
+                .unwrap_or_else(|e| panic!("{}: {e:#}", scene.name));
+            assert!(
+                world.warnings.is_empty(),
+                "{}: {:?}",
+                scene.name,
+                world.warnings
+            );
+        }
+    }
+}
