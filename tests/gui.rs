@@ -153,13 +153,13 @@ fn sliders_change_the_render_settings() {
 #[test]
 fn picking_a_scene_in_the_list_renders_it() {
     let mut harness = window();
-    harness.get_by_label("tetra").click();
-    wait_for(&mut harness, "tetra to load", |app| {
+    harness.get_by_label("balls_medium").click();
+    wait_for(&mut harness, "balls_medium to load", |app| {
         app.engine()
             .scene()
-            .is_some_and(|s| s.source == SceneSource::Bundled("tetra".into()))
+            .is_some_and(|s| s.source == SceneSource::Bundled("balls_medium".into()))
     });
-    wait_for(&mut harness, "tetra to render", is_done);
+    wait_for(&mut harness, "balls_medium to render", is_done);
 }
 
 /// Writes a scene whose line 5, column 7 is wrong, in a folder of its own

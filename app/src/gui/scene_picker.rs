@@ -158,7 +158,10 @@ pub fn show(
     if let Some(SceneSource::Bundled(name)) = current
         && let Some(scene) = bundled::find(name)
     {
-        ui.label(RichText::new(scene.description).small().weak());
+        // The first sentence; the whole line on hover.
+        let first = scene.description.split(';').next().unwrap_or_default();
+        ui.label(RichText::new(first).small().weak())
+            .on_hover_text(scene.description);
     }
     if !recent.is_empty() {
         ui.collapsing("Recent files", |ui| {

@@ -6,7 +6,7 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 use tracer::accel::AccelInfo;
 use tracer::stats::{RenderStats, SceneCounts};
 
-use crate::report::{describe_objects, si};
+use crate::report::si;
 
 use super::frame_meter::FrameMeter;
 
@@ -101,7 +101,11 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                     ),
                 );
             }
-            row(ui, "Objects", describe_objects(view.counts));
+            // One row per kind: a long list would widen the panel.
+            row(ui, "Objects", view.counts.objects().to_string());
+            for (kind, n) in &view.counts.objects_by_kind {
+                row(ui, &format!("  {kind}"), n.to_string());
+            }
             row(ui, "Primitives", view.counts.primitives.to_string());
             row(ui, "Lights", view.counts.lights.to_string());
             row(
