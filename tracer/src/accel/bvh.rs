@@ -4,7 +4,7 @@
 
 use std::mem::MaybeUninit;
 
-use glam::{Vec3A, Vec4};
+use glam::{Vec3A, Vec4, Vec4Swizzles};
 
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
@@ -89,6 +89,44 @@ impl Node {
     }
 }
 
+/// The entry distances of the two sibling boxes `pair[0]` and `pair[1]`
+/// (`None` where the ray misses), tested together.
+///
+/// Each box gets exactly the per-lane arithmetic of [`Aabb::intersect`];
+/// only the horizontal max and min that turn three slab intervals into one
+/// are shared, one shuffle sequence for both boxes instead of one each, and
+/// a single comparison decides both. Max and min return one of their
+/// operands, so reducing in another order gives the same distances (up to
+/// the sign of a zero, which no comparison sees): traversal visits the same
+/// nodes as testing each box alone. Measured: -6% instructions on
+/// balls_medium.
+#[inline]
+fn hit_pair(pair: &[Node; 2], ray: &Ray, t_min: f32, t_max: f32) -> [Option<f32>; 2] {
+    let lo = Vec3A::splat(t_min);
+    let hi = Vec3A::splat(t_max);
+    let interval = |node: &Node| {
+        let t0 = (Vec3A::from_vec4(node.lo) - ray.origin) * ray.inv_dir;
+        let t1 = (Vec3A::from_vec4(node.hi) - ray.origin) * ray.inv_dir;
+        (t0.max(lo).min(t1.max(lo)), t0.min(hi).max(t1.min(hi)))
+    };
+    let (near_l, far_l) = interval(&pair[0]);
+    let (near_r, far_r) = interval(&pair[1]);
+    // Lanes [l.x, l.y, r.x, r.y] against [l.z, l.z, r.z, r.z], then each
+    // pair of lanes against its neighbour: lane 0 is the left box's value,
+    // lane 2 the right box's.
+    let near = Vec4::new(near_l.x, near_l.y, near_r.x, near_r.y)
+        .max(Vec4::new(near_l.z, near_l.z, near_r.z, near_r.z));
+    let near = near.max(near.yxwz());
+    let far = Vec4::new(far_l.x, far_l.y, far_r.x, far_r.y)
+        .min(Vec4::new(far_l.z, far_l.z, far_r.z, far_r.z));
+    let far = far.min(far.yxwz());
+    let inside = near.cmple(far);
+    [
+        inside.test(0).then_some(near.x),
+        inside.test(2).then_some(near.z),
+    ]
+}
+
 /// The hierarchy, with its own copy of the shapes in leaf order so a leaf's
 /// primitives are contiguous in memory.
 #[derive(Debug, Clone)]
@@ -144,6 +182,14 @@ impl Bvh {
             shapes: ids.iter().map(|&i| shapes[i as usize].clone()).collect(),
             ids,
         }
+    }
+
+    /// The two children of an inner node, stored side by side from `first`.
+    #[inline]
+    fn children(&self, first: usize) -> &[Node; 2] {
+        self.nodes[first..first + 2]
+            .try_into()
+            .expect("an inner node's children are adjacent nodes")
     }
 
     /// Nodes in the flattened tree.
@@ -248,10 +294,10 @@ impl Bvh {
                     }
                 }
             } else {
-                let left = &self.nodes[first];
-                let right = &self.nodes[first + 1];
-                match (left.hit(ray, t_min, t_max), right.hit(ray, t_min, t_max)) {
-                    (Some(l), Some(r)) => {
+                let pair = self.children(first);
+                let (left, right) = (&pair[0], &pair[1]);
+                match hit_pair(pair, ray, t_min, t_max) {
+                    [Some(l), Some(r)] => {
                         let (near, far, far_t) = if l <= r {
                             (left, first + 1, r)
                         } else {
@@ -261,15 +307,15 @@ impl Bvh {
                         node = near;
                         continue;
                     }
-                    (Some(_), None) => {
+                    [Some(_), None] => {
                         node = left;
                         continue;
                     }
-                    (None, Some(_)) => {
+                    [None, Some(_)] => {
                         node = right;
                         continue;
                     }
-                    (None, None) => {}
+                    [None, None] => {}
                 }
             }
             // Pop the next node, skipping those now beyond the closest hit.
@@ -324,26 +370,23 @@ impl Bvh {
                     break;
                 }
             } else {
-                let left = &self.nodes[first];
-                let right = &self.nodes[first + 1];
-                match (
-                    left.hit(ray, t_min, t_max).is_some(),
-                    right.hit(ray, t_min, t_max).is_some(),
-                ) {
-                    (true, true) => {
+                let pair = self.children(first);
+                let (left, right) = (&pair[0], &pair[1]);
+                match hit_pair(pair, ray, t_min, t_max).map(|entry| entry.is_some()) {
+                    [true, true] => {
                         stack.push(first as u32 + 1);
                         node = left;
                         continue;
                     }
-                    (true, false) => {
+                    [true, false] => {
                         node = left;
                         continue;
                     }
-                    (false, true) => {
+                    [false, true] => {
                         node = right;
                         continue;
                     }
-                    (false, false) => {}
+                    [false, false] => {}
                 }
             }
             match stack.pop() {
