@@ -4,7 +4,8 @@
 
 use std::mem::MaybeUninit;
 
-use glam::{Vec3A, Vec4, Vec4Swizzles};
+use glam::{UVec3, Vec3A, Vec4, Vec4Swizzles};
+use rayon::prelude::*;
 
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
@@ -14,7 +15,7 @@ use super::Hit;
 /// Build parameters, as a documented struct with named presets.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BvhParams {
-    /// SAH bins per axis.
+    /// SAH bins per axis, 2 to 32 (more are clamped).
     pub bins: usize,
     /// A node with more primitives than this is always split.
     pub max_leaf_size: usize,
@@ -39,6 +40,10 @@ impl Default for BvhParams {
 
 /// Deepest tree allowed: traversal's fixed stack holds this many nodes.
 const MAX_DEPTH: usize = 64;
+
+/// Most SAH bins per axis: the bins live in fixed arrays on the stack
+/// rather than in a dozen small allocations per node.
+const MAX_BINS: usize = 32;
 
 /// A node: 32 bytes, so two siblings share a cache line, and two aligned
 /// SIMD loads fetch its box. The `w` lanes carry the integers (as float
@@ -137,12 +142,20 @@ pub struct Bvh {
     ids: Vec<u32>,
 }
 
-/// A primitive during the build.
+/// A primitive during the build: 48 bytes. The centroid is recomputed
+/// from the box where needed rather than stored, as the build is bound by
+/// the passes over this array, not by arithmetic.
 #[derive(Clone, Copy)]
 struct BuildPrim {
     bounds: Aabb,
-    centroid: Vec3A,
     id: u32,
+}
+
+impl BuildPrim {
+    #[inline]
+    fn centroid(&self) -> Vec3A {
+        self.bounds.centre()
+    }
 }
 
 /// The tree before flattening.
@@ -162,14 +175,10 @@ impl Bvh {
     /// Builds a hierarchy over the bounded shapes `ids` of `shapes`.
     pub fn build(shapes: &[Shape], ids: &[u32], params: &BvhParams) -> Bvh {
         let mut prims: Vec<BuildPrim> = ids
-            .iter()
+            .par_iter()
             .filter_map(|&id| {
                 let bounds = shapes[id as usize].bounds()?;
-                Some(BuildPrim {
-                    bounds,
-                    centroid: bounds.centre(),
-                    id,
-                })
+                Some(BuildPrim { bounds, id })
             })
             .collect();
         let root = build_node(&mut prims, 0, 0, params);
@@ -179,7 +188,10 @@ impl Bvh {
         let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
         Bvh {
             nodes,
-            shapes: ids.iter().map(|&i| shapes[i as usize].clone()).collect(),
+            shapes: ids
+                .par_iter()
+                .map(|&i| shapes[i as usize].clone())
+                .collect(),
             ids,
         }
     }
@@ -439,7 +451,12 @@ impl<T: Copy> NodeStack<T> {
 /// Builds the subtree over `prims`, which start at `offset` in the final
 /// primitive order.
 fn build_node(prims: &mut [BuildPrim], offset: u32, depth: usize, params: &BvhParams) -> BuildNode {
-    let bounds = prims.iter().fold(Aabb::empty(), |b, p| b.union(&p.bounds));
+    // One pass for the node's box and its centroids' box.
+    let (bounds, centroids) = prims
+        .iter()
+        .fold((Aabb::empty(), Aabb::empty()), |(b, c), p| {
+            (b.union(&p.bounds), c.grow(p.centroid()))
+        });
     let leaf = BuildNode::Leaf {
         bounds,
         first: offset,
@@ -448,13 +465,13 @@ fn build_node(prims: &mut [BuildPrim], offset: u32, depth: usize, params: &BvhPa
     if prims.len() <= 1 || depth >= MAX_DEPTH - 1 {
         return leaf;
     }
-    let split = match best_split(prims, bounds, params) {
+    let split = match best_split(prims, bounds, centroids, params) {
         Some((axis, position, cost)) => {
             let leaf_cost = prims.len() as f32;
             if cost >= leaf_cost && prims.len() <= params.max_leaf_size {
                 return leaf;
             }
-            partition(prims, |p| p.centroid[axis] < position)
+            partition(prims, |p| p.centroid()[axis] < position)
         }
         None if prims.len() <= params.max_leaf_size => return leaf,
         // All centroids coincide: no plane separates them, so halve the list.
@@ -485,29 +502,44 @@ fn build_node(prims: &mut [BuildPrim], offset: u32, depth: usize, params: &BvhPa
 }
 
 /// The cheapest binned SAH split: `(axis, plane position, cost)` in units
-/// of primitive tests, or `None` when the centroids do not spread.
-fn best_split(prims: &[BuildPrim], bounds: Aabb, params: &BvhParams) -> Option<(usize, f32, f32)> {
-    let centroids = prims.iter().fold(Aabb::empty(), |b, p| b.grow(p.centroid));
+/// of primitive tests, or `None` when the centroids (bounded by
+/// `centroids`) do not spread. One pass over the primitives bins all three
+/// axes.
+fn best_split(
+    prims: &[BuildPrim],
+    bounds: Aabb,
+    centroids: Aabb,
+    params: &BvhParams,
+) -> Option<(usize, f32, f32)> {
     let extent = centroids.extent();
-    let bins = params.bins.max(2);
+    let splittable = [0, 1, 2].map(|axis| extent[axis] > 0.0 && extent[axis].is_finite());
+    if !splittable.contains(&true) {
+        return None;
+    }
+    let bins = params.bins.clamp(2, MAX_BINS);
     let parent_area = bounds.half_area().max(f32::MIN_POSITIVE);
+    // Axes that cannot split get an infinite or NaN scale; their bins are
+    // filled harmlessly (the cast saturates) and never read.
+    let scale = Vec3A::splat(bins as f32) / extent;
+    let last_bin = UVec3::splat(bins as u32 - 1);
+    let mut bin_bounds = [[Aabb::empty(); MAX_BINS]; 3];
+    let mut bin_counts = [[0usize; MAX_BINS]; 3];
+    for p in prims {
+        let bin = ((p.centroid() - centroids.min) * scale)
+            .as_uvec3()
+            .min(last_bin);
+        for axis in 0..3 {
+            let b = bin[axis] as usize;
+            bin_bounds[axis][b] = bin_bounds[axis][b].union(&p.bounds);
+            bin_counts[axis][b] += 1;
+        }
+    }
     let mut best: Option<(usize, f32, f32)> = None;
-    for axis in 0..3 {
-        if extent[axis] <= 0.0 || !extent[axis].is_finite() {
-            continue;
-        }
-        let scale = bins as f32 / extent[axis];
-        let bin_of = |c: Vec3A| (((c[axis] - centroids.min[axis]) * scale) as usize).min(bins - 1);
-        let mut bin_bounds = vec![Aabb::empty(); bins];
-        let mut bin_counts = vec![0usize; bins];
-        for p in prims {
-            let b = bin_of(p.centroid);
-            bin_bounds[b] = bin_bounds[b].union(&p.bounds);
-            bin_counts[b] += 1;
-        }
+    for axis in (0..3).filter(|&axis| splittable[axis]) {
+        let (bin_bounds, bin_counts) = (&bin_bounds[axis], &bin_counts[axis]);
         // Sweep from the right to know each suffix's area and count.
-        let mut right_area = vec![0.0f32; bins];
-        let mut right_count = vec![0usize; bins];
+        let mut right_area = [0.0f32; MAX_BINS];
+        let mut right_count = [0usize; MAX_BINS];
         let mut acc = Aabb::empty();
         let mut count = 0;
         for i in (1..bins).rev() {
@@ -528,7 +560,7 @@ fn best_split(prims: &[BuildPrim], bounds: Aabb, params: &BvhParams) -> Option<(
                 + (left.half_area() * left_count as f32 + right_area[i] * right_count[i] as f32)
                     / parent_area;
             if best.is_none_or(|(_, _, c)| cost < c) {
-                let position = centroids.min[axis] + i as f32 / scale;
+                let position = centroids.min[axis] + i as f32 / scale[axis];
                 best = Some((axis, position, cost));
             }
         }
