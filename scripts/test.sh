@@ -32,4 +32,4 @@ echo "== cargo test"
 cargo test
 
 echo "== the real window under Xvfb"
-xvfb-run -a -s "-screen 0 1400x900x24" cargo test -p workbench --test window -- --ignored
+xvfb-run -a -s "-screen 0 1400x900x24" cargo test --test window -- --ignored

@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 
-use crate::compare::Heatmap;
+use crate::measure::compare::Heatmap;
 
 #[derive(Parser, Debug)]
 #[command(

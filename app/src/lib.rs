@@ -1,15 +1,12 @@
 //! The Whitted Workbench application: the command line, the headless
 //! commands and the window. The binary only calls [`run`].
 
-pub mod bench_report;
-pub mod benchmark;
 pub mod bundled;
 pub mod cli;
 pub mod commands;
-pub mod compare;
-pub mod describe;
 pub mod gui;
 pub mod load;
+pub mod measure;
 pub mod output;
 pub mod report;
 

@@ -7,10 +7,10 @@ use anyhow::{Context, Result};
 use tracer::accel::AccelKind;
 use tracer::render::RenderSettings;
 
-use crate::bench_report::{Format, Layout, table};
-use crate::benchmark::{self, Measurement, RunOptions};
 use crate::cli::{BenchArgs, TableFormat};
 use crate::load::load_scene;
+use crate::measure::bench_report::{Format, Layout, table};
+use crate::measure::benchmark::{self, Measurement, RunOptions};
 use crate::output::save_png;
 
 pub fn run(args: &BenchArgs) -> Result<()> {

@@ -6,10 +6,10 @@ use std::sync::atomic::AtomicBool;
 use anyhow::{Context, Result, anyhow};
 use tracer::render::RenderSettings;
 
-use crate::benchmark::{Case, Measurement};
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
-use crate::compare::{self, Comparison, Heatmap};
 use crate::load::load_scene;
+use crate::measure::benchmark::{Case, Measurement};
+use crate::measure::compare::{self, Comparison, Heatmap};
 use crate::output::save_png;
 use crate::report::si;
 

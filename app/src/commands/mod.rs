@@ -7,7 +7,7 @@ pub mod render;
 
 use std::io::IsTerminal;
 
-use crate::benchmark::Event;
+use crate::measure::benchmark::Event;
 
 /// A progress bar on stderr for `runs` frames of each of `labels`, fed by
 /// the benchmark runner's events; hidden when stderr is not a terminal, so

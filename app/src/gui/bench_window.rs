@@ -16,8 +16,8 @@ use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
-use crate::bench_report::{self, Format, Layout};
-use crate::benchmark::{self, Case, Event, Measurement, RunOptions};
+use crate::measure::bench_report::{self, Format, Layout};
+use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
 use crate::output::save_png;
 use crate::report::si;
 

@@ -12,8 +12,8 @@ use tracer::camera::CameraPose;
 use tracer::metrics::{self, Palette};
 use tracer::render::{JobState, RenderSettings, Snapshot};
 
-use crate::compare::{Heatmap, Metrics, measure};
-use crate::describe::side_labels;
+use crate::measure::compare::{Heatmap, Metrics, measure};
+use crate::measure::describe::side_labels;
 
 use super::engine::{Activity, Engine, LoadedScene, Version};
 use super::live_image::LiveImage;

@@ -14,7 +14,7 @@ use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings};
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
-use crate::describe::describe;
+use crate::measure::describe::describe;
 
 /// One configuration to measure.
 #[derive(Debug, Clone, PartialEq)]

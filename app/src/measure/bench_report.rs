@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-use crate::benchmark::Measurement;
+use crate::measure::benchmark::Measurement;
 use crate::report::si;
 
 /// Which columns a table shows.

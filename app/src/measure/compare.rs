@@ -10,8 +10,8 @@ use image::{Rgb, RgbImage};
 use tracer::metrics::{self, Palette};
 use tracer::world::World;
 
-use crate::benchmark::{self, Case, Event, Measurement, RunOptions};
-use crate::describe::side_labels;
+use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
+use crate::measure::describe::side_labels;
 
 /// How the difference panel is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
