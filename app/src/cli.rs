@@ -64,14 +64,16 @@ pub enum Command {
     /// Render a scene with two settings (A and B) and compare them: times,
     /// rays, MSE, PSNR, FLIP and an A | B | difference image.
     Compare(CompareArgs),
-    /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears)
-    /// as P3F, or the sky cube (`sky`) as six PNG faces.
+    /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears,
+    /// shells, lattice, jacks, sombrero) as P3F, or the sky cube (`sky`) as
+    /// six PNG faces.
     Gen(GenArgs),
 }
 
 #[derive(Args, Debug)]
 pub struct GenArgs {
-    /// balls, mount, tetra, rings, tree, gears or sky.
+    /// balls, mount, tetra, rings, tree, gears, shells, lattice, jacks,
+    /// sombrero or sky.
     pub name: String,
     /// Size of the scene (its meaning depends on the generator: for balls,
     /// level 2 is 91 spheres).

@@ -5,6 +5,7 @@
 mod brute;
 mod bvh;
 mod grid;
+mod packed;
 #[cfg(test)]
 mod tests;
 
@@ -149,7 +150,7 @@ impl SceneIndex {
         let mut best = match &self.structure {
             Structure::None(b) => b.closest_hit(shapes, ray, t_min, t_max, counters),
             Structure::Grid(g) => g.closest_hit(shapes, ray, t_min, t_max, counters),
-            Structure::Bvh(b) => b.closest_hit(ray, t_min, t_max, counters),
+            Structure::Bvh(b) => b.closest_hit(shapes, ray, t_min, t_max, counters),
         };
         let mut t_max = best.map_or(t_max, |h| h.t);
         for &i in &self.unbounded {
@@ -185,7 +186,7 @@ impl SceneIndex {
         match &self.structure {
             Structure::None(b) => b.any_hit(shapes, ray, t_min, t_max, counters),
             Structure::Grid(g) => g.any_hit(shapes, ray, t_min, t_max, counters),
-            Structure::Bvh(b) => b.any_hit(ray, t_min, t_max, counters),
+            Structure::Bvh(b) => b.any_hit(shapes, ray, t_min, t_max, counters),
         }
     }
 }

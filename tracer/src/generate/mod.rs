@@ -8,9 +8,13 @@
 mod balls;
 mod common;
 mod gears;
+mod jacks;
+mod lattice;
 mod mount;
 mod rings;
+mod shells;
 pub mod sky;
+mod sombrero;
 mod tetra;
 mod tree;
 
@@ -29,17 +33,25 @@ pub enum GeneratorName {
     Rings,
     Tree,
     Gears,
+    Shells,
+    Lattice,
+    Jacks,
+    Sombrero,
 }
 
 impl GeneratorName {
     /// Every generator, for listings and exhaustive tests.
-    pub const ALL: [GeneratorName; 6] = [
+    pub const ALL: [GeneratorName; 10] = [
         GeneratorName::Balls,
         GeneratorName::Mount,
         GeneratorName::Tetra,
         GeneratorName::Rings,
         GeneratorName::Tree,
         GeneratorName::Gears,
+        GeneratorName::Shells,
+        GeneratorName::Lattice,
+        GeneratorName::Jacks,
+        GeneratorName::Sombrero,
     ];
 
     /// The name used on the command line (`workbench gen balls`).
@@ -51,6 +63,10 @@ impl GeneratorName {
             GeneratorName::Rings => "rings",
             GeneratorName::Tree => "tree",
             GeneratorName::Gears => "gears",
+            GeneratorName::Shells => "shells",
+            GeneratorName::Lattice => "lattice",
+            GeneratorName::Jacks => "jacks",
+            GeneratorName::Sombrero => "sombrero",
         }
     }
 }
@@ -84,7 +100,9 @@ pub struct GenerateOptions {
 /// Why a scene could not be generated.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum GenerateError {
-    #[error("unknown generator `{0}` (expected one of balls, mount, tetra, rings, tree, gears)")]
+    #[error(
+        "unknown generator `{0}` (expected one of balls, mount, tetra, rings, tree, gears, shells, lattice, jacks, sombrero)"
+    )]
     UnknownGenerator(String),
     #[error("{name} level {level} is outside the valid range {}..={}", range.start(), range.end())]
     LevelOutOfRange {
@@ -103,7 +121,12 @@ pub enum GenerateError {
 /// - tree 1..=16: `level` generations of binary branching, 2^level - 1 cones,
 ///   2^(level-1) - 1 joint spheres and 2^(level-1) leaves;
 /// - gears 1..=8: `level` layers of level x level meshing gears, 146
-///   polygons each (two 144-vertex faces, 144 wall quads).
+///   polygons each (two 144-vertex faces, 144 wall quads);
+/// - shells 1..=10: 45 * 2^level + 1 overlapping spheres on a spiral;
+/// - lattice 1..=24: (level + 1)^3 balls joined by cylinders;
+/// - jacks 1..=7: `level` generations of recursive jacks, 1 + 6 (5^(level-1)
+///   - 1) / 4 jacks of 3 cylinders and 6 balls;
+/// - sombrero 2..=10: a height field of 2 * 4^level triangles.
 pub fn level_range(name: GeneratorName) -> RangeInclusive<u32> {
     match name {
         GeneratorName::Balls => balls::LEVELS,
@@ -112,6 +135,10 @@ pub fn level_range(name: GeneratorName) -> RangeInclusive<u32> {
         GeneratorName::Rings => rings::LEVELS,
         GeneratorName::Tree => tree::LEVELS,
         GeneratorName::Gears => gears::LEVELS,
+        GeneratorName::Shells => shells::LEVELS,
+        GeneratorName::Lattice => lattice::LEVELS,
+        GeneratorName::Jacks => jacks::LEVELS,
+        GeneratorName::Sombrero => sombrero::LEVELS,
     }
 }
 
@@ -125,6 +152,10 @@ pub fn default_level(name: GeneratorName) -> u32 {
         GeneratorName::Rings => 7,
         GeneratorName::Tree => 10,
         GeneratorName::Gears => 4,
+        GeneratorName::Shells => 7,
+        GeneratorName::Lattice => 11,
+        GeneratorName::Jacks => 5,
+        GeneratorName::Sombrero => 7,
     }
 }
 
@@ -144,6 +175,10 @@ pub fn generate(name: GeneratorName, options: &GenerateOptions) -> Result<Scene,
         GeneratorName::Rings => rings::generate(level),
         GeneratorName::Tree => tree::generate(level, seed),
         GeneratorName::Gears => gears::generate(level, seed),
+        GeneratorName::Shells => shells::generate(level),
+        GeneratorName::Lattice => lattice::generate(level),
+        GeneratorName::Jacks => jacks::generate(level),
+        GeneratorName::Sombrero => sombrero::generate(level),
     })
 }
 
@@ -160,6 +195,10 @@ pub fn describe(name: GeneratorName, level: u32, seed: u64) -> String {
             GeneratorName::Rings => rings::describe(level),
             GeneratorName::Tree => tree::describe(level),
             GeneratorName::Gears => gears::describe(level),
+            GeneratorName::Shells => shells::describe(level),
+            GeneratorName::Lattice => lattice::describe(level),
+            GeneratorName::Jacks => jacks::describe(level),
+            GeneratorName::Sombrero => sombrero::describe(level),
         }
     } else {
         format!("invalid level (valid: {}..={})", range.start(), range.end())

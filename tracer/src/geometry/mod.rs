@@ -20,3 +20,4 @@ pub use ray::Ray;
 pub use shape::{Shape, SurfaceNormal};
 pub use sphere::Sphere;
 pub use triangle::Triangle;
+pub(crate) use triangle::intersect_edges;

@@ -69,25 +69,21 @@ impl Triangle {
     /// rounding noise.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        let p = ray.dir.cross(self.e2);
-        let det = self.e1.dot(p);
-        if det.abs() <= self.parallel_eps {
-            return None;
-        }
-        let inv_det = det.recip();
-        let s = ray.origin - self.v0;
-        let u = s.dot(p) * inv_det;
-        // Range tests are written so that NaN fails them.
-        if !(0.0..=1.0).contains(&u) {
-            return None;
-        }
-        let q = s.cross(self.e1);
-        let v = ray.dir.dot(q) * inv_det;
-        if !(v >= 0.0 && u + v <= 1.0) {
-            return None;
-        }
-        let t = self.e2.dot(q) * inv_det;
-        (t > t_min && t < t_max).then_some(t)
+        intersect_edges(
+            self.v0,
+            self.e1,
+            self.e2,
+            self.parallel_eps,
+            ray,
+            t_min,
+            t_max,
+        )
+    }
+
+    /// The `|det|` below which [`Triangle::intersect`] counts a ray as
+    /// parallel: with `v0`, `e1` and `e2`, all [`intersect_edges`] needs.
+    pub(crate) fn parallel_eps(&self) -> f32 {
+        self.parallel_eps
     }
 
     /// The geometric normal `normalize(e1 x e2)` and, for patches, the
@@ -130,6 +126,40 @@ impl Triangle {
         let [a, b, c] = self.vertices();
         Aabb::new(a.min(b).min(c), a.max(b).max(c))
     }
+}
+
+/// Moller-Trumbore on a triangle's stored form (see [`Triangle::intersect`]):
+/// one body for [`Triangle`] and for the copies acceleration structures
+/// pack for their hot loops, so both give bit-identical distances.
+#[inline]
+pub(crate) fn intersect_edges(
+    v0: Vec3A,
+    e1: Vec3A,
+    e2: Vec3A,
+    parallel_eps: f32,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+) -> Option<f32> {
+    let p = ray.dir.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() <= parallel_eps {
+        return None;
+    }
+    let inv_det = det.recip();
+    let s = ray.origin - v0;
+    let u = s.dot(p) * inv_det;
+    // Range tests are written so that NaN fails them.
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = ray.dir.dot(q) * inv_det;
+    if !(v >= 0.0 && u + v <= 1.0) {
+        return None;
+    }
+    let t = e2.dot(q) * inv_det;
+    (t > t_min && t < t_max).then_some(t)
 }
 
 #[cfg(test)]
