@@ -8,7 +8,7 @@ use glam::{IVec3, Vec3A};
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::Hit;
+use super::{Hit, Nearest};
 
 /// Most cells a grid may have, whatever the multiplier: 16 Mi cells take
 /// 64 MiB of offsets.
@@ -155,18 +155,16 @@ impl Grid {
         t_max: f32,
         counters: &mut Counters,
     ) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        let mut limit = t_max;
+        let mut nearest = Nearest::new(t_max);
         self.walk(ray, t_min, t_max, counters, |id, counters| {
             counters.intersection_tests += 1;
-            if let Some(t) = shapes[id as usize].intersect(ray, t_min, limit) {
-                limit = t;
-                best = Some(Hit { t, shape: id });
+            if let Some(t) = shapes[id as usize].intersect(ray, t_min, nearest.limit) {
+                nearest.offer(t, id);
             }
             // Stop once the nearest hit lies before the cell's exit.
-            limit
+            nearest.t_max(t_max)
         });
-        best
+        nearest.best
     }
 
     /// Whether anything lies on the ray in `(t_min, t_max)`.

@@ -49,6 +49,61 @@ pub struct Hit {
     pub shape: u32,
 }
 
+/// The nearest hit so far, with ties in `t` going to the lowest shape
+/// index: the order brute force tests in, so every structure returns the
+/// same hit whatever order it meets the primitives in (overlapping or
+/// touching primitives do meet a ray at bit-identical distances).
+#[derive(Debug, Clone, Copy)]
+struct Nearest {
+    best: Option<Hit>,
+    /// The `t_max` to test the next primitive with: one step above the
+    /// best `t` once there is one, so a tie is still reported.
+    limit: f32,
+}
+
+impl Nearest {
+    #[inline]
+    fn new(t_max: f32) -> Self {
+        Self {
+            best: None,
+            limit: t_max,
+        }
+    }
+
+    /// Keeps `t` (from a test with `t_max = self.limit`) on `shape` if it is
+    /// nearer, or as near and of a lower index.
+    #[inline]
+    fn offer(&mut self, t: f32, shape: u32) {
+        if self
+            .best
+            .is_none_or(|b| t < b.t || (t == b.t && shape < b.shape))
+        {
+            self.best = Some(Hit { t, shape });
+            self.limit = next_up(t);
+        }
+    }
+
+    /// The best `t`, or the caller's `t_max` while nothing is hit: nodes and
+    /// cells entered beyond it can be skipped.
+    #[inline]
+    fn t_max(&self, t_max: f32) -> f32 {
+        self.best.map_or(t_max, |b| b.t)
+    }
+}
+
+/// The next float above a finite `t`.
+#[inline]
+fn next_up(t: f32) -> f32 {
+    let bits = t.to_bits();
+    if t == 0.0 {
+        f32::from_bits(1)
+    } else if t > 0.0 {
+        f32::from_bits(bits + 1)
+    } else {
+        f32::from_bits(bits - 1)
+    }
+}
+
 /// The structure over the bounded shapes, as a closed enum so traversal
 /// dispatches without a virtual call.
 #[derive(Debug, Clone)]

@@ -14,8 +14,8 @@ use rayon::prelude::*;
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::Hit;
 use super::packed::PackedShape;
+use super::{Hit, Nearest};
 use build::{BuildPrim, build_node};
 use node::{EMPTY, Node4, WideRay, flatten};
 
@@ -175,7 +175,7 @@ impl Bvh {
             return None;
         }
         let wide = WideRay::new(ray);
-        let mut best: Option<u32> = None;
+        let mut nearest = Nearest::new(t_max);
         let mut stack = NodeStack::<Deferred>::new();
         let mut visited = 0u64;
         let mut tests = 0u64;
@@ -188,10 +188,10 @@ impl Bvh {
             if next.count > 0 {
                 let (first, count) = (next.first as usize, next.count as usize);
                 tests += count as u64;
-                for (i, prim) in self.prims[first..first + count].iter().enumerate() {
-                    if let Some(t) = prim.intersect(shapes, ray, t_min, t_max) {
+                for prim in &self.prims[first..first + count] {
+                    if let Some(t) = prim.intersect(shapes, ray, t_min, nearest.limit) {
+                        nearest.offer(t, prim.id());
                         t_max = t;
-                        best = Some((first + i) as u32);
                     }
                 }
             } else {
@@ -236,10 +236,7 @@ impl Bvh {
                 let Some(deferred) = stack.pop() else {
                     counters.nodes_visited += visited;
                     counters.intersection_tests += tests;
-                    return best.map(|i| Hit {
-                        t: t_max,
-                        shape: self.prims[i as usize].id(),
-                    });
+                    return nearest.best;
                 };
                 if deferred.entry <= t_max {
                     next = deferred;
