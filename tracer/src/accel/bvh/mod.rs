@@ -139,11 +139,11 @@ impl Bvh {
                     stack.push((first, depth + 1, bounds));
                     continue;
                 }
-                for p in first..first + count {
-                    let prim = self
-                        .prims
-                        .get(p)
-                        .ok_or(format!("leaf {slot} of {index}: primitive {p} missing"))?;
+                let prims = self
+                    .prims
+                    .get(first..first + count)
+                    .ok_or(format!("leaf {slot} of {index}: primitives missing"))?;
+                for (p, prim) in (first..).zip(prims) {
                     seen[p] += 1;
                     if let Some(b) = prim.bounds() {
                         if !inside(&bounds, &b) {
