@@ -50,16 +50,14 @@ pub(super) fn generate(level: u32) -> Scene {
         0.0,
         1.0,
     ));
-    for k in 0..n {
-        for j in 0..n {
-            for i in 0..n {
-                b.add(Primitive::Sphere {
-                    centre: at(i, j, k),
-                    radius: BALL_RADIUS,
-                    inside_only: false,
-                });
-            }
-        }
+    // Lattice points (i, j, k), i fastest.
+    let points = || (0..n * n * n).map(|m| (m % n, m / n % n, m / (n * n)));
+    for (i, j, k) in points() {
+        b.add(Primitive::Sphere {
+            centre: at(i, j, k),
+            radius: BALL_RADIUS,
+            inside_only: false,
+        });
     }
     b.material(material(
         Vec3::new(0.8, 0.8, 0.85),
@@ -69,20 +67,16 @@ pub(super) fn generate(level: u32) -> Scene {
         0.0,
         1.0,
     ));
-    for k in 0..n {
-        for j in 0..n {
-            for i in 0..n {
-                let p = at(i, j, k);
-                for (di, dj, dk) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
-                    if i + di < n && j + dj < n && k + dk < n {
-                        b.add(Primitive::Cone {
-                            base: p,
-                            base_radius: ROD_RADIUS,
-                            apex: at(i + di, j + dj, k + dk),
-                            apex_radius: ROD_RADIUS,
-                        });
-                    }
-                }
+    for (i, j, k) in points() {
+        let p = at(i, j, k);
+        for (di, dj, dk) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
+            if i + di < n && j + dj < n && k + dk < n {
+                b.add(Primitive::Cone {
+                    base: p,
+                    base_radius: ROD_RADIUS,
+                    apex: at(i + di, j + dj, k + dk),
+                    apex_radius: ROD_RADIUS,
+                });
             }
         }
     }
