@@ -14,8 +14,10 @@ use crate::scene::{Primitive, Scene};
 /// 3 n^2 (n - 1) cylinders (level 11: 1728 balls, 4752 cylinders).
 pub(super) const LEVELS: RangeInclusive<u32> = 1..=24;
 
-const BALL_RADIUS: f32 = 0.1;
-const ROD_RADIUS: f32 = 0.03;
+/// Ball and rod radii as fractions of the spacing, so the rods show
+/// between the balls at every level.
+const BALL_RADIUS: f32 = 0.22;
+const ROD_RADIUS: f32 = 0.06;
 
 /// (balls, cylinders) at `level`.
 pub(super) fn counts(level: u32) -> (u64, u64) {
@@ -55,7 +57,7 @@ pub(super) fn generate(level: u32) -> Scene {
     for (i, j, k) in points() {
         b.add(Primitive::Sphere {
             centre: at(i, j, k),
-            radius: BALL_RADIUS,
+            radius: BALL_RADIUS * step,
             inside_only: false,
         });
     }
@@ -73,9 +75,9 @@ pub(super) fn generate(level: u32) -> Scene {
             if i + di < n && j + dj < n && k + dk < n {
                 b.add(Primitive::Cone {
                     base: p,
-                    base_radius: ROD_RADIUS,
+                    base_radius: ROD_RADIUS * step,
                     apex: at(i + di, j + dj, k + dk),
-                    apex_radius: ROD_RADIUS,
+                    apex_radius: ROD_RADIUS * step,
                 });
             }
         }
