@@ -242,7 +242,7 @@ fn the_matrix_has_every_row_structures_agree_and_each_feature_shows() {
             &image(&format!("bvh{without}")),
         );
         assert!(
-            changed >= 16,
+            changed >= 8,
             "bvh{with} differs from bvh{without} in only {changed} pixels"
         );
     }

@@ -90,17 +90,17 @@ fn indices(shapes: &[Shape]) -> Vec<SceneIndex> {
     ]
 }
 
-/// The bounds of the bounded shapes (empty when there are none).
-fn scene_bounds(shapes: &[Shape]) -> Aabb {
-    shapes
-        .iter()
-        .filter_map(Shape::bounds)
-        .fold(Aabb::empty(), |acc, b| acc.union(&b))
+/// The boxes of the bounded shapes, and the scene's box around them
+/// (empty when there are none).
+fn boxes_and_bounds(shapes: &[Shape]) -> (Vec<Aabb>, Aabb) {
+    let boxes: Vec<Aabb> = shapes.iter().filter_map(Shape::bounds).collect();
+    let bounds = boxes.iter().fold(Aabb::empty(), |acc, b| acc.union(b));
+    (boxes, bounds)
 }
 
-/// A ray and its `(t_min, t_max)` interval, as the renderer could ask.
-fn random_query(r: &mut Rand, shapes: &[Shape], bounds: &Aabb) -> Option<(Ray, f32, f32)> {
-    let bounded: Vec<Aabb> = shapes.iter().filter_map(Shape::bounds).collect();
+/// A ray and its `(t_min, t_max)` interval, as the renderer could ask, in
+/// a scene of primitives with boxes `bounded` inside `bounds`.
+fn random_query(r: &mut Rand, bounded: &[Aabb], bounds: &Aabb) -> Option<(Ray, f32, f32)> {
     let origin = match (r.below(4), bounded.is_empty()) {
         // Inside a primitive: the centre of its box lies inside every
         // sphere, box, cylinder and cone generated above.
@@ -139,10 +139,10 @@ fn random_query(r: &mut Rand, shapes: &[Shape], bounds: &Aabb) -> Option<(Ray, f
 
 fn check_rays(shapes: &[Shape], seed: u64, rays: usize) {
     let indices = indices(shapes);
-    let bounds = scene_bounds(shapes);
+    let (boxes, bounds) = boxes_and_bounds(shapes);
     let mut r = Rand(seed ^ 0x5555);
     for _ in 0..rays {
-        let Some((ray, t_min, t_max)) = random_query(&mut r, shapes, &bounds) else {
+        let Some((ray, t_min, t_max)) = random_query(&mut r, &boxes, &bounds) else {
             continue;
         };
         let mut counters = Counters::default();
@@ -188,7 +188,7 @@ fn structures_handle_an_empty_scene_and_planes_only() {
 #[test]
 fn the_grid_walk_starts_at_t_min() {
     let shapes = random_shapes(21, 600, 0);
-    let bounds = scene_bounds(&shapes);
+    let (_, bounds) = boxes_and_bounds(&shapes);
     let grid = SceneIndex::build(&shapes, AccelKind::Grid, 2.0);
     let mut r = Rand(21);
     let mut checked = 0;
