@@ -514,4 +514,36 @@ fn the_benchmark_matrix_fills_every_row_with_consistent_images() {
             twin.case.label
         );
     }
+    // Each sampling shows the scene (not a blank or a flat fill) and
+    // differs from the plain one: soft shadows, anti-aliasing or the lens
+    // doing nothing would fail here.
+    let plain = &rows
+        .iter()
+        .find(|r| r.case.file_stem() == "bvh")
+        .unwrap()
+        .image;
+    for row in rows
+        .iter()
+        .filter(|r| r.case.settings.accel == AccelKind::Bvh)
+    {
+        let colours: std::collections::HashSet<_> = row.image.pixels().map(|p| p.0).collect();
+        assert!(
+            colours.len() >= 32,
+            "{}: {} colours",
+            row.case.label,
+            colours.len()
+        );
+        let changed = row
+            .image
+            .pixels()
+            .zip(plain.pixels())
+            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 8))
+            .count();
+        let plain_row = row.case.file_stem() == "bvh";
+        assert!(
+            plain_row || changed >= 8,
+            "{} differs from the plain image in only {changed} pixels",
+            row.case.label
+        );
+    }
 }
