@@ -101,11 +101,11 @@ pub fn run(args: &SweepArgs) -> Result<()> {
             reference.samples.pow(2)
         );
     }
-    for line in &summary {
-        match format {
-            Format::Text | Format::Markdown => println!("\n{line}"),
-            Format::Csv | Format::Json => eprintln!("{line}"),
-        }
+    let summary = summary.join("\n");
+    match format {
+        Format::Text | Format::Markdown if !summary.is_empty() => println!("\n{summary}"),
+        Format::Text | Format::Markdown => {}
+        Format::Csv | Format::Json => eprintln!("{summary}"),
     }
     if let Some(path) = &args.plot
         && !points.is_empty()

@@ -36,13 +36,15 @@ pub enum Best {
 
 /// The best point of each structure (indices into `points`): the fastest
 /// one, or for `spp` the knee of error against time. The level study has
-/// no best point (a bigger scene is not a choice): see [`slope`].
+/// no best point (a bigger scene is not a choice): see [`slope`]; in the
+/// grid-m study only the grid has one (m changes nothing else).
 pub fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
     if param == Param::Level {
         return Vec::new();
     }
     structures(points)
         .into_iter()
+        .filter(|&accel| param != Param::GridM || accel == AccelKind::Grid)
         .filter_map(|accel| {
             let mine = || {
                 points

@@ -62,6 +62,10 @@ struct Panel {
     y_label: String,
     log_x: bool,
     log_y: bool,
+    /// Label only whole numbers on x (N, depth, width, ...).
+    integer_x: bool,
+    /// Where the legend covers the least of the lines.
+    legend: SeriesLabelPosition,
     curves: Vec<Curve>,
 }
 
@@ -110,6 +114,13 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         y_label: "frame time (ms, median)".into(),
         log_x,
         log_y,
+        integer_x: param.is_integer() && param != Param::Level,
+        // Frame time rises with most parameters; grid-m's dips then rises.
+        legend: if param == Param::GridM {
+            SeriesLabelPosition::LowerRight
+        } else {
+            SeriesLabelPosition::UpperLeft
+        },
         curves: accels
             .iter()
             .map(|&accel| {
@@ -142,6 +153,8 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
             y_label: "MSE against the reference".into(),
             log_x: false,
             log_y: errors.iter().all(|&e| e > 0.0),
+            integer_x: false,
+            legend: SeriesLabelPosition::UpperRight,
             curves: accels
                 .iter()
                 .map(|&accel| {
@@ -192,7 +205,7 @@ fn range(values: impl Iterator<Item = f64>, log: bool, from_zero: bool) -> Range
         return if log { 0.1..10.0 } else { 0.0..1.0 };
     }
     if log {
-        return low / 1.5..high * 1.5;
+        return low / 1.25..high * 1.25;
     }
     let pad = ((high - low) * 0.05).max(high.abs() * 0.05).max(1e-6);
     let low = if from_zero && low >= 0.0 {
@@ -249,14 +262,20 @@ where
         .configure_mesh()
         .x_desc(&panel.x_label)
         .y_desc(&panel.y_label)
-        .x_label_formatter(&tick)
+        .x_label_formatter(&|v| {
+            if panel.integer_x && v.fract() != 0.0 {
+                String::new()
+            } else {
+                tick(v)
+            }
+        })
         .y_label_formatter(&tick)
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 16))
         .light_line_style(WHITE.mix(0.0))
         .draw()
         .map_err(drawing)?;
-    for curve in &panel.curves {
+    for (k, curve) in panel.curves.iter().enumerate() {
         let colour = curve.colour;
         chart
             .draw_series(LineSeries::new(
@@ -277,17 +296,21 @@ where
             )
             .map_err(drawing)?;
         if let Some((at, label)) = &curve.best {
-            chart
-                .draw_series([
-                    Circle::new(*at, 9, colour.stroke_width(2)).into_dyn(),
-                    Text::new(label.clone(), *at, (FONT, 14).into_font().color(&BLACK)).into_dyn(),
-                ])
-                .map_err(drawing)?;
+            // A ring around the point, its label up and to the right (one
+            // line per structure, so labels of one value do not overlap).
+            let marker = EmptyElement::at(*at)
+                + Circle::new((0, 0), 9, colour.stroke_width(2))
+                + Text::new(
+                    format!("{}: {label}", curve.name),
+                    (10, -24 - 18 * k as i32),
+                    (FONT, 15).into_font().color(&colour),
+                );
+            chart.draw_series([marker]).map_err(drawing)?;
         }
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(panel.legend.clone())
         .label_font((FONT, 15))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
