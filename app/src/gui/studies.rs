@@ -300,7 +300,7 @@ impl StudiesWindow {
         let mut applied = None;
         egui::Window::new("Studies")
             .open(&mut open)
-            .default_size([680.0, 640.0])
+            .default_size([720.0, 760.0])
             .show(ctx, |ui| applied = self.contents(ui, base, start));
         self.open = open;
         applied
@@ -475,7 +475,7 @@ impl StudiesWindow {
         };
         let best = analysis::best(param, points);
         let response = Plot::new("study_chart")
-            .height(240.0)
+            .height(220.0)
             .x_axis_label(x_label)
             .y_axis_label(y_label)
             .x_axis_formatter(label(log_x))
@@ -484,7 +484,7 @@ impl StudiesWindow {
             .allow_zoom(false)
             .allow_scroll(false)
             .allow_boxed_zoom(false)
-            .legend(egui_plot::Legend::default())
+            .legend(egui_plot::Legend::default().position(egui_plot::Corner::LeftTop))
             .show(ui, |plot_ui| {
                 for accel in analysis::structures(points) {
                     let [r, g, b] = plot::colour(accel);
@@ -501,7 +501,8 @@ impl StudiesWindow {
                 for &(i, _) in &best {
                     let [r, g, b] = plot::colour(points[i].accel());
                     plot_ui.points(
-                        Points::new("best", vec![at(&points[i])])
+                        // Unnamed: ringed in its line's colour, not in the legend.
+                        Points::new("", vec![at(&points[i])])
                             .shape(MarkerShape::Circle)
                             .filled(false)
                             .radius(9.0)
@@ -545,10 +546,10 @@ impl StudiesWindow {
                 .striped(true)
                 .show(ui, |ui| {
                     ui.label("");
+                    ui.label("");
                     for header in &headers {
                         ui.strong(header);
                     }
-                    ui.label("");
                     ui.end_row();
                     for (i, (row, cells)) in self.rows.iter().zip(&cells).enumerate() {
                         let [w, h] = row.thumbnail.size();
@@ -557,15 +558,15 @@ impl StudiesWindow {
                             row.thumbnail.id(),
                             egui::vec2(w as f32 * fit, h as f32 * fit),
                         ));
-                        for cell in cells {
-                            ui.monospace(cell);
-                        }
                         if ui
                             .button("Apply")
                             .on_hover_text("Show this point's settings in the main view")
                             .clicked()
                         {
                             applied = Some(i);
+                        }
+                        for cell in cells {
+                            ui.monospace(cell);
                         }
                         ui.end_row();
                     }

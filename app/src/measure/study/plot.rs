@@ -10,6 +10,7 @@ use std::sync::Once;
 use anyhow::{Result, anyhow};
 use image::RgbImage;
 use plotters::coord::Shift;
+use plotters::coord::combinators::BindKeyPoints;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use tracer::accel::AccelKind;
@@ -117,7 +118,7 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         integer_x: param.is_integer() && param != Param::Level,
         // Frame time rises with most parameters; grid-m's dips then rises.
         legend: if param == Param::GridM {
-            SeriesLabelPosition::LowerRight
+            SeriesLabelPosition::UpperMiddle
         } else {
             SeriesLabelPosition::UpperLeft
         },
@@ -233,7 +234,14 @@ fn draw_panel(panel: &Panel, area: &DrawingArea<BitMapBackend, Shift>) -> Result
     let y = range(all().map(|p| p.1), panel.log_y, true);
     match (panel.log_x, panel.log_y) {
         (true, true) => draw_axes(panel, area, x.log_scale(), y.log_scale()),
-        (true, false) => draw_axes(panel, area, x.log_scale(), y),
+        // A doubling sweep: ticks at the values swept, which the default
+        // ticks of a log axis miss below 1.
+        (true, false) => {
+            let mut ticks: Vec<f64> = all().map(|p| p.0).collect();
+            ticks.sort_by(f64::total_cmp);
+            ticks.dedup();
+            draw_axes(panel, area, x.log_scale().with_key_points(ticks), y)
+        }
         (false, true) => draw_axes(panel, area, x, y.log_scale()),
         (false, false) => draw_axes(panel, area, x, y),
     }
