@@ -2,6 +2,7 @@
 //! renderer. `engine` is the only part that talks to the tracer.
 
 mod app;
+mod background;
 mod bench_window;
 mod commands;
 mod compare;

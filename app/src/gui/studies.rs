@@ -7,13 +7,12 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::atomic::AtomicBool;
+use std::sync::mpsc::Sender;
 
 use anyhow::Context;
-use egui::{Color32, ColorImage, TextureHandle, TextureOptions, Ui};
+use egui::{Color32, TextureHandle, Ui};
 use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points};
-use image::imageops::FilterType;
 use tracer::accel::AccelKind;
 use tracer::generate::{self, GenerateOptions, GeneratorName};
 use tracer::render::{Encoding, RenderSettings};
@@ -26,6 +25,7 @@ use crate::measure::study::{
 };
 use crate::output::save_png;
 
+use super::background::{self, Background};
 use super::state::Controls;
 
 /// Side of the thumbnails, in pixels.
@@ -130,10 +130,9 @@ pub struct StudiesWindow {
     subject: String,
     rows: Vec<Row>,
     progress: Option<Update>,
-    stop: Option<Arc<AtomicBool>>,
-    updates: Option<Receiver<Update>>,
+    task: Option<Background<Update>>,
     message: Option<String>,
-    exported: Option<Receiver<Result<PathBuf, String>>>,
+    exported: background::Export,
     /// Show error against time instead of time against the value.
     error_view: bool,
 }
@@ -152,10 +151,9 @@ impl Default for StudiesWindow {
             subject: String::new(),
             rows: Vec::new(),
             progress: None,
-            stop: None,
-            updates: None,
+            task: None,
             message: None,
-            exported: None,
+            exported: background::Export::default(),
             error_view: false,
         }
     }
@@ -163,7 +161,7 @@ impl Default for StudiesWindow {
 
 impl StudiesWindow {
     pub fn is_running(&self) -> bool {
-        self.updates.is_some()
+        self.task.is_some()
     }
 
     /// The points measured so far, in measuring order.
@@ -226,18 +224,14 @@ impl StudiesWindow {
         }
         self.rows.clear();
         self.subject = name;
-        let stop = Arc::new(AtomicBool::new(false));
-        let (tx, rx) = channel();
-        let flag = stop.clone();
         let thread_study = study.clone();
-        let spawned = std::thread::Builder::new()
-            .name("study".into())
-            .spawn(move || run(&thread_study, &subject, &flag, &tx, &wake));
+        let spawned = Background::spawn("study", move |cancel, tx| {
+            run(&thread_study, &subject, cancel, tx, &wake)
+        });
         match spawned {
-            Ok(_) => {
+            Ok(task) => {
                 self.study = Some(study);
-                self.stop = Some(stop);
-                self.updates = Some(rx);
+                self.task = Some(task);
             }
             Err(e) => self.message = Some(format!("cannot start the study: {e}")),
         }
@@ -245,17 +239,22 @@ impl StudiesWindow {
 
     /// Cancels a running study; the measured points stay.
     pub fn stop(&mut self) {
-        if let Some(stop) = &self.stop {
-            stop.store(true, Ordering::Relaxed);
+        if let Some(task) = &self.task {
+            task.cancel();
         }
     }
 
     /// Takes the thread's updates; call once per frame.
     pub fn receive(&mut self, ctx: &egui::Context) {
-        while let Some(update) = self.updates.as_ref().and_then(|rx| rx.try_recv().ok()) {
+        while let Some(update) = self.task.as_ref().and_then(Background::try_recv) {
             match update {
                 Update::Measured(point) => {
-                    let thumbnail = thumbnail(ctx, &point, self.rows.len());
+                    let thumbnail = background::thumbnail(
+                        ctx,
+                        &point.measurement.image,
+                        THUMBNAIL,
+                        format!("study point {}", self.rows.len()),
+                    );
                     self.rows.push(Row {
                         point: *point,
                         thumbnail,
@@ -270,21 +269,14 @@ impl StudiesWindow {
                         }
                         Err(e) => e,
                     });
-                    self.updates = None;
-                    self.stop = None;
+                    self.task = None;
                     self.progress = None;
                 }
                 progress => self.progress = Some(progress),
             }
         }
-        if let Some(rx) = &self.exported
-            && let Ok(result) = rx.try_recv()
-        {
-            self.message = Some(match result {
-                Ok(dir) => format!("exported to {}", dir.display()),
-                Err(e) => e,
-            });
-            self.exported = None;
+        if let Some(message) = self.exported.finished() {
+            self.message = Some(message);
         }
     }
 
@@ -593,26 +585,9 @@ impl StudiesWindow {
         let param = study.param;
         let points: Vec<Point> = self.points().cloned().collect();
         let subject = self.subject.clone();
-        let (tx, rx) = channel();
-        let spawned = std::thread::Builder::new()
-            .name("study-export".into())
-            .spawn(move || {
-                let result = match rfd::FileDialog::new()
-                    .set_title("Export the study to")
-                    .pick_folder()
-                {
-                    Some(dir) => {
-                        write_export(&dir, param, &points, &subject).map_err(|e| format!("{e:#}"))
-                    }
-                    None => {
-                        Err("not exported (cancelled, or no file dialog on this desktop)".into())
-                    }
-                };
-                let _ = tx.send(result);
-            });
-        if spawned.is_ok() {
-            self.exported = Some(rx);
-        }
+        self.exported.start("Export the study to", move |dir| {
+            write_export(dir, param, &points, &subject)
+        });
     }
 }
 
@@ -684,22 +659,4 @@ fn run(study: &Study, subject: &Subject, stop: &AtomicBool, tx: &Sender<Update>,
         .map_err(|e| format!("{e:#}"));
     let _ = tx.send(Update::Finished(result));
     wake();
-}
-
-/// The point's image shrunk to at most [`THUMBNAIL`] pixels a side.
-fn thumbnail(ctx: &egui::Context, point: &Point, index: usize) -> TextureHandle {
-    let image = &point.measurement.image;
-    let (w, h) = image.dimensions();
-    let scale = (THUMBNAIL as f32 / w.max(h).max(1) as f32).min(1.0);
-    let size = |n: u32| ((n as f32 * scale).round() as u32).max(1);
-    let small = image::imageops::resize(image, size(w), size(h), FilterType::Triangle);
-    let pixels = ColorImage::from_rgb(
-        [small.width() as usize, small.height() as usize],
-        small.as_raw(),
-    );
-    ctx.load_texture(
-        format!("study point {index}"),
-        pixels,
-        TextureOptions::LINEAR,
-    )
 }
