@@ -1,6 +1,6 @@
 //! The Studies window driven as a user would, with `egui_kittest`: open it
-//! by its key, type values, run, watch the progress, cancel, run again and
-//! apply a point to the main view.
+//! by its key, type values, run, watch the progress, cancel, run again,
+//! hover a point of the chart and apply points to the main view.
 
 use std::thread::sleep;
 use std::time::{Duration, Instant};
@@ -132,19 +132,51 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
     );
     harness.run_steps(2);
 
-    // Applying the last row puts its settings in the main view.
-    let applies = harness
-        .get_all_by_role_and_label(Role::Button, "Apply")
-        .count();
-    assert_eq!(applies, 3);
+    // Hovering a point of the chart shows its numbers; clicking it shows
+    // its settings in the main view. The points sit above the table's
+    // header, where their times put them: look for one.
+    let header = harness.get_by_label("accel").rect();
+    let hint = "click to show it in the main view";
+    let mut on_point = None;
+    'scan: for up in (40..=260).step_by(10) {
+        for x in (0..=800).step_by(10) {
+            let pos = egui::pos2(x as f32, header.top() - up as f32);
+            harness.hover_at(pos);
+            harness.step();
+            if harness.query_by_label(hint).is_some() {
+                on_point = Some(pos);
+                break 'scan;
+            }
+        }
+    }
+    let pos = on_point.expect("a point of the chart shows its numbers when hovered");
+    for pressed in [true, false] {
+        harness.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        harness.step();
+    }
+    step_until(&mut harness, "the clicked point's settings", |app| {
+        app.engine().settings().is_some_and(|s| {
+            s.accel == AccelKind::Grid && [1.0, 3.0, 4.0].contains(&s.grid_multiplier)
+        })
+    });
+    let clicked = harness.state().engine().settings().unwrap().grid_multiplier;
+
+    // Apply on a row does the same: take a row of another value.
+    let row = if clicked == 1.0 { 2 } else { 0 };
+    let wanted = [1.0, 3.0, 4.0][row];
     harness
         .get_all_by_role_and_label(Role::Button, "Apply")
-        .last()
+        .nth(row)
         .unwrap()
         .click();
-    step_until(&mut harness, "the point's settings", |app| {
+    step_until(&mut harness, "the row's settings", |app| {
         app.engine()
             .settings()
-            .is_some_and(|s| s.accel == AccelKind::Grid && s.grid_multiplier == 4.0)
+            .is_some_and(|s| s.grid_multiplier == wanted)
     });
 }

@@ -520,10 +520,15 @@ impl StudiesWindow {
         }
         let clicked = response.response.clicked();
         let row = &self.rows[nearest];
-        response.response.on_hover_ui_at_pointer(|ui| {
-            point_details(ui, param, points, nearest, &row.thumbnail);
-            ui.weak("click to show it in the main view");
-        });
+        // Shown at once while the pointer is on a point (not after the
+        // usual tooltip delay): the point was picked on purpose.
+        egui::Tooltip::for_widget(&response.response)
+            .at_pointer()
+            .gap(12.0)
+            .show(|ui| {
+                point_details(ui, param, points, nearest, &row.thumbnail);
+                ui.weak("click to show it in the main view");
+            });
         clicked.then_some(nearest)
     }
 
