@@ -665,3 +665,85 @@ fn run(study: &Study, subject: &Subject, stop: &AtomicBool, tx: &Sender<Update>,
     let _ = tx.send(Update::Finished(result));
     wake();
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_sets_its_structure_and_value_in_the_controls() {
+        let mut controls = Controls::default();
+        let point = |param, value| Applied {
+            param,
+            value,
+            accel: AccelKind::Grid,
+            generator: None,
+        };
+        point(Param::Spp, 3.0).apply_to(&mut controls, 200);
+        assert!(controls.antialiasing && controls.samples == 3);
+        assert_eq!(AccelKind::from(controls.accel), AccelKind::Grid);
+        point(Param::Resolution, 50.0).apply_to(&mut controls, 200);
+        assert_eq!(controls.resolution_scale, 0.25);
+        point(Param::Aperture, 0.0).apply_to(&mut controls, 200);
+        assert!(!controls.depth_of_field);
+        assert_eq!(point(Param::GridM, 2.0).scene_file().unwrap(), None);
+    }
+
+    #[test]
+    fn a_level_point_opens_its_generated_scene_with_its_structure() {
+        let point = Applied {
+            param: Param::Level,
+            value: 1.0,
+            accel: AccelKind::None,
+            generator: Some(GeneratorName::Balls),
+        };
+        let path = point.scene_file().unwrap().unwrap();
+        let scene =
+            tracer::scene::parse_scene_file(&path, &tracer::scene::Limits::default()).unwrap();
+        assert_eq!(scene.accel, Some(0));
+        assert_eq!(World::build(&scene).counts.primitives, 12);
+    }
+
+    #[test]
+    fn the_export_writes_the_tables_and_the_chart() {
+        let text = "v\nfrom 0 -5 1\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0.01\n\
+                    resolution 8 8\nl 2 -2 4\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n";
+        let scene =
+            tracer::scene::parse_scene(text, None, &tracer::scene::Limits::default()).unwrap();
+        let subject = Subject::Scene {
+            world: Arc::new(World::build(&scene)),
+            base: RenderSettings::from_scene(&scene),
+        };
+        let study = Study {
+            param: Param::Depth,
+            values: vec![1.0, 2.0],
+            structures: vec![AccelKind::Bvh],
+            options: RunOptions {
+                runs: 1,
+                threads: Some(1),
+            },
+            encoding: Encoding::Srgb,
+            reference_samples: None,
+        };
+        let never = AtomicBool::new(false);
+        let stop = Stop {
+            now: &never,
+            after_frame: &never,
+        };
+        let outcome = study::run(&study, &subject, stop, &mut |_| {}).unwrap();
+        let dir =
+            std::env::temp_dir().join(format!("workbench-study-export-{}", std::process::id()));
+        let written = write_export(&dir, Param::Depth, &outcome.points, "tiny.p3f").unwrap();
+        assert_eq!(written, dir.join("study-depth-tiny"));
+        let csv = std::fs::read_to_string(written.join("table.csv")).unwrap();
+        assert_eq!(csv.lines().count(), 3);
+        assert!(
+            std::fs::read_to_string(written.join("table.md"))
+                .unwrap()
+                .contains("| bvh | 1 |")
+        );
+        let chart = image::open(written.join("chart.png")).unwrap();
+        assert_eq!((chart.width(), chart.height()), plot::PANEL);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
