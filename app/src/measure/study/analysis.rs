@@ -34,17 +34,14 @@ pub enum Best {
     Knee,
 }
 
-/// The best point of each structure (indices into `points`): the fastest
-/// one, or for `spp` the knee of error against time. The level study has
-/// no best point (a bigger scene is not a choice): see [`slope`]; in the
-/// grid-m study only the grid has one (m changes nothing else).
+/// The best point of each structure (indices into `points`): for grid-m
+/// the grid's fastest m (m changes nothing else), for `spp` the knee of
+/// error against time. Other parameters have none: their fastest value is
+/// the cheapest image (no bounce, a pinhole), not a choice to recommend;
+/// the level study has its slopes instead (see [`slope`]).
 pub fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
-    if param == Param::Level {
-        return Vec::new();
-    }
     structures(points)
         .into_iter()
-        .filter(|&accel| param != Param::GridM || accel == AccelKind::Grid)
         .filter_map(|accel| {
             let mine = || {
                 points
@@ -52,15 +49,17 @@ pub fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
                     .enumerate()
                     .filter(|(_, p)| p.accel() == accel)
             };
-            if param == Param::Spp {
-                let curve: Vec<(usize, f64, f64)> = mine()
-                    .filter_map(|(i, p)| Some((i, p.frame_ms(), p.error?.mse)))
-                    .collect();
-                knee(&curve).map(|i| (i, Best::Knee))
-            } else {
-                mine()
+            match param {
+                Param::GridM if accel == AccelKind::Grid => mine()
                     .min_by(|(_, a), (_, b)| a.frame_ms().total_cmp(&b.frame_ms()))
-                    .map(|(i, _)| (i, Best::Fastest))
+                    .map(|(i, _)| (i, Best::Fastest)),
+                Param::Spp => {
+                    let curve: Vec<(usize, f64, f64)> = mine()
+                        .filter_map(|(i, p)| Some((i, p.frame_ms(), p.error?.mse)))
+                        .collect();
+                    knee(&curve).map(|i| (i, Best::Knee))
+                }
+                _ => None,
             }
         })
         .collect()

@@ -152,7 +152,8 @@ impl Param {
             Param::Spp => "1..6".into(),
             Param::Depth => "0..6".into(),
             Param::LightSize => [0.25, 0.5, 1.0, 2.0, 4.0]
-                .map(|f| values::format(f64::from(base.light_size) * f))
+                .map(|f| format!("{:.3}", f64::from(base.light_size) * f))
+                .map(|v| values::format(v.parse().unwrap_or_default()))
                 .join(","),
             Param::Aperture => "0..16:4".into(),
             Param::Resolution => "64..512:x2".into(),
