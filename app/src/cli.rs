@@ -7,7 +7,9 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 
+use crate::measure::bench_report::Format;
 use crate::measure::compare::Heatmap;
+use crate::measure::study::Param;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -67,6 +69,80 @@ pub enum Command {
     /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears)
     /// as P3F, or the sky cube (`sky`) as six PNG faces.
     Gen(GenArgs),
+    /// Sweep one parameter (grid-m, spp, depth, light-size, aperture,
+    /// resolution, or the level of a generated scene) and time each point
+    /// for each structure: a table, and a PNG chart with --plot.
+    Sweep(SweepArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+VALUES is a comma-separated list of numbers and ranges; ranges include
+their end when a step lands on it, and the values are sorted:
+  0.25,0.5,1      those three
+  1..5            1, 2, 3, 4, 5
+  1..2:0.25       1, 1.25, 1.5, 1.75, 2 (add 0.25 each step)
+  0.5..8:x2       0.5, 1, 2, 4, 8 (double each step)
+
+Each point is measured as `bench` measures a row: --runs frames, the
+median, min..max, build time apart from frame time, rays/s, and tests and
+steps (grid cells or BVH nodes) per ray. A built structure is reused by
+every point that traces against it. Frames are one sample per pixel with
+hard shadows unless the options ask for more; the swept parameter turns its
+own feature on (spp: anti-aliasing, light-size: soft shadows, aperture:
+depth of field).
+
+  workbench sweep scene.p3f --param grid-m --values 0.25..8:x2 --plot m.png
+  workbench sweep --param level --generator balls --levels 1..4 --plot scale.png
+  workbench sweep scene.p3f --param spp --values 1..6 --structures bvh
+
+The level study renders a built-in generator's scene at each level (x axis:
+primitives, log-log chart, with the slope of each structure). The spp study
+also gives each image's MSE, PSNR and FLIP against a reference rendered
+with twice the largest N (--reference-spp), and marks the knee of error vs
+time. Ctrl-C stops after the frame under way and prints what was measured
+(a second Ctrl-C stops at once); the exit status is then non-zero.")]
+pub struct SweepArgs {
+    /// The scene file (.p3f or .nff); none for --param level.
+    pub scene: Option<PathBuf>,
+    /// What to sweep: grid-m, spp, depth, light-size, aperture, resolution
+    /// or level.
+    #[arg(long, value_parser = study_param)]
+    pub param: Param,
+    /// The values (see below; default: a range suited to the parameter).
+    /// --levels is the same option.
+    #[arg(long, alias = "levels", value_name = "VALUES")]
+    pub values: Option<String>,
+    /// For --param level: the generator (balls, mount, tetra, ...).
+    #[arg(long)]
+    pub generator: Option<String>,
+    /// Structures to measure (default: grid for grid-m, all three for
+    /// level, else the scene's).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub structures: Option<Vec<AccelArg>>,
+    /// Frames per point; the median and min..max are reported.
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    /// How to print the table.
+    #[arg(long, value_enum, default_value_t = TableFormat::Text)]
+    pub format: TableFormat,
+    /// Write the chart to this PNG file.
+    #[arg(long, value_name = "PNG")]
+    pub plot: Option<PathBuf>,
+    /// For --param spp: N of the reference image (default: twice the
+    /// largest N).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub reference_spp: Option<u32>,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = thread_count)]
+    pub threads: Option<usize>,
+}
+
+/// `--param NAME`, one of the study parameters.
+fn study_param(text: &str) -> Result<Param, String> {
+    text.parse()
 }
 
 #[derive(Args, Debug)]
@@ -139,6 +215,17 @@ pub enum TableFormat {
     Csv,
     /// Every measurement as JSON.
     Json,
+}
+
+impl From<TableFormat> for Format {
+    fn from(f: TableFormat) -> Self {
+        match f {
+            TableFormat::Text => Format::Text,
+            TableFormat::Md => Format::Markdown,
+            TableFormat::Csv => Format::Csv,
+            TableFormat::Json => Format::Json,
+        }
+    }
 }
 
 #[derive(Args, Debug)]

@@ -21,6 +21,7 @@ pub fn run() -> std::process::ExitCode {
         Some(cli::Command::Bench(args)) => commands::bench::run(&args),
         Some(cli::Command::Compare(args)) => commands::compare::run(&args),
         Some(cli::Command::Gen(args)) => commands::generate::run(&args),
+        Some(cli::Command::Sweep(args)) => commands::sweep::run(&args),
         None => cli
             .screenshot_plan()
             .and_then(|plan| gui::run(cli.scene, plan)),

@@ -22,6 +22,7 @@ use super::frame_meter::{FrameMeter, ProgressPace};
 use super::live_image::LiveImage;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::{Controls, Persisted};
+use super::studies::{Applied, StudiesWindow};
 use super::viewport::{self, Gesture, ViewState, Zoom};
 use super::{controls, scene_picker, stats_panel};
 
@@ -50,6 +51,7 @@ pub struct WorkbenchApp {
     /// The B side while comparing.
     compare: Option<Compare>,
     bench: BenchWindow,
+    studies: StudiesWindow,
     /// For wake-ups from render threads of jobs started later.
     repaint_ctx: egui::Context,
     dragging_camera: bool,
@@ -98,6 +100,7 @@ impl WorkbenchApp {
             image: LiveImage::new("render"),
             compare: None,
             bench: BenchWindow::default(),
+            studies: StudiesWindow::default(),
             repaint_ctx: ctx.clone(),
             dragging_camera: false,
             moving_until: None,
@@ -160,6 +163,11 @@ impl WorkbenchApp {
     /// The benchmark matrix window.
     pub fn benchmark(&self) -> &BenchWindow {
         &self.bench
+    }
+
+    /// The Studies window.
+    pub fn studies(&self) -> &StudiesWindow {
+        &self.studies
     }
 
     /// The error shown in the window, if any.
@@ -304,6 +312,7 @@ impl WorkbenchApp {
             Command::ToggleHelp => self.help_open ^= true,
             Command::ToggleCompare => self.toggle_compare(),
             Command::ToggleBenchmark => self.bench.open ^= true,
+            Command::ToggleStudies => self.studies.open ^= true,
             Command::SwapSides => self.swap_sides(),
             Command::CopyAToB => match &mut self.compare {
                 Some(compare) => compare.controls = self.state.controls.clone(),
@@ -342,6 +351,49 @@ impl WorkbenchApp {
             let wake = ctx.clone();
             self.bench
                 .start(scene.world.clone(), &base, move || wake.request_repaint());
+        }
+    }
+
+    /// The Studies window, started on the current scene, camera and size;
+    /// a point the user picks is shown in the main view.
+    fn studies_window(&mut self, ctx: &egui::Context) {
+        self.studies.receive(ctx);
+        if !self.studies.open {
+            return;
+        }
+        let base = self.engine.scene().map_or_else(Default::default, |s| {
+            self.state
+                .controls
+                .render_settings(&s.scene, self.camera, false)
+        });
+        let mut start = false;
+        let applied = self.studies.show(ctx, &base, &mut start);
+        if start && let Some(scene) = self.engine.scene() {
+            let wake = ctx.clone();
+            let name = scene.source.label();
+            self.studies.start(
+                scene.world.clone(),
+                &base,
+                &self.state.controls,
+                &name,
+                move || wake.request_repaint(),
+            );
+        }
+        if let Some(applied) = applied {
+            self.apply_study_point(&applied);
+        }
+    }
+
+    /// A study's point in the main view: its settings, or for the level
+    /// study its generated scene.
+    fn apply_study_point(&mut self, applied: &Applied) {
+        match applied.scene_file() {
+            Ok(Some(path)) => self.open(SceneSource::File(path)),
+            Ok(None) => {
+                let width = self.engine.scene().map_or(1, |s| s.scene.view.width);
+                applied.apply_to(&mut self.state.controls, width);
+            }
+            Err(e) => self.error = Some(format!("{e:#}")),
         }
     }
 
@@ -942,6 +994,7 @@ impl eframe::App for WorkbenchApp {
         }
         self.help_window(&ctx);
         self.benchmark_window(&ctx);
+        self.studies_window(&ctx);
 
         for command in commands {
             self.run_command(command);

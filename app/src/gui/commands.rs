@@ -25,6 +25,7 @@ pub enum Command {
     SwapSides,
     CopyAToB,
     ToggleBenchmark,
+    ToggleStudies,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -33,7 +34,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 19] = [
+    pub const ALL: [Command; 20] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -52,6 +53,7 @@ impl Command {
         Command::SwapSides,
         Command::CopyAToB,
         Command::ToggleBenchmark,
+        Command::ToggleStudies,
         Command::ToggleHelp,
     ];
 
@@ -77,6 +79,7 @@ impl Command {
             Command::SwapSides => "Swap A and B",
             Command::CopyAToB => "Copy A to B",
             Command::ToggleBenchmark => "Benchmark matrix",
+            Command::ToggleStudies => "Studies",
         }
     }
 
@@ -112,6 +115,9 @@ impl Command {
             Command::ToggleBenchmark => {
                 "Time every structure x shadows x sampling on this scene, as the seed's table"
             }
+            Command::ToggleStudies => {
+                "Sweep one parameter (grid m, N, depth, ...) or a generated scene's size and chart the times"
+            }
         }
     }
 
@@ -136,6 +142,7 @@ impl Command {
         const B: &[KeyboardShortcut] = &[key(Key::B)];
         const W: &[KeyboardShortcut] = &[key(Key::W)];
         const M: &[KeyboardShortcut] = &[key(Key::M)];
+        const P: &[KeyboardShortcut] = &[key(Key::P)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -157,6 +164,7 @@ impl Command {
             Command::SwapSides => W,
             Command::CopyAToB => SHIFT_B,
             Command::ToggleBenchmark => M,
+            Command::ToggleStudies => P,
         }
     }
 

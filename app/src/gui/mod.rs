@@ -2,6 +2,7 @@
 //! renderer. `engine` is the only part that talks to the tracer.
 
 mod app;
+mod background;
 mod bench_window;
 mod commands;
 mod compare;
@@ -13,6 +14,7 @@ mod scene_picker;
 mod screenshot;
 mod state;
 mod stats_panel;
+mod studies;
 mod viewport;
 
 use std::path::PathBuf;
@@ -24,6 +26,7 @@ pub use compare::{Compare, CompareView};
 pub use engine::{Activity, Engine};
 pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
+pub use studies::{Applied, StudiesWindow};
 
 use crate::load::SceneSource;
 
