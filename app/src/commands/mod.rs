@@ -7,7 +7,22 @@ pub mod render;
 
 use std::io::IsTerminal;
 
+use tracer::render::RenderSettings;
+use tracer::stats::SceneCounts;
+
 use crate::measure::benchmark::Event;
+use crate::measure::cost::BruteForceCost;
+
+/// Warns on stderr, before rendering, when brute force over this scene
+/// would look like a hang; the scene's `accel` is respected all the same.
+fn warn_brute_force(settings: &RenderSettings, counts: &SceneCounts) {
+    if let Some(cost) = BruteForceCost::of(settings, counts) {
+        eprintln!(
+            "warning: {}; add `--accel bvh` to render it in seconds",
+            cost.describe()
+        );
+    }
+}
 
 /// A progress bar on stderr for `runs` frames of each of `labels`, fed by
 /// the benchmark runner's events; hidden when stderr is not a terminal, so

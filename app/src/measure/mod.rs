@@ -1,9 +1,10 @@
 //! Headless measuring, shared by the command line (`commands/`) and the
 //! window (`gui/`): the benchmark runner with its cases and the seed's timing
-//! matrix, A/B comparison, settings described in words, and result tables.
+//! matrix, A/B comparison, what a frame will cost, settings described in words, and result tables.
 //! Nothing here prints or draws.
 
 pub mod bench_report;
 pub mod benchmark;
 pub mod compare;
+pub mod cost;
 pub mod describe;
