@@ -19,13 +19,22 @@ pub struct ReferenceImage {
     original: RgbImage,
     /// Resize it to A's size instead of refusing a mismatch.
     pub fit: bool,
-    /// The image at A's size, and the size and fit it was made for.
-    fitted: Option<((u32, u32), bool, Result<Reference, String>)>,
+    fitted: Option<Fitted>,
     texture: Option<TextureHandle>,
 }
 
+/// The image at A's size (or why not), and the size and fit it was made for.
+struct Fitted {
+    size: (u32, u32),
+    fit: bool,
+    result: Result<Reference, String>,
+}
+
+/// What the dialog thread sends: nothing picked, or the file read.
+type Picked = Option<Result<(PathBuf, RgbImage), String>>;
+
 /// A file dialog and the read, on their own thread.
-pub struct PendingReference(Receiver<Option<Result<(PathBuf, RgbImage), String>>>);
+pub struct PendingReference(Receiver<Picked>);
 
 impl PendingReference {
     /// Asks for an image file and reads it (`None` when cancelled).
@@ -87,7 +96,7 @@ impl ReferenceImage {
 
     /// The image at A's `size`, or why it cannot be compared at it.
     pub fn at_size(&mut self, size: (u32, u32)) -> &Result<Reference, String> {
-        let stale = !matches!(&self.fitted, Some((s, f, _)) if *s == size && *f == self.fit);
+        let stale = !matches!(&self.fitted, Some(f) if f.size == size && f.fit == self.fit);
         if stale {
             self.fitted = None;
             self.texture = None;
@@ -95,12 +104,12 @@ impl ReferenceImage {
         let (fit, original) = (self.fit, &self.original);
         &self
             .fitted
-            .get_or_insert_with(|| {
-                let fitted =
-                    fit_reference(original.clone(), size, fit).map_err(|e| format!("{e:#}"));
-                (size, fit, fitted)
+            .get_or_insert_with(|| Fitted {
+                size,
+                fit,
+                result: fit_reference(original.clone(), size, fit).map_err(|e| format!("{e:#}")),
             })
-            .2
+            .result
     }
 
     /// The texture of what B shows: the fitted image, or the file's own
@@ -111,7 +120,10 @@ impl ReferenceImage {
             return texture.clone();
         }
         let shown = match &self.fitted {
-            Some((_, _, Ok(reference))) => &reference.image,
+            Some(Fitted {
+                result: Ok(reference),
+                ..
+            }) => &reference.image,
             _ => &self.original,
         };
         let (w, h) = shown.dimensions();
