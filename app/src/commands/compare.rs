@@ -51,9 +51,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         heatmap,
         &AtomicBool::new(false),
         &mut progress,
-    )
-    .with_context(|| format!("cannot compare on {}", args.scene.display()))?
-    .context("the comparison was cancelled")?;
+    );
+    let comparison = finished(comparison, args)?;
     let c = &comparison;
     save_png(
         &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
@@ -64,6 +63,13 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         MetricsFormat::Json => println!("{}", json(args, c)),
     }
     Ok(())
+}
+
+/// The comparison, or why there is none: it failed or was cancelled.
+fn finished<T>(outcome: Result<Option<T>>, args: &CompareArgs) -> Result<T> {
+    outcome
+        .with_context(|| format!("cannot compare on {}", args.scene.display()))?
+        .context("the comparison was cancelled")
 }
 
 /// `--b-image`: A against a reference image.
@@ -87,9 +93,8 @@ fn against_image(
         heatmap,
         &AtomicBool::new(false),
         &mut progress,
-    )
-    .with_context(|| format!("cannot compare on {}", args.scene.display()))?
-    .context("the comparison was cancelled")?;
+    );
+    let c = finished(c, args)?;
     save_png(
         &compare::compose(
             &c.a.image,

@@ -77,6 +77,8 @@ pub struct Compare {
     /// Counts changes of the reference (or its fit), as B's version.
     reference_changes: u64,
     picking: Option<PendingReference>,
+    /// Why the last image picked could not be read.
+    picking_error: Option<String>,
 }
 
 impl Compare {
@@ -106,6 +108,7 @@ impl Compare {
             reference: None,
             reference_changes: 0,
             picking: None,
+            picking_error: None,
         }
     }
 
@@ -114,6 +117,15 @@ impl Compare {
         self.reference = reference;
         self.reference_changes += 1;
         self.forget_results();
+    }
+
+    /// Whether the reference image is resized to A's size.
+    pub fn set_fit(&mut self, fit: bool) {
+        if let Some(reference) = &mut self.reference {
+            reference.fit = fit;
+            self.reference_changes += 1;
+            self.forget_results();
+        }
     }
 
     /// The image B shows instead of a render, if any.
@@ -144,9 +156,10 @@ impl Compare {
             && let Some(outcome) = picking.poll()
         {
             self.picking = None;
+            self.picking_error = None;
             match outcome {
                 Some(Ok(reference)) => self.set_reference(Some(reference)),
-                Some(Err(message)) => self.metrics = Some(Err(message)),
+                Some(Err(message)) => self.picking_error = Some(message),
                 None => {}
             }
         }
@@ -162,24 +175,24 @@ impl Compare {
             if button.clicked() {
                 self.picking = PendingReference::pick(encoding, ui.ctx().clone());
             }
-            let mut changed = false;
-            if let Some(reference) = &mut self.reference {
-                changed |= ui
-                    .checkbox(&mut reference.fit, "Fit to A's size")
-                    .on_hover_text(
-                        "Resize the image to the render's size instead of refusing a mismatch",
-                    )
-                    .changed();
+            if let Some(reference) = &self.reference {
+                let mut fit = reference.fit;
+                let hint = "Resize the image to the render's size instead of refusing a mismatch";
+                if ui
+                    .checkbox(&mut fit, "Fit to A's size")
+                    .on_hover_text(hint)
+                    .changed()
+                {
+                    self.set_fit(fit);
+                }
                 if ui.button("Render B again").clicked() {
                     self.set_reference(None);
-                    return;
                 }
             }
-            if changed {
-                self.reference_changes += 1;
-                self.forget_results();
-            }
         });
+        if let Some(error) = &self.picking_error {
+            ui.colored_label(Color32::LIGHT_RED, error);
+        }
     }
 
     /// A opened another scene: B follows.
@@ -452,4 +465,92 @@ pub fn legend(ui: &mut Ui, gain: f32) {
         }
         ui.label(format!("{:.0}+ levels", 255.0 / gain.max(1e-3)));
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    use tracer::render::Encoding;
+
+    use super::*;
+    use crate::load::SceneSource;
+
+    fn wait_until(mut done: impl FnMut() -> bool) {
+        let start = Instant::now();
+        while !done() {
+            assert!(start.elapsed() < Duration::from_secs(120), "gave up");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    /// A finished 32 x 24 render of a bundled scene, shown.
+    fn rendered_a(ctx: &egui::Context) -> (Engine, LiveImage) {
+        let mut engine = Engine::new(Arc::new(|| {}));
+        engine.load(SceneSource::Bundled("balls_low".into()));
+        wait_until(|| engine.poll_load().is_some());
+        let settings = RenderSettings {
+            width: 32,
+            height: 24,
+            ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+        };
+        engine.render(&settings).unwrap();
+        wait_until(|| is_done(&engine));
+        let mut image = LiveImage::new("A");
+        image.refresh(ctx, &engine, Encoding::Linear, Duration::ZERO);
+        assert!(image.is_current(&engine));
+        (engine, image)
+    }
+
+    /// B as an image: the metrics are those of A against that image, and
+    /// a size mismatch is reported until the image is fitted.
+    #[test]
+    fn a_reference_image_is_measured_against_a() {
+        let ctx = egui::Context::default();
+        let (engine_a, image_a) = rendered_a(&ctx);
+        let a = image_a.shown().unwrap().to_image().unwrap();
+        // A with every red value 20 levels brighter (where there is room).
+        let mut reference = a.clone();
+        for p in reference.pixels_mut() {
+            p.0[0] = p.0[0].saturating_add(20);
+        }
+        let squared: f64 = a
+            .pixels()
+            .zip(reference.pixels())
+            .map(|(p, q)| (f64::from(q.0[0]) - f64::from(p.0[0])).powi(2))
+            .sum();
+        let expected_mse = squared / (3.0 * f64::from(a.width() * a.height()));
+
+        let mut compare = Compare::new(Arc::new(|| {}), &Controls::default(), None);
+        let measured = |compare: &mut Compare| {
+            wait_until(|| {
+                compare.refresh(&ctx, (&engine_a, &image_a), Duration::ZERO);
+                compare.metrics().is_some()
+            });
+            compare.metrics().cloned().unwrap()
+        };
+        let image = ReferenceImage::new("reference.png".into(), reference);
+        assert_eq!(image.label(), "B: image reference.png");
+        compare.set_reference(Some(image));
+        let m = measured(&mut compare).unwrap();
+        assert!(
+            (m.mse - expected_mse).abs() < 1e-9,
+            "{} vs {expected_mse}",
+            m.mse
+        );
+        assert!(m.flip > 0.0);
+        assert!(compare.b_texture(&ctx, (32, 24)).is_some());
+
+        // Another size: refused with both sizes, then fitted on request.
+        let small = image::imageops::resize(&a, 16, 12, image::imageops::FilterType::Nearest);
+        compare.set_reference(Some(ReferenceImage::new("small.png".into(), small)));
+        let error = measured(&mut compare).unwrap_err();
+        assert!(error.contains("16x12 but the render is 32x24"), "{error}");
+        compare.set_fit(true);
+        assert!(measured(&mut compare).is_ok());
+
+        // Back to a render: nothing to show for B until it renders.
+        compare.set_reference(None);
+        assert!(compare.reference().is_none() && compare.metrics().is_none());
+    }
 }

@@ -15,6 +15,7 @@ mod tracked;
 #[cfg(test)]
 mod tests;
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
@@ -153,10 +154,13 @@ pub fn load_mesh_file(
     })?;
     let file = std::fs::File::open(path)
         .map_err(|e| error(MeshPlace::File, format!("cannot read the mesh file: {e}")))?;
-    let size = file
+    let metadata = file
         .metadata()
-        .map_err(|e| error(MeshPlace::File, format!("cannot read the mesh file: {e}")))?
-        .len();
+        .map_err(|e| error(MeshPlace::File, format!("cannot read the mesh file: {e}")))?;
+    if !metadata.is_file() {
+        return Err(error(MeshPlace::File, "not a regular file".into()));
+    }
+    let size = metadata.len();
     if size > limits.max_file_bytes {
         return Err(error(
             MeshPlace::File,
@@ -171,7 +175,8 @@ pub fn load_mesh_file(
         max_triangles: max_triangles.min(limits.max_mesh_triangles),
         max_bytes: limits.max_file_bytes,
     };
-    let reader = tracked::Tracked::new(file, size, on_progress);
+    // Never more than the size checked above, even if the file grows.
+    let reader = tracked::Tracked::new(file.take(size), size, on_progress);
     let mesh = match format {
         MeshFormat::Obj => obj::read(path, reader, &bounds)?,
         MeshFormat::Ply => ply::read(path, reader, &bounds)?,
@@ -181,6 +186,9 @@ pub fn load_mesh_file(
     }
     Ok(mesh)
 }
+
+/// The mesh file as the readers see it: at most the size checked, counted.
+type FileReader<'p> = tracked::Tracked<'p, std::io::Take<std::fs::File>>;
 
 /// What the readers may accept.
 struct Bounds {

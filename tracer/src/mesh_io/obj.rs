@@ -7,15 +7,14 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
-use super::tracked::Tracked;
-use super::{Bounds, MeshFile, MeshFileError, MeshPart, MeshPlace, check_finite};
+use super::{Bounds, FileReader, MeshFile, MeshFileError, MeshPart, MeshPlace, check_finite};
 use crate::scene::Material;
 
 /// Reads the OBJ behind `reader`; MTL libraries it names are looked up
 /// beside `path`.
 pub(super) fn read(
     path: &Path,
-    mut reader: Tracked<'_, std::fs::File>,
+    mut reader: FileReader<'_>,
     bounds: &Bounds,
 ) -> Result<MeshFile, MeshFileError> {
     let options = tobj::LoadOptions {

@@ -8,8 +8,7 @@ use glam::Vec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Header, Property, PropertyAccess};
 
-use super::tracked::Tracked;
-use super::{Bounds, MeshFile, MeshFileError, MeshPart, MeshPlace, check_finite};
+use super::{Bounds, FileReader, MeshFile, MeshFileError, MeshPart, MeshPlace, check_finite};
 
 /// A vertex as the file gives it; only the position matters.
 struct PlyVertex([f32; 3]);
@@ -71,7 +70,7 @@ impl PropertyAccess for PlyFace {
 /// Reads the PLY behind `reader`.
 pub(super) fn read(
     path: &Path,
-    mut reader: Tracked<'_, std::fs::File>,
+    mut reader: FileReader<'_>,
     bounds: &Bounds,
 ) -> Result<MeshFile, MeshFileError> {
     let header = Parser::<PlyVertex>::new()
@@ -161,7 +160,7 @@ pub(super) fn read(
 /// reached for ASCII files, at the element for binary ones.
 fn payload<E: PropertyAccess>(
     path: &Path,
-    reader: &mut Tracked<'_, std::fs::File>,
+    reader: &mut FileReader<'_>,
     def: &ElementDef,
     header: &Header,
 ) -> Result<Vec<E>, MeshFileError> {

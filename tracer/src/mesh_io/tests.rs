@@ -133,6 +133,9 @@ fn files_without_triangles_or_with_other_names_are_refused() {
     assert!(error.message.contains(".obj or .ply"), "{error}");
     let error = load(&dir.join("missing.ply")).unwrap_err();
     assert!(error.message.contains("cannot read"), "{error}");
+    std::fs::create_dir_all(dir.join("folder.obj")).unwrap();
+    let error = load(&dir.join("folder.obj")).unwrap_err();
+    assert!(error.message.contains("not a regular file"), "{error}");
 }
 
 #[test]
@@ -294,4 +297,29 @@ fn a_mesh_without_mtl_gets_the_neutral_material() {
     let scene = frame(load(&write(&dir, "tri.ply", text.as_bytes())).unwrap());
     let material = scene.objects[1].material as usize;
     assert_eq!(scene.materials[material], framing::neutral_material());
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Whatever lines an OBJ or PLY holds, reading it answers with a mesh
+    /// or an error, never a panic.
+    #[test]
+    fn arbitrary_lines_never_panic(
+        lines in proptest::collection::vec(
+            proptest::prop_oneof![
+                proptest::string::string_regex("(v|vn|vt|f|o|g|usemtl|mtllib) [-0-9/ .a-z]{0,24}").unwrap(),
+                proptest::string::string_regex("(ply|format ascii 1.0|format binary_little_endian 1.0|end_header)").unwrap(),
+                proptest::string::string_regex("(element (vertex|face) [0-9]{1,3}|property (float|uchar|int) [xyz]|property list uchar int vertex_indices)").unwrap(),
+                proptest::string::string_regex("[-0-9 .]{0,20}").unwrap(),
+            ],
+            0..24,
+        ),
+        ply in proptest::bool::ANY,
+    ) {
+        let dir = folder("arbitrary");
+        let name = if ply { "any.ply" } else { "any.obj" };
+        let path = write(&dir, name, lines.join("\n").as_bytes());
+        let _ = load(&path);
+    }
 }
