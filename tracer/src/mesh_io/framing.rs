@@ -9,8 +9,7 @@ use super::MeshFile;
 use crate::scene::{LightSpec, Material, Object, Primitive, Scene, View};
 
 /// What [`frame`] added, for a status line.
-pub const FRAMING_NOTE: &str =
-    "bare mesh: framed with a camera, two lights, a neutral material and a ground plane";
+pub const FRAMING_NOTE: &str = "framed bare mesh: camera, two lights, ground plane added";
 
 /// Vertical field of view of the framing camera, in degrees.
 const FIELD_OF_VIEW: f32 = 40.0;
