@@ -16,24 +16,10 @@ use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene};
 
 /// Every command word, for telling a misspelt `v` field from the next
 /// command. `#` comments are removed by the lexer.
+#[rustfmt::skip]
 pub(super) const COMMANDS: [&str; 17] = [
-    "v",
-    "b",
-    "bclr",
-    "env",
-    "l",
-    "al",
-    "f",
-    "s",
-    "pl",
-    "p",
-    "pp",
-    "c",
-    "box",
-    "mesh",
-    "mesh_file",
-    "accel",
-    "spp",
+    "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "mesh_file",
+    "accel", "spp",
 ];
 
 /// Parses scene text; `file` only labels errors and sets `base_dir` (its
