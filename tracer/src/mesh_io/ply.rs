@@ -167,13 +167,18 @@ fn payload<E: PropertyAccess>(
     Parser::<E>::new()
         .read_payload_for_element(reader, def, header)
         .map_err(|e| {
-            let message = format!("in element `{}`: {}", def.name, first_line(&e));
-            let place = match header.encoding {
-                Encoding::Ascii => MeshPlace::Line(reader.line()),
-                _ => MeshPlace::Element {
-                    name: def.name.clone(),
-                    index: None,
-                },
+            let (place, message) = match header.encoding {
+                Encoding::Ascii => (
+                    MeshPlace::Line(reader.line()),
+                    format!("in element `{}`: {}", def.name, first_line(&e)),
+                ),
+                _ => (
+                    MeshPlace::Element {
+                        name: def.name.clone(),
+                        index: None,
+                    },
+                    first_line(&e),
+                ),
             };
             MeshFileError::new(path, place, message)
         })
