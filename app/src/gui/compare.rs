@@ -160,7 +160,11 @@ impl Compare {
             match outcome {
                 Some(Ok(reference)) => self.set_reference(Some(reference)),
                 Some(Err(message)) => self.picking_error = Some(message),
-                None => {}
+                None => {
+                    self.picking_error = Some(
+                        "no image picked (cancelled, or no file dialog on this desktop)".into(),
+                    )
+                }
             }
         }
         ui.horizontal(|ui| {
