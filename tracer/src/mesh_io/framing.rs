@@ -16,7 +16,7 @@ const FIELD_OF_VIEW: f32 = 40.0;
 /// Where the camera stands, seen from the mesh: degrees to the right of +z
 /// and above the horizon.
 const AZIMUTH: f32 = 35.0;
-const ELEVATION: f32 = 22.0;
+const ELEVATION: f32 = 16.0;
 
 /// Light grey, a little glossy: shows shape without colouring it.
 pub(super) fn neutral_material() -> Material {
