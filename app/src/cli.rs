@@ -237,7 +237,13 @@ compare itself (for both sides), then its own --a / --b flags, e.g.
       --a \"--accel none\" --b \"--accel grid --grid-m 4 --aa --spp 4\"
 
 The image is A | B | difference, with a legend bar under the difference
-(0 on the left, the largest value on the right).")]
+(0 on the left, the largest value on the right).
+
+--b-image compares side A with an image instead of a second render (another
+renderer's output, an earlier figure): PNG, JPEG or OpenEXR (linear, encoded
+as A is), of A's size, or resized to it with --fit:
+
+  workbench compare scene.p3f --a \"--aa --spp 4\" --b-image ref.png -o out.png")]
 pub struct CompareArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,
@@ -254,9 +260,17 @@ pub struct CompareArgs {
         long,
         value_name = "FLAGS",
         default_value = "",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        conflicts_with = "b_image"
     )]
     pub b: String,
+    /// Side B is this image (PNG, JPEG or EXR) instead of a second render.
+    #[arg(long, value_name = "IMAGE")]
+    pub b_image: Option<PathBuf>,
+    /// Resize the --b-image to the render's size instead of refusing a
+    /// mismatch.
+    #[arg(long, requires = "b_image")]
+    pub fit: bool,
     /// Where to write the A | B | difference PNG.
     #[arg(short, long, default_value = "compare.png")]
     pub output: PathBuf,

@@ -102,6 +102,9 @@ impl World {
                 builder.degenerate
             ));
         }
+        if scene.objects.is_empty() {
+            warnings.push("the scene has no objects: the image shows only the background".into());
+        }
         let skybox = scene.env.as_ref().and_then(|name| match load_skybox(name) {
             Ok(sky) => Some(sky),
             Err(e) => {

@@ -8,7 +8,22 @@ pub mod sweep;
 
 use std::io::IsTerminal;
 
+use tracer::render::RenderSettings;
+use tracer::stats::SceneCounts;
+
 use crate::measure::benchmark::Event;
+use crate::measure::cost::BruteForceCost;
+
+/// Warns on stderr, before rendering, when brute force over this scene
+/// would look like a hang; the scene's `accel` is respected all the same.
+fn warn_brute_force(settings: &RenderSettings, counts: &SceneCounts) {
+    if let Some(cost) = BruteForceCost::of(settings, counts) {
+        eprintln!(
+            "warning: {}; add `--accel bvh` to render it in seconds",
+            cost.describe()
+        );
+    }
+}
 
 /// Steps of a progress bar per frame.
 const STEPS: u64 = 1000;

@@ -9,7 +9,7 @@ use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::load::load_scene;
-use crate::output::save_png;
+use crate::output::{is_exr, save_exr, save_png};
 use crate::report;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -17,6 +17,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);
     let encoding = args.settings.encoding();
+    super::warn_brute_force(&settings, &loaded.world.counts);
 
     let on_pass = match &args.progressive_out {
         Some(dir) => {
@@ -54,7 +55,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let JobState::Failed(message) = state {
         anyhow::bail!("rendering {} failed: {message}", args.scene.display());
     }
-    save_png(&film.to_image(encoding), &args.output)?;
+    if is_exr(&args.output) {
+        // The linear film, before any clamping or encoding.
+        save_exr(&film.to_linear_image(), &args.output)?;
+    } else {
+        save_png(&film.to_image(encoding), &args.output)?;
+    }
     match args.stats {
         Some(StatsFormat::Json) => println!("{}", report::json(&stats, &loaded.world.counts)),
         None => println!(

@@ -12,7 +12,7 @@ use tracer::render::JobState;
 
 use crate::bundled;
 use crate::load::SceneSource;
-use crate::output::save_png;
+use crate::output::{save_exr, save_png};
 
 use super::bench_window::BenchWindow;
 use super::commands::Command;
@@ -21,15 +21,22 @@ use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
 use super::live_image::LiveImage;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
+use super::state::AccelChoice;
 use super::state::{Controls, Persisted};
 use super::studies::{Applied, StudiesWindow};
 use super::viewport::{self, Gesture, ViewState, Zoom};
-use super::{controls, scene_picker, stats_panel};
+use super::{accel_banner, controls, scene_picker, stats_panel};
 
 /// How long after the last wheel dolly the camera counts as moving.
 const MOVE_SETTLE: Duration = Duration::from_millis(250);
 /// How long a notice stays on screen.
 const NOTICE_TIME: Duration = Duration::from_secs(5);
+
+/// What a save writes: the shown render (PNG) or the linear film (EXR).
+enum SaveImage {
+    Shown(tracer::render::Snapshot),
+    Linear(image::Rgb32FImage),
+}
 
 /// Results of background dialogs and saves, delivered to the UI thread.
 enum Reply {
@@ -275,7 +282,7 @@ impl WorkbenchApp {
                 return;
             }
             self.notify(format!(
-                "{} is not a scene file (.p3f or .nff)",
+                "{} is not a scene or mesh file (.p3f, .nff, .obj, .ply)",
                 path.display()
             ));
         }
@@ -326,7 +333,8 @@ impl WorkbenchApp {
                 None => self.notify("no scene to reload".into()),
             },
             Command::Open => self.open_dialog(),
-            Command::Save => self.save_dialog(),
+            Command::Save => self.save_dialog(false),
+            Command::SaveExr => self.save_dialog(true),
         }
     }
 
@@ -447,7 +455,7 @@ impl WorkbenchApp {
             .name("open-dialog".into())
             .spawn(move || {
                 let picked = rfd::FileDialog::new()
-                    .add_filter("Scene files", &["p3f", "nff"])
+                    .add_filter("Scenes and meshes", &["p3f", "nff", "obj", "ply"])
                     .set_directory("scenes")
                     .pick_file();
                 let _ = reply.send(match picked {
@@ -464,9 +472,15 @@ impl WorkbenchApp {
         }
     }
 
-    /// The native save dialog and the PNG write, off the UI thread.
-    fn save_dialog(&mut self) {
-        let Some(snapshot) = self.image.shown().cloned() else {
+    /// The native save dialog and the write, off the UI thread: the shown
+    /// render as PNG, or the linear film as OpenEXR (`exr`).
+    fn save_dialog(&mut self, exr: bool) {
+        let image = if exr {
+            self.engine.linear_image().map(SaveImage::Linear)
+        } else {
+            self.image.shown().cloned().map(SaveImage::Shown)
+        };
+        let Some(image) = image else {
             self.notify("there is no image to save yet".into());
             return;
         };
@@ -482,13 +496,18 @@ impl WorkbenchApp {
         let stem = Path::new(&name)
             .file_stem()
             .map_or_else(|| "render".into(), |s| s.to_string_lossy().into_owned());
+        let (filter, extension) = if exr {
+            ("OpenEXR image", "exr")
+        } else {
+            ("PNG image", "png")
+        };
         let reply = self.replies.0.clone();
         let spawned = std::thread::Builder::new()
             .name("save-dialog".into())
             .spawn(move || {
                 let Some(path) = rfd::FileDialog::new()
-                    .add_filter("PNG image", &["png"])
-                    .set_file_name(format!("{stem}.png"))
+                    .add_filter(filter, &[extension])
+                    .set_file_name(format!("{stem}.{extension}"))
                     .save_file()
                 else {
                     let _ = reply.send(Reply::Notice(
@@ -496,10 +515,13 @@ impl WorkbenchApp {
                     ));
                     return;
                 };
-                let result = snapshot
-                    .to_image()
-                    .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
-                    .and_then(|img| save_png(&img, &path));
+                let result = match image {
+                    SaveImage::Linear(film) => save_exr(&film, &path),
+                    SaveImage::Shown(snapshot) => snapshot
+                        .to_image()
+                        .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
+                        .and_then(|img| save_png(&img, &path)),
+                };
                 let _ = reply.send(match result {
                     Ok(()) => Reply::Notice(format!("saved {}", path.display())),
                     Err(e) => Reply::Error(format!("{e:#}")),
@@ -601,6 +623,9 @@ impl WorkbenchApp {
             Activity::Job(JobState::Failed(e)) => format!("failed: {e}"),
         };
         parts.push(state);
+        if self.engine.scene().is_some_and(|s| s.source.is_bare_mesh()) {
+            parts.push(tracer::mesh_io::FRAMING_NOTE.into());
+        }
         parts.join(" · ")
     }
 
@@ -670,6 +695,7 @@ impl WorkbenchApp {
                     ui.add(egui::Label::new(RichText::new(&error).color(Color32::WHITE)).wrap());
                 });
         }
+        self.brute_force_banners(ui);
         let (size, full) = match self.image.shown() {
             Some(s) => (
                 [s.width as usize, s.height as usize],
@@ -702,7 +728,8 @@ impl WorkbenchApp {
                         full,
                     );
                 };
-                let b = compare.image.texture();
+                let b = compare.b_texture(ui.ctx(), (size[0] as u32, size[1] as u32));
+                let b = b.as_ref();
                 match compare.view {
                     CompareView::SideBySide => {
                         let half =
@@ -757,6 +784,24 @@ impl WorkbenchApp {
                 });
             }
         });
+    }
+
+    /// The slow-render banner of each side that runs brute force over a
+    /// large scene; its button switches that side to the BVH.
+    fn brute_force_banners(&mut self, ui: &mut Ui) {
+        if let (Some(scene), Some(settings)) = (self.engine.scene(), self.engine.settings())
+            && accel_banner::show(ui, "", settings, &scene.world.counts)
+        {
+            self.state.controls.set_accel(AccelChoice::Bvh);
+        }
+        if let Some(compare) = &mut self.compare
+            && compare.reference().is_none()
+            && let (Some(scene), Some(settings)) =
+                (compare.engine.scene(), compare.engine.settings())
+            && accel_banner::show(ui, "B: ", settings, &scene.world.counts)
+        {
+            compare.controls.set_accel(AccelChoice::Bvh);
+        }
     }
 
     /// The full-resolution size of the current settings.
@@ -816,8 +861,14 @@ fn compare_labels(
     scene: Option<&super::engine::LoadedScene>,
     camera: Option<CameraPose>,
 ) -> Option<(String, String)> {
-    let b = compare.settings(camera, false)?;
     let a = controls_a.render_settings(&scene?.scene, camera, false);
+    if let Some(reference) = compare.reference() {
+        return Some((
+            format!("A: {}", crate::measure::describe::describe(&a)),
+            reference.label(),
+        ));
+    }
+    let b = compare.settings(camera, false)?;
     Some(compare::labels(&a, &b))
 }
 
@@ -841,6 +892,7 @@ fn compare_header(
             ui.weak("hold X to see B");
         }
     });
+    compare.reference_controls(ui, controls_a.encoding());
     if let Some((label_a, label_b)) = compare_labels(compare, controls_a, scene, camera) {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(label_a).strong());

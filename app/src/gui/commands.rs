@@ -14,6 +14,7 @@ pub enum Command {
     Restart,
     ToggleKeepRefining,
     Save,
+    SaveExr,
     Open,
     Reload,
     ResetCamera,
@@ -34,7 +35,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 20] = [
+    pub const ALL: [Command; 21] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -43,6 +44,7 @@ impl Command {
         Command::Restart,
         Command::ToggleKeepRefining,
         Command::Save,
+        Command::SaveExr,
         Command::Open,
         Command::Reload,
         Command::ResetCamera,
@@ -68,6 +70,7 @@ impl Command {
             Command::Restart => "Restart",
             Command::ToggleKeepRefining => "Keep refining",
             Command::Save => "Save PNG...",
+            Command::SaveExr => "Save as EXR...",
             Command::Open => "Open...",
             Command::Reload => "Reload scene",
             Command::ResetCamera => "Reset camera",
@@ -100,7 +103,12 @@ impl Command {
             Command::Restart => "Throw away the samples so far and render again",
             Command::ToggleKeepRefining => "Keep adding fresh samples past the N x N target",
             Command::Save => "Write the displayed render at full resolution to a PNG file",
-            Command::Open => "Open a scene file (.p3f, .nff); you can also drop one on the window",
+            Command::SaveExr => {
+                "Write the linear float film, before clamping and encoding, to an OpenEXR file"
+            }
+            Command::Open => {
+                "Open a scene (.p3f, .nff) or a mesh (.obj, .ply); you can also drop one on the window"
+            }
             Command::Reload => "Read the current scene file again",
             Command::ResetCamera => "Back to the scene file's camera",
             Command::ZoomFit => "Scale the image to fill the view",
@@ -133,6 +141,7 @@ impl Command {
         const K: &[KeyboardShortcut] = &[key(Key::K)];
         const CTRL_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::S)];
         const CTRL_O: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::O)];
+        const CTRL_E: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::E)];
         const F5: &[KeyboardShortcut] = &[key(Key::F5)];
         const C: &[KeyboardShortcut] = &[key(Key::C)];
         const F: &[KeyboardShortcut] = &[key(Key::F)];
@@ -153,6 +162,7 @@ impl Command {
             Command::Restart => R,
             Command::ToggleKeepRefining => K,
             Command::Save => CTRL_S,
+            Command::SaveExr => CTRL_E,
             Command::Open => CTRL_O,
             Command::Reload => F5,
             Command::ResetCamera => C,

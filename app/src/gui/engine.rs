@@ -241,6 +241,11 @@ impl Engine {
         self.job.as_ref().map(|j| j.snapshot(encoding))
     }
 
+    /// The current job's film as linear floats, for "Save as EXR".
+    pub fn linear_image(&self) -> Option<image::Rgb32FImage> {
+        self.job.as_ref().map(RenderJob::linear_image)
+    }
+
     /// What was built for the current job, once built.
     pub fn accel_info(&self) -> Option<AccelInfo> {
         self.job

@@ -1,6 +1,7 @@
 //! The window: an egui/eframe app (wgpu renderer) around the progressive
 //! renderer. `engine` is the only part that talks to the tracer.
 
+mod accel_banner;
 mod app;
 mod background;
 mod bench_window;
@@ -10,6 +11,7 @@ mod controls;
 mod engine;
 mod frame_meter;
 mod live_image;
+mod reference;
 mod scene_picker;
 mod screenshot;
 mod state;
@@ -24,6 +26,7 @@ pub use bench_window::BenchWindow;
 pub use commands::Command;
 pub use compare::{Compare, CompareView};
 pub use engine::{Activity, Engine};
+pub use reference::ReferenceImage;
 pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
 pub use studies::{Applied, StudiesWindow};

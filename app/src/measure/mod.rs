@@ -1,11 +1,12 @@
 //! Headless measuring, shared by the command line (`commands/`) and the
 //! window (`gui/`): the benchmark runner with its cases and the seed's timing
-//! matrix, A/B comparison, parameter studies with their charts, settings
-//! described in words, and result tables. Nothing here prints or touches a
-//! window.
+//! matrix, A/B comparison, what a frame will cost, parameter studies with
+//! their charts, settings described in words, and result tables. Nothing
+//! here prints or touches a window.
 
 pub mod bench_report;
 pub mod benchmark;
 pub mod compare;
+pub mod cost;
 pub mod describe;
 pub mod study;

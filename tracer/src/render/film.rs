@@ -108,6 +108,15 @@ impl Film {
         out
     }
 
+    /// The mean linear radiance of every pixel as floats, before any
+    /// clamping or encoding (for OpenEXR output); black before a pixel's
+    /// first sample.
+    pub fn to_linear_image(&self) -> image::Rgb32FImage {
+        image::Rgb32FImage::from_fn(self.width, self.height, |x, y| {
+            image::Rgb(self.pixel(x, y).unwrap_or_default().to_array())
+        })
+    }
+
     /// Resolves the film to an RGB image.
     pub fn to_image(&self, encoding: Encoding) -> image::RgbImage {
         rgba_to_rgb_image(self.width, self.height, &self.to_rgba8(encoding))

@@ -292,6 +292,12 @@ impl RenderJob {
         }
     }
 
+    /// The film as it stands, as linear floats (see
+    /// [`Film::to_linear_image`]), for saving HDR output mid-render.
+    pub fn linear_image(&self) -> image::Rgb32FImage {
+        self.shared.progress().film.to_linear_image()
+    }
+
     /// Waits for the job to stop and returns its film and statistics.
     pub fn wait(mut self) -> (Film, RenderStats, JobState) {
         if let Some(worker) = self.worker.take() {
