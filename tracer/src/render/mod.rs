@@ -9,6 +9,7 @@ mod settings;
 #[cfg(test)]
 mod tests;
 mod trace;
+mod view;
 
 use std::sync::Arc;
 
@@ -19,7 +20,11 @@ pub use settings::{
     Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
     RenderSettings, SettingsError,
 };
-pub use trace::Tracer;
+pub use trace::{NoRecord, RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
+pub use view::{
+    EyeHit, HEAT_PALETTE, HeatScale, Heatmap, NO_VALUE, View, ViewFilm, ViewRecorder, ViewSample,
+    ViewSummary, object_colour,
+};
 
 use crate::accel::SceneIndex;
 use crate::stats::RenderStats;
