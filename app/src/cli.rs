@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::AccelKind;
-use tracer::render::{Encoding, RenderSettings};
+use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
 
 use crate::measure::compare::Heatmap;
 
@@ -58,6 +58,9 @@ impl Cli {
 pub enum Command {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
+    /// Show every ray one sample of one pixel spawned: what each hit, its
+    /// material, its shadow rays and what it added to the pixel.
+    Inspect(InspectArgs),
     /// Time frames of a scene with each acceleration structure, or the
     /// seed's whole timing matrix (--matrix).
     Bench(BenchArgs),
@@ -150,7 +153,12 @@ compare itself (for both sides), then its own --a / --b flags, e.g.
       --a \"--accel none\" --b \"--accel grid --grid-m 4 --aa --spp 4\"
 
 The image is A | B | difference, with a legend bar under the difference
-(0 on the left, the largest value on the right).")]
+(0 on the left, the largest value on the right).
+
+With --view VIEW the image is A's view | B's view | |A - B| of the view's
+values, A and B on one shared scale, so both read against one legend. Each
+side renders once more to measure its view: the times stay those of the
+plain render.")]
 pub struct CompareArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,
@@ -179,6 +187,9 @@ pub struct CompareArgs {
     /// How to print the times and metrics.
     #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
     pub format: MetricsFormat,
+    // With --view: A's view | B's view | their difference, on one scale.
+    #[command(flatten)]
+    pub view: ViewArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Worker threads (default: all cores).
@@ -227,6 +238,71 @@ pub struct RenderArgs {
     /// Print the statistics in this format instead of the summary.
     #[arg(long, value_name = "FORMAT")]
     pub stats: Option<StatsFormat>,
+    #[command(flatten)]
+    pub view: ViewArgs,
+}
+
+/// A per-pixel view instead of the shaded image, and its heat map's scale.
+#[derive(Args, Debug, Clone, Default)]
+pub struct ViewArgs {
+    /// Write this view instead of the shaded image: tests, steps, rays,
+    /// shadow, blocked, depth, distance (heat maps with a legend), normals
+    /// or objects (colours).
+    #[arg(long, value_parser = parse_view, value_name = "VIEW")]
+    pub view: Option<View>,
+    /// Top of the heat map: max, p99 (the 99th percentile) or a number.
+    #[arg(long, value_parser = parse_heat_scale, value_name = "max|p99|VALUE", requires = "view")]
+    pub view_scale: Option<HeatScale>,
+    /// Heat map on log(1 + value).
+    #[arg(long, requires = "view")]
+    pub log: bool,
+}
+
+impl ViewArgs {
+    /// The view asked for, unless it is the shaded image.
+    pub fn view(&self) -> Option<View> {
+        self.view.filter(|&v| v != View::Shaded)
+    }
+
+    /// The heat map fitting `sides` together (one shared scale).
+    pub fn heatmap(&self, sides: &[&[Option<f32>]]) -> ViewHeatmap {
+        ViewHeatmap::fit(self.view_scale.unwrap_or_default(), self.log, sides)
+    }
+}
+
+fn parse_view(text: &str) -> Result<View, String> {
+    View::from_name(text).ok_or_else(|| {
+        let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
+        format!("no view '{text}'; views: {}", names.join(", "))
+    })
+}
+
+fn parse_heat_scale(text: &str) -> Result<HeatScale, String> {
+    match text {
+        "max" => Ok(HeatScale::Max),
+        "p99" => Ok(HeatScale::P99),
+        _ => match text.parse::<f32>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Ok(HeatScale::Fixed(v)),
+            _ => Err(format!("'{text}' is not max, p99 or a positive number")),
+        },
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// The pixel, from the top-left corner.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
+    pub pixel: Vec<u32>,
+    /// Which of the pixel's samples (the pass that traces it, from 0).
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub sample: u32,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// An indented tree to read, or JSON for scripts.
+    #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+    pub format: MetricsFormat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]

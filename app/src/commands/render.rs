@@ -5,10 +5,11 @@ use std::io::IsTerminal;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
+use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::load::load_scene;
+use crate::measure::view_image;
 use crate::output::save_png;
 use crate::report;
 
@@ -40,6 +41,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         JobOptions {
             threads: args.threads,
             on_pass,
+            views: args.view.view().is_some(),
             ..JobOptions::default()
         },
     )
@@ -50,19 +52,49 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if std::io::stderr().is_terminal() {
         show_progress(&job, &settings);
     }
-    let (film, stats, state) = job.wait();
+    let (film, views, stats, state) = job.wait_with_views();
     if let JobState::Failed(message) = state {
         anyhow::bail!("rendering {} failed: {message}", args.scene.display());
     }
-    save_png(&film.to_image(encoding), &args.output)?;
+    let view = args.view.view().zip(views.as_ref()).map(|(view, film)| {
+        let values = film.values(view);
+        let heat = args.view.heatmap(&[&values]);
+        (view, film, ViewSummary::of(&values), heat)
+    });
+    match &view {
+        Some((v, film, _, heat)) => {
+            let image = view_image::view_image(film, *v, heat).context("the view has no image")?;
+            let image = if v.is_scalar() {
+                view_image::with_legend(&image, heat)
+            } else {
+                image
+            };
+            save_png(&image, &args.output)?;
+        }
+        None => save_png(&film.to_image(encoding), &args.output)?,
+    }
     match args.stats {
-        Some(StatsFormat::Json) => println!("{}", report::json(&stats, &loaded.world.counts)),
-        None => println!(
-            "{} -> {}\n{}",
-            args.scene.display(),
-            args.output.display(),
-            report::summary(&stats, &loaded.world.counts)
-        ),
+        Some(StatsFormat::Json) => {
+            let mut json = report::json_value(&stats, &loaded.world.counts);
+            if let Some((v, _, summary, heat)) = &view {
+                json["view"] = view_image::summary_json(*v, summary.as_ref(), heat);
+            }
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&json).unwrap_or_default()
+            );
+        }
+        None => {
+            println!(
+                "{} -> {}\n{}",
+                args.scene.display(),
+                args.output.display(),
+                report::summary(&stats, &loaded.world.counts)
+            );
+            if let Some((v, _, summary, heat)) = &view {
+                println!("{}", view_image::describe(*v, summary.as_ref(), heat));
+            }
+        }
     }
     Ok(())
 }

@@ -7,3 +7,5 @@ pub mod bench_report;
 pub mod benchmark;
 pub mod compare;
 pub mod describe;
+pub mod ray_tree_report;
+pub mod view_image;

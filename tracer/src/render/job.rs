@@ -15,7 +15,7 @@ use crate::stats::{Counters, RenderStats};
 use crate::world::World;
 
 use super::settings::SettingsError;
-use super::view::{Heatmap, View, ViewFilm, view_rgba8};
+use super::view::{View, ViewFilm, ViewHeatmap, view_rgba8};
 use super::{Encoding, Film, Frame, RenderSettings};
 
 /// Why a render could not start.
@@ -304,7 +304,7 @@ impl RenderJob {
 
     /// The image under `view` as it stands (the shaded image for
     /// [`View::Shaded`] or a job without views), with its statistics.
-    pub fn view_snapshot(&self, view: View, heat: &Heatmap, encoding: Encoding) -> Snapshot {
+    pub fn view_snapshot(&self, view: View, heat: &ViewHeatmap, encoding: Encoding) -> Snapshot {
         let paused = self.is_paused();
         let p = self.shared.progress();
         Snapshot {

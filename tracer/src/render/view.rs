@@ -342,7 +342,7 @@ pub enum HeatScale {
 /// How view values become colours: `0 .. top` over the palette, linearly or
 /// on `log(1 + v)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Heatmap {
+pub struct ViewHeatmap {
     pub top: f32,
     pub log: bool,
 }
@@ -350,10 +350,10 @@ pub struct Heatmap {
 /// The palette of every heat map, so legends agree.
 pub const HEAT_PALETTE: Palette = Palette::Magma;
 
-impl Heatmap {
+impl ViewHeatmap {
     /// The heat map whose top is `scale` of all values of all `sides`
     /// together: the shared scale of a comparison.
-    pub fn fit(scale: HeatScale, log: bool, sides: &[&[Option<f32>]]) -> Heatmap {
+    pub fn fit(scale: HeatScale, log: bool, sides: &[&[Option<f32>]]) -> ViewHeatmap {
         let top = match scale {
             HeatScale::Fixed(v) => v,
             HeatScale::Max | HeatScale::P99 => {
@@ -369,7 +369,7 @@ impl Heatmap {
                 }
             }
         };
-        Heatmap {
+        ViewHeatmap {
             top: if top.is_finite() && top > 0.0 {
                 top
             } else {
@@ -423,7 +423,7 @@ impl ViewFilm {
     /// The view as RGBA8: the heat map of a scalar view, the colours of
     /// normals and objects; `None` for the shaded view, which is the
     /// image's [`Film`].
-    pub fn to_rgba8(&self, view: View, heat: &Heatmap) -> Option<Vec<u8>> {
+    pub fn to_rgba8(&self, view: View, heat: &ViewHeatmap) -> Option<Vec<u8>> {
         if view.is_scalar() {
             Some(heat.rgba8(&self.values(view), |i| self.sampled(i)))
         } else {
@@ -474,7 +474,7 @@ pub fn view_rgba8(
     film: &Film,
     views: Option<&ViewFilm>,
     view: View,
-    heat: &Heatmap,
+    heat: &ViewHeatmap,
     encoding: Encoding,
 ) -> Vec<u8> {
     views
@@ -627,14 +627,17 @@ s 0 0 0 1
     fn heat_scales_are_shared_and_summaries_are_right() {
         let a: Vec<Option<f32>> = (1..=100).map(|v| Some(v as f32)).collect();
         let b = vec![Some(400.0), None];
-        let max = Heatmap::fit(HeatScale::Max, false, &[&a, &b]);
+        let max = ViewHeatmap::fit(HeatScale::Max, false, &[&a, &b]);
         assert_eq!(max.top, 400.0);
-        assert_eq!(Heatmap::fit(HeatScale::P99, false, &[&a]).top, 99.0);
-        assert_eq!(Heatmap::fit(HeatScale::Fixed(7.0), false, &[&a]).top, 7.0);
-        assert_eq!(Heatmap::fit(HeatScale::Max, false, &[&[None]]).top, 1.0);
+        assert_eq!(ViewHeatmap::fit(HeatScale::P99, false, &[&a]).top, 99.0);
+        assert_eq!(
+            ViewHeatmap::fit(HeatScale::Fixed(7.0), false, &[&a]).top,
+            7.0
+        );
+        assert_eq!(ViewHeatmap::fit(HeatScale::Max, false, &[&[None]]).top, 1.0);
         assert_eq!(max.position(200.0), 0.5);
         assert_eq!(max.position(1e9), 1.0);
-        let log = Heatmap {
+        let log = ViewHeatmap {
             top: 99.0,
             log: true,
         };
