@@ -5,14 +5,13 @@ mod common;
 use common::{scratch, workbench, write};
 use tracer::render::{HEAT_PALETTE, NO_VALUE};
 
-/// A red sphere on a grey floor (two triangles) under one light.
+/// A red sphere on a grey slab (a box) under one light.
 const SMALL_SCENE: &str = "\
 bclr 0.1 0.2 0.4
 v from 0 -6 2 at 0 0 0.5 up 0 0 1 angle 40 hither 0.01 resolution 48 32
 l 3 -3 6 1 1 1
 f 0.6 0.6 0.6 1 1 1 1 0 10 0 1
-p 4
--5 -5 0  5 -5 0  5 5 0  -5 5 0
+box -5 -5 -0.2 5 5 0
 f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
 s 0 0 1 1
 ";
@@ -54,8 +53,8 @@ fn render_view_writes_a_heat_map_with_its_legend_and_numbers() {
     let img = image::open(&out).unwrap().to_rgb8();
     assert_eq!(img.width(), 48);
     assert!(img.height() > 32, "the legend goes under the image");
-    // The top-left pixel sees the sky: its eye ray tested the 3 primitives.
-    let expected = HEAT_PALETTE.colour((3.0 / max) as f32);
+    // The top-left pixel sees the sky: its eye ray tested the 2 primitives.
+    let expected = HEAT_PALETTE.colour((2.0 / max) as f32);
     assert_eq!(img.get_pixel(0, 0), &expected);
     // The legend bar runs over the whole palette.
     let bar = (0..img.height())
@@ -169,7 +168,7 @@ fn inspect_prints_the_ray_tree_as_json_and_as_text() {
     let scene = write(&dir, "small.p3f", SMALL_SCENE);
     let scene = scene.to_str().unwrap();
     // Above the centre the eye ray meets the red sphere: object 1, after
-    // the floor polygon.
+    // the slab.
     let stdout = run_ok(&["inspect", scene, "--pixel", "24", "11", "--format", "json"]);
     let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(json["pixel"], serde_json::json!([24, 11]));
@@ -203,7 +202,7 @@ fn inspect_prints_the_ray_tree_as_json_and_as_text() {
         stdout.starts_with("pixel (20, 19), sample 0: colour"),
         "{stdout}"
     );
-    assert!(stdout.contains("eye (depth 0): hit polygon #0"), "{stdout}");
+    assert!(stdout.contains("eye (depth 0): hit box #0"), "{stdout}");
     assert!(
         stdout.contains("  shadow to light 0: blocked by sphere #1"),
         "{stdout}"

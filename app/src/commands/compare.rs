@@ -142,7 +142,10 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
         "{} -> {} (A | B | {})\n{}{}time A/B: {ratio:.3} ({speed})\nMSE {:.3}, PSNR {:.2} dB, FLIP {:.4}\n",
         args.scene.display(),
         args.output.display(),
-        heatmap.legend(),
+        match args.view.view() {
+            Some(view) => format!("{0} | {0} | |A - B|, on one scale", view.name()),
+            None => heatmap.legend(),
+        },
         side("A", &c.labels.0, &c.a),
         side("B", &c.labels.1, &c.b),
         c.metrics.mse,

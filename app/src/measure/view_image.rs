@@ -160,7 +160,7 @@ pub fn summary_json(
     summary: Option<&ViewSummary>,
     heat: &ViewHeatmap,
 ) -> serde_json::Value {
-    let number = |f: fn(&ViewSummary) -> f32| summary.map(|s| f(s));
+    let number = |f: fn(&ViewSummary) -> f32| summary.map(f);
     serde_json::json!({
         "name": view.name(),
         "unit": view.unit(),

@@ -224,8 +224,7 @@ impl ViewFilm {
     /// Adds one sample to each pixel of `tile`; `samples` is row-major
     /// within the tile.
     pub fn add_tile(&mut self, tile: &Tile, samples: &[ViewSample]) {
-        for (row, chunk) in samples.chunks(tile.width as usize).enumerate() {
-            let start = (tile.y as usize + row) * self.width as usize + tile.x as usize;
+        for (start, chunk) in tile.rows(self.width, samples) {
             for (sums, s) in self.pixels[start..start + chunk.len()]
                 .iter_mut()
                 .zip(chunk)
