@@ -178,6 +178,7 @@ fn inspect_prints_the_ray_tree_as_json_and_as_text() {
     assert_eq!(eye["parent"], serde_json::Value::Null);
     assert_eq!(eye["outcome"]["object_kind"], "sphere");
     assert_eq!(eye["outcome"]["object"], 1);
+    assert_eq!(eye["outcome"]["line_column"], serde_json::json!([7, 1]));
     assert_eq!(eye["outcome"]["material"]["shine"], 40.0);
     // A shadow ray towards the one light, and a reflection (Ks > 0).
     let kinds: Vec<&str> = nodes.iter().map(|n| n["kind"].as_str().unwrap()).collect();

@@ -57,6 +57,8 @@ pub struct World {
     pub shape_object: Vec<u32>,
     /// Each scene object's kind ("sphere", "mesh", ...).
     pub object_kinds: Vec<&'static str>,
+    /// Where each scene object was declared in its file (line, column).
+    pub object_positions: crate::scene::ObjectPositions,
     pub surfaces: Vec<Surface>,
     pub lights: Vec<Light>,
     pub background: Vec3A,
@@ -150,6 +152,7 @@ impl World {
             shape_surface,
             shape_object,
             object_kinds,
+            object_positions: scene.object_positions.clone(),
             surfaces,
             lights,
             background: Vec3A::from(scene.background),

@@ -62,6 +62,15 @@ pub fn headline(tree: &RayTree) -> String {
     )
 }
 
+/// An object as `sphere #3 (line 12:1)`: kind, index in the file and
+/// where the file declares it.
+pub fn object_name(kind: &str, index: u32, position: Option<(u32, u32)>) -> String {
+    match position {
+        Some((line, column)) => format!("{kind} #{index} (line {line}:{column})"),
+        None => format!("{kind} #{index}"),
+    }
+}
+
 /// One node in one line: its kind, what it met and what it added.
 pub fn describe_node(node: &RayNode) -> String {
     let kind = node.kind.name();
@@ -75,10 +84,9 @@ pub fn describe_node(node: &RayNode) -> String {
                 None => String::new(),
             };
             format!(
-                "{kind} (depth {}): hit {} #{} at t {:.4}, normal {}{}; Kd {} Ks {} shine {} T {} ior {}{fresnel}; {adds}",
+                "{kind} (depth {}): hit {} at t {:.4}, normal {}{}; Kd {} Ks {} shine {} T {} ior {}{fresnel}; {adds}",
                 node.depth,
-                s.object_kind,
-                s.object,
+                object_name(s.object_kind, s.object, s.object_position),
                 s.t,
                 triple(s.normal),
                 if s.outside { "" } else { " (from inside)" },
@@ -95,8 +103,9 @@ pub fn describe_node(node: &RayNode) -> String {
             occluder: Some(o),
             ..
         } => format!(
-            "shadow to light {light}: blocked by {} #{} at t {:.4}",
-            o.object_kind, o.object, o.t
+            "shadow to light {light}: blocked by {} at t {:.4}",
+            object_name(o.object_kind, o.object, o.object_position),
+            o.t
         ),
         Outcome::Light { light, .. } => format!("shadow to light {light}: lit; {adds}"),
     }
@@ -142,6 +151,7 @@ pub fn json(tree: &RayTree) -> serde_json::Value {
                     "shape": s.shape,
                     "object": s.object,
                     "object_kind": s.object_kind,
+                    "line_column": s.object_position.map(|(l, c)| [l, c]),
                     "point": v(s.point),
                     "normal": v(s.normal),
                     "from_inside": !s.outside,
@@ -169,6 +179,7 @@ pub fn json(tree: &RayTree) -> serde_json::Value {
                         "shape": o.shape,
                         "object": o.object,
                         "object_kind": o.object_kind,
+                        "line_column": o.object_position.map(|(l, c)| [l, c]),
                     })),
                 }),
             };

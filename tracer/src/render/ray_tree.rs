@@ -81,9 +81,11 @@ pub struct SurfaceRecord {
     pub t: f32,
     /// Index into the world's shapes.
     pub shape: u32,
-    /// Index into the scene's objects, and the object's kind.
+    /// Index into the scene's objects, the object's kind, and where the
+    /// file declared it (line, column).
     pub object: u32,
     pub object_kind: &'static str,
+    pub object_position: Option<(u32, u32)>,
     pub point: Vec3A,
     /// Shading normal, facing the incoming ray.
     pub normal: Vec3A,
@@ -101,6 +103,8 @@ pub struct Occluder {
     pub shape: u32,
     pub object: u32,
     pub object_kind: &'static str,
+    /// Where the file declared it (line, column).
+    pub object_position: Option<(u32, u32)>,
 }
 
 impl Frame {
@@ -145,11 +149,12 @@ impl Frame {
                 .get(object as usize)
                 .copied()
                 .unwrap_or("shape");
-            (object, kind)
+            (object, kind, world.object_positions.get(object as usize))
         };
         match &mut node.outcome {
             Outcome::Surface(record) => {
-                (record.object, record.object_kind) = object_of(record.shape);
+                (record.object, record.object_kind, record.object_position) =
+                    object_of(record.shape);
                 record.surface = *world.surface(record.shape);
             }
             Outcome::Light {
@@ -163,12 +168,13 @@ impl Frame {
                     self.index
                         .closest_hit(&world.shapes, &ray, 0.0, *distance, scratch)
                 {
-                    let (object, object_kind) = object_of(hit.shape);
+                    let (object, object_kind, object_position) = object_of(hit.shape);
                     *occluder = Occluder {
                         t: hit.t,
                         shape: hit.shape,
                         object,
                         object_kind,
+                        object_position,
                     };
                 }
             }
@@ -218,6 +224,7 @@ impl TraceRecorder for TreeRecorder {
                 shape: hit.shape,
                 object: 0,
                 object_kind: "",
+                object_position: None,
                 point: hit.point,
                 normal: hit.normal,
                 outside: hit.outside,
@@ -260,6 +267,7 @@ impl TraceRecorder for TreeRecorder {
             shape: 0,
             object: 0,
             object_kind: "",
+            object_position: None,
         };
         self.nodes.push(RayNode {
             kind: RayKind::Shadow,
@@ -364,6 +372,11 @@ s 2.5 0 1 1
                 panic!("the ball blocks the light: {shadow:#?}")
             };
             assert_eq!((o.object, o.object_kind), (2, "sphere"));
+            assert_eq!(o.object_position, Some((9, 1)), "the file's line 9");
+            let Outcome::Surface(mirror) = &eye.outcome else {
+                unreachable!()
+            };
+            assert_eq!(mirror.object_position, Some((7, 1)));
             assert_eq!(shadow.contribution, Vec3A::ZERO);
             assert_eq!((bounce.kind, bounce.depth), (RayKind::Reflection, 1));
             assert_eq!(bounce.outcome, Outcome::Background);
