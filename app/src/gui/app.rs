@@ -22,6 +22,7 @@ use super::frame_meter::{FrameMeter, ProgressPace};
 use super::live_image::LiveImage;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::{Controls, Persisted};
+use super::view_select::{self, ViewChoice};
 use super::viewport::{self, Gesture, ViewState, Zoom};
 use super::{controls, scene_picker, stats_panel};
 
@@ -73,6 +74,8 @@ pub struct WorkbenchApp {
     opened_at: Instant,
     screenshot: Option<(ScreenshotPlan, ScreenshotOutcome)>,
     screenshot_requested: bool,
+    /// Which per-pixel view the images show.
+    views: ViewChoice,
 }
 
 impl WorkbenchApp {
@@ -117,6 +120,7 @@ impl WorkbenchApp {
             opened_at: Instant::now(),
             screenshot: None,
             screenshot_requested: false,
+            views: ViewChoice::default(),
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
@@ -148,6 +152,11 @@ impl WorkbenchApp {
     }
 
     /// The engine, for tests that check what the renderer was asked.
+    /// The per-pixel view the images show.
+    pub fn views(&self) -> &ViewChoice {
+        &self.views
+    }
+
     pub fn engine(&self) -> &Engine {
         &self.engine
     }
@@ -301,6 +310,7 @@ impl WorkbenchApp {
                 }
             }
             Command::ToggleStats => self.state.show_stats ^= true,
+            Command::CycleView => self.views.cycle(),
             Command::ToggleHelp => self.help_open ^= true,
             Command::ToggleCompare => self.toggle_compare(),
             Command::ToggleBenchmark => self.bench.open ^= true,
@@ -491,13 +501,15 @@ impl WorkbenchApp {
             .state
             .controls
             .render_settings(&scene.scene, self.camera, moving);
+        self.engine.set_views(self.views.measures());
         if let Err(e) = self.engine.render(&settings) {
             self.error = Some(e);
         }
-        if let Some(compare) = &mut self.compare
-            && let Err(e) = compare.sync(self.camera, moving)
-        {
-            self.error = Some(e);
+        if let Some(compare) = &mut self.compare {
+            compare.engine.set_views(self.views.measures());
+            if let Err(e) = compare.sync(self.camera, moving) {
+                self.error = Some(e);
+            }
         }
         if let Some(failure) = self.engine.take_failure() {
             self.error = Some(format!(
@@ -518,9 +530,13 @@ impl WorkbenchApp {
     /// Uploads the render to the GPU when it changed, at the progress pace.
     fn refresh_texture(&mut self, ctx: &egui::Context) {
         let encoding = self.state.controls.encoding();
+        let b = self.compare.as_ref().map(|c| &c.engine);
+        let shown = self.views.fit(ctx, &self.engine, b);
+        self.image.set_view(shown);
         self.image
             .refresh(ctx, &self.engine, encoding, self.progress_pace.get());
         if let Some(compare) = &mut self.compare {
+            compare.image.set_view(shown);
             compare.refresh(ctx, (&self.engine, &self.image), self.progress_pace.get());
         }
     }
@@ -557,8 +573,11 @@ impl WorkbenchApp {
         let s = self.image.shown()?;
         let i = (y as usize * s.width as usize + x as usize) * 4;
         let p = s.rgba.get(i..i + 4)?;
+        let view = self.views.view;
         Some(if p[3] == 0 {
             format!("({x}, {y}) not rendered yet")
+        } else if let Some(value) = view_select::readout(&self.engine, view, x, y) {
+            format!("({x}, {y}) {value}")
         } else {
             format!("({x}, {y}) rgb {} {} {}", p[0], p[1], p[2])
         })
@@ -879,6 +898,8 @@ impl eframe::App for WorkbenchApp {
                         _ => &mut self.state.controls,
                     };
                     controls::show(ui, controls, paused, &mut commands);
+                    ui.separator();
+                    self.views.ui(ui, self.compare.is_some());
                     ui.separator();
                     controls::command_button(ui, Command::ToggleHelp, &mut commands);
                 });

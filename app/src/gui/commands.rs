@@ -20,6 +20,7 @@ pub enum Command {
     ZoomFit,
     ZoomActualSize,
     ToggleStats,
+    CycleView,
     ToggleHelp,
     ToggleCompare,
     SwapSides,
@@ -33,7 +34,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 19] = [
+    pub const ALL: [Command; 20] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -48,6 +49,7 @@ impl Command {
         Command::ZoomFit,
         Command::ZoomActualSize,
         Command::ToggleStats,
+        Command::CycleView,
         Command::ToggleCompare,
         Command::SwapSides,
         Command::CopyAToB,
@@ -72,6 +74,7 @@ impl Command {
             Command::ZoomFit => "Fit to window",
             Command::ZoomActualSize => "Actual size (1:1)",
             Command::ToggleStats => "Statistics panel",
+            Command::CycleView => "Next view",
             Command::ToggleHelp => "Help",
             Command::ToggleCompare => "Compare A/B",
             Command::SwapSides => "Swap A and B",
@@ -103,6 +106,7 @@ impl Command {
             Command::ZoomFit => "Scale the image to fill the view",
             Command::ZoomActualSize => "One image pixel per screen pixel",
             Command::ToggleStats => "Show or hide the statistics panel",
+            Command::CycleView => "Show the next per-pixel view: tests, steps, rays, depth...",
             Command::ToggleHelp => "List every shortcut",
             Command::ToggleCompare => {
                 "Render a second settings set B beside A, same scene and camera"
@@ -136,6 +140,7 @@ impl Command {
         const B: &[KeyboardShortcut] = &[key(Key::B)];
         const W: &[KeyboardShortcut] = &[key(Key::W)];
         const M: &[KeyboardShortcut] = &[key(Key::M)];
+        const V: &[KeyboardShortcut] = &[key(Key::V)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -152,6 +157,7 @@ impl Command {
             Command::ZoomFit => F,
             Command::ZoomActualSize => ONE,
             Command::ToggleStats => TAB,
+            Command::CycleView => V,
             Command::ToggleHelp => HELP,
             Command::ToggleCompare => B,
             Command::SwapSides => W,

@@ -13,6 +13,7 @@ mod scene_picker;
 mod screenshot;
 mod state;
 mod stats_panel;
+mod view_select;
 mod viewport;
 
 use std::path::PathBuf;
@@ -24,6 +25,7 @@ pub use compare::{Compare, CompareView};
 pub use engine::{Activity, Engine};
 pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
+pub use view_select::ViewChoice;
 
 use crate::load::SceneSource;
 

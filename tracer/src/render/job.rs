@@ -317,6 +317,22 @@ impl RenderJob {
         }
     }
 
+    /// The values of scalar view `view` so far (see [`ViewFilm::values`]);
+    /// `None` unless the job measures views.
+    pub fn view_values(&self, view: View) -> Option<Vec<Option<f32>>> {
+        self.shared
+            .progress()
+            .views
+            .as_ref()
+            .map(|v| v.values(view))
+    }
+
+    /// The value of scalar view `view` at pixel `(x, y)` so far; `None`
+    /// without a value (or views).
+    pub fn view_value(&self, view: View, x: u32, y: u32) -> Option<f32> {
+        self.shared.progress().views.as_ref()?.value(view, x, y)
+    }
+
     /// The views measured so far (a copy); `None` unless the job was
     /// started with [`JobOptions::views`].
     pub fn view_film(&self) -> Option<ViewFilm> {
