@@ -117,3 +117,56 @@ fn both_sides_of_a_comparison_read_on_one_scale() {
     harness.get_by_label_contains("A: mean");
     harness.get_by_label_contains("B: mean");
 }
+
+fn shadow_rays(tree: &tracer::render::RayTree) -> usize {
+    tree.nodes
+        .iter()
+        .filter(|n| n.kind == tracer::render::RayKind::Shadow)
+        .count()
+}
+
+#[test]
+fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
+    let mut harness = window();
+    wait_for(&mut harness, "the render", done);
+    // A click on the image pins the pixel under it (the centre here).
+    harness.get_by_role_and_label(Role::Image, "Render").click();
+    wait_for(&mut harness, "the tree", |app| {
+        matches!(app.inspector().tree(0), Some(Ok(_)))
+    });
+    harness.run_steps(2);
+    let pinned = harness.state().inspector().pinned.expect("a pinned pixel");
+    let settings = harness.state().engine().settings().unwrap().clone();
+    assert!(pinned.0 < settings.width && pinned.1 < settings.height);
+    harness.get_by_label_contains("eye (depth 0)");
+    harness.get_by_label_contains("contributions add up to");
+    let Some(Ok(tree)) = harness.state().inspector().tree(0) else {
+        unreachable!()
+    };
+    let colour = tree.colour;
+    assert!((tree.contributions() - colour).abs().max_element() < 1e-4);
+
+    // Another pixel, and soft shadows: the tree is recorded again.
+    harness.state_mut().inspect((20, 30));
+    harness.key_press(egui::Key::S);
+    wait_for(&mut harness, "the new tree", |app| {
+        let soft = app.engine().settings().is_some_and(|s| s.soft_shadows);
+        soft && matches!(app.inspector().tree(0), Some(Ok(t)) if (t.x, t.y) == (20, 30) && shadow_rays(t) > 0)
+    });
+    let Some(Ok(tree)) = harness.state().inspector().tree(0) else {
+        unreachable!()
+    };
+    assert!((tree.contributions() - tree.colour).abs().max_element() < 1e-4);
+    assert_ne!(tree.colour, colour, "another pixel, other settings");
+
+    // Compare mode inspects the same pixel on both sides.
+    harness.key_press(egui::Key::B);
+    wait_for(
+        &mut harness,
+        "B's tree",
+        |app| matches!(app.inspector().tree(1), Some(Ok(t)) if (t.x, t.y) == (20, 30)),
+    );
+    harness.run_steps(2);
+    let eyes = harness.get_all_by_label_contains("eye (depth 0)").count();
+    assert_eq!(eyes, 2, "A's tree and B's");
+}

@@ -19,6 +19,7 @@ use super::commands::Command;
 use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
+use super::inspector::Inspector;
 use super::live_image::LiveImage;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::{Controls, Persisted};
@@ -76,6 +77,8 @@ pub struct WorkbenchApp {
     screenshot_requested: bool,
     /// Which per-pixel view the images show.
     views: ViewChoice,
+    /// The pinned pixel's ray tree.
+    inspector: Inspector,
 }
 
 impl WorkbenchApp {
@@ -121,6 +124,7 @@ impl WorkbenchApp {
             screenshot: None,
             screenshot_requested: false,
             views: ViewChoice::default(),
+            inspector: Inspector::default(),
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
@@ -152,6 +156,16 @@ impl WorkbenchApp {
     }
 
     /// The engine, for tests that check what the renderer was asked.
+    /// The ray-tree inspector.
+    pub fn inspector(&self) -> &Inspector {
+        &self.inspector
+    }
+
+    /// Pins `pixel` in the inspector, as a click on it does.
+    pub fn inspect(&mut self, pixel: (u32, u32)) {
+        self.inspector.pin(pixel);
+    }
+
     /// The per-pixel view the images show.
     pub fn views(&self) -> &ViewChoice {
         &self.views
@@ -715,6 +729,11 @@ impl WorkbenchApp {
             .inner;
         self.dragging_camera = response.dragging_camera;
         self.hovered_pixel = response.hovered_pixel;
+        if let Some(pixel) = self.hovered_pixel
+            && ui.input(|i| i.pointer.primary_clicked())
+        {
+            self.inspector.pin(pixel);
+        }
         self.apply_gestures(&response.gestures);
         ui.horizontal(|ui| {
             ui.label(self.status_line());
@@ -962,6 +981,9 @@ impl eframe::App for WorkbenchApp {
             }
         }
         self.help_window(&ctx);
+        let b = self.compare.as_ref().map(|c| &c.engine);
+        self.inspector.update(&self.engine, b);
+        self.inspector.window(&ctx, self.compare.is_some());
         self.benchmark_window(&ctx);
 
         for command in commands {

@@ -251,6 +251,15 @@ impl Engine {
         self.job.as_ref().map(|j| j.snapshot(encoding))
     }
 
+    /// The acceleration structure of the current job, once built (or the
+    /// last one built), to inspect rays against the same structure.
+    pub fn index(&self) -> Option<Arc<SceneIndex>> {
+        self.job
+            .as_ref()
+            .and_then(RenderJob::index)
+            .or_else(|| self.index.clone())
+    }
+
     /// Whether jobs measure the views; a change renders again.
     pub fn set_views(&mut self, on: bool) {
         self.views_changed |= on != self.views;
