@@ -218,3 +218,43 @@ fn inspect_prints_the_ray_tree_as_json_and_as_text() {
     let stderr = String::from_utf8_lossy(&no_sample.stderr);
     assert!(stderr.contains("1 sample(s) per pixel"), "{stderr}");
 }
+
+#[test]
+fn render_overlay_draws_the_structure_over_the_image() {
+    let dir = scratch("overlay");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = scene.to_str().unwrap();
+    let out = dir.join("o.png");
+    let out_str = out.to_str().unwrap();
+    let wire = |path: &std::path::Path| {
+        let img = image::open(path).unwrap().to_rgb8();
+        img.pixels().filter(|p| p.0 == [80, 255, 120]).count()
+    };
+    run_ok(&["render", scene, "-o", out_str]);
+    assert_eq!(wire(&out), 0);
+    run_ok(&["render", scene, "-o", out_str, "--overlay", "bvh:0"]);
+    let root = wire(&out);
+    assert!(root > 50, "{root}");
+    run_ok(&["render", scene, "-o", out_str, "--overlay", "grid"]);
+    let grid = wire(&out);
+    assert!(
+        grid > root,
+        "the lattice draws more than one box: {grid} vs {root}"
+    );
+    // Over a view too, with the legend kept below.
+    run_ok(&[
+        "render",
+        scene,
+        "-o",
+        out_str,
+        "--overlay",
+        "bvh:leaves",
+        "--view",
+        "tests",
+    ]);
+    assert!(wire(&out) > 0);
+    for bad in ["bvh:x", "octree"] {
+        let run = workbench(&["render", scene, "-o", out_str, "--overlay", bad]);
+        assert!(!run.status.success(), "{bad}");
+    }
+}

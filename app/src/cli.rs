@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use tracer::accel::AccelKind;
+use tracer::accel::{AccelKind, StructureLayer};
 use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
 
 use crate::measure::compare::Heatmap;
@@ -240,6 +240,23 @@ pub struct RenderArgs {
     pub stats: Option<StatsFormat>,
     #[command(flatten)]
     pub view: ViewArgs,
+    /// Draw the acceleration structure over the image: bvh:DEPTH (the
+    /// BVH's boxes at that depth), bvh:leaves, or grid (the grid's box and
+    /// cell lattice), projected through the camera.
+    #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
+    pub overlay: Option<StructureLayer>,
+}
+
+fn parse_overlay(text: &str) -> Result<StructureLayer, String> {
+    match text.split_once(':') {
+        None if text == "grid" => Ok(StructureLayer::Grid),
+        Some(("bvh", "leaves")) => Ok(StructureLayer::BvhLeaves),
+        Some(("bvh", depth)) => depth
+            .parse()
+            .map(StructureLayer::BvhDepth)
+            .map_err(|_| format!("'{depth}' is not a depth (0 is the root) or 'leaves'")),
+        _ => Err(format!("'{text}' is not bvh:DEPTH, bvh:leaves or grid")),
+    }
 }
 
 /// A per-pixel view instead of the shaded image, and its heat map's scale.

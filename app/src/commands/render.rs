@@ -5,11 +5,12 @@ use std::io::IsTerminal;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
+use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
+use tracer::render::{Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::load::load_scene;
-use crate::measure::view_image;
+use crate::measure::{overlay_image, view_image};
 use crate::output::save_png;
 use crate::report;
 
@@ -61,17 +62,28 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let heat = args.view.heatmap(&[&values]);
         (view, film, ViewSummary::of(&values), heat)
     });
-    match &view {
+    let mut image = match &view {
         Some((v, film, _, heat)) => {
-            let image = view_image::view_image(film, *v, heat).context("the view has no image")?;
-            let image = if v.is_scalar() {
-                view_image::with_legend(&image, heat)
-            } else {
-                image
-            };
-            save_png(&image, &args.output)?;
+            view_image::view_image(film, *v, heat).context("the view has no image")?
         }
-        None => save_png(&film.to_image(encoding), &args.output)?,
+        None => film.to_image(encoding),
+    };
+    if let Some(layer) = args.overlay {
+        let accel = match layer {
+            StructureLayer::Grid => AccelKind::Grid,
+            _ => AccelKind::Bvh,
+        };
+        let world = &loaded.world;
+        let index = SceneIndex::build(&world.shapes, accel, settings.grid_multiplier);
+        let camera = Frame::camera(world, &settings)
+            .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
+        overlay_image::draw_wireframe(&mut image, &camera, &index.wireframe(layer));
+    }
+    match &view {
+        Some((v, _, _, heat)) if v.is_scalar() => {
+            save_png(&view_image::with_legend(&image, heat), &args.output)?
+        }
+        _ => save_png(&image, &args.output)?,
     }
     match args.stats {
         Some(StatsFormat::Json) => {

@@ -7,5 +7,6 @@ pub mod bench_report;
 pub mod benchmark;
 pub mod compare;
 pub mod describe;
+pub mod overlay_image;
 pub mod ray_tree_report;
 pub mod view_image;

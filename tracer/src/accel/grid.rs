@@ -357,3 +357,11 @@ mod tests {
         assert!(n.x as u64 * n.y as u64 * n.z as u64 <= MAX_CELLS);
     }
 }
+
+impl Grid {
+    /// The grid's box and its cells per axis, read only, for drawing its
+    /// lattice over the image.
+    pub fn lattice(&self) -> (Aabb, [u32; 3]) {
+        (self.bounds, self.cells.as_uvec3().to_array())
+    }
+}
