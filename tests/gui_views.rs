@@ -170,3 +170,32 @@ fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
     let eyes = harness.get_all_by_label_contains("eye (depth 0)").count();
     assert_eq!(eyes, 2, "A's tree and B's");
 }
+
+#[test]
+fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
+    let mut harness = window();
+    wait_for(&mut harness, "the render", done);
+    assert_eq!(harness.state().overlay().segments(), 0);
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    wait_for(&mut harness, "the root box", |app| {
+        app.overlay().segments() == 12
+    });
+    harness
+        .get_by_role_and_label(Role::CheckBox, "leaves")
+        .click();
+    wait_for(&mut harness, "the leaves", |app| {
+        app.overlay().segments() > 12
+    });
+    // The grid: its box and lattice, once its structure is built.
+    harness.key_press(egui::Key::G);
+    wait_for(&mut harness, "the grid's lattice", |app| {
+        done(app) && app.overlay().segments() > 24
+    });
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().overlay().segments(), 0);
+}

@@ -21,6 +21,7 @@ use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
 use super::inspector::Inspector;
 use super::live_image::LiveImage;
+use super::overlay::StructureOverlay;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::{Controls, Persisted};
 use super::view_select::{self, ViewChoice};
@@ -79,6 +80,8 @@ pub struct WorkbenchApp {
     views: ViewChoice,
     /// The pinned pixel's ray tree.
     inspector: Inspector,
+    /// The acceleration structure drawn over the image.
+    overlay: StructureOverlay,
 }
 
 impl WorkbenchApp {
@@ -125,6 +128,7 @@ impl WorkbenchApp {
             screenshot_requested: false,
             views: ViewChoice::default(),
             inspector: Inspector::default(),
+            overlay: StructureOverlay::default(),
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
@@ -156,6 +160,11 @@ impl WorkbenchApp {
     }
 
     /// The engine, for tests that check what the renderer was asked.
+    /// The structure overlay.
+    pub fn overlay(&self) -> &StructureOverlay {
+        &self.overlay
+    }
+
     /// The ray-tree inspector.
     pub fn inspector(&self) -> &Inspector {
         &self.inspector
@@ -729,6 +738,9 @@ impl WorkbenchApp {
             .inner;
         self.dragging_camera = response.dragging_camera;
         self.hovered_pixel = response.hovered_pixel;
+        if let Some(rect) = response.image_rect {
+            self.overlay.paint(ui, &self.engine, rect);
+        }
         if let Some(pixel) = self.hovered_pixel
             && ui.input(|i| i.pointer.primary_clicked())
         {
@@ -919,6 +931,7 @@ impl eframe::App for WorkbenchApp {
                     controls::show(ui, controls, paused, &mut commands);
                     ui.separator();
                     self.views.ui(ui, self.compare.is_some());
+                    self.overlay.ui(ui);
                     ui.separator();
                     controls::command_button(ui, Command::ToggleHelp, &mut commands);
                 });
