@@ -140,6 +140,8 @@ fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
     assert!(pinned.0 < settings.width && pinned.1 < settings.height);
     harness.get_by_label_contains("eye (depth 0)");
     harness.get_by_label_contains("contributions add up to");
+    // The paths are drawn over the image: at least the eye ray.
+    assert!(harness.state().inspector().paths_drawn >= 1);
     let Some(Ok(tree)) = harness.state().inspector().tree(0) else {
         unreachable!()
     };

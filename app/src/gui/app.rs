@@ -740,6 +740,7 @@ impl WorkbenchApp {
         self.hovered_pixel = response.hovered_pixel;
         if let Some(rect) = response.image_rect {
             self.overlay.paint(ui, &self.engine, rect);
+            self.inspector.paths_drawn = self.inspector.paint_paths(ui, &self.engine, rect);
         }
         if let Some(pixel) = self.hovered_pixel
             && ui.input(|i| i.pointer.primary_clicked())
