@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use tracer::accel::AccelKind;
-use tracer::render::{Encoding, RenderSettings};
+use tracer::accel::{AccelKind, StructureLayer};
+use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
 
 use crate::measure::bench_report::Format;
 use crate::measure::compare::Heatmap;
@@ -60,6 +60,9 @@ impl Cli {
 pub enum Command {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
+    /// Show every ray one sample of one pixel spawned: what each hit, its
+    /// material, its shadow rays and what it added to the pixel.
+    Inspect(InspectArgs),
     /// Time frames of a scene with each acceleration structure, or the
     /// seed's whole timing matrix (--matrix).
     Bench(BenchArgs),
@@ -243,7 +246,13 @@ The image is A | B | difference, with a legend bar under the difference
 renderer's output, an earlier figure): PNG, JPEG or OpenEXR (linear, encoded
 as A is), of A's size, or resized to it with --fit:
 
-  workbench compare scene.p3f --a \"--aa --spp 4\" --b-image ref.png -o out.png")]
+  workbench compare scene.p3f --a \"--aa --spp 4\" --b-image ref.png -o out.png
+
+
+With --view VIEW the image is A's view | B's view | |A - B| of the view's
+values, A and B on one shared scale, so both read against one legend. Each
+side renders once more to measure its view: the times stay those of the
+plain render.")]
 pub struct CompareArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,
@@ -280,6 +289,9 @@ pub struct CompareArgs {
     /// How to print the times and metrics.
     #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
     pub format: MetricsFormat,
+    // With --view: A's view | B's view | their difference, on one scale.
+    #[command(flatten)]
+    pub view: ViewArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Worker threads (default: all cores).
@@ -328,6 +340,88 @@ pub struct RenderArgs {
     /// Print the statistics in this format instead of the summary.
     #[arg(long, value_name = "FORMAT")]
     pub stats: Option<StatsFormat>,
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// Draw the acceleration structure over the image: bvh:DEPTH (the
+    /// BVH's boxes at that depth), bvh:leaves, or grid (the grid's box and
+    /// cell lattice), projected through the camera.
+    #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
+    pub overlay: Option<StructureLayer>,
+}
+
+fn parse_overlay(text: &str) -> Result<StructureLayer, String> {
+    match text.split_once(':') {
+        None if text == "grid" => Ok(StructureLayer::Grid),
+        Some(("bvh", "leaves")) => Ok(StructureLayer::BvhLeaves),
+        Some(("bvh", depth)) => depth
+            .parse()
+            .map(StructureLayer::BvhDepth)
+            .map_err(|_| format!("'{depth}' is not a depth (0 is the root) or 'leaves'")),
+        _ => Err(format!("'{text}' is not bvh:DEPTH, bvh:leaves or grid")),
+    }
+}
+
+/// A per-pixel view instead of the shaded image, and its heat map's scale.
+#[derive(Args, Debug, Clone, Default)]
+pub struct ViewArgs {
+    /// Write this view instead of the shaded image: tests, steps, rays,
+    /// shadow, blocked, depth, distance (heat maps with a legend), normals
+    /// or objects (colours).
+    #[arg(long, value_parser = parse_view, value_name = "VIEW")]
+    pub view: Option<View>,
+    /// Top of the heat map: max, p99 (the 99th percentile) or a number.
+    #[arg(long, value_parser = parse_heat_scale, value_name = "max|p99|VALUE", requires = "view")]
+    pub view_scale: Option<HeatScale>,
+    /// Heat map on log(1 + value).
+    #[arg(long, requires = "view")]
+    pub log: bool,
+}
+
+impl ViewArgs {
+    /// The view asked for, unless it is the shaded image.
+    pub fn view(&self) -> Option<View> {
+        self.view.filter(|&v| v != View::Shaded)
+    }
+
+    /// The heat map fitting `sides` together (one shared scale).
+    pub fn heatmap(&self, sides: &[&[Option<f32>]]) -> ViewHeatmap {
+        ViewHeatmap::fit(self.view_scale.unwrap_or_default(), self.log, sides)
+    }
+}
+
+fn parse_view(text: &str) -> Result<View, String> {
+    View::from_name(text).ok_or_else(|| {
+        let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
+        format!("no view '{text}'; views: {}", names.join(", "))
+    })
+}
+
+fn parse_heat_scale(text: &str) -> Result<HeatScale, String> {
+    match text {
+        "max" => Ok(HeatScale::Max),
+        "p99" => Ok(HeatScale::P99),
+        _ => match text.parse::<f32>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Ok(HeatScale::Fixed(v)),
+            _ => Err(format!("'{text}' is not max, p99 or a positive number")),
+        },
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// The pixel, from the top-left corner.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
+    pub pixel: Vec<u32>,
+    /// Which of the pixel's samples (the pass that traces it, from 0).
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub sample: u32,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// An indented tree to read, or JSON for scripts.
+    #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+    pub format: MetricsFormat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]

@@ -18,6 +18,7 @@ pub fn run() -> std::process::ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
         Some(cli::Command::Render(args)) => commands::render::run(&args),
+        Some(cli::Command::Inspect(args)) => commands::inspect::run(&args),
         Some(cli::Command::Bench(args)) => commands::bench::run(&args),
         Some(cli::Command::Compare(args)) => commands::compare::run(&args),
         Some(cli::Command::Gen(args)) => commands::generate::run(&args),

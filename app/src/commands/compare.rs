@@ -5,12 +5,13 @@
 use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, anyhow};
-use tracer::render::RenderSettings;
+use tracer::render::{RenderSettings, View, ViewSummary};
 
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
 use crate::load::load_scene;
 use crate::measure::benchmark::{Case, Measurement};
 use crate::measure::compare::{self, Comparison, Heatmap, ImageComparison};
+use crate::measure::view_image;
 use crate::output::save_png;
 use crate::report::si;
 
@@ -38,10 +39,16 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     super::warn_brute_force(&a.settings, &loaded.world.counts);
     let heatmap = Heatmap::from(args.heatmap);
     if let Some(path) = &args.b_image {
+        if args.view.view().is_some() {
+            anyhow::bail!(
+                "--view compares the views of two renders; it does not work with --b-image"
+            );
+        }
         return against_image(args, &loaded.world, a, path, heatmap);
     }
     let b = side("b", &args.b)?;
     super::warn_brute_force(&b.settings, &loaded.world.counts);
+    let sides = (a.settings.clone(), b.settings.clone());
     let mut progress = super::runner_progress(vec!["A".into(), "B".into()], 1);
     let comparison = compare::run(
         &loaded.world,
@@ -54,13 +61,33 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     );
     let comparison = finished(comparison, args)?;
     let c = &comparison;
-    save_png(
-        &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
-        &args.output,
-    )?;
+    let views = match args.view.view() {
+        Some(view) => Some(compare_views(args, &loaded.world, view, &sides)?),
+        None => {
+            save_png(
+                &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
+                &args.output,
+            )?;
+            None
+        }
+    };
     match args.format {
-        MetricsFormat::Text => print!("{}", text(args, c, heatmap)),
-        MetricsFormat::Json => println!("{}", json(args, c)),
+        MetricsFormat::Text => {
+            print!("{}", text(args, c, heatmap));
+            if let Some(lines) = &views {
+                print!("{}", lines.text);
+            }
+        }
+        MetricsFormat::Json => {
+            let mut value = json(args, c);
+            if let Some(lines) = views {
+                value["view"] = lines.json;
+            }
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&value).unwrap_or_default()
+            );
+        }
     }
     Ok(())
 }
@@ -176,6 +203,45 @@ fn image_json(
     serde_json::to_string_pretty(&value).unwrap_or_default()
 }
 
+/// The view's summary of both sides, as text and JSON.
+struct ViewReport {
+    text: String,
+    json: serde_json::Value,
+}
+
+/// Measures `view` on both sides, writes A | B | difference on a shared
+/// scale, and reports both sides' numbers.
+fn compare_views(
+    args: &CompareArgs,
+    world: &std::sync::Arc<tracer::world::World>,
+    view: View,
+    (a, b): &(RenderSettings, RenderSettings),
+) -> Result<ViewReport> {
+    let measure = |s| {
+        view_image::measure_views(world, s, args.threads)
+            .with_context(|| format!("cannot measure the view {}", view.name()))
+    };
+    let (fa, fb) = (measure(a)?, measure(b)?);
+    let (va, vb) = (fa.values(view), fb.values(view));
+    let heat = args.view.heatmap(&[&va, &vb]);
+    save_png(
+        &view_image::compose_sides(&fa, &fb, view, &heat)?,
+        &args.output,
+    )?;
+    let (sa, sb) = (ViewSummary::of(&va), ViewSummary::of(&vb));
+    Ok(ViewReport {
+        text: format!(
+            "A {}\nB {}\n",
+            view_image::describe(view, sa.as_ref(), &heat),
+            view_image::describe(view, sb.as_ref(), &heat)
+        ),
+        json: serde_json::json!({
+            "a": view_image::summary_json(view, sa.as_ref(), &heat),
+            "b": view_image::summary_json(view, sb.as_ref(), &heat),
+        }),
+    })
+}
+
 fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
     let side = side_text;
     let ratio = c.time_ratio();
@@ -188,7 +254,10 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
         "{} -> {} (A | B | {})\n{}{}time A/B: {ratio:.3} ({speed})\nMSE {:.3}, PSNR {:.2} dB, FLIP {:.4}\n",
         args.scene.display(),
         args.output.display(),
-        heatmap.legend(),
+        match args.view.view() {
+            Some(view) => format!("{0} | {0} | |A - B|, on one scale", view.name()),
+            None => heatmap.legend(),
+        },
         side("A", &c.labels.0, &c.a),
         side("B", &c.labels.1, &c.b),
         c.metrics.mse,
@@ -199,9 +268,9 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
 
 /// The times and metrics as one JSON object; PSNR is null for identical
 /// images (infinite).
-fn json(args: &CompareArgs, c: &Comparison) -> String {
+fn json(args: &CompareArgs, c: &Comparison) -> serde_json::Value {
     let side = side_json;
-    let value = serde_json::json!({
+    serde_json::json!({
         "scene": args.scene.display().to_string(),
         "output": args.output.display().to_string(),
         "a": side(&c.labels.0, &c.a),
@@ -210,6 +279,5 @@ fn json(args: &CompareArgs, c: &Comparison) -> String {
         "mse": c.metrics.mse,
         "psnr": c.metrics.psnr,
         "flip": c.metrics.flip,
-    });
-    serde_json::to_string_pretty(&value).unwrap_or_default()
+    })
 }

@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod compare;
 pub mod generate;
+pub mod inspect;
 pub mod render;
 pub mod sweep;
 

@@ -19,11 +19,14 @@ use super::commands::Command;
 use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
+use super::inspector::Inspector;
 use super::live_image::LiveImage;
+use super::overlay::StructureOverlay;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use super::state::AccelChoice;
 use super::state::{Controls, Persisted};
 use super::studies::{Applied, StudiesWindow};
+use super::view_select::{self, ViewChoice};
 use super::viewport::{self, Gesture, ViewState, Zoom};
 use super::{accel_banner, controls, scene_picker, stats_panel};
 
@@ -82,6 +85,12 @@ pub struct WorkbenchApp {
     opened_at: Instant,
     screenshot: Option<(ScreenshotPlan, ScreenshotOutcome)>,
     screenshot_requested: bool,
+    /// Which per-pixel view the images show.
+    views: ViewChoice,
+    /// The pinned pixel's ray tree.
+    inspector: Inspector,
+    /// The acceleration structure drawn over the image.
+    overlay: StructureOverlay,
 }
 
 impl WorkbenchApp {
@@ -127,6 +136,9 @@ impl WorkbenchApp {
             opened_at: Instant::now(),
             screenshot: None,
             screenshot_requested: false,
+            views: ViewChoice::default(),
+            inspector: Inspector::default(),
+            overlay: StructureOverlay::default(),
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
@@ -158,6 +170,26 @@ impl WorkbenchApp {
     }
 
     /// The engine, for tests that check what the renderer was asked.
+    /// The structure overlay.
+    pub fn overlay(&self) -> &StructureOverlay {
+        &self.overlay
+    }
+
+    /// The ray-tree inspector.
+    pub fn inspector(&self) -> &Inspector {
+        &self.inspector
+    }
+
+    /// Pins `pixel` in the inspector, as a click on it does.
+    pub fn inspect(&mut self, pixel: (u32, u32)) {
+        self.inspector.pin(pixel);
+    }
+
+    /// The per-pixel view the images show.
+    pub fn views(&self) -> &ViewChoice {
+        &self.views
+    }
+
     pub fn engine(&self) -> &Engine {
         &self.engine
     }
@@ -316,6 +348,7 @@ impl WorkbenchApp {
                 }
             }
             Command::ToggleStats => self.state.show_stats ^= true,
+            Command::CycleView => self.views.cycle(),
             Command::ToggleHelp => self.help_open ^= true,
             Command::ToggleCompare => self.toggle_compare(),
             Command::ToggleBenchmark => self.bench.open ^= true,
@@ -565,13 +598,15 @@ impl WorkbenchApp {
             .state
             .controls
             .render_settings(&scene.scene, self.camera, moving);
+        self.engine.set_views(self.views.measures());
         if let Err(e) = self.engine.render(&settings) {
             self.error = Some(e);
         }
-        if let Some(compare) = &mut self.compare
-            && let Err(e) = compare.sync(self.camera, moving)
-        {
-            self.error = Some(e);
+        if let Some(compare) = &mut self.compare {
+            compare.engine.set_views(self.views.measures());
+            if let Err(e) = compare.sync(self.camera, moving) {
+                self.error = Some(e);
+            }
         }
         if let Some(failure) = self.engine.take_failure() {
             self.error = Some(format!(
@@ -592,9 +627,13 @@ impl WorkbenchApp {
     /// Uploads the render to the GPU when it changed, at the progress pace.
     fn refresh_texture(&mut self, ctx: &egui::Context) {
         let encoding = self.state.controls.encoding();
+        let b = self.compare.as_ref().map(|c| &c.engine);
+        let shown = self.views.fit(ctx, &self.engine, b);
+        self.image.set_view(shown);
         self.image
             .refresh(ctx, &self.engine, encoding, self.progress_pace.get());
         if let Some(compare) = &mut self.compare {
+            compare.image.set_view(shown);
             compare.refresh(ctx, (&self.engine, &self.image), self.progress_pace.get());
         }
     }
@@ -634,8 +673,11 @@ impl WorkbenchApp {
         let s = self.image.shown()?;
         let i = (y as usize * s.width as usize + x as usize) * 4;
         let p = s.rgba.get(i..i + 4)?;
+        let view = self.views.view;
         Some(if p[3] == 0 {
             format!("({x}, {y}) not rendered yet")
+        } else if let Some(value) = view_select::readout(&self.engine, view, x, y) {
+            format!("({x}, {y}) {value}")
         } else {
             format!("({x}, {y}) rgb {} {} {}", p[0], p[1], p[2])
         })
@@ -775,6 +817,15 @@ impl WorkbenchApp {
             .inner;
         self.dragging_camera = response.dragging_camera;
         self.hovered_pixel = response.hovered_pixel;
+        if let Some(rect) = response.image_rect {
+            self.overlay.paint(ui, &self.engine, rect);
+            self.inspector.paths_drawn = self.inspector.paint_paths(ui, &self.engine, rect);
+        }
+        if let Some(pixel) = self.hovered_pixel
+            && ui.input(|i| i.pointer.primary_clicked())
+        {
+            self.inspector.pin(pixel);
+        }
         self.apply_gestures(&response.gestures);
         ui.horizontal(|ui| {
             ui.label(self.status_line());
@@ -984,6 +1035,9 @@ impl eframe::App for WorkbenchApp {
                     };
                     controls::show(ui, controls, paused, &mut commands);
                     ui.separator();
+                    self.views.ui(ui, self.compare.is_some());
+                    self.overlay.ui(ui);
+                    ui.separator();
                     controls::command_button(ui, Command::ToggleHelp, &mut commands);
                 });
             });
@@ -1045,6 +1099,9 @@ impl eframe::App for WorkbenchApp {
             }
         }
         self.help_window(&ctx);
+        let b = self.compare.as_ref().map(|c| &c.engine);
+        self.inspector.update(&self.engine, b);
+        self.inspector.window(&ctx, self.compare.is_some());
         self.benchmark_window(&ctx);
         self.studies_window(&ctx);
 

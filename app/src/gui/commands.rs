@@ -21,6 +21,7 @@ pub enum Command {
     ZoomFit,
     ZoomActualSize,
     ToggleStats,
+    CycleView,
     ToggleHelp,
     ToggleCompare,
     SwapSides,
@@ -35,7 +36,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 21] = [
+    pub const ALL: [Command; 22] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -51,6 +52,7 @@ impl Command {
         Command::ZoomFit,
         Command::ZoomActualSize,
         Command::ToggleStats,
+        Command::CycleView,
         Command::ToggleCompare,
         Command::SwapSides,
         Command::CopyAToB,
@@ -77,6 +79,7 @@ impl Command {
             Command::ZoomFit => "Fit to window",
             Command::ZoomActualSize => "Actual size (1:1)",
             Command::ToggleStats => "Statistics panel",
+            Command::CycleView => "Next view",
             Command::ToggleHelp => "Help",
             Command::ToggleCompare => "Compare A/B",
             Command::SwapSides => "Swap A and B",
@@ -114,6 +117,7 @@ impl Command {
             Command::ZoomFit => "Scale the image to fill the view",
             Command::ZoomActualSize => "One image pixel per screen pixel",
             Command::ToggleStats => "Show or hide the statistics panel",
+            Command::CycleView => "Show the next per-pixel view: tests, steps, rays, depth...",
             Command::ToggleHelp => "List every shortcut",
             Command::ToggleCompare => {
                 "Render a second settings set B beside A, same scene and camera"
@@ -152,6 +156,7 @@ impl Command {
         const W: &[KeyboardShortcut] = &[key(Key::W)];
         const M: &[KeyboardShortcut] = &[key(Key::M)];
         const P: &[KeyboardShortcut] = &[key(Key::P)];
+        const V: &[KeyboardShortcut] = &[key(Key::V)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -169,6 +174,7 @@ impl Command {
             Command::ZoomFit => F,
             Command::ZoomActualSize => ONE,
             Command::ToggleStats => TAB,
+            Command::CycleView => V,
             Command::ToggleHelp => HELP,
             Command::ToggleCompare => B,
             Command::SwapSides => W,

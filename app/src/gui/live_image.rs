@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use egui::{ColorImage, TextureHandle, TextureOptions};
-use tracer::render::{Encoding, Snapshot};
+use tracer::render::{Encoding, Snapshot, View, ViewHeatmap};
 
 use super::engine::{Engine, Version};
 
@@ -16,6 +16,10 @@ pub struct LiveImage {
     shown: Option<Snapshot>,
     version: Version,
     encoding: Encoding,
+    /// The view to show instead of the shaded image, with its heat map.
+    view: Option<(View, ViewHeatmap)>,
+    /// The view of the image on screen.
+    shown_view: Option<(View, ViewHeatmap)>,
     last_upload: Instant,
 }
 
@@ -27,6 +31,8 @@ impl LiveImage {
             shown: None,
             version: (0, 0),
             encoding: Encoding::Linear,
+            view: None,
+            shown_view: None,
             last_upload: Instant::now(),
         }
     }
@@ -41,15 +47,21 @@ impl LiveImage {
         interval: Duration,
     ) {
         let version = engine.version();
-        if version == self.version && encoding == self.encoding && self.shown.is_some() {
+        let same_view = self.view == self.shown_view;
+        if version == self.version && encoding == self.encoding && same_view && self.shown.is_some()
+        {
             return;
         }
         let since = self.last_upload.elapsed();
-        if since < interval && self.shown.is_some() {
+        if since < interval && self.shown.is_some() && same_view {
             ctx.request_repaint_after(interval - since);
             return;
         }
-        let Some(snapshot) = engine.snapshot(encoding) else {
+        let snapshot = match &self.view {
+            Some((view, heat)) => engine.view_snapshot(*view, heat, encoding),
+            None => engine.snapshot(encoding),
+        };
+        let Some(snapshot) = snapshot else {
             return;
         };
         let image = ColorImage::from_rgba_unmultiplied(
@@ -68,7 +80,14 @@ impl LiveImage {
         self.shown = Some(snapshot);
         self.version = version;
         self.encoding = encoding;
+        self.shown_view = self.view;
         self.last_upload = Instant::now();
+    }
+
+    /// Shows `view` (with its heat map) instead of the shaded image from
+    /// the next refresh on; `None` for the shaded image.
+    pub fn set_view(&mut self, view: Option<(View, ViewHeatmap)>) {
+        self.view = view;
     }
 
     pub fn texture(&self) -> Option<&TextureHandle> {

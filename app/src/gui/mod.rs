@@ -10,13 +10,16 @@ mod compare;
 mod controls;
 mod engine;
 mod frame_meter;
+mod inspector;
 mod live_image;
+mod overlay;
 mod reference;
 mod scene_picker;
 mod screenshot;
 mod state;
 mod stats_panel;
 mod studies;
+mod view_select;
 mod viewport;
 
 use std::path::PathBuf;
@@ -26,10 +29,13 @@ pub use bench_window::BenchWindow;
 pub use commands::Command;
 pub use compare::{Compare, CompareView};
 pub use engine::{Activity, Engine};
+pub use inspector::Inspector;
+pub use overlay::StructureOverlay;
 pub use reference::ReferenceImage;
 pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
 pub use studies::{Applied, StudiesWindow};
+pub use view_select::ViewChoice;
 
 use crate::load::SceneSource;
 

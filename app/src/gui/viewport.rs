@@ -50,6 +50,8 @@ pub struct ViewportResponse {
     pub dragging_camera: bool,
     /// The image pixel under the cursor, in the displayed image's pixels.
     pub hovered_pixel: Option<(u32, u32)>,
+    /// Where the (first) image is drawn on screen, for overlays.
+    pub image_rect: Option<Rect>,
 }
 
 impl ViewportResponse {
@@ -58,6 +60,7 @@ impl ViewportResponse {
         self.gestures.extend(other.gestures);
         self.dragging_camera |= other.dragging_camera;
         self.hovered_pixel = self.hovered_pixel.or(other.hovered_pixel);
+        self.image_rect = self.image_rect.or(other.image_rect);
         self
     }
 }
@@ -176,6 +179,7 @@ pub fn show(
     if let Some(pointer) = response.hover_pos() {
         out.hovered_pixel = pixel_at(pointer, image_rect, image_size);
     }
+    out.image_rect = Some(image_rect);
     out
 }
 

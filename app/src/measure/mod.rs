@@ -9,4 +9,7 @@ pub mod benchmark;
 pub mod compare;
 pub mod cost;
 pub mod describe;
+pub mod overlay_image;
+pub mod ray_tree_report;
 pub mod study;
+pub mod view_image;

@@ -600,3 +600,26 @@ fn flatten(node: &BuildNode, index: usize, nodes: &mut Vec<Node>) {
         }
     }
 }
+
+impl Bvh {
+    /// The boxes of the nodes at `depth` (the root is 0), with the leaves
+    /// above it so the scene stays covered; every leaf for `None`. Read
+    /// only, for drawing the structure over the image.
+    pub fn boxes(&self, depth: Option<u32>) -> Vec<Aabb> {
+        let mut out = Vec::new();
+        let mut stack = vec![(0usize, 0u32)];
+        while let Some((index, d)) = stack.pop() {
+            let Some(node) = self.nodes.get(index) else {
+                continue;
+            };
+            let leaf = node.count() > 0 || self.shapes.is_empty();
+            if leaf || depth == Some(d) {
+                out.push(node.bounds());
+            } else {
+                let first = node.first() as usize;
+                stack.extend([(first, d + 1), (first + 1, d + 1)]);
+            }
+        }
+        out
+    }
+}

@@ -192,6 +192,7 @@ impl Parser<'_, '_> {
             primitive,
             material,
         });
+        self.scene.object_positions.0.push((pos.line, pos.column));
         Ok(())
     }
 
