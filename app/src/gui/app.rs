@@ -644,13 +644,12 @@ impl WorkbenchApp {
                     return viewport::show(
                         ui,
                         &mut self.view,
-                        self.image.texture(),
+                        &self.image.layers(),
                         None,
                         size,
                         full,
                     );
                 };
-                let b = compare.image.texture();
                 match compare.view {
                     CompareView::SideBySide => {
                         let half =
@@ -661,7 +660,7 @@ impl WorkbenchApp {
                                     viewport::show(
                                         ui,
                                         &mut self.view,
-                                        self.image.texture(),
+                                        &self.image.layers(),
                                         None,
                                         size,
                                         full,
@@ -670,7 +669,8 @@ impl WorkbenchApp {
                                 .inner;
                             let right = ui
                                 .allocate_ui(half, |ui| {
-                                    viewport::show(ui, &mut self.view, b, None, size, full)
+                                    let b = compare.image.layers();
+                                    viewport::show(ui, &mut self.view, &b, None, size, full)
                                 })
                                 .inner;
                             left.merge(right)
@@ -678,18 +678,24 @@ impl WorkbenchApp {
                         .inner
                     }
                     CompareView::Split => {
-                        let split = b.map(|texture| viewport::SplitWith {
+                        let split = compare.image.texture().map(|texture| viewport::SplitWith {
                             texture,
                             at: &mut compare.split,
                         });
-                        viewport::show(ui, &mut self.view, self.image.texture(), split, size, full)
+                        let a = self.image.layers();
+                        viewport::show(ui, &mut self.view, &a, split, size, full)
                     }
                     CompareView::Flip => {
-                        let texture = if flip_held { b } else { self.image.texture() };
-                        viewport::show(ui, &mut self.view, texture, None, size, full)
+                        let image = if flip_held {
+                            &compare.image
+                        } else {
+                            &self.image
+                        };
+                        viewport::show(ui, &mut self.view, &image.layers(), None, size, full)
                     }
                     CompareView::Difference => {
-                        viewport::show(ui, &mut self.view, compare.difference(), None, size, full)
+                        let difference = compare.difference();
+                        viewport::show(ui, &mut self.view, difference.as_slice(), None, size, full)
                     }
                 }
             })
@@ -822,6 +828,9 @@ impl eframe::App for WorkbenchApp {
         self.frame_meter.begin();
         self.engine.collect_retired();
         self.receive(&ctx);
+        // Before anything is drawn, so the numbers and the image of a
+        // frame describe the same render.
+        self.refresh_texture(&ctx);
         self.take_dropped_files(&ctx);
         let mut commands = Command::pressed(&ctx);
 
@@ -947,7 +956,6 @@ impl eframe::App for WorkbenchApp {
             self.run_command(command);
         }
         self.sync_render(&ctx);
-        self.refresh_texture(&ctx);
         self.take_screenshot_when_due(&ctx);
         self.frame_meter.end();
         self.progress_pace.set(self.frame_meter.progress_interval());
