@@ -85,8 +85,12 @@ fn settle(harness: &mut Harness<'static, WorkbenchApp>) {
 #[test]
 fn the_window_opens_the_requested_scene_and_renders_it() {
     let mut harness = window();
-    harness.get_by_label("balls_low");
     wait_for(&mut harness, "the render to finish", is_done);
+    // The engine renders the scene asked for (the default is the showcase),
+    // at its resolution (512 x 512) times the scale of 1/8.
+    let scene = harness.state().engine().scene().expect("a scene");
+    assert_eq!(scene.source, SceneSource::Bundled("balls_low".into()));
+    assert_eq!(scene.world.counts.objects(), 12, "balls_low's objects");
     let settings = render_settings(&harness);
     assert_eq!((settings.width, settings.height), (64, 64));
 }
@@ -336,13 +340,29 @@ fn snapshot_while_rendering() {
         controls.antialiasing = true;
         controls.samples = 16;
         controls.keep_refining = true;
+        // 1024 x 1024: a first pass long enough to be seen half done.
+        controls.resolution_scale = 2.0;
     }
     // How far the render got changes every count in the statistics; the
     // finished-render snapshot covers that panel.
     harness.state_mut().state_mut().show_stats = false;
-    wait_for(&mut harness, "the first pass on screen", |app| {
-        app.shown_passes().is_some_and(|p| p >= 1) && app.is_catalog_complete()
+    wait_for(&mut harness, "the scene list", |app| {
+        app.is_catalog_complete() && app.engine().settings().is_some()
     });
+    // A fresh render (drawn over the last one, which the mask hides).
+    harness.key_press(egui::Key::R);
+    wait_for(&mut harness, "the first tiles on screen", |app| {
+        app.shown()
+            .is_some_and(|s| s.stats.passes_done >= 1 || coverage(s) > 0.0)
+    });
+    let shown = harness.state().shown().unwrap().clone();
+    let covered = coverage(&shown);
+    assert!(
+        shown.stats.passes_done == 0 && covered > 0.0 && covered < 1.0,
+        "the window shows some tiles of the first pass and not others: {} passes, {:.0}% covered",
+        shown.stats.passes_done,
+        covered * 100.0
+    );
     assert_eq!(
         harness.state().engine().activity(),
         Activity::Job(JobState::Rendering)
@@ -596,6 +616,12 @@ fn status_line(harness: &Harness<'static, WorkbenchApp>) -> Option<String> {
     harness
         .query_all_by_label_contains(" spp")
         .find_map(|n| n.accesskit_node().label().or(n.accesskit_node().value()))
+}
+
+/// The share of `snapshot`'s pixels that have a sample.
+fn coverage(snapshot: &Snapshot) -> f32 {
+    let covered = snapshot.rgba.chunks(4).filter(|p| p[3] != 0).count();
+    covered as f32 / (snapshot.width * snapshot.height).max(1) as f32
 }
 
 /// Where the viewport draws a render of `width` x `height` (fit to view).

@@ -167,6 +167,11 @@ impl WorkbenchApp {
         self.error.as_deref()
     }
 
+    /// The render on screen, once there is one.
+    pub fn shown(&self) -> Option<&tracer::render::Snapshot> {
+        self.image.shown()
+    }
+
     /// Samples per pixel of the image on screen, once there is one.
     pub fn shown_passes(&self) -> Option<u32> {
         self.image.shown().map(|s| s.stats.passes_done)
