@@ -35,7 +35,8 @@ enum Reply {
     Open(PathBuf),
     Notice(String),
     Error(String),
-    Screenshot(Result<PathBuf, String>),
+    /// The line to print once the screenshot is saved, or why it was not.
+    Screenshot(Result<String, String>),
 }
 
 /// The application state: persisted settings plus runtime handles.
@@ -756,11 +757,15 @@ impl WorkbenchApp {
         }
         self.screenshot_requested = true;
         let path = plan.path.clone();
+        let shown = self.image.shown().map(screenshot::describe);
         let reply = self.replies.0.clone();
         let wake = ctx.clone();
         ctx.request_screenshot(move |image| {
             let result = screenshot::save(&image, &path)
-                .map(|()| path)
+                .map(|()| match shown {
+                    Some(shown) => format!("saved screenshot {} of {shown}", path.display()),
+                    None => format!("saved screenshot {}", path.display()),
+                })
                 .map_err(|e| format!("{e:#}"));
             let _ = reply.send(Reply::Screenshot(result));
             wake.request_repaint();
@@ -828,9 +833,10 @@ fn default_scene() -> Option<SceneSource> {
 }
 
 impl eframe::App for WorkbenchApp {
-    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
-        self.frame_meter.begin();
+        self.frame_meter
+            .begin(Instant::now(), frame.info().cpu_usage);
         self.engine.collect_retired();
         self.receive(&ctx);
         // Before anything is drawn, so the numbers and the image of a
@@ -962,7 +968,7 @@ impl eframe::App for WorkbenchApp {
         }
         self.sync_render(&ctx);
         self.take_screenshot_when_due(&ctx);
-        self.frame_meter.end();
+        self.frame_meter.end(Instant::now());
         self.progress_pace.set(self.frame_meter.progress_interval());
     }
 
