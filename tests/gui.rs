@@ -2,7 +2,7 @@
 //! labelled widgets, key presses, dropped files. Each test checks what the
 //! renderer was asked to do, not only what the widgets show.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
@@ -15,47 +15,20 @@ use tracer::render::{Encoding, JobState, RenderSettings, Snapshot};
 use workbench::gui::{Activity, Compare, CompareView, WorkbenchApp};
 use workbench::load::SceneSource;
 
-/// Long enough for any render in these tests on a slow CI machine; only a
-/// guard against hanging, never a measure of speed.
-const PATIENCE: Duration = Duration::from_secs(180);
+mod support;
+use support::{DroppedPath, PATIENCE, broken_scene, small_window, wait_for};
 
 /// The window on the bundled `balls_low`, rendered small so tests are quick.
 fn window() -> Harness<'static, WorkbenchApp> {
-    let mut harness = Harness::builder()
-        .with_size([1280.0, 820.0])
-        .build_eframe(|cc| {
-            WorkbenchApp::new(
-                &cc.egui_ctx,
-                None,
-                Some(SceneSource::Bundled("balls_low".into())),
-            )
-        });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    let mut harness = small_window(Harness::builder());
     wait_for(&mut harness, "the scene to load", |app| {
         app.engine().settings().is_some()
     });
     harness
 }
 
-/// Steps the window until `done` holds (the render runs on other threads).
-fn wait_for(
-    harness: &mut Harness<'static, WorkbenchApp>,
-    what: &str,
-    done: impl Fn(&WorkbenchApp) -> bool,
-) {
-    let start = Instant::now();
-    loop {
-        harness.step();
-        if done(harness.state()) {
-            return;
-        }
-        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
-        sleep(Duration::from_millis(5));
-    }
-}
-
 /// Waits until the render is done and its last image is drawn (uploads
-/// are throttled, and panels are drawn before the upload of a frame).
+/// are throttled).
 fn wait_for_final_image(harness: &mut Harness<'static, WorkbenchApp>) {
     wait_for(harness, "the render to finish", is_done);
     wait_for(harness, "the final image on screen", |app| {
@@ -164,30 +137,6 @@ fn picking_a_scene_in_the_list_renders_it() {
             .is_some_and(|s| s.source == SceneSource::Bundled("balls_medium".into()))
     });
     wait_for(&mut harness, "balls_medium to render", is_done);
-}
-
-/// Writes a scene whose line 5, column 7 is wrong, in a folder of its own
-/// named after `test`.
-fn broken_scene(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-{test}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("broken.p3f");
-    std::fs::write(&path, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
-    path
-}
-
-/// A file dropped on the window, as the native integration delivers it.
-#[derive(Debug)]
-struct DroppedPath(PathBuf);
-
-impl egui::DroppedFile for DroppedPath {
-    fn path(&self) -> &Path {
-        &self.0
-    }
-
-    fn bytes(&self) -> Result<Vec<u8>, String> {
-        std::fs::read(&self.0).map_err(|e| e.to_string())
-    }
 }
 
 #[test]

@@ -9,10 +9,9 @@
 //! `cargo test` runs a short version; `WORKBENCH_SOAK_EVENTS=5000 cargo test
 //! --test gui_soak` a long one (`WORKBENCH_SOAK_SEED` picks another sequence).
 
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::thread::sleep;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
@@ -22,10 +21,11 @@ use tracer::render::JobState;
 use workbench::gui::{Activity, Command, WorkbenchApp};
 use workbench::load::SceneSource;
 
+mod support;
+use support::{DroppedPath, broken_scene, small_window, wait_for};
+
 /// Events of the short version, run by `cargo test`.
 const SHORT_SOAK: usize = 300;
-/// Only a guard against hanging, never a measure of speed.
-const PATIENCE: Duration = Duration::from_secs(300);
 /// The most the process may hold: the largest scene loaded a few times over
 /// (each loader thread's allocator arena keeps what it parsed).
 const MEMORY_CAP: u64 = 2 << 30;
@@ -74,29 +74,6 @@ fn resident_bytes() -> Option<u64> {
     let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib << 10)
-}
-
-/// A scene file with an error at line 5, column 7.
-fn broken_scene() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-soak-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("broken.p3f");
-    std::fs::write(&path, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
-    path
-}
-
-/// A file dropped on the window, as the native integration delivers it.
-#[derive(Debug)]
-struct DroppedPath(PathBuf);
-
-impl egui::DroppedFile for DroppedPath {
-    fn path(&self) -> &std::path::Path {
-        &self.0
-    }
-
-    fn bytes(&self) -> Result<Vec<u8>, String> {
-        std::fs::read(&self.0).map_err(|e| e.to_string())
-    }
 }
 
 /// Lets texture uploads go: the soak never draws, and kittest's default
@@ -241,7 +218,7 @@ fn act(harness: &mut Harness<'static, WorkbenchApp>, random: &mut Random, action
         Action::DropBrokenFile => harness
             .input_mut()
             .dropped_files
-            .push(Arc::new(DroppedPath(broken_scene()))),
+            .push(Arc::new(DroppedPath(broken_scene("soak")))),
         Action::DismissError => {
             if let Some(button) = harness
                 .query_all_by_role_and_label(Role::Button, "Dismiss")
@@ -285,38 +262,12 @@ fn check_error(app: &WorkbenchApp, log: &[Action]) {
     }
 }
 
-fn wait_for(
-    harness: &mut Harness<'static, WorkbenchApp>,
-    what: &str,
-    done: impl Fn(&WorkbenchApp) -> bool,
-) {
-    let start = Instant::now();
-    loop {
-        harness.step();
-        if done(harness.state()) {
-            return;
-        }
-        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
-        sleep(Duration::from_millis(5));
-    }
-}
-
 #[test]
 fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
     let events = env_number("WORKBENCH_SOAK_EVENTS", SHORT_SOAK as u64) as usize;
     let seed = env_number("WORKBENCH_SOAK_SEED", 14);
     let mut random = Random(seed);
-    let mut harness = Harness::builder()
-        .with_size([1280.0, 820.0])
-        .renderer(NoDrawing)
-        .build_eframe(|cc| {
-            WorkbenchApp::new(
-                &cc.egui_ctx,
-                None,
-                Some(SceneSource::Bundled("balls_low".into())),
-            )
-        });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    let mut harness = small_window(Harness::builder().renderer(NoDrawing));
     wait_for(&mut harness, "the first render", |app| {
         app.engine().activity() == Activity::Job(JobState::Done) && app.is_catalog_complete()
     });
@@ -414,5 +365,5 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
             readings()
         );
     }
-    std::fs::remove_dir_all(broken_scene().parent().unwrap()).ok();
+    std::fs::remove_dir_all(broken_scene("soak").parent().unwrap()).ok();
 }
