@@ -147,7 +147,14 @@ fn pick(random: &mut Random) -> Action {
     }
 }
 
-fn act(harness: &mut Harness<'static, WorkbenchApp>, random: &mut Random, action: Action) {
+/// Does `action`; `broken` is the broken scene file to drop (written once,
+/// so no load ever reads it half written).
+fn act(
+    harness: &mut Harness<'static, WorkbenchApp>,
+    random: &mut Random,
+    action: Action,
+    broken: &std::path::Path,
+) {
     match action {
         Action::Key(command) => {
             let shortcut = command.shortcuts()[0];
@@ -219,7 +226,7 @@ fn act(harness: &mut Harness<'static, WorkbenchApp>, random: &mut Random, action
         Action::DropBrokenFile => harness
             .input_mut()
             .dropped_files
-            .push(Arc::new(DroppedPath(broken_scene("soak")))),
+            .push(Arc::new(DroppedPath(broken.to_path_buf()))),
         Action::DismissError => {
             if let Some(button) = harness
                 .query_all_by_role_and_label(Role::Button, "Dismiss")
@@ -276,6 +283,7 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
     // largest scene needed, so growth is judged from the first half's peak.
     let mut memory = Vec::new();
 
+    let broken = broken_scene("soak");
     let mut log = Vec::with_capacity(events);
     // What the session went through, so a soak that missed the hard parts
     // does not pass for one that survived them.
@@ -283,7 +291,7 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
     for _ in 0..events {
         let action = pick(&mut random);
         log.push(action);
-        act(&mut harness, &mut random, action);
+        act(&mut harness, &mut random, action, &broken);
         harness.run_steps(1 + random.below(3));
         let app = harness.state();
         check_error(app, &log);
@@ -368,5 +376,5 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
             readings()
         );
     }
-    std::fs::remove_dir_all(broken_scene("soak").parent().unwrap()).ok();
+    std::fs::remove_dir_all(broken.parent().unwrap()).ok();
 }
