@@ -46,7 +46,8 @@ enum Reply {
     Open(PathBuf),
     Notice(String),
     Error(String),
-    Screenshot(Result<PathBuf, String>),
+    /// The line to print once the screenshot is saved, or why it was not.
+    Screenshot(Result<String, String>),
 }
 
 /// The application state: persisted settings plus runtime handles.
@@ -212,6 +213,11 @@ impl WorkbenchApp {
     /// The error shown in the window, if any.
     pub fn error(&self) -> Option<&str> {
         self.error.as_deref()
+    }
+
+    /// The render on screen, once there is one.
+    pub fn shown(&self) -> Option<&tracer::render::Snapshot> {
+        self.image.shown()
     }
 
     /// Samples per pixel of the image on screen, once there is one.
@@ -764,14 +770,14 @@ impl WorkbenchApp {
                     return viewport::show(
                         ui,
                         &mut self.view,
-                        self.image.texture(),
+                        &self.image.layers(),
                         None,
                         size,
                         full,
                     );
                 };
-                let b = compare.b_texture(ui.ctx(), (size[0] as u32, size[1] as u32));
-                let b = b.as_ref();
+                let b_layers = compare.b_layers(ui.ctx(), (size[0] as u32, size[1] as u32));
+                let b: Vec<&egui::TextureHandle> = b_layers.iter().collect();
                 match compare.view {
                     CompareView::SideBySide => {
                         let half =
@@ -782,7 +788,7 @@ impl WorkbenchApp {
                                     viewport::show(
                                         ui,
                                         &mut self.view,
-                                        self.image.texture(),
+                                        &self.image.layers(),
                                         None,
                                         size,
                                         full,
@@ -791,7 +797,7 @@ impl WorkbenchApp {
                                 .inner;
                             let right = ui
                                 .allocate_ui(half, |ui| {
-                                    viewport::show(ui, &mut self.view, b, None, size, full)
+                                    viewport::show(ui, &mut self.view, &b, None, size, full)
                                 })
                                 .inner;
                             left.merge(right)
@@ -799,18 +805,20 @@ impl WorkbenchApp {
                         .inner
                     }
                     CompareView::Split => {
-                        let split = b.map(|texture| viewport::SplitWith {
+                        let split = b.last().map(|&texture| viewport::SplitWith {
                             texture,
                             at: &mut compare.split,
                         });
-                        viewport::show(ui, &mut self.view, self.image.texture(), split, size, full)
+                        let a = self.image.layers();
+                        viewport::show(ui, &mut self.view, &a, split, size, full)
                     }
                     CompareView::Flip => {
-                        let texture = if flip_held { b } else { self.image.texture() };
-                        viewport::show(ui, &mut self.view, texture, None, size, full)
+                        let layers = if flip_held { b } else { self.image.layers() };
+                        viewport::show(ui, &mut self.view, &layers, None, size, full)
                     }
                     CompareView::Difference => {
-                        viewport::show(ui, &mut self.view, compare.difference(), None, size, full)
+                        let difference = compare.difference();
+                        viewport::show(ui, &mut self.view, difference.as_slice(), None, size, full)
                     }
                 }
             })
@@ -893,11 +901,15 @@ impl WorkbenchApp {
         }
         self.screenshot_requested = true;
         let path = plan.path.clone();
+        let shown = self.image.shown().map(screenshot::describe);
         let reply = self.replies.0.clone();
         let wake = ctx.clone();
         ctx.request_screenshot(move |image| {
             let result = screenshot::save(&image, &path)
-                .map(|()| path)
+                .map(|()| match shown {
+                    Some(shown) => format!("saved screenshot {} of {shown}", path.display()),
+                    None => format!("saved screenshot {}", path.display()),
+                })
                 .map_err(|e| format!("{e:#}"));
             let _ = reply.send(Reply::Screenshot(result));
             wake.request_repaint();
@@ -972,11 +984,15 @@ fn default_scene() -> Option<SceneSource> {
 }
 
 impl eframe::App for WorkbenchApp {
-    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
-        self.frame_meter.begin();
+        self.frame_meter
+            .begin(Instant::now(), frame.info().cpu_usage);
         self.engine.collect_retired();
         self.receive(&ctx);
+        // Before anything is drawn, so the numbers and the image of a
+        // frame describe the same render.
+        self.refresh_texture(&ctx);
         self.take_dropped_files(&ctx);
         let mut commands = Command::pressed(&ctx);
 
@@ -1109,9 +1125,8 @@ impl eframe::App for WorkbenchApp {
             self.run_command(command);
         }
         self.sync_render(&ctx);
-        self.refresh_texture(&ctx);
         self.take_screenshot_when_due(&ctx);
-        self.frame_meter.end();
+        self.frame_meter.end(Instant::now());
         self.progress_pace.set(self.frame_meter.progress_interval());
     }
 

@@ -141,11 +141,12 @@ impl Compare {
         }
     }
 
-    /// B's texture at A's `size`: the reference image or B's render.
-    pub fn b_texture(&mut self, ctx: &egui::Context, size: (u32, u32)) -> Option<TextureHandle> {
+    /// B's textures at A's `size`, bottom first: the reference image, or
+    /// B's render over its backdrop.
+    pub fn b_layers(&mut self, ctx: &egui::Context, size: (u32, u32)) -> Vec<TextureHandle> {
         match &mut self.reference {
-            Some(reference) => Some(reference.texture(ctx, size)),
-            None => self.image.texture().cloned(),
+            Some(reference) => vec![reference.texture(ctx, size)],
+            None => self.image.layers().into_iter().cloned().collect(),
         }
     }
 
@@ -543,7 +544,7 @@ mod tests {
             m.mse
         );
         assert!(m.flip > 0.0);
-        assert!(compare.b_texture(&ctx, (32, 24)).is_some());
+        assert_eq!(compare.b_layers(&ctx, (32, 24)).len(), 1);
 
         // Another size: refused with both sizes, then fitted on request.
         let small = image::imageops::resize(&a, 16, 12, image::imageops::FilterType::Nearest);

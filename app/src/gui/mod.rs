@@ -83,8 +83,8 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
     };
     let taken = outcome.lock().ok().and_then(|mut slot| slot.take());
     match taken {
-        Some(Ok(path)) => {
-            println!("saved screenshot {}", path.display());
+        Some(Ok(saved)) => {
+            println!("{saved}");
             Ok(())
         }
         Some(Err(e)) => Err(anyhow::anyhow!(e)),

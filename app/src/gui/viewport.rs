@@ -73,13 +73,13 @@ pub struct SplitWith<'a> {
     pub at: &'a mut f32,
 }
 
-/// Shows `texture` (an image of `image_size` pixels standing for a render
-/// of `full_size`) in the available space, and `split`'s image right of its
-/// divider.
+/// Shows `layers` (bottom first; the top one an image of `image_size`
+/// pixels standing for a render of `full_size`, each stretched over the same
+/// area) in the available space, and `split`'s image right of its divider.
 pub fn show(
     ui: &mut egui::Ui,
     view: &mut ViewState,
-    texture: Option<&TextureHandle>,
+    layers: &[&TextureHandle],
     split: Option<SplitWith<'_>>,
     image_size: [usize; 2],
     full_size: [u32; 2],
@@ -105,7 +105,7 @@ pub fn show(
     let image_rect = Rect::from_center_size(rect.center() + view.offset, full * scale);
 
     let whole = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
-    if let Some(texture) = texture {
+    for texture in layers {
         ui.painter()
             .with_clip_rect(rect)
             .image(texture.id(), image_rect, whole, Color32::WHITE);

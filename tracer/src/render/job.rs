@@ -76,8 +76,9 @@ pub struct JobOptions {
     /// Called with the pass number (from 1) and the film as it stands after
     /// each completed pass, before the next begins: to record convergence.
     pub on_pass: Option<PassObserver>,
-    /// Run render threads at the lowest OS priority, so an interactive
-    /// viewer keeps its share of the cores while every core renders.
+    /// Let an interactive viewer's threads run first whenever they wake
+    /// (batch scheduling on Linux, the lowest priority elsewhere), while
+    /// render threads keep the share of the cores a headless render gets.
     pub low_priority: bool,
     /// Also measure the views (cost and what each pixel saw) into a
     /// [`ViewFilm`]; off, the render pays nothing for them.
@@ -166,11 +167,7 @@ impl RenderJob {
             .thread_name(|i| format!("render-{i}"))
             .start_handler(move |_| {
                 if low_priority {
-                    // Best effort: a viewer stays responsive either way,
-                    // only less so if the OS refuses.
-                    let _ = thread_priority::set_current_thread_priority(
-                        thread_priority::ThreadPriority::Min,
-                    );
+                    yield_to_interactive_threads();
                 }
             })
             .build()
@@ -423,6 +420,37 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             }
         }
         shared.notify();
+    }
+}
+
+/// Marks the calling render thread as batch work. The lowest priority
+/// (nice 19) made a viewer's render several times slower than a headless one
+/// as soon as anything else ran on the machine (the software rasterizer
+/// painting the window, other processes); `SCHED_BATCH` at the usual nice
+/// value keeps the thread's share of the cores and only gives way to
+/// threads that wake up, such as the UI's. Best effort: a viewer works
+/// either way, only less smoothly if the OS refuses.
+fn yield_to_interactive_threads() {
+    #[cfg(target_os = "linux")]
+    {
+        use thread_priority::unix::{
+            NormalThreadSchedulePolicy, ThreadSchedulePolicy, set_thread_priority_and_policy,
+            thread_native_id,
+        };
+        use thread_priority::{ThreadPriority, ThreadPriorityValue};
+        // The crate maps its 0..=99 scale onto nice 19..=-20: 47 is nice 0,
+        // the value every thread starts with.
+        if let Ok(usual) = ThreadPriorityValue::try_from(47u8) {
+            let _ = set_thread_priority_and_policy(
+                thread_native_id(),
+                ThreadPriority::Crossplatform(usual),
+                ThreadSchedulePolicy::Normal(NormalThreadSchedulePolicy::Batch),
+            );
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Min);
     }
 }
 
