@@ -170,7 +170,7 @@ fn bench(dir: &Path, extra: &[&str]) -> String {
 }
 
 #[test]
-fn the_matrix_has_every_row_and_structures_agree_on_the_image() {
+fn the_matrix_has_every_row_structures_agree_and_each_feature_shows() {
     let dir = scratch("matrix");
     let images = dir.join("images");
     let stdout = bench(
@@ -206,18 +206,62 @@ fn the_matrix_has_every_row_and_structures_agree_on_the_image() {
             assert!(file.exists(), "{}", file.display());
         }
     }
+    let image = |name: &str| {
+        image::open(images.join(format!("{name}.png")))
+            .unwrap()
+            .to_rgb8()
+    };
     // The structures change the time, never the image.
     for stem in stems {
-        let image = |accel: &str| {
-            image::open(images.join(format!("{accel}{stem}.png")))
-                .unwrap()
-                .to_rgb8()
-        };
-        let none = image("none");
+        let none = image(&format!("none{stem}"));
         assert_eq!(none.dimensions(), (32, 32));
-        assert!(none == image("grid"), "grid differs from none for {stem}");
-        assert!(none == image("bvh"), "bvh differs from none for {stem}");
+        assert!(
+            none == image(&format!("grid{stem}")),
+            "grid differs from none for {stem}"
+        );
+        assert!(
+            none == image(&format!("bvh{stem}")),
+            "bvh differs from none for {stem}"
+        );
+        // A picture of the scene, not a blank or a flat fill.
+        let colours = distinct_colours(&none);
+        assert!(colours >= 32, "none{stem} has only {colours} colours");
     }
+    // Each feature changes the image it is added to: soft shadows widen
+    // the shadow's edge, anti-aliasing smooths the outlines, the lens blurs
+    // what is out of focus.
+    for (with, without) in [
+        ("_aa2", ""),
+        ("_aa2_dof", "_aa2"),
+        ("_soft", ""),
+        ("_soft_aa2", "_aa2"),
+        ("_soft_aa2_dof", "_aa2_dof"),
+    ] {
+        let changed = pixels_differing(
+            &image(&format!("bvh{with}")),
+            &image(&format!("bvh{without}")),
+        );
+        assert!(
+            changed >= 8,
+            "bvh{with} differs from bvh{without} in only {changed} pixels"
+        );
+    }
+}
+
+fn distinct_colours(image: &image::RgbImage) -> usize {
+    image
+        .pixels()
+        .map(|p| p.0)
+        .collect::<std::collections::HashSet<_>>()
+        .len()
+}
+
+/// Pixels where a channel differs by more than 8 levels.
+fn pixels_differing(a: &image::RgbImage, b: &image::RgbImage) -> usize {
+    a.pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 8))
+        .count()
 }
 
 #[test]

@@ -2,8 +2,8 @@
 //! labelled widgets, key presses, dropped files. Each test checks what the
 //! renderer was asked to do, not only what the widgets show.
 
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
@@ -11,51 +11,24 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::AccelKind;
-use tracer::render::{JobState, RenderSettings};
+use tracer::render::{Encoding, JobState, RenderSettings, Snapshot};
 use workbench::gui::{Activity, Compare, CompareView, WorkbenchApp};
 use workbench::load::SceneSource;
 
-/// Long enough for any render in these tests on a slow CI machine; only a
-/// guard against hanging, never a measure of speed.
-const PATIENCE: Duration = Duration::from_secs(180);
+mod support;
+use support::{DroppedPath, PATIENCE, broken_scene, small_window, wait_for};
 
 /// The window on the bundled `balls_low`, rendered small so tests are quick.
 fn window() -> Harness<'static, WorkbenchApp> {
-    let mut harness = Harness::builder()
-        .with_size([1280.0, 820.0])
-        .build_eframe(|cc| {
-            WorkbenchApp::new(
-                &cc.egui_ctx,
-                None,
-                Some(SceneSource::Bundled("balls_low".into())),
-            )
-        });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    let mut harness = small_window(Harness::builder());
     wait_for(&mut harness, "the scene to load", |app| {
         app.engine().settings().is_some()
     });
     harness
 }
 
-/// Steps the window until `done` holds (the render runs on other threads).
-fn wait_for(
-    harness: &mut Harness<'static, WorkbenchApp>,
-    what: &str,
-    done: impl Fn(&WorkbenchApp) -> bool,
-) {
-    let start = Instant::now();
-    loop {
-        harness.step();
-        if done(harness.state()) {
-            return;
-        }
-        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
-        sleep(Duration::from_millis(5));
-    }
-}
-
 /// Waits until the render is done and its last image is drawn (uploads
-/// are throttled, and panels are drawn before the upload of a frame).
+/// are throttled).
 fn wait_for_final_image(harness: &mut Harness<'static, WorkbenchApp>) {
     wait_for(harness, "the render to finish", is_done);
     wait_for(harness, "the final image on screen", |app| {
@@ -85,8 +58,12 @@ fn settle(harness: &mut Harness<'static, WorkbenchApp>) {
 #[test]
 fn the_window_opens_the_requested_scene_and_renders_it() {
     let mut harness = window();
-    harness.get_by_label("balls_low");
     wait_for(&mut harness, "the render to finish", is_done);
+    // The engine renders the scene asked for (the default is the showcase),
+    // at its resolution (512 x 512) times the scale of 1/8.
+    let scene = harness.state().engine().scene().expect("a scene");
+    assert_eq!(scene.source, SceneSource::Bundled("balls_low".into()));
+    assert_eq!(scene.world.counts.objects(), 12, "balls_low's objects");
     let settings = render_settings(&harness);
     assert_eq!((settings.width, settings.height), (64, 64));
 }
@@ -160,30 +137,6 @@ fn picking_a_scene_in_the_list_renders_it() {
             .is_some_and(|s| s.source == SceneSource::Bundled("balls_medium".into()))
     });
     wait_for(&mut harness, "balls_medium to render", is_done);
-}
-
-/// Writes a scene whose line 5, column 7 is wrong, in a folder of its own
-/// named after `test`.
-fn broken_scene(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-{test}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("broken.p3f");
-    std::fs::write(&path, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
-    path
-}
-
-/// A file dropped on the window, as the native integration delivers it.
-#[derive(Debug)]
-struct DroppedPath(PathBuf);
-
-impl egui::DroppedFile for DroppedPath {
-    fn path(&self) -> &Path {
-        &self.0
-    }
-
-    fn bytes(&self) -> Result<Vec<u8>, String> {
-        std::fs::read(&self.0).map_err(|e| e.to_string())
-    }
 }
 
 #[test]
@@ -336,13 +289,29 @@ fn snapshot_while_rendering() {
         controls.antialiasing = true;
         controls.samples = 16;
         controls.keep_refining = true;
+        // 1024 x 1024: a first pass long enough to be seen half done.
+        controls.resolution_scale = 2.0;
     }
     // How far the render got changes every count in the statistics; the
     // finished-render snapshot covers that panel.
     harness.state_mut().state_mut().show_stats = false;
-    wait_for(&mut harness, "the first pass on screen", |app| {
-        app.shown_passes().is_some_and(|p| p >= 1) && app.is_catalog_complete()
+    wait_for(&mut harness, "the scene list", |app| {
+        app.is_catalog_complete() && app.engine().settings().is_some()
     });
+    // A fresh render (drawn over the last one, which the mask hides).
+    harness.key_press(egui::Key::R);
+    wait_for(&mut harness, "the first tiles on screen", |app| {
+        app.shown()
+            .is_some_and(|s| s.stats.passes_done >= 1 || coverage(s) > 0.0)
+    });
+    let shown = harness.state().shown().unwrap().clone();
+    let covered = coverage(&shown);
+    assert!(
+        shown.stats.passes_done == 0 && covered > 0.0 && covered < 1.0,
+        "the window shows some tiles of the first pass and not others: {} passes, {:.0}% covered",
+        shown.stats.passes_done,
+        covered * 100.0
+    );
     assert_eq!(
         harness.state().engine().activity(),
         Activity::Job(JobState::Rendering)
@@ -513,5 +482,251 @@ fn the_benchmark_matrix_fills_every_row_with_consistent_images() {
             row.case.label,
             twin.case.label
         );
+    }
+    // Each sampling shows the scene (not a blank or a flat fill) and
+    // differs from the plain one: soft shadows, anti-aliasing or the lens
+    // doing nothing would fail here.
+    let plain = &rows
+        .iter()
+        .find(|r| r.case.file_stem() == "bvh")
+        .unwrap()
+        .image;
+    for row in rows
+        .iter()
+        .filter(|r| r.case.settings.accel == AccelKind::Bvh)
+    {
+        let colours: std::collections::HashSet<_> = row.image.pixels().map(|p| p.0).collect();
+        assert!(
+            colours.len() >= 32,
+            "{}: {} colours",
+            row.case.label,
+            colours.len()
+        );
+        let changed = row
+            .image
+            .pixels()
+            .zip(plain.pixels())
+            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 8))
+            .count();
+        let plain_row = row.case.file_stem() == "bvh";
+        assert!(
+            plain_row || changed >= 8,
+            "{} differs from the plain image in only {changed} pixels",
+            row.case.label
+        );
+    }
+}
+
+/// How long a window may stay without asking for a frame while its image
+/// is not final: far above any progress interval (at most half a second).
+const QUIET: Duration = Duration::from_secs(5);
+
+/// Frames as eframe schedules them: one only when the app or a render
+/// thread asked for it, at the time asked; requests from before the last
+/// frame are dropped and pending ones merge into the earliest, as eframe's
+/// event loop does.
+struct RepaintRequests(Arc<Mutex<Vec<(Instant, u64)>>>);
+
+impl RepaintRequests {
+    fn install(ctx: &egui::Context) -> Self {
+        let requests = Arc::new(Mutex::new(Vec::new()));
+        let sink = requests.clone();
+        ctx.set_request_repaint_callback(move |info| {
+            sink.lock()
+                .unwrap()
+                .push((Instant::now() + info.delay, info.current_cumulative_pass_nr));
+        });
+        Self(requests)
+    }
+
+    /// Waits until the next requested frame is due; false if none was asked
+    /// for within [`QUIET`].
+    fn wait_for_next(&self, ctx: &egui::Context) -> bool {
+        let start = Instant::now();
+        loop {
+            let pass = ctx.cumulative_pass_nr();
+            let due = {
+                let mut requests = self.0.lock().unwrap();
+                let due = requests
+                    .iter()
+                    .filter(|&&(_, nr)| pass == nr || pass == nr + 1)
+                    .map(|&(at, _)| at)
+                    .min();
+                requests.clear();
+                due
+            };
+            if let Some(due) = due {
+                sleep(due.saturating_duration_since(Instant::now()));
+                return true;
+            }
+            if start.elapsed() > QUIET {
+                return false;
+            }
+            sleep(Duration::from_millis(2));
+        }
+    }
+}
+
+/// The window drawn by wgpu on `balls_low` at 64 x 64 with 2 x 2 samples
+/// (four passes).
+fn small_drawn_window() -> Harness<'static, WorkbenchApp> {
+    let mut harness = drawn_window();
+    let controls = &mut harness.state_mut().state_mut().controls;
+    controls.resolution_scale = 0.5;
+    controls.antialiasing = true;
+    controls.samples = 2;
+    harness
+}
+
+/// Whether the text of the window says the render is done with every pass
+/// on screen.
+fn says_final(harness: &Harness<'static, WorkbenchApp>) -> bool {
+    let Some(settings) = harness.state().engine().settings() else {
+        return false;
+    };
+    let target = settings.samples_per_pixel();
+    let all = format!("{target} / {target}");
+    is_done(harness.state())
+        && status_line(harness)
+            .is_some_and(|s| s.contains(&format!("{all} spp")) && s.ends_with("done"))
+        && statistic(harness, "Samples per pixel") == all
+}
+
+/// The status line under the image, once it shows an image's size.
+fn status_line(harness: &Harness<'static, WorkbenchApp>) -> Option<String> {
+    harness
+        .query_all_by_label_contains(" spp")
+        .find_map(|n| n.accesskit_node().label().or(n.accesskit_node().value()))
+}
+
+/// The share of `snapshot`'s pixels that have a sample.
+fn coverage(snapshot: &Snapshot) -> f32 {
+    let covered = snapshot.rgba.chunks(4).filter(|p| p[3] != 0).count();
+    covered as f32 / (snapshot.width * snapshot.height).max(1) as f32
+}
+
+/// Where the viewport draws a render of `width` x `height` (fit to view).
+fn image_rect(harness: &Harness<'static, WorkbenchApp>, width: u32, height: u32) -> egui::Rect {
+    let view = harness.get_by_role_and_label(Role::Image, "Render").rect();
+    let size = egui::vec2(width as f32, height as f32);
+    let scale = (view.width() / size.x).min(view.height() / size.y);
+    egui::Rect::from_center_size(view.center(), size * scale)
+}
+
+/// Asserts the last drawn frame shows `snapshot` in the viewport, pixel for
+/// pixel (each image pixel sampled at its centre; magnification is nearest).
+fn assert_viewport_shows(harness: &mut Harness<'static, WorkbenchApp>, snapshot: &Snapshot) {
+    let rect = image_rect(harness, snapshot.width, snapshot.height);
+    let frame = harness.render().expect("the window renders");
+    let ppp = harness.ctx.pixels_per_point();
+    let mut wrong = 0;
+    for y in 0..snapshot.height {
+        for x in 0..snapshot.width {
+            let px = rect.min.x + (x as f32 + 0.5) * rect.width() / snapshot.width as f32;
+            let py = rect.min.y + (y as f32 + 0.5) * rect.height() / snapshot.height as f32;
+            let shown = frame.get_pixel((px * ppp) as u32, (py * ppp) as u32).0;
+            let i = ((y * snapshot.width + x) * 4) as usize;
+            let want = &snapshot.rgba[i..i + 3];
+            if (0..3).any(|c| shown[c].abs_diff(want[c]) > 2) {
+                wrong += 1;
+            }
+        }
+    }
+    assert_eq!(
+        wrong, 0,
+        "{wrong} pixels of the viewport differ from the render"
+    );
+}
+
+#[test]
+fn the_final_pass_is_drawn_when_frames_come_only_on_request() {
+    let mut harness = small_drawn_window();
+    let requests = RepaintRequests::install(&harness.ctx);
+    // The frame the window paints when it opens; after it, eframe paints
+    // only when asked.
+    harness.step();
+    while !says_final(&harness) {
+        assert!(
+            requests.wait_for_next(&harness.ctx),
+            "the window stopped asking for frames before drawing the final image: {:?}, \
+             status {:?}",
+            harness.state().engine().activity(),
+            status_line(&harness)
+        );
+        harness.step();
+    }
+    let last = harness
+        .state()
+        .engine()
+        .snapshot(Encoding::Linear)
+        .expect("a render");
+    assert_eq!(last.stats.passes_done, last.stats.passes_target);
+    assert_viewport_shows(&mut harness, &last);
+}
+
+/// The share of the image area showing the empty viewport's grey.
+fn empty_share(harness: &mut Harness<'static, WorkbenchApp>, rect: egui::Rect) -> f32 {
+    let frame = harness.render().expect("the window renders");
+    let ppp = harness.ctx.pixels_per_point();
+    let (mut empty, mut total) = (0, 0);
+    let (x0, y0) = ((rect.min.x * ppp) as u32, (rect.min.y * ppp) as u32);
+    let (x1, y1) = ((rect.max.x * ppp) as u32, (rect.max.y * ppp) as u32);
+    for y in (y0 + 1..y1.saturating_sub(1)).step_by(2) {
+        for x in (x0 + 1..x1.saturating_sub(1)).step_by(2) {
+            let p = frame.get_pixel(x, y).0;
+            empty += u32::from(p[..3] == [24, 24, 24]);
+            total += 1;
+        }
+    }
+    empty as f32 / total.max(1) as f32
+}
+
+#[test]
+fn a_camera_move_never_shows_an_empty_view() {
+    let mut harness = drawn_window();
+    harness.state_mut().state_mut().controls.resolution_scale = 0.25;
+    wait_for_final_image(&mut harness);
+    let settings = render_settings(&harness);
+    let rect = image_rect(&harness, settings.width, settings.height);
+    let before = empty_share(&mut harness, rect);
+    assert!(
+        before < 0.01,
+        "the finished render leaves {before:.3} empty"
+    );
+
+    let mut at = rect.center();
+    harness.drag_at(at);
+    harness.step();
+    for frame in 0..12 {
+        at += egui::vec2(7.0, 3.0);
+        harness.hover_at(at);
+        harness.step();
+        let empty = empty_share(&mut harness, rect);
+        assert!(
+            empty < 0.01,
+            "frame {frame} of the orbit shows {:.0}% of the view empty",
+            empty * 100.0
+        );
+    }
+    assert!(
+        harness.state().engine().settings().unwrap().width < settings.width,
+        "a preview renders while dragging"
+    );
+    harness.drop_at(at);
+    // After the release the full resolution renders again, over the preview.
+    let start = Instant::now();
+    loop {
+        harness.step();
+        let empty = empty_share(&mut harness, rect);
+        assert!(
+            empty < 0.01,
+            "after the orbit, {:.0}% of the view is empty",
+            empty * 100.0
+        );
+        if is_done(harness.state()) && harness.state().is_display_current() {
+            break;
+        }
+        assert!(start.elapsed() < PATIENCE, "gave up waiting for the render");
+        sleep(Duration::from_millis(5));
     }
 }

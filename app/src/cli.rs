@@ -4,10 +4,12 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use tracer::accel::AccelKind;
-use tracer::render::{Encoding, RenderSettings};
+use tracer::accel::{AccelKind, StructureLayer};
+use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
 
+use crate::measure::bench_report::Format;
 use crate::measure::compare::Heatmap;
+use crate::measure::study::Param;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -58,6 +60,9 @@ impl Cli {
 pub enum Command {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
+    /// Show every ray one sample of one pixel spawned: what each hit, its
+    /// material, its shadow rays and what it added to the pixel.
+    Inspect(InspectArgs),
     /// Time frames of a scene with each acceleration structure, or the
     /// seed's whole timing matrix (--matrix).
     Bench(BenchArgs),
@@ -68,6 +73,80 @@ pub enum Command {
     /// shells, lattice, jacks, sombrero) as P3F, or the sky cube (`sky`) as
     /// six PNG faces.
     Gen(GenArgs),
+    /// Sweep one parameter (grid-m, spp, depth, light-size, aperture,
+    /// resolution, or the level of a generated scene) and time each point
+    /// for each structure: a table, and a PNG chart with --plot.
+    Sweep(SweepArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+VALUES is a comma-separated list of numbers and ranges; ranges include
+their end when a step lands on it, and the values are sorted:
+  0.25,0.5,1      those three
+  1..5            1, 2, 3, 4, 5
+  1..2:0.25       1, 1.25, 1.5, 1.75, 2 (add 0.25 each step)
+  0.5..8:x2       0.5, 1, 2, 4, 8 (double each step)
+
+Each point is measured as `bench` measures a row: --runs frames, the
+median, min..max, build time apart from frame time, rays/s, and tests and
+steps (grid cells or BVH nodes) per ray. A built structure is reused by
+every point that traces against it. Frames are one sample per pixel with
+hard shadows unless the options ask for more; the swept parameter turns its
+own feature on (spp: anti-aliasing, light-size: soft shadows, aperture:
+depth of field).
+
+  workbench sweep scene.p3f --param grid-m --values 0.25..8:x2 --plot m.png
+  workbench sweep --param level --generator balls --levels 1..4 --plot scale.png
+  workbench sweep scene.p3f --param spp --values 1..6 --structures bvh
+
+The level study renders a built-in generator's scene at each level (x axis:
+primitives, log-log chart, with the slope of each structure). The spp study
+also gives each image's MSE, PSNR and FLIP against a reference rendered
+with twice the largest N (--reference-spp), and marks the knee of error vs
+time. Ctrl-C stops after the frame under way and prints what was measured
+(a second Ctrl-C stops at once); the exit status is then non-zero.")]
+pub struct SweepArgs {
+    /// The scene file (.p3f or .nff); none for --param level.
+    pub scene: Option<PathBuf>,
+    /// What to sweep: grid-m, spp, depth, light-size, aperture, resolution
+    /// or level.
+    #[arg(long, value_parser = study_param)]
+    pub param: Param,
+    /// The values (see below; default: a range suited to the parameter).
+    /// --levels is the same option.
+    #[arg(long, alias = "levels", value_name = "VALUES")]
+    pub values: Option<String>,
+    /// For --param level: the generator (balls, mount, tetra, ...).
+    #[arg(long)]
+    pub generator: Option<String>,
+    /// Structures to measure (default: grid for grid-m, all three for
+    /// level, else the scene's).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub structures: Option<Vec<AccelArg>>,
+    /// Frames per point; the median and min..max are reported.
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    /// How to print the table.
+    #[arg(long, value_enum, default_value_t = TableFormat::Text)]
+    pub format: TableFormat,
+    /// Write the chart to this PNG file.
+    #[arg(long, value_name = "PNG")]
+    pub plot: Option<PathBuf>,
+    /// For --param spp: N of the reference image (default: twice the
+    /// largest N).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub reference_spp: Option<u32>,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = thread_count)]
+    pub threads: Option<usize>,
+}
+
+/// `--param NAME`, one of the study parameters.
+fn study_param(text: &str) -> Result<Param, String> {
+    text.parse()
 }
 
 #[derive(Args, Debug)]
@@ -143,6 +222,17 @@ pub enum TableFormat {
     Json,
 }
 
+impl From<TableFormat> for Format {
+    fn from(f: TableFormat) -> Self {
+        match f {
+            TableFormat::Text => Format::Text,
+            TableFormat::Md => Format::Markdown,
+            TableFormat::Csv => Format::Csv,
+            TableFormat::Json => Format::Json,
+        }
+    }
+}
+
 #[derive(Args, Debug)]
 #[command(after_help = "\
 Each side starts from the scene's settings, then the options given to
@@ -152,7 +242,19 @@ compare itself (for both sides), then its own --a / --b flags, e.g.
       --a \"--accel none\" --b \"--accel grid --grid-m 4 --aa --spp 4\"
 
 The image is A | B | difference, with a legend bar under the difference
-(0 on the left, the largest value on the right).")]
+(0 on the left, the largest value on the right).
+
+--b-image compares side A with an image instead of a second render (another
+renderer's output, an earlier figure): PNG, JPEG or OpenEXR (linear, encoded
+as A is), of A's size, or resized to it with --fit:
+
+  workbench compare scene.p3f --a \"--aa --spp 4\" --b-image ref.png -o out.png
+
+
+With --view VIEW the image is A's view | B's view | |A - B| of the view's
+values, A and B on one shared scale, so both read against one legend. Each
+side renders once more to measure its view: the times stay those of the
+plain render.")]
 pub struct CompareArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,
@@ -169,9 +271,17 @@ pub struct CompareArgs {
         long,
         value_name = "FLAGS",
         default_value = "",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        conflicts_with = "b_image"
     )]
     pub b: String,
+    /// Side B is this image (PNG, JPEG or EXR) instead of a second render.
+    #[arg(long, value_name = "IMAGE")]
+    pub b_image: Option<PathBuf>,
+    /// Resize the --b-image to the render's size instead of refusing a
+    /// mismatch.
+    #[arg(long, requires = "b_image")]
+    pub fit: bool,
     /// Where to write the A | B | difference PNG.
     #[arg(short, long, default_value = "compare.png")]
     pub output: PathBuf,
@@ -181,6 +291,9 @@ pub struct CompareArgs {
     /// How to print the times and metrics.
     #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
     pub format: MetricsFormat,
+    // With --view: A's view | B's view | their difference, on one scale.
+    #[command(flatten)]
+    pub view: ViewArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Worker threads (default: all cores).
@@ -229,6 +342,88 @@ pub struct RenderArgs {
     /// Print the statistics in this format instead of the summary.
     #[arg(long, value_name = "FORMAT")]
     pub stats: Option<StatsFormat>,
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// Draw the acceleration structure over the image: bvh:DEPTH (the
+    /// BVH's boxes at that depth), bvh:leaves, or grid (the grid's box and
+    /// cell lattice), projected through the camera.
+    #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
+    pub overlay: Option<StructureLayer>,
+}
+
+fn parse_overlay(text: &str) -> Result<StructureLayer, String> {
+    match text.split_once(':') {
+        None if text == "grid" => Ok(StructureLayer::Grid),
+        Some(("bvh", "leaves")) => Ok(StructureLayer::BvhLeaves),
+        Some(("bvh", depth)) => depth
+            .parse()
+            .map(StructureLayer::BvhDepth)
+            .map_err(|_| format!("'{depth}' is not a depth (0 is the root) or 'leaves'")),
+        _ => Err(format!("'{text}' is not bvh:DEPTH, bvh:leaves or grid")),
+    }
+}
+
+/// A per-pixel view instead of the shaded image, and its heat map's scale.
+#[derive(Args, Debug, Clone, Default)]
+pub struct ViewArgs {
+    /// Write this view instead of the shaded image: tests, steps, rays,
+    /// shadow, blocked, depth, distance (heat maps with a legend), normals
+    /// or objects (colours).
+    #[arg(long, value_parser = parse_view, value_name = "VIEW")]
+    pub view: Option<View>,
+    /// Top of the heat map: max, p99 (the 99th percentile) or a number.
+    #[arg(long, value_parser = parse_heat_scale, value_name = "max|p99|VALUE", requires = "view")]
+    pub view_scale: Option<HeatScale>,
+    /// Heat map on log(1 + value).
+    #[arg(long, requires = "view")]
+    pub log: bool,
+}
+
+impl ViewArgs {
+    /// The view asked for, unless it is the shaded image.
+    pub fn view(&self) -> Option<View> {
+        self.view.filter(|&v| v != View::Shaded)
+    }
+
+    /// The heat map fitting `sides` together (one shared scale).
+    pub fn heatmap(&self, sides: &[&[Option<f32>]]) -> ViewHeatmap {
+        ViewHeatmap::fit(self.view_scale.unwrap_or_default(), self.log, sides)
+    }
+}
+
+fn parse_view(text: &str) -> Result<View, String> {
+    View::from_name(text).ok_or_else(|| {
+        let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
+        format!("no view '{text}'; views: {}", names.join(", "))
+    })
+}
+
+fn parse_heat_scale(text: &str) -> Result<HeatScale, String> {
+    match text {
+        "max" => Ok(HeatScale::Max),
+        "p99" => Ok(HeatScale::P99),
+        _ => match text.parse::<f32>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Ok(HeatScale::Fixed(v)),
+            _ => Err(format!("'{text}' is not max, p99 or a positive number")),
+        },
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// The pixel, from the top-left corner.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
+    pub pixel: Vec<u32>,
+    /// Which of the pixel's samples (the pass that traces it, from 0).
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub sample: u32,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// An indented tree to read, or JSON for scripts.
+    #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+    pub format: MetricsFormat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]

@@ -18,9 +18,11 @@ pub fn run() -> std::process::ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
         Some(cli::Command::Render(args)) => commands::render::run(&args),
+        Some(cli::Command::Inspect(args)) => commands::inspect::run(&args),
         Some(cli::Command::Bench(args)) => commands::bench::run(&args),
         Some(cli::Command::Compare(args)) => commands::compare::run(&args),
         Some(cli::Command::Gen(args)) => commands::generate::run(&args),
+        Some(cli::Command::Sweep(args)) => commands::sweep::run(&args),
         None => cli
             .screenshot_plan()
             .and_then(|plan| gui::run(cli.scene, plan)),

@@ -1,11 +1,15 @@
 //! Loading a scene, from a file or from the scenes embedded in the binary,
 //! into a world ready to render, with the context a user needs when it fails.
 
+use std::cell::RefCell;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Instant;
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
+use tracer::mesh_io::{self, LoadProgress, MeshFormat};
 use tracer::scene::{Limits, Scene, parse_scene, parse_scene_file};
 use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;
@@ -32,16 +36,41 @@ impl SceneSource {
             SceneSource::Bundled(name) => name.clone(),
         }
     }
+
+    /// Whether this is a bare OBJ or PLY mesh, framed into a scene when
+    /// loaded (see [`mesh_io::frame`]).
+    pub fn is_bare_mesh(&self) -> bool {
+        matches!(self, SceneSource::File(path) if MeshFormat::of(path).is_some())
+    }
 }
 
 /// Reads and prepares `source`. Warnings from preparing the world stay in
 /// `World::warnings` for the caller to show.
 pub fn load_source(source: &SceneSource) -> Result<(Scene, World)> {
+    load_source_with_progress(source, &mut |_| {})
+}
+
+/// [`load_source`], reporting how much of a large mesh file has been read.
+pub fn load_source_with_progress(
+    source: &SceneSource,
+    on_progress: &mut dyn FnMut(LoadProgress),
+) -> Result<(Scene, World)> {
     match source {
+        SceneSource::File(path) if source.is_bare_mesh() => {
+            let limits = Limits::default();
+            // The error already names the file and the line or element.
+            let mesh = mesh_io::load_mesh_file(path, &limits, limits.max_primitives, on_progress)?;
+            let warnings = mesh.warnings.clone();
+            let mut scene = mesh_io::frame(mesh);
+            scene.base_dir = path.parent().map(Path::to_path_buf);
+            let mut world = build_with_sky(&scene);
+            world.warnings.extend(warnings);
+            Ok((scene, world))
+        }
         SceneSource::File(path) => {
             // The parse error already names the file, line and column.
             let scene = parse_scene_file(path, &Limits::default())?;
-            let world = World::build(&scene);
+            let world = build_with_sky(&scene);
             Ok((scene, world))
         }
         SceneSource::Bundled(name) => {
@@ -58,6 +87,34 @@ pub fn load_source(source: &SceneSource) -> Result<(Scene, World)> {
     }
 }
 
+/// The world of a scene from disk: an `env` folder that cannot be loaded
+/// falls back to the bundled sky (not the flat background), with a warning.
+fn build_with_sky(scene: &Scene) -> World {
+    let problem = RefCell::new(None);
+    let mut world = World::build_with_skybox(scene, |name| {
+        let dir = scene
+            .base_dir
+            .as_deref()
+            .unwrap_or(Path::new("."))
+            .join(name);
+        Skybox::load(&dir).or_else(|e| {
+            let bundled = embedded_skybox(name);
+            if bundled.is_ok() {
+                *problem.borrow_mut() = Some(e);
+                bundled
+            } else {
+                Err(e)
+            }
+        })
+    });
+    if let Some(e) = problem.into_inner() {
+        world
+            .warnings
+            .push(format!("{e}; using the bundled sky instead"));
+    }
+    world
+}
+
 /// The embedded skybox, whatever folder name the scene gives.
 fn embedded_skybox(name: &str) -> Result<Skybox, SkyboxError> {
     match bundled::SKYBOX {
@@ -72,9 +129,17 @@ pub struct Loaded {
     pub world: Arc<World>,
 }
 
-/// Parses a scene file for the headless commands; warnings go to stderr.
+/// Parses a scene file (or frames a bare mesh) for the headless commands;
+/// warnings, and progress while a large mesh is read, go to stderr.
 pub fn load_scene(path: &Path) -> Result<Loaded> {
-    let (scene, world) = load_source(&SceneSource::File(path.to_path_buf()))?;
+    let source = SceneSource::File(path.to_path_buf());
+    let start = Instant::now();
+    let mut progress = MeshProgress::new(path);
+    let (scene, world) = load_source_with_progress(&source, &mut |p| progress.show(p))?;
+    progress.finish(&world, start);
+    if source.is_bare_mesh() {
+        eprintln!("note: {}: {}", path.display(), mesh_io::FRAMING_NOTE);
+    }
     for warning in &world.warnings {
         eprintln!("warning: {}: {warning}", path.display());
     }
@@ -82,6 +147,58 @@ pub fn load_scene(path: &Path) -> Result<Loaded> {
         scene,
         world: Arc::new(world),
     })
+}
+
+/// Progress of reading a large mesh on stderr: a line updated in place on
+/// a terminal, and the size and time once read.
+struct MeshProgress<'a> {
+    path: &'a Path,
+    terminal: bool,
+    shown: bool,
+}
+
+impl<'a> MeshProgress<'a> {
+    fn new(path: &'a Path) -> Self {
+        Self {
+            path,
+            terminal: std::io::stderr().is_terminal(),
+            shown: false,
+        }
+    }
+
+    fn show(&mut self, p: LoadProgress) {
+        let percent = p.bytes_read as f64 * 100.0 / p.total_bytes.max(1) as f64;
+        let mib = |b: u64| b as f64 / f64::from(1 << 20);
+        let line = format!(
+            "reading {}: {percent:.0}% ({:.0} of {:.0} MiB)",
+            self.path.display(),
+            mib(p.bytes_read),
+            mib(p.total_bytes)
+        );
+        if self.terminal {
+            eprint!("\r{line}");
+        } else if !self.shown {
+            eprintln!("{line}");
+        }
+        self.shown = true;
+    }
+
+    /// Says how large the mesh was and how long it took, when progress
+    /// was shown at all.
+    fn finish(&self, world: &World, start: Instant) {
+        if !self.shown {
+            return;
+        }
+        if self.terminal {
+            eprint!("\r");
+        }
+        eprintln!(
+            "read {}: {} triangles in {:.2} s",
+            self.path.display(),
+            world.counts.triangles,
+            start.elapsed().as_secs_f64()
+        );
+    }
 }
 
 #[cfg(test)]
@@ -108,6 +225,40 @@ mod tests {
         let (_, from_file) = load_source(&SceneSource::File(file)).unwrap();
         assert!(from_file.warnings.is_empty(), "{:?}", from_file.warnings);
         assert_eq!(world.skybox, from_file.skybox);
+    }
+
+    /// `env` naming a folder that is not there: the bundled sky, not the
+    /// flat background, and a warning that says so.
+    #[test]
+    fn a_missing_sky_folder_falls_back_to_the_bundled_sky() {
+        let dir = std::env::temp_dir().join(format!("load-sky-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.p3f");
+        std::fs::write(&path, "env nowhere\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n").unwrap();
+        let (_, world) = load_source(&SceneSource::File(path)).unwrap();
+        let bundled = embedded_skybox("sky").unwrap();
+        assert_eq!(world.skybox, Some(bundled));
+        let warnings = world.warnings.join("; ");
+        assert!(warnings.contains("nowhere"), "{warnings}");
+        assert!(
+            warnings.contains("using the bundled sky instead"),
+            "{warnings}"
+        );
+    }
+
+    /// A bare mesh opens as a framed scene: camera, lights, ground, mesh.
+    #[test]
+    fn a_bare_obj_opens_framed() {
+        let dir = std::env::temp_dir().join(format!("load-obj-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("tri.obj");
+        std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        let source = SceneSource::File(path);
+        assert!(source.is_bare_mesh());
+        let (scene, world) = load_source(&source).unwrap();
+        assert_eq!(scene.lights.len(), 2);
+        assert_eq!(world.counts.triangles, 1);
+        assert!(world.warnings.is_empty(), "{:?}", world.warnings);
     }
 
     /// Every scene in the picker opens without a warning (no missing sky,

@@ -55,13 +55,18 @@ pub fn summary(stats: &RenderStats, counts: &SceneCounts) -> String {
 
 /// The statistics as one JSON object.
 pub fn json(stats: &RenderStats, counts: &SceneCounts) -> String {
+    serde_json::to_string_pretty(&json_value(stats, counts)).unwrap_or_default()
+}
+
+/// [`json`] as a value, for commands that add their own fields.
+pub fn json_value(stats: &RenderStats, counts: &SceneCounts) -> serde_json::Value {
     let c = &stats.counters;
     let objects: serde_json::Map<String, serde_json::Value> = counts
         .objects_by_kind
         .iter()
         .map(|(k, n)| (k.to_string(), (*n).into()))
         .collect();
-    let value = serde_json::json!({
+    serde_json::json!({
         "width": stats.width,
         "height": stats.height,
         "passes_done": stats.passes_done,
@@ -86,6 +91,5 @@ pub fn json(stats: &RenderStats, counts: &SceneCounts) -> String {
             "triangles": counts.triangles,
             "lights": counts.lights,
         },
-    });
-    serde_json::to_string_pretty(&value).unwrap_or_default()
+    })
 }

@@ -52,6 +52,13 @@ pub struct World {
     pub shapes: Vec<Shape>,
     /// Index into `surfaces` for each shape.
     pub shape_surface: Vec<u32>,
+    /// Index of the scene object (`Scene::objects`) each shape came from:
+    /// a mesh's triangles share one, for the views and the inspector.
+    pub shape_object: Vec<u32>,
+    /// Each scene object's kind ("sphere", "mesh", ...).
+    pub object_kinds: Vec<&'static str>,
+    /// Where each scene object was declared in its file (line, column).
+    pub object_positions: crate::scene::ObjectPositions,
     pub surfaces: Vec<Surface>,
     pub lights: Vec<Light>,
     pub background: Vec3A,
@@ -86,8 +93,12 @@ impl World {
     ) -> World {
         let mut builder = Builder::default();
         let mut kinds: Vec<(&'static str, usize)> = Vec::new();
-        for object in &scene.objects {
+        let mut shape_object = Vec::new();
+        let mut object_kinds = Vec::with_capacity(scene.objects.len());
+        for (i, object) in scene.objects.iter().enumerate() {
             let kind = builder.add(&object.primitive, object.material);
+            shape_object.resize(builder.shapes.len(), i as u32);
+            object_kinds.push(kind);
             match kinds.iter_mut().find(|(k, _)| *k == kind) {
                 Some((_, n)) => *n += 1,
                 None => kinds.push((kind, 1)),
@@ -101,6 +112,9 @@ impl World {
                 "skipped {} degenerate primitive(s) (zero area or zero size)",
                 builder.degenerate
             ));
+        }
+        if scene.objects.is_empty() {
+            warnings.push("the scene has no objects: the image shows only the background".into());
         }
         let skybox = scene.env.as_ref().and_then(|name| match load_skybox(name) {
             Ok(sky) => Some(sky),
@@ -139,6 +153,9 @@ impl World {
             },
             shapes: builder.shapes,
             shape_surface,
+            shape_object,
+            object_kinds,
+            object_positions: scene.object_positions.clone(),
             surfaces,
             lights,
             background: Vec3A::from(scene.background),

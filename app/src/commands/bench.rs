@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use tracer::accel::AccelKind;
 use tracer::render::RenderSettings;
 
-use crate::cli::{BenchArgs, TableFormat};
+use crate::cli::BenchArgs;
 use crate::load::load_scene;
 use crate::measure::bench_report::{Format, Layout, table};
 use crate::measure::benchmark::{self, Measurement, RunOptions};
@@ -41,12 +41,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         )
     };
     let runs = args.runs.max(1);
-    let format = match args.format {
-        TableFormat::Text => Format::Text,
-        TableFormat::Md => Format::Markdown,
-        TableFormat::Csv => Format::Csv,
-        TableFormat::Json => Format::Json,
-    };
+    let format: Format = args.format.into();
     // The header would break CSV and JSON; it goes to stderr for those.
     let header = format!(
         "{}: {}x{}, N = {}, depth {}, {} run(s) per row, {} thread(s)",

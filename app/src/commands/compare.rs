@@ -1,15 +1,17 @@
-//! `workbench compare`: one scene, two settings, one A | B | difference PNG
-//! and the times and metrics of both sides.
+//! `workbench compare`: one scene, two settings (or one and a reference
+//! image), one A | B | difference PNG and the times and metrics of both
+//! sides.
 
 use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, anyhow};
-use tracer::render::RenderSettings;
+use tracer::render::{RenderSettings, View, ViewSummary};
 
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
 use crate::load::load_scene;
 use crate::measure::benchmark::{Case, Measurement};
-use crate::measure::compare::{self, Comparison, Heatmap};
+use crate::measure::compare::{self, Comparison, Heatmap, ImageComparison};
+use crate::measure::view_image;
 use crate::output::save_png;
 use crate::report::si;
 
@@ -33,8 +35,20 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             encoding,
         })
     };
-    let (a, b) = (side("a", &args.a)?, side("b", &args.b)?);
+    let a = side("a", &args.a)?;
+    super::warn_brute_force(&a.settings, &loaded.world.counts);
     let heatmap = Heatmap::from(args.heatmap);
+    if let Some(path) = &args.b_image {
+        if args.view.view().is_some() {
+            anyhow::bail!(
+                "--view compares the views of two renders; it does not work with --b-image"
+            );
+        }
+        return against_image(args, &loaded.world, a, path, heatmap);
+    }
+    let b = side("b", &args.b)?;
+    super::warn_brute_force(&b.settings, &loaded.world.counts);
+    let sides = (a.settings.clone(), b.settings.clone());
     let mut progress = super::runner_progress(vec!["A".into(), "B".into()], 1);
     let comparison = compare::run(
         &loaded.world,
@@ -44,33 +58,192 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         heatmap,
         &AtomicBool::new(false),
         &mut progress,
-    )
-    .with_context(|| format!("cannot compare on {}", args.scene.display()))?
-    .context("the comparison was cancelled")?;
+    );
+    let comparison = finished(comparison, args)?;
     let c = &comparison;
-    save_png(
-        &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
-        &args.output,
-    )?;
+    let views = match args.view.view() {
+        Some(view) => Some(compare_views(args, &loaded.world, view, &sides)?),
+        None => {
+            save_png(
+                &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
+                &args.output,
+            )?;
+            None
+        }
+    };
     match args.format {
-        MetricsFormat::Text => print!("{}", text(args, c, heatmap)),
-        MetricsFormat::Json => println!("{}", json(args, c)),
+        MetricsFormat::Text => {
+            print!("{}", text(args, c, heatmap));
+            if let Some(lines) = &views {
+                print!("{}", lines.text);
+            }
+        }
+        MetricsFormat::Json => {
+            let mut value = json(args, c);
+            if let Some(lines) = views {
+                value["view"] = lines.json;
+            }
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&value).unwrap_or_default()
+            );
+        }
     }
     Ok(())
 }
 
-fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
-    let side = |name: &str, label: &str, m: &Measurement| {
-        format!(
-            "{name}: {label}\n   {:.3} s, {}x{}, {} samples/pixel, {} rays, {} rays/s\n",
-            m.median().as_secs_f64(),
-            m.case.settings.width,
-            m.case.settings.height,
-            m.case.settings.samples_per_pixel(),
-            si(m.rays() as f64),
-            si(m.rays_per_second()),
-        )
+/// The comparison, or why there is none: it failed or was cancelled.
+fn finished<T>(outcome: Result<Option<T>>, args: &CompareArgs) -> Result<T> {
+    outcome
+        .with_context(|| format!("cannot compare on {}", args.scene.display()))?
+        .context("the comparison was cancelled")
+}
+
+/// `--b-image`: A against a reference image.
+fn against_image(
+    args: &CompareArgs,
+    world: &std::sync::Arc<tracer::world::World>,
+    a: Case,
+    path: &std::path::Path,
+    heatmap: Heatmap,
+) -> Result<()> {
+    let image = compare::read_reference(path, a.encoding)?;
+    let size = (a.settings.width, a.settings.height);
+    let reference = compare::fit_reference(image, size, args.fit)
+        .with_context(|| format!("cannot compare with {}", path.display()))?;
+    let mut progress = super::runner_progress(vec!["A".into()], 1);
+    let c = compare::run_against_image(
+        world,
+        a,
+        reference,
+        args.threads,
+        heatmap,
+        &AtomicBool::new(false),
+        &mut progress,
+    );
+    let c = finished(c, args)?;
+    save_png(
+        &compare::compose(
+            &c.a.image,
+            &c.reference.image,
+            &c.heatmap,
+            heatmap.palette(),
+        ),
+        &args.output,
+    )?;
+    let label = crate::measure::describe::describe(&c.a.case.settings);
+    match args.format {
+        MetricsFormat::Text => {
+            let resized = c
+                .reference
+                .resized_from
+                .map_or_else(String::new, |(w, h)| format!(" (resized from {w}x{h})"));
+            print!(
+                "{} -> {} (A | image | {})\n{}B: {}{resized}\nMSE {:.3}, PSNR {:.2} dB, FLIP {:.4}\n",
+                args.scene.display(),
+                args.output.display(),
+                heatmap.legend(),
+                side_text("A", &label, &c.a),
+                path.display(),
+                c.metrics.mse,
+                c.metrics.psnr,
+                c.metrics.flip,
+            );
+        }
+        MetricsFormat::Json => println!("{}", image_json(args, &c, &label, path)),
+    }
+    Ok(())
+}
+
+/// One side's time and work in two lines.
+fn side_text(name: &str, label: &str, m: &Measurement) -> String {
+    format!(
+        "{name}: {label}\n   {:.3} s, {}x{}, {} samples/pixel, {} rays, {} rays/s\n",
+        m.median().as_secs_f64(),
+        m.case.settings.width,
+        m.case.settings.height,
+        m.case.settings.samples_per_pixel(),
+        si(m.rays() as f64),
+        si(m.rays_per_second()),
+    )
+}
+
+/// One side's time and work as JSON.
+fn side_json(label: &str, m: &Measurement) -> serde_json::Value {
+    serde_json::json!({
+        "label": label,
+        "seconds": m.median().as_secs_f64(),
+        "width": m.case.settings.width,
+        "height": m.case.settings.height,
+        "samples_per_pixel": m.case.settings.samples_per_pixel(),
+        "rays": m.rays(),
+        "rays_per_second": m.rays_per_second(),
+    })
+}
+
+/// The render against the image as one JSON object.
+fn image_json(
+    args: &CompareArgs,
+    c: &ImageComparison,
+    label: &str,
+    path: &std::path::Path,
+) -> String {
+    let value = serde_json::json!({
+        "scene": args.scene.display().to_string(),
+        "output": args.output.display().to_string(),
+        "a": side_json(label, &c.a),
+        "b": {
+            "image": path.display().to_string(),
+            "resized_from": c.reference.resized_from,
+        },
+        "mse": c.metrics.mse,
+        "psnr": c.metrics.psnr,
+        "flip": c.metrics.flip,
+    });
+    serde_json::to_string_pretty(&value).unwrap_or_default()
+}
+
+/// The view's summary of both sides, as text and JSON.
+struct ViewReport {
+    text: String,
+    json: serde_json::Value,
+}
+
+/// Measures `view` on both sides, writes A | B | difference on a shared
+/// scale, and reports both sides' numbers.
+fn compare_views(
+    args: &CompareArgs,
+    world: &std::sync::Arc<tracer::world::World>,
+    view: View,
+    (a, b): &(RenderSettings, RenderSettings),
+) -> Result<ViewReport> {
+    let measure = |s| {
+        view_image::measure_views(world, s, args.threads)
+            .with_context(|| format!("cannot measure the view {}", view.name()))
     };
+    let (fa, fb) = (measure(a)?, measure(b)?);
+    let (va, vb) = (fa.values(view), fb.values(view));
+    let heat = args.view.heatmap(&[&va, &vb]);
+    save_png(
+        &view_image::compose_sides(&fa, &fb, view, &heat)?,
+        &args.output,
+    )?;
+    let (sa, sb) = (ViewSummary::of(&va), ViewSummary::of(&vb));
+    Ok(ViewReport {
+        text: format!(
+            "A {}\nB {}\n",
+            view_image::describe(view, sa.as_ref(), &heat),
+            view_image::describe(view, sb.as_ref(), &heat)
+        ),
+        json: serde_json::json!({
+            "a": view_image::summary_json(view, sa.as_ref(), &heat),
+            "b": view_image::summary_json(view, sb.as_ref(), &heat),
+        }),
+    })
+}
+
+fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
+    let side = side_text;
     let ratio = c.time_ratio();
     let speed = if ratio >= 1.0 {
         format!("B is {ratio:.2}x faster")
@@ -81,7 +254,10 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
         "{} -> {} (A | B | {})\n{}{}time A/B: {ratio:.3} ({speed})\nMSE {:.3}, PSNR {:.2} dB, FLIP {:.4}\n",
         args.scene.display(),
         args.output.display(),
-        heatmap.legend(),
+        match args.view.view() {
+            Some(view) => format!("{0} | {0} | |A - B|, on one scale", view.name()),
+            None => heatmap.legend(),
+        },
         side("A", &c.labels.0, &c.a),
         side("B", &c.labels.1, &c.b),
         c.metrics.mse,
@@ -92,19 +268,9 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
 
 /// The times and metrics as one JSON object; PSNR is null for identical
 /// images (infinite).
-fn json(args: &CompareArgs, c: &Comparison) -> String {
-    let side = |label: &str, m: &Measurement| {
-        serde_json::json!({
-            "label": label,
-            "seconds": m.median().as_secs_f64(),
-            "width": m.case.settings.width,
-            "height": m.case.settings.height,
-            "samples_per_pixel": m.case.settings.samples_per_pixel(),
-            "rays": m.rays(),
-            "rays_per_second": m.rays_per_second(),
-        })
-    };
-    let value = serde_json::json!({
+fn json(args: &CompareArgs, c: &Comparison) -> serde_json::Value {
+    let side = side_json;
+    serde_json::json!({
         "scene": args.scene.display().to_string(),
         "output": args.output.display().to_string(),
         "a": side(&c.labels.0, &c.a),
@@ -113,6 +279,5 @@ fn json(args: &CompareArgs, c: &Comparison) -> String {
         "mse": c.metrics.mse,
         "psnr": c.metrics.psnr,
         "flip": c.metrics.flip,
-    });
-    serde_json::to_string_pretty(&value).unwrap_or_default()
+    })
 }

@@ -3,20 +3,37 @@
 pub mod bench;
 pub mod compare;
 pub mod generate;
+pub mod inspect;
 pub mod render;
+pub mod sweep;
 
 use std::io::IsTerminal;
 
-use crate::measure::benchmark::Event;
+use tracer::render::RenderSettings;
+use tracer::stats::SceneCounts;
 
-/// A progress bar on stderr for `runs` frames of each of `labels`, fed by
-/// the benchmark runner's events; hidden when stderr is not a terminal, so
-/// scripted output stays clean.
-fn runner_progress(labels: Vec<String>, runs: usize) -> impl FnMut(Event) {
-    const STEPS: u64 = 1000;
-    let runs = runs.max(1);
+use crate::measure::benchmark::Event;
+use crate::measure::cost::BruteForceCost;
+
+/// Warns on stderr, before rendering, when brute force over this scene
+/// would look like a hang; the scene's `accel` is respected all the same.
+fn warn_brute_force(settings: &RenderSettings, counts: &SceneCounts) {
+    if let Some(cost) = BruteForceCost::of(settings, counts) {
+        eprintln!(
+            "warning: {}; add `--accel bvh` to render it in seconds",
+            cost.describe()
+        );
+    }
+}
+
+/// Steps of a progress bar per frame.
+const STEPS: u64 = 1000;
+
+/// A progress bar on stderr for `frames` frames of [`STEPS`] steps; hidden
+/// when stderr is not a terminal, so scripted output stays clean.
+fn progress_bar(frames: usize) -> indicatif::ProgressBar {
     let bar = if std::io::stderr().is_terminal() {
-        indicatif::ProgressBar::new((labels.len() * runs) as u64 * STEPS)
+        indicatif::ProgressBar::new(frames as u64 * STEPS)
     } else {
         indicatif::ProgressBar::hidden()
     };
@@ -24,6 +41,15 @@ fn runner_progress(labels: Vec<String>, runs: usize) -> impl FnMut(Event) {
         indicatif::ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    bar
+}
+
+/// A progress bar on stderr for `runs` frames of each of `labels`, fed by
+/// the benchmark runner's events; hidden when stderr is not a terminal, so
+/// scripted output stays clean.
+fn runner_progress(labels: Vec<String>, runs: usize) -> impl FnMut(Event) {
+    let runs = runs.max(1);
+    let bar = progress_bar(labels.len() * runs);
     move |event| match event {
         Event::Rendering {
             case,

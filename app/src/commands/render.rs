@@ -5,11 +5,13 @@ use std::io::IsTerminal;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
+use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
+use tracer::render::{Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::load::load_scene;
-use crate::output::save_png;
+use crate::measure::{overlay_image, view_image};
+use crate::output::{is_exr, save_exr, save_png};
 use crate::report;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -17,6 +19,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);
     let encoding = args.settings.encoding();
+    super::warn_brute_force(&settings, &loaded.world.counts);
 
     let on_pass = match &args.progressive_out {
         Some(dir) => {
@@ -33,6 +36,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
         None => None,
     };
+    if is_exr(&args.output) && (args.view.view().is_some() || args.overlay.is_some()) {
+        anyhow::bail!(
+            "--view and --overlay draw on a PNG; {} is OpenEXR, which holds the linear film only",
+            args.output.display()
+        );
+    }
     let job = RenderJob::start(
         loaded.world.clone(),
         None,
@@ -40,6 +49,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         JobOptions {
             threads: args.threads,
             on_pass,
+            views: args.view.view().is_some(),
             ..JobOptions::default()
         },
     )
@@ -50,19 +60,65 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if std::io::stderr().is_terminal() {
         show_progress(&job, &settings);
     }
-    let (film, stats, state) = job.wait();
+    let (film, views, stats, state) = job.wait_with_views();
     if let JobState::Failed(message) = state {
         anyhow::bail!("rendering {} failed: {message}", args.scene.display());
     }
-    save_png(&film.to_image(encoding), &args.output)?;
+    let view = args.view.view().zip(views.as_ref()).map(|(view, film)| {
+        let values = film.values(view);
+        let heat = args.view.heatmap(&[&values]);
+        (view, film, ViewSummary::of(&values), heat)
+    });
+    if is_exr(&args.output) {
+        // The linear film, before any clamping or encoding.
+        save_exr(&film.to_linear_image(), &args.output)?;
+    } else {
+        let mut image = match &view {
+            Some((v, film, _, heat)) => {
+                view_image::view_image(film, *v, heat).context("the view has no image")?
+            }
+            None => film.to_image(encoding),
+        };
+        if let Some(layer) = args.overlay {
+            let accel = match layer {
+                StructureLayer::Grid => AccelKind::Grid,
+                _ => AccelKind::Bvh,
+            };
+            let world = &loaded.world;
+            let index = SceneIndex::build(&world.shapes, accel, settings.grid_multiplier);
+            let camera = Frame::camera(world, &settings)
+                .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
+            overlay_image::draw_wireframe(&mut image, &camera, &index.wireframe(layer));
+        }
+        match &view {
+            Some((v, _, _, heat)) if v.is_scalar() => {
+                save_png(&view_image::with_legend(&image, heat), &args.output)?
+            }
+            _ => save_png(&image, &args.output)?,
+        }
+    }
     match args.stats {
-        Some(StatsFormat::Json) => println!("{}", report::json(&stats, &loaded.world.counts)),
-        None => println!(
-            "{} -> {}\n{}",
-            args.scene.display(),
-            args.output.display(),
-            report::summary(&stats, &loaded.world.counts)
-        ),
+        Some(StatsFormat::Json) => {
+            let mut json = report::json_value(&stats, &loaded.world.counts);
+            if let Some((v, _, summary, heat)) = &view {
+                json["view"] = view_image::summary_json(*v, summary.as_ref(), heat);
+            }
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&json).unwrap_or_default()
+            );
+        }
+        None => {
+            println!(
+                "{} -> {}\n{}",
+                args.scene.display(),
+                args.output.display(),
+                report::summary(&stats, &loaded.world.counts)
+            );
+            if let Some((v, _, summary, heat)) = &view {
+                println!("{}", view_image::describe(*v, summary.as_ref(), heat));
+            }
+        }
     }
     Ok(())
 }

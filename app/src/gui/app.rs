@@ -12,30 +12,42 @@ use tracer::render::JobState;
 
 use crate::bundled;
 use crate::load::SceneSource;
-use crate::output::save_png;
+use crate::output::{save_exr, save_png};
 
 use super::bench_window::BenchWindow;
 use super::commands::Command;
 use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
 use super::frame_meter::{FrameMeter, ProgressPace};
+use super::inspector::Inspector;
 use super::live_image::LiveImage;
+use super::overlay::StructureOverlay;
 use super::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
+use super::state::AccelChoice;
 use super::state::{Controls, Persisted};
+use super::studies::{Applied, StudiesWindow};
+use super::view_select::{self, ViewChoice};
 use super::viewport::{self, Gesture, ViewState, Zoom};
-use super::{controls, scene_picker, stats_panel};
+use super::{accel_banner, controls, scene_picker, stats_panel};
 
 /// How long after the last wheel dolly the camera counts as moving.
 const MOVE_SETTLE: Duration = Duration::from_millis(250);
 /// How long a notice stays on screen.
 const NOTICE_TIME: Duration = Duration::from_secs(5);
 
+/// What a save writes: the shown render (PNG) or the linear film (EXR).
+enum SaveImage {
+    Shown(tracer::render::Snapshot),
+    Linear(image::Rgb32FImage),
+}
+
 /// Results of background dialogs and saves, delivered to the UI thread.
 enum Reply {
     Open(PathBuf),
     Notice(String),
     Error(String),
-    Screenshot(Result<PathBuf, String>),
+    /// The line to print once the screenshot is saved, or why it was not.
+    Screenshot(Result<String, String>),
 }
 
 /// The application state: persisted settings plus runtime handles.
@@ -50,6 +62,7 @@ pub struct WorkbenchApp {
     /// The B side while comparing.
     compare: Option<Compare>,
     bench: BenchWindow,
+    studies: StudiesWindow,
     /// For wake-ups from render threads of jobs started later.
     repaint_ctx: egui::Context,
     dragging_camera: bool,
@@ -73,6 +86,12 @@ pub struct WorkbenchApp {
     opened_at: Instant,
     screenshot: Option<(ScreenshotPlan, ScreenshotOutcome)>,
     screenshot_requested: bool,
+    /// Which per-pixel view the images show.
+    views: ViewChoice,
+    /// The pinned pixel's ray tree.
+    inspector: Inspector,
+    /// The acceleration structure drawn over the image.
+    overlay: StructureOverlay,
 }
 
 impl WorkbenchApp {
@@ -98,6 +117,7 @@ impl WorkbenchApp {
             image: LiveImage::new("render"),
             compare: None,
             bench: BenchWindow::default(),
+            studies: StudiesWindow::default(),
             repaint_ctx: ctx.clone(),
             dragging_camera: false,
             moving_until: None,
@@ -117,6 +137,9 @@ impl WorkbenchApp {
             opened_at: Instant::now(),
             screenshot: None,
             screenshot_requested: false,
+            views: ViewChoice::default(),
+            inspector: Inspector::default(),
+            overlay: StructureOverlay::default(),
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
@@ -148,6 +171,26 @@ impl WorkbenchApp {
     }
 
     /// The engine, for tests that check what the renderer was asked.
+    /// The structure overlay.
+    pub fn overlay(&self) -> &StructureOverlay {
+        &self.overlay
+    }
+
+    /// The ray-tree inspector.
+    pub fn inspector(&self) -> &Inspector {
+        &self.inspector
+    }
+
+    /// Pins `pixel` in the inspector, as a click on it does.
+    pub fn inspect(&mut self, pixel: (u32, u32)) {
+        self.inspector.pin(pixel);
+    }
+
+    /// The per-pixel view the images show.
+    pub fn views(&self) -> &ViewChoice {
+        &self.views
+    }
+
     pub fn engine(&self) -> &Engine {
         &self.engine
     }
@@ -162,9 +205,19 @@ impl WorkbenchApp {
         &self.bench
     }
 
+    /// The Studies window.
+    pub fn studies(&self) -> &StudiesWindow {
+        &self.studies
+    }
+
     /// The error shown in the window, if any.
     pub fn error(&self) -> Option<&str> {
         self.error.as_deref()
+    }
+
+    /// The render on screen, once there is one.
+    pub fn shown(&self) -> Option<&tracer::render::Snapshot> {
+        self.image.shown()
     }
 
     /// Samples per pixel of the image on screen, once there is one.
@@ -267,7 +320,7 @@ impl WorkbenchApp {
                 return;
             }
             self.notify(format!(
-                "{} is not a scene file (.p3f or .nff)",
+                "{} is not a scene or mesh file (.p3f, .nff, .obj, .ply)",
                 path.display()
             ));
         }
@@ -301,9 +354,11 @@ impl WorkbenchApp {
                 }
             }
             Command::ToggleStats => self.state.show_stats ^= true,
+            Command::CycleView => self.views.cycle(),
             Command::ToggleHelp => self.help_open ^= true,
             Command::ToggleCompare => self.toggle_compare(),
             Command::ToggleBenchmark => self.bench.open ^= true,
+            Command::ToggleStudies => self.studies.open ^= true,
             Command::SwapSides => self.swap_sides(),
             Command::CopyAToB => match &mut self.compare {
                 Some(compare) => compare.controls = self.state.controls.clone(),
@@ -317,7 +372,8 @@ impl WorkbenchApp {
                 None => self.notify("no scene to reload".into()),
             },
             Command::Open => self.open_dialog(),
-            Command::Save => self.save_dialog(),
+            Command::Save => self.save_dialog(false),
+            Command::SaveExr => self.save_dialog(true),
         }
     }
 
@@ -342,6 +398,49 @@ impl WorkbenchApp {
             let wake = ctx.clone();
             self.bench
                 .start(scene.world.clone(), &base, move || wake.request_repaint());
+        }
+    }
+
+    /// The Studies window, started on the current scene, camera and size;
+    /// a point the user picks is shown in the main view.
+    fn studies_window(&mut self, ctx: &egui::Context) {
+        self.studies.receive(ctx);
+        if !self.studies.open {
+            return;
+        }
+        let base = self.engine.scene().map_or_else(Default::default, |s| {
+            self.state
+                .controls
+                .render_settings(&s.scene, self.camera, false)
+        });
+        let mut start = false;
+        let applied = self.studies.show(ctx, &base, &mut start);
+        if start && let Some(scene) = self.engine.scene() {
+            let wake = ctx.clone();
+            let name = scene.source.label();
+            self.studies.start(
+                scene.world.clone(),
+                &base,
+                &self.state.controls,
+                &name,
+                move || wake.request_repaint(),
+            );
+        }
+        if let Some(applied) = applied {
+            self.apply_study_point(&applied);
+        }
+    }
+
+    /// A study's point in the main view: its settings, or for the level
+    /// study its generated scene.
+    fn apply_study_point(&mut self, applied: &Applied) {
+        match applied.scene_file() {
+            Ok(Some(path)) => self.open(SceneSource::File(path)),
+            Ok(None) => {
+                let width = self.engine.scene().map_or(1, |s| s.scene.view.width);
+                applied.apply_to(&mut self.state.controls, width);
+            }
+            Err(e) => self.error = Some(format!("{e:#}")),
         }
     }
 
@@ -395,7 +494,7 @@ impl WorkbenchApp {
             .name("open-dialog".into())
             .spawn(move || {
                 let picked = rfd::FileDialog::new()
-                    .add_filter("Scene files", &["p3f", "nff"])
+                    .add_filter("Scenes and meshes", &["p3f", "nff", "obj", "ply"])
                     .set_directory("scenes")
                     .pick_file();
                 let _ = reply.send(match picked {
@@ -412,9 +511,15 @@ impl WorkbenchApp {
         }
     }
 
-    /// The native save dialog and the PNG write, off the UI thread.
-    fn save_dialog(&mut self) {
-        let Some(snapshot) = self.image.shown().cloned() else {
+    /// The native save dialog and the write, off the UI thread: the shown
+    /// render as PNG, or the linear film as OpenEXR (`exr`).
+    fn save_dialog(&mut self, exr: bool) {
+        let image = if exr {
+            self.engine.linear_image().map(SaveImage::Linear)
+        } else {
+            self.image.shown().cloned().map(SaveImage::Shown)
+        };
+        let Some(image) = image else {
             self.notify("there is no image to save yet".into());
             return;
         };
@@ -430,13 +535,18 @@ impl WorkbenchApp {
         let stem = Path::new(&name)
             .file_stem()
             .map_or_else(|| "render".into(), |s| s.to_string_lossy().into_owned());
+        let (filter, extension) = if exr {
+            ("OpenEXR image", "exr")
+        } else {
+            ("PNG image", "png")
+        };
         let reply = self.replies.0.clone();
         let spawned = std::thread::Builder::new()
             .name("save-dialog".into())
             .spawn(move || {
                 let Some(path) = rfd::FileDialog::new()
-                    .add_filter("PNG image", &["png"])
-                    .set_file_name(format!("{stem}.png"))
+                    .add_filter(filter, &[extension])
+                    .set_file_name(format!("{stem}.{extension}"))
                     .save_file()
                 else {
                     let _ = reply.send(Reply::Notice(
@@ -444,10 +554,13 @@ impl WorkbenchApp {
                     ));
                     return;
                 };
-                let result = snapshot
-                    .to_image()
-                    .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
-                    .and_then(|img| save_png(&img, &path));
+                let result = match image {
+                    SaveImage::Linear(film) => save_exr(&film, &path),
+                    SaveImage::Shown(snapshot) => snapshot
+                        .to_image()
+                        .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
+                        .and_then(|img| save_png(&img, &path)),
+                };
                 let _ = reply.send(match result {
                     Ok(()) => Reply::Notice(format!("saved {}", path.display())),
                     Err(e) => Reply::Error(format!("{e:#}")),
@@ -491,13 +604,15 @@ impl WorkbenchApp {
             .state
             .controls
             .render_settings(&scene.scene, self.camera, moving);
+        self.engine.set_views(self.views.measures());
         if let Err(e) = self.engine.render(&settings) {
             self.error = Some(e);
         }
-        if let Some(compare) = &mut self.compare
-            && let Err(e) = compare.sync(self.camera, moving)
-        {
-            self.error = Some(e);
+        if let Some(compare) = &mut self.compare {
+            compare.engine.set_views(self.views.measures());
+            if let Err(e) = compare.sync(self.camera, moving) {
+                self.error = Some(e);
+            }
         }
         if let Some(failure) = self.engine.take_failure() {
             self.error = Some(format!(
@@ -518,9 +633,13 @@ impl WorkbenchApp {
     /// Uploads the render to the GPU when it changed, at the progress pace.
     fn refresh_texture(&mut self, ctx: &egui::Context) {
         let encoding = self.state.controls.encoding();
+        let b = self.compare.as_ref().map(|c| &c.engine);
+        let shown = self.views.fit(ctx, &self.engine, b);
+        self.image.set_view(shown);
         self.image
             .refresh(ctx, &self.engine, encoding, self.progress_pace.get());
         if let Some(compare) = &mut self.compare {
+            compare.image.set_view(shown);
             compare.refresh(ctx, (&self.engine, &self.image), self.progress_pace.get());
         }
     }
@@ -549,6 +668,9 @@ impl WorkbenchApp {
             Activity::Job(JobState::Failed(e)) => format!("failed: {e}"),
         };
         parts.push(state);
+        if self.engine.scene().is_some_and(|s| s.source.is_bare_mesh()) {
+            parts.push(tracer::mesh_io::FRAMING_NOTE.into());
+        }
         parts.join(" · ")
     }
 
@@ -557,8 +679,11 @@ impl WorkbenchApp {
         let s = self.image.shown()?;
         let i = (y as usize * s.width as usize + x as usize) * 4;
         let p = s.rgba.get(i..i + 4)?;
+        let view = self.views.view;
         Some(if p[3] == 0 {
             format!("({x}, {y}) not rendered yet")
+        } else if let Some(value) = view_select::readout(&self.engine, view, x, y) {
+            format!("({x}, {y}) {value}")
         } else {
             format!("({x}, {y}) rgb {} {} {}", p[0], p[1], p[2])
         })
@@ -618,6 +743,7 @@ impl WorkbenchApp {
                     ui.add(egui::Label::new(RichText::new(&error).color(Color32::WHITE)).wrap());
                 });
         }
+        self.brute_force_banners(ui);
         let (size, full) = match self.image.shown() {
             Some(s) => (
                 [s.width as usize, s.height as usize],
@@ -644,13 +770,14 @@ impl WorkbenchApp {
                     return viewport::show(
                         ui,
                         &mut self.view,
-                        self.image.texture(),
+                        &self.image.layers(),
                         None,
                         size,
                         full,
                     );
                 };
-                let b = compare.image.texture();
+                let b_layers = compare.b_layers(ui.ctx(), (size[0] as u32, size[1] as u32));
+                let b: Vec<&egui::TextureHandle> = b_layers.iter().collect();
                 match compare.view {
                     CompareView::SideBySide => {
                         let half =
@@ -661,7 +788,7 @@ impl WorkbenchApp {
                                     viewport::show(
                                         ui,
                                         &mut self.view,
-                                        self.image.texture(),
+                                        &self.image.layers(),
                                         None,
                                         size,
                                         full,
@@ -670,7 +797,7 @@ impl WorkbenchApp {
                                 .inner;
                             let right = ui
                                 .allocate_ui(half, |ui| {
-                                    viewport::show(ui, &mut self.view, b, None, size, full)
+                                    viewport::show(ui, &mut self.view, &b, None, size, full)
                                 })
                                 .inner;
                             left.merge(right)
@@ -678,24 +805,35 @@ impl WorkbenchApp {
                         .inner
                     }
                     CompareView::Split => {
-                        let split = b.map(|texture| viewport::SplitWith {
+                        let split = b.last().map(|&texture| viewport::SplitWith {
                             texture,
                             at: &mut compare.split,
                         });
-                        viewport::show(ui, &mut self.view, self.image.texture(), split, size, full)
+                        let a = self.image.layers();
+                        viewport::show(ui, &mut self.view, &a, split, size, full)
                     }
                     CompareView::Flip => {
-                        let texture = if flip_held { b } else { self.image.texture() };
-                        viewport::show(ui, &mut self.view, texture, None, size, full)
+                        let layers = if flip_held { b } else { self.image.layers() };
+                        viewport::show(ui, &mut self.view, &layers, None, size, full)
                     }
                     CompareView::Difference => {
-                        viewport::show(ui, &mut self.view, compare.difference(), None, size, full)
+                        let difference = compare.difference();
+                        viewport::show(ui, &mut self.view, difference.as_slice(), None, size, full)
                     }
                 }
             })
             .inner;
         self.dragging_camera = response.dragging_camera;
         self.hovered_pixel = response.hovered_pixel;
+        if let Some(rect) = response.image_rect {
+            self.overlay.paint(ui, &self.engine, rect);
+            self.inspector.paths_drawn = self.inspector.paint_paths(ui, &self.engine, rect);
+        }
+        if let Some(pixel) = self.hovered_pixel
+            && ui.input(|i| i.pointer.primary_clicked())
+        {
+            self.inspector.pin(pixel);
+        }
         self.apply_gestures(&response.gestures);
         ui.horizontal(|ui| {
             ui.label(self.status_line());
@@ -705,6 +843,24 @@ impl WorkbenchApp {
                 });
             }
         });
+    }
+
+    /// The slow-render banner of each side that runs brute force over a
+    /// large scene; its button switches that side to the BVH.
+    fn brute_force_banners(&mut self, ui: &mut Ui) {
+        if let (Some(scene), Some(settings)) = (self.engine.scene(), self.engine.settings())
+            && accel_banner::show(ui, "", settings, &scene.world.counts)
+        {
+            self.state.controls.set_accel(AccelChoice::Bvh);
+        }
+        if let Some(compare) = &mut self.compare
+            && compare.reference().is_none()
+            && let (Some(scene), Some(settings)) =
+                (compare.engine.scene(), compare.engine.settings())
+            && accel_banner::show(ui, "B: ", settings, &scene.world.counts)
+        {
+            compare.controls.set_accel(AccelChoice::Bvh);
+        }
     }
 
     /// The full-resolution size of the current settings.
@@ -745,11 +901,15 @@ impl WorkbenchApp {
         }
         self.screenshot_requested = true;
         let path = plan.path.clone();
+        let shown = self.image.shown().map(screenshot::describe);
         let reply = self.replies.0.clone();
         let wake = ctx.clone();
         ctx.request_screenshot(move |image| {
             let result = screenshot::save(&image, &path)
-                .map(|()| path)
+                .map(|()| match shown {
+                    Some(shown) => format!("saved screenshot {} of {shown}", path.display()),
+                    None => format!("saved screenshot {}", path.display()),
+                })
                 .map_err(|e| format!("{e:#}"));
             let _ = reply.send(Reply::Screenshot(result));
             wake.request_repaint();
@@ -764,8 +924,14 @@ fn compare_labels(
     scene: Option<&super::engine::LoadedScene>,
     camera: Option<CameraPose>,
 ) -> Option<(String, String)> {
-    let b = compare.settings(camera, false)?;
     let a = controls_a.render_settings(&scene?.scene, camera, false);
+    if let Some(reference) = compare.reference() {
+        return Some((
+            format!("A: {}", crate::measure::describe::describe(&a)),
+            reference.label(),
+        ));
+    }
+    let b = compare.settings(camera, false)?;
     Some(compare::labels(&a, &b))
 }
 
@@ -789,6 +955,7 @@ fn compare_header(
             ui.weak("hold X to see B");
         }
     });
+    compare.reference_controls(ui, controls_a.encoding());
     if let Some((label_a, label_b)) = compare_labels(compare, controls_a, scene, camera) {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(label_a).strong());
@@ -817,11 +984,15 @@ fn default_scene() -> Option<SceneSource> {
 }
 
 impl eframe::App for WorkbenchApp {
-    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
-        self.frame_meter.begin();
+        self.frame_meter
+            .begin(Instant::now(), frame.info().cpu_usage);
         self.engine.collect_retired();
         self.receive(&ctx);
+        // Before anything is drawn, so the numbers and the image of a
+        // frame describe the same render.
+        self.refresh_texture(&ctx);
         self.take_dropped_files(&ctx);
         let mut commands = Command::pressed(&ctx);
 
@@ -879,6 +1050,9 @@ impl eframe::App for WorkbenchApp {
                         _ => &mut self.state.controls,
                     };
                     controls::show(ui, controls, paused, &mut commands);
+                    ui.separator();
+                    self.views.ui(ui, self.compare.is_some());
+                    self.overlay.ui(ui);
                     ui.separator();
                     controls::command_button(ui, Command::ToggleHelp, &mut commands);
                 });
@@ -941,15 +1115,18 @@ impl eframe::App for WorkbenchApp {
             }
         }
         self.help_window(&ctx);
+        let b = self.compare.as_ref().map(|c| &c.engine);
+        self.inspector.update(&self.engine, b);
+        self.inspector.window(&ctx, self.compare.is_some());
         self.benchmark_window(&ctx);
+        self.studies_window(&ctx);
 
         for command in commands {
             self.run_command(command);
         }
         self.sync_render(&ctx);
-        self.refresh_texture(&ctx);
         self.take_screenshot_when_due(&ctx);
-        self.frame_meter.end();
+        self.frame_meter.end(Instant::now());
         self.progress_pace.set(self.frame_meter.progress_interval());
     }
 

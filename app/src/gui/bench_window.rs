@@ -6,12 +6,11 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::atomic::AtomicBool;
+use std::sync::mpsc::Sender;
 
-use egui::{ColorImage, TextureHandle, TextureOptions, Ui};
+use egui::{TextureHandle, Ui};
 use egui_plot::{Bar, BarChart, Plot};
-use image::imageops::FilterType;
 use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
@@ -20,6 +19,8 @@ use crate::measure::bench_report::{self, Format, Layout};
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
 use crate::output::save_png;
 use crate::report::si;
+
+use super::background::{self, Background};
 
 /// Side of the thumbnails in the table, in pixels.
 const THUMBNAIL: u32 = 64;
@@ -49,11 +50,10 @@ pub struct BenchWindow {
     cases: Vec<Case>,
     rows: Vec<Row>,
     progress: Option<(usize, usize, f32)>,
-    cancel: Option<Arc<AtomicBool>>,
-    updates: Option<Receiver<Update>>,
+    task: Option<Background<Update>>,
     message: Option<String>,
     /// Where the last export went.
-    exported: Option<Receiver<Result<PathBuf, String>>>,
+    exported: background::Export,
 }
 
 impl Default for BenchWindow {
@@ -64,17 +64,16 @@ impl Default for BenchWindow {
             cases: Vec::new(),
             rows: Vec::new(),
             progress: None,
-            cancel: None,
-            updates: None,
+            task: None,
             message: None,
-            exported: None,
+            exported: background::Export::default(),
         }
     }
 }
 
 impl BenchWindow {
     pub fn is_running(&self) -> bool {
-        self.updates.is_some()
+        self.task.is_some()
     }
 
     /// The finished rows' measurements, in matrix order.
@@ -103,36 +102,30 @@ impl BenchWindow {
         );
         self.rows.clear();
         self.message = None;
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (tx, rx) = channel();
         let cases = self.cases.clone();
         let options = RunOptions {
             runs: self.runs,
             threads: None,
         };
-        let flag = cancel.clone();
-        let spawned = std::thread::Builder::new()
-            .name("benchmark".into())
-            .spawn(move || run(&world, &cases, options, &flag, &tx, &wake));
+        let spawned = Background::spawn("benchmark", move |cancel, tx| {
+            run(&world, &cases, options, cancel, tx, &wake)
+        });
         match spawned {
-            Ok(_) => {
-                self.cancel = Some(cancel);
-                self.updates = Some(rx);
-            }
+            Ok(task) => self.task = Some(task),
             Err(e) => self.message = Some(format!("cannot start the benchmark: {e}")),
         }
     }
 
     /// Cancels a running matrix; the finished rows stay.
     pub fn stop(&mut self) {
-        if let Some(cancel) = &self.cancel {
-            cancel.store(true, Ordering::Relaxed);
+        if let Some(task) = &self.task {
+            task.cancel();
         }
     }
 
     /// Takes the thread's updates; call once per frame.
     pub fn receive(&mut self, ctx: &egui::Context) {
-        while let Some(update) = self.updates.as_ref().and_then(|rx| rx.try_recv().ok()) {
+        while let Some(update) = self.task.as_ref().and_then(Background::try_recv) {
             match update {
                 Update::Progress {
                     case,
@@ -140,7 +133,12 @@ impl BenchWindow {
                     fraction,
                 } => self.progress = Some((case, run, fraction)),
                 Update::Measured(measurement) => {
-                    let thumbnail = thumbnail(ctx, &measurement);
+                    let thumbnail = background::thumbnail(
+                        ctx,
+                        &measurement.image,
+                        THUMBNAIL,
+                        format!("bench {}", measurement.case.file_stem()),
+                    );
                     self.rows.push(Row {
                         measurement: *measurement,
                         thumbnail,
@@ -152,20 +150,13 @@ impl BenchWindow {
                         Ok(true) => format!("cancelled after {} configurations", self.rows.len()),
                         Err(e) => e,
                     });
-                    self.updates = None;
-                    self.cancel = None;
+                    self.task = None;
                     self.progress = None;
                 }
             }
         }
-        if let Some(rx) = &self.exported
-            && let Ok(result) = rx.try_recv()
-        {
-            self.message = Some(match result {
-                Ok(dir) => format!("exported to {}", dir.display()),
-                Err(e) => e,
-            });
-            self.exported = None;
+        if let Some(message) = self.exported.finished() {
+            self.message = Some(message);
         }
     }
 
@@ -272,25 +263,9 @@ impl BenchWindow {
         let stem = Path::new(scene_name)
             .file_stem()
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
-        let (tx, rx) = channel();
-        let spawned = std::thread::Builder::new()
-            .name("bench-export".into())
-            .spawn(move || {
-                let result = match rfd::FileDialog::new()
-                    .set_title("Export the benchmark to")
-                    .pick_folder()
-                {
-                    Some(dir) => write_export(&dir.join(format!("bench-{stem}")), &measurements)
-                        .map_err(|e| format!("{e:#}")),
-                    None => {
-                        Err("not exported (cancelled, or no file dialog on this desktop)".into())
-                    }
-                };
-                let _ = tx.send(result);
-            });
-        if spawned.is_ok() {
-            self.exported = Some(rx);
-        }
+        self.exported.start("Export the benchmark to", move |dir| {
+            write_export(&dir.join(format!("bench-{stem}")), &measurements)
+        });
     }
 }
 
@@ -343,21 +318,4 @@ fn run(
         .map_err(|e| format!("{e:#}"));
     let _ = tx.send(Update::Finished(result));
     wake();
-}
-
-/// The image shrunk to at most [`THUMBNAIL`] pixels a side, aspect kept.
-fn thumbnail(ctx: &egui::Context, m: &Measurement) -> TextureHandle {
-    let (w, h) = m.image.dimensions();
-    let scale = THUMBNAIL as f32 / w.max(h).max(1) as f32;
-    let size = |n: u32| ((n as f32 * scale).round() as u32).max(1);
-    let small = image::imageops::resize(&m.image, size(w), size(h), FilterType::Triangle);
-    let image = ColorImage::from_rgb(
-        [small.width() as usize, small.height() as usize],
-        small.as_raw(),
-    );
-    ctx.load_texture(
-        format!("bench {}", m.case.file_stem()),
-        image,
-        TextureOptions::LINEAR,
-    )
 }

@@ -14,17 +14,20 @@ pub enum Command {
     Restart,
     ToggleKeepRefining,
     Save,
+    SaveExr,
     Open,
     Reload,
     ResetCamera,
     ZoomFit,
     ZoomActualSize,
     ToggleStats,
+    CycleView,
     ToggleHelp,
     ToggleCompare,
     SwapSides,
     CopyAToB,
     ToggleBenchmark,
+    ToggleStudies,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -33,7 +36,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 19] = [
+    pub const ALL: [Command; 22] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -42,16 +45,19 @@ impl Command {
         Command::Restart,
         Command::ToggleKeepRefining,
         Command::Save,
+        Command::SaveExr,
         Command::Open,
         Command::Reload,
         Command::ResetCamera,
         Command::ZoomFit,
         Command::ZoomActualSize,
         Command::ToggleStats,
+        Command::CycleView,
         Command::ToggleCompare,
         Command::SwapSides,
         Command::CopyAToB,
         Command::ToggleBenchmark,
+        Command::ToggleStudies,
         Command::ToggleHelp,
     ];
 
@@ -66,17 +72,20 @@ impl Command {
             Command::Restart => "Restart",
             Command::ToggleKeepRefining => "Keep refining",
             Command::Save => "Save PNG...",
+            Command::SaveExr => "Save as EXR...",
             Command::Open => "Open...",
             Command::Reload => "Reload scene",
             Command::ResetCamera => "Reset camera",
             Command::ZoomFit => "Fit to window",
             Command::ZoomActualSize => "Actual size (1:1)",
             Command::ToggleStats => "Statistics panel",
+            Command::CycleView => "Next view",
             Command::ToggleHelp => "Help",
             Command::ToggleCompare => "Compare A/B",
             Command::SwapSides => "Swap A and B",
             Command::CopyAToB => "Copy A to B",
             Command::ToggleBenchmark => "Benchmark matrix",
+            Command::ToggleStudies => "Studies",
         }
     }
 
@@ -97,12 +106,18 @@ impl Command {
             Command::Restart => "Throw away the samples so far and render again",
             Command::ToggleKeepRefining => "Keep adding fresh samples past the N x N target",
             Command::Save => "Write the displayed render at full resolution to a PNG file",
-            Command::Open => "Open a scene file (.p3f, .nff); you can also drop one on the window",
+            Command::SaveExr => {
+                "Write the linear float film, before clamping and encoding, to an OpenEXR file"
+            }
+            Command::Open => {
+                "Open a scene (.p3f, .nff) or a mesh (.obj, .ply); you can also drop one on the window"
+            }
             Command::Reload => "Read the current scene file again",
             Command::ResetCamera => "Back to the scene file's camera",
             Command::ZoomFit => "Scale the image to fill the view",
             Command::ZoomActualSize => "One image pixel per screen pixel",
             Command::ToggleStats => "Show or hide the statistics panel",
+            Command::CycleView => "Show the next per-pixel view: tests, steps, rays, depth...",
             Command::ToggleHelp => "List every shortcut",
             Command::ToggleCompare => {
                 "Render a second settings set B beside A, same scene and camera"
@@ -111,6 +126,9 @@ impl Command {
             Command::CopyAToB => "Give B the settings of A",
             Command::ToggleBenchmark => {
                 "Time every structure x shadows x sampling on this scene, as the seed's table"
+            }
+            Command::ToggleStudies => {
+                "Sweep one parameter (grid m, N, depth, ...) or a generated scene's size and chart the times"
             }
         }
     }
@@ -127,6 +145,7 @@ impl Command {
         const K: &[KeyboardShortcut] = &[key(Key::K)];
         const CTRL_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::S)];
         const CTRL_O: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::O)];
+        const CTRL_E: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::E)];
         const F5: &[KeyboardShortcut] = &[key(Key::F5)];
         const C: &[KeyboardShortcut] = &[key(Key::C)];
         const F: &[KeyboardShortcut] = &[key(Key::F)];
@@ -136,6 +155,8 @@ impl Command {
         const B: &[KeyboardShortcut] = &[key(Key::B)];
         const W: &[KeyboardShortcut] = &[key(Key::W)];
         const M: &[KeyboardShortcut] = &[key(Key::M)];
+        const P: &[KeyboardShortcut] = &[key(Key::P)];
+        const V: &[KeyboardShortcut] = &[key(Key::V)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -146,17 +167,20 @@ impl Command {
             Command::Restart => R,
             Command::ToggleKeepRefining => K,
             Command::Save => CTRL_S,
+            Command::SaveExr => CTRL_E,
             Command::Open => CTRL_O,
             Command::Reload => F5,
             Command::ResetCamera => C,
             Command::ZoomFit => F,
             Command::ZoomActualSize => ONE,
             Command::ToggleStats => TAB,
+            Command::CycleView => V,
             Command::ToggleHelp => HELP,
             Command::ToggleCompare => B,
             Command::SwapSides => W,
             Command::CopyAToB => SHIFT_B,
             Command::ToggleBenchmark => M,
+            Command::ToggleStudies => P,
         }
     }
 

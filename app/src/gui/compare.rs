@@ -1,7 +1,8 @@
 //! Compare mode: a second settings set B renders the same scene from the
 //! same camera beside A, shown side by side, split by a divider, flipped, or
 //! as a difference heat map, with the numbers that say what B costs and
-//! changes (time, rays, speed ratio, MSE, PSNR, FLIP).
+//! changes (time, rays, speed ratio, MSE, PSNR, FLIP). B may instead be
+//! an image from disk ([`super::reference`]).
 
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
@@ -17,6 +18,7 @@ use crate::measure::describe::side_labels;
 
 use super::engine::{Activity, Engine, LoadedScene, Version};
 use super::live_image::LiveImage;
+use super::reference::{PendingReference, ReferenceImage};
 use super::state::Controls;
 
 /// How the two renders are shown.
@@ -70,6 +72,13 @@ pub struct Compare {
     metrics: Option<Result<Metrics, String>>,
     metrics_of: Option<(Version, Version)>,
     pending: Option<Receiver<Result<Metrics, String>>>,
+    /// The image B shows instead of its render, when one was chosen.
+    reference: Option<ReferenceImage>,
+    /// Counts changes of the reference (or its fit), as B's version.
+    reference_changes: u64,
+    picking: Option<PendingReference>,
+    /// Why the last image picked could not be read.
+    picking_error: Option<String>,
 }
 
 impl Compare {
@@ -96,6 +105,98 @@ impl Compare {
             metrics: None,
             metrics_of: None,
             pending: None,
+            reference: None,
+            reference_changes: 0,
+            picking: None,
+            picking_error: None,
+        }
+    }
+
+    /// Makes `reference` side B (or a render again with `None`).
+    pub fn set_reference(&mut self, reference: Option<ReferenceImage>) {
+        self.reference = reference;
+        self.reference_changes += 1;
+        self.forget_results();
+    }
+
+    /// Whether the reference image is resized to A's size.
+    pub fn set_fit(&mut self, fit: bool) {
+        if let Some(reference) = &mut self.reference {
+            reference.fit = fit;
+            self.reference_changes += 1;
+            self.forget_results();
+        }
+    }
+
+    /// The image B shows instead of a render, if any.
+    pub fn reference(&self) -> Option<&ReferenceImage> {
+        self.reference.as_ref()
+    }
+
+    /// B's version: its render's, or the reference image's.
+    fn b_version(&self) -> Version {
+        match self.reference {
+            Some(_) => (u64::MAX, self.reference_changes),
+            None => self.engine.version(),
+        }
+    }
+
+    /// B's textures at A's `size`, bottom first: the reference image, or
+    /// B's render over its backdrop.
+    pub fn b_layers(&mut self, ctx: &egui::Context, size: (u32, u32)) -> Vec<TextureHandle> {
+        match &mut self.reference {
+            Some(reference) => vec![reference.texture(ctx, size)],
+            None => self.image.layers().into_iter().cloned().collect(),
+        }
+    }
+
+    /// "Compare with image..." and, once B is an image, its fit and the way
+    /// back to a render; `encoding` is A's, for EXR files.
+    pub fn reference_controls(&mut self, ui: &mut Ui, encoding: tracer::render::Encoding) {
+        if let Some(picking) = &self.picking
+            && let Some(outcome) = picking.poll()
+        {
+            self.picking = None;
+            self.picking_error = None;
+            match outcome {
+                Some(Ok(reference)) => self.set_reference(Some(reference)),
+                Some(Err(message)) => self.picking_error = Some(message),
+                None => {
+                    self.picking_error = Some(
+                        "no image picked (cancelled, or no file dialog on this desktop)".into(),
+                    )
+                }
+            }
+        }
+        ui.horizontal(|ui| {
+            let button = ui
+                .add_enabled(
+                    self.picking.is_none(),
+                    egui::Button::new("Compare with image..."),
+                )
+                .on_hover_text(
+                    "B shows a PNG, JPEG or EXR (another renderer's output) instead of a render",
+                );
+            if button.clicked() {
+                self.picking = PendingReference::pick(encoding, ui.ctx().clone());
+            }
+            if let Some(reference) = &self.reference {
+                let mut fit = reference.fit;
+                let hint = "Resize the image to the render's size instead of refusing a mismatch";
+                if ui
+                    .checkbox(&mut fit, "Fit to A's size")
+                    .on_hover_text(hint)
+                    .changed()
+                {
+                    self.set_fit(fit);
+                }
+                if ui.button("Render B again").clicked() {
+                    self.set_reference(None);
+                }
+            }
+        });
+        if let Some(error) = &self.picking_error {
+            ui.colored_label(Color32::LIGHT_RED, error);
         }
     }
 
@@ -119,8 +220,12 @@ impl Compare {
         Some(self.controls.render_settings(&scene.scene, camera, moving))
     }
 
-    /// Keeps B rendering what its controls say.
+    /// Keeps B rendering what its controls say (nothing while B is an
+    /// image).
     pub fn sync(&mut self, camera: Option<CameraPose>, moving: bool) -> Result<(), String> {
+        if self.reference.is_some() {
+            return Ok(());
+        }
         match self.settings(camera, moving) {
             Some(settings) => self.engine.render(&settings),
             None => Ok(()),
@@ -138,30 +243,43 @@ impl Compare {
         self.image
             .refresh(ctx, &self.engine, self.controls.encoding(), interval);
         let (engine_a, image_a) = a;
-        let versions = (engine_a.version(), self.engine.version());
+        let versions = (engine_a.version(), self.b_version());
         if self.metrics_of.is_some_and(|of| of != versions) {
             // A side changed: the metrics no longer describe what is shown.
             self.metrics = None;
             self.metrics_of = None;
             self.pending = None;
         }
-        if let (Some(sa), Some(sb)) = (image_a.shown(), self.image.shown()) {
-            if self.view == CompareView::Difference
-                && self.difference_of != Some((versions.0, versions.1, self.gain))
-            {
-                self.difference =
-                    difference_texture(ctx, sa, sb, self.gain, self.difference.take());
-                self.difference_of = Some((versions.0, versions.1, self.gain));
-            }
-            let both_done = is_done(engine_a) && is_done(&self.engine);
-            if both_done
+        if let Some(sa) = image_a.shown() {
+            let b_done = self.reference.is_some()
+                || (is_done(&self.engine) && self.image.is_current(&self.engine));
+            let redraw_difference = self.view == CompareView::Difference
+                && self.difference_of != Some((versions.0, versions.1, self.gain));
+            let measure_now = b_done
+                && is_done(engine_a)
                 && image_a.is_current(engine_a)
-                && self.image.is_current(&self.engine)
-                && self.metrics_of != Some(versions)
-            {
-                self.metrics_of = Some(versions);
-                self.metrics = None;
-                self.pending = measure_in_background(sa, sb, ctx.clone());
+                && self.metrics_of != Some(versions);
+            if redraw_difference || measure_now {
+                match self.b_image((sa.width, sa.height)) {
+                    Some(Ok(sb)) => {
+                        if redraw_difference && let Some(a) = rgb(sa) {
+                            self.difference =
+                                difference_texture(ctx, &a, &sb, self.gain, self.difference.take());
+                            self.difference_of = Some((versions.0, versions.1, self.gain));
+                        }
+                        if measure_now {
+                            self.metrics_of = Some(versions);
+                            self.metrics = None;
+                            self.pending =
+                                rgb(sa).and_then(|a| measure_in_background(a, sb, ctx.clone()));
+                        }
+                    }
+                    Some(Err(message)) => {
+                        self.metrics_of = Some(versions);
+                        self.metrics = Some(Err(message));
+                    }
+                    None => {}
+                }
             }
         }
         if let Some(rx) = &self.pending
@@ -169,6 +287,15 @@ impl Compare {
         {
             self.metrics = Some(result);
             self.pending = None;
+        }
+    }
+
+    /// B's image at A's `size`: the reference (or why it does not fit) or
+    /// B's render.
+    fn b_image(&mut self, size: (u32, u32)) -> Option<Result<RgbImage, String>> {
+        match &mut self.reference {
+            Some(reference) => Some(reference.at_size(size).clone().map(|r| r.image)),
+            None => self.image.shown().and_then(rgb).map(Ok),
         }
     }
 
@@ -199,11 +326,10 @@ fn rgb(snapshot: &Snapshot) -> Option<RgbImage> {
 /// MSE, PSNR and FLIP of the two images on a thread of their own (FLIP
 /// takes a noticeable fraction of a second on a large image).
 fn measure_in_background(
-    a: &Snapshot,
-    b: &Snapshot,
+    a: RgbImage,
+    b: RgbImage,
     ctx: egui::Context,
 ) -> Option<Receiver<Result<Metrics, String>>> {
-    let (a, b) = (rgb(a)?, rgb(b)?);
     let (tx, rx) = channel();
     std::thread::Builder::new()
         .name("compare-metrics".into())
@@ -221,12 +347,12 @@ fn measure_in_background(
 /// |A - B| amplified by `gain`, as a texture (reusing `texture`).
 fn difference_texture(
     ctx: &egui::Context,
-    a: &Snapshot,
-    b: &Snapshot,
+    a: &RgbImage,
+    b: &RgbImage,
     gain: f32,
     texture: Option<TextureHandle>,
 ) -> Option<TextureHandle> {
-    let map = metrics::diff_heatmap(&rgb(a)?, &rgb(b)?, gain).ok()?;
+    let map = metrics::diff_heatmap(a, b, gain).ok()?;
     let image = ColorImage::from_rgb([map.width() as usize, map.height() as usize], map.as_raw());
     let options = TextureOptions::NEAREST;
     Some(match texture {
@@ -251,7 +377,11 @@ pub fn show_numbers(
     compare: &Compare,
     labels: &(String, String),
 ) {
-    let b = compare.image.shown();
+    // An image has no time or rays.
+    let b = compare
+        .image
+        .shown()
+        .filter(|_| compare.reference.is_none());
     egui::Grid::new("compare_numbers")
         .num_columns(3)
         .striped(true)
@@ -340,4 +470,92 @@ pub fn legend(ui: &mut Ui, gain: f32) {
         }
         ui.label(format!("{:.0}+ levels", 255.0 / gain.max(1e-3)));
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    use tracer::render::Encoding;
+
+    use super::*;
+    use crate::load::SceneSource;
+
+    fn wait_until(mut done: impl FnMut() -> bool) {
+        let start = Instant::now();
+        while !done() {
+            assert!(start.elapsed() < Duration::from_secs(120), "gave up");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    /// A finished 32 x 24 render of a bundled scene, shown.
+    fn rendered_a(ctx: &egui::Context) -> (Engine, LiveImage) {
+        let mut engine = Engine::new(Arc::new(|| {}));
+        engine.load(SceneSource::Bundled("balls_low".into()));
+        wait_until(|| engine.poll_load().is_some());
+        let settings = RenderSettings {
+            width: 32,
+            height: 24,
+            ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+        };
+        engine.render(&settings).unwrap();
+        wait_until(|| is_done(&engine));
+        let mut image = LiveImage::new("A");
+        image.refresh(ctx, &engine, Encoding::Linear, Duration::ZERO);
+        assert!(image.is_current(&engine));
+        (engine, image)
+    }
+
+    /// B as an image: the metrics are those of A against that image, and
+    /// a size mismatch is reported until the image is fitted.
+    #[test]
+    fn a_reference_image_is_measured_against_a() {
+        let ctx = egui::Context::default();
+        let (engine_a, image_a) = rendered_a(&ctx);
+        let a = image_a.shown().unwrap().to_image().unwrap();
+        // A with every red value 20 levels brighter (where there is room).
+        let mut reference = a.clone();
+        for p in reference.pixels_mut() {
+            p.0[0] = p.0[0].saturating_add(20);
+        }
+        let squared: f64 = a
+            .pixels()
+            .zip(reference.pixels())
+            .map(|(p, q)| (f64::from(q.0[0]) - f64::from(p.0[0])).powi(2))
+            .sum();
+        let expected_mse = squared / (3.0 * f64::from(a.width() * a.height()));
+
+        let mut compare = Compare::new(Arc::new(|| {}), &Controls::default(), None);
+        let measured = |compare: &mut Compare| {
+            wait_until(|| {
+                compare.refresh(&ctx, (&engine_a, &image_a), Duration::ZERO);
+                compare.metrics().is_some()
+            });
+            compare.metrics().cloned().unwrap()
+        };
+        let image = ReferenceImage::new("reference.png".into(), reference);
+        assert_eq!(image.label(), "B: image reference.png");
+        compare.set_reference(Some(image));
+        let m = measured(&mut compare).unwrap();
+        assert!(
+            (m.mse - expected_mse).abs() < 1e-9,
+            "{} vs {expected_mse}",
+            m.mse
+        );
+        assert!(m.flip > 0.0);
+        assert_eq!(compare.b_layers(&ctx, (32, 24)).len(), 1);
+
+        // Another size: refused with both sizes, then fitted on request.
+        let small = image::imageops::resize(&a, 16, 12, image::imageops::FilterType::Nearest);
+        compare.set_reference(Some(ReferenceImage::new("small.png".into(), small)));
+        let error = measured(&mut compare).unwrap_err();
+        assert!(error.contains("16x12 but the render is 32x24"), "{error}");
+        compare.set_fit(true);
+        assert!(measured(&mut compare).is_ok());
+
+        // Back to a render: nothing to show for B until it renders.
+        compare.set_reference(None);
+        assert!(compare.reference().is_none() && compare.metrics().is_none());
+    }
 }

@@ -145,6 +145,7 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
     );
     ui.horizontal_wrapped(|ui| {
         command_button(ui, Command::Save, commands);
+        command_button(ui, Command::SaveExr, commands);
         command_button(ui, Command::ZoomFit, commands);
         command_button(ui, Command::ZoomActualSize, commands);
     });

@@ -7,7 +7,9 @@ use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
 use tracer::accel::{AccelInfo, SceneIndex};
-use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings, Snapshot};
+use tracer::render::{
+    Encoding, JobOptions, JobState, RenderJob, RenderSettings, Snapshot, View, ViewHeatmap,
+};
 use tracer::scene::Scene;
 use tracer::world::World;
 
@@ -61,6 +63,10 @@ pub struct Engine {
     /// Jobs started so far: part of [`Engine::version`], as every job
     /// counts its own versions from zero.
     jobs_started: u64,
+    /// Jobs measure the views (a view other than the shaded image is on).
+    views: bool,
+    /// `views` changed since the current job started.
+    views_changed: bool,
 }
 
 impl Engine {
@@ -79,6 +85,8 @@ impl Engine {
             paused: false,
             failure_taken: false,
             jobs_started: 0,
+            views: false,
+            views_changed: false,
         }
     }
 
@@ -156,7 +164,7 @@ impl Engine {
     /// Renders the current scene with `settings`, restarting the job only
     /// when they differ from the running job's.
     pub fn render(&mut self, settings: &RenderSettings) -> Result<(), String> {
-        if self.settings.as_ref() == Some(settings) && self.job.is_some() {
+        if self.settings.as_ref() == Some(settings) && self.job.is_some() && !self.views_changed {
             return Ok(());
         }
         self.restart(settings)
@@ -182,10 +190,12 @@ impl Engine {
                 threads: self.threads,
                 on_progress: Some(Box::new(move || wake())),
                 low_priority: self.low_priority,
+                views: self.views,
                 ..JobOptions::default()
             },
         )
         .map_err(|e| e.to_string())?;
+        self.views_changed = false;
         job.set_paused(self.paused);
         self.job = Some(job);
         self.failure_taken = false;
@@ -239,6 +249,49 @@ impl Engine {
     /// The current image and statistics.
     pub fn snapshot(&self, encoding: Encoding) -> Option<Snapshot> {
         self.job.as_ref().map(|j| j.snapshot(encoding))
+    }
+
+    /// The current job's film as linear floats, for "Save as EXR".
+    pub fn linear_image(&self) -> Option<image::Rgb32FImage> {
+        self.job.as_ref().map(RenderJob::linear_image)
+    }
+
+    /// The acceleration structure of the current job, once built (or the
+    /// last one built), to inspect rays against the same structure.
+    pub fn index(&self) -> Option<Arc<SceneIndex>> {
+        self.job
+            .as_ref()
+            .and_then(RenderJob::index)
+            .or_else(|| self.index.clone())
+    }
+
+    /// Whether jobs measure the views; a change renders again.
+    pub fn set_views(&mut self, on: bool) {
+        self.views_changed |= on != self.views;
+        self.views = on;
+    }
+
+    /// The current image under `view` (the shaded image while the job
+    /// does not measure views).
+    pub fn view_snapshot(
+        &self,
+        view: View,
+        heat: &ViewHeatmap,
+        encoding: Encoding,
+    ) -> Option<Snapshot> {
+        self.job
+            .as_ref()
+            .map(|j| j.view_snapshot(view, heat, encoding))
+    }
+
+    /// The value of a scalar view at one pixel, if the job measures views.
+    pub fn view_value(&self, view: View, x: u32, y: u32) -> Option<f32> {
+        self.job.as_ref()?.view_value(view, x, y)
+    }
+
+    /// The current values of a scalar view, if the job measures views.
+    pub fn view_values(&self, view: View) -> Option<Vec<Option<f32>>> {
+        self.job.as_ref().and_then(|j| j.view_values(view))
     }
 
     /// What was built for the current job, once built.

@@ -1,21 +1,30 @@
 //! A render on screen: the GPU texture of an engine's latest image, uploaded
 //! when it changed and at most at the progress pace, with the snapshot it
-//! came from (for the pixel readout, the statistics and saving).
+//! came from (for the pixel readout, the statistics and saving). A restarted
+//! render (a camera move) draws over the last image until it covers it.
 
 use std::time::{Duration, Instant};
 
 use egui::{ColorImage, TextureHandle, TextureOptions};
-use tracer::render::{Encoding, Snapshot};
+use tracer::render::{Encoding, JobState, Snapshot, View, ViewHeatmap};
 
-use super::engine::{Engine, Version};
+use super::engine::{Activity, Engine, Version};
 
 pub struct LiveImage {
     /// The texture's name for egui.
     name: &'static str,
     texture: Option<TextureHandle>,
+    /// The previous render's last complete image, drawn under the current
+    /// one until the current one has a sample in every pixel, so a restart
+    /// never shows an empty view.
+    backdrop: Option<TextureHandle>,
     shown: Option<Snapshot>,
     version: Version,
     encoding: Encoding,
+    /// The view to show instead of the shaded image, with its heat map.
+    view: Option<(View, ViewHeatmap)>,
+    /// The view of the image on screen.
+    shown_view: Option<(View, ViewHeatmap)>,
     last_upload: Instant,
 }
 
@@ -24,15 +33,20 @@ impl LiveImage {
         Self {
             name,
             texture: None,
+            backdrop: None,
             shown: None,
             version: (0, 0),
             encoding: Encoding::Linear,
+            view: None,
+            shown_view: None,
             last_upload: Instant::now(),
         }
     }
 
     /// Uploads `engine`'s image when it changed (or the encoding did), at
-    /// most every `interval`; asks for a later frame when it must wait.
+    /// most every `interval` while it renders; asks for a later frame when
+    /// it must wait. A finished render is uploaded at once: its last image
+    /// must reach the screen, and no render thread will ask for a frame.
     pub fn refresh(
         &mut self,
         ctx: &egui::Context,
@@ -41,17 +55,33 @@ impl LiveImage {
         interval: Duration,
     ) {
         let version = engine.version();
-        if version == self.version && encoding == self.encoding && self.shown.is_some() {
+        let same_view = self.view == self.shown_view;
+        if version == self.version && encoding == self.encoding && same_view && self.shown.is_some()
+        {
             return;
         }
+        let rendering = matches!(
+            engine.activity(),
+            Activity::Job(JobState::Rendering | JobState::Building)
+        );
         let since = self.last_upload.elapsed();
-        if since < interval && self.shown.is_some() {
+        if rendering && since < interval && self.shown.is_some() && same_view {
             ctx.request_repaint_after(interval - since);
             return;
         }
-        let Some(snapshot) = engine.snapshot(encoding) else {
+        let snapshot = match &self.view {
+            Some((view, heat)) => engine.view_snapshot(*view, heat, encoding),
+            None => engine.snapshot(encoding),
+        };
+        let Some(snapshot) = snapshot else {
             return;
         };
+        if version.0 != self.version.0 {
+            self.keep_as_backdrop();
+        }
+        if is_covered(&snapshot) {
+            self.backdrop = None;
+        }
         let image = ColorImage::from_rgba_unmultiplied(
             [snapshot.width as usize, snapshot.height as usize],
             &snapshot.rgba,
@@ -68,9 +98,33 @@ impl LiveImage {
         self.shown = Some(snapshot);
         self.version = version;
         self.encoding = encoding;
+        self.shown_view = self.view;
         self.last_upload = Instant::now();
     }
 
+    /// Shows `view` (with its heat map) instead of the shaded image from
+    /// the next refresh on; `None` for the shaded image.
+    pub fn set_view(&mut self, view: Option<(View, ViewHeatmap)>) {
+        self.view = view;
+    }
+
+    /// A new render starts: the texture on screen goes under it, unless it
+    /// has holes and an older complete image is already there.
+    fn keep_as_backdrop(&mut self) {
+        let complete = self.shown.as_ref().is_some_and(is_covered);
+        if complete || self.backdrop.is_none() {
+            // The old backdrop's texture is reused for the new render.
+            std::mem::swap(&mut self.texture, &mut self.backdrop);
+        }
+    }
+
+    /// The textures to draw, bottom first: the backdrop while the render
+    /// has holes, then the render.
+    pub fn layers(&self) -> Vec<&TextureHandle> {
+        self.backdrop.iter().chain(&self.texture).collect()
+    }
+
+    /// The render's own texture (without the backdrop).
     pub fn texture(&self) -> Option<&TextureHandle> {
         self.texture.as_ref()
     }
@@ -90,4 +144,9 @@ impl LiveImage {
     pub fn forget(&mut self) {
         self.shown = None;
     }
+}
+
+/// Whether every pixel of `snapshot` has a sample (a first pass finished).
+fn is_covered(snapshot: &Snapshot) -> bool {
+    snapshot.stats.passes_done >= 1
 }

@@ -1,18 +1,25 @@
 //! The window: an egui/eframe app (wgpu renderer) around the progressive
 //! renderer. `engine` is the only part that talks to the tracer.
 
+mod accel_banner;
 mod app;
+mod background;
 mod bench_window;
 mod commands;
 mod compare;
 mod controls;
 mod engine;
 mod frame_meter;
+mod inspector;
 mod live_image;
+mod overlay;
+mod reference;
 mod scene_picker;
 mod screenshot;
 mod state;
 mod stats_panel;
+mod studies;
+mod view_select;
 mod viewport;
 
 use std::path::PathBuf;
@@ -22,8 +29,13 @@ pub use bench_window::BenchWindow;
 pub use commands::Command;
 pub use compare::{Compare, CompareView};
 pub use engine::{Activity, Engine};
+pub use inspector::Inspector;
+pub use overlay::StructureOverlay;
+pub use reference::ReferenceImage;
 pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use state::{AccelChoice, Controls, Persisted};
+pub use studies::{Applied, StudiesWindow};
+pub use view_select::ViewChoice;
 
 use crate::load::SceneSource;
 
@@ -71,8 +83,8 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
     };
     let taken = outcome.lock().ok().and_then(|mut slot| slot.take());
     match taken {
-        Some(Ok(path)) => {
-            println!("saved screenshot {}", path.display());
+        Some(Ok(saved)) => {
+            println!("{saved}");
             Ok(())
         }
         Some(Err(e)) => Err(anyhow::anyhow!(e)),

@@ -94,11 +94,13 @@ pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
-/// Whether `path` looks like a scene file.
+/// Whether `path` looks like a scene file, or a mesh file the window
+/// frames into one.
 pub fn is_scene_file(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("p3f") || e.eq_ignore_ascii_case("nff"))
+        || tracer::mesh_io::MeshFormat::of(path).is_some()
 }
 
 /// Draws the picker; returns the scene the user chose, if any.

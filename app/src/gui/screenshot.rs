@@ -8,7 +8,10 @@ use std::time::Duration;
 
 use anyhow::Result;
 
+use tracer::render::Snapshot;
+
 use crate::output::save_png;
+use crate::report::si;
 
 /// When and where to take the screenshot.
 #[derive(Debug, Clone)]
@@ -19,8 +22,25 @@ pub struct ScreenshotPlan {
     pub after: Option<Duration>,
 }
 
-/// What became of the screenshot, for the process's exit status.
-pub type ScreenshotOutcome = Arc<Mutex<Option<Result<PathBuf, String>>>>;
+/// What became of the screenshot, for the process's exit status: the line
+/// to print, or why it failed.
+pub type ScreenshotOutcome = Arc<Mutex<Option<Result<String, String>>>>;
+
+/// The render a screenshot shows, in a line: what the statistics panel says
+/// of it, so a script can compare the window's speed with a headless render.
+pub fn describe(shown: &Snapshot) -> String {
+    let s = &shown.stats;
+    format!(
+        "{} x {}, {} / {} spp, {} rays in {:.3} s ({} rays/s)",
+        s.width,
+        s.height,
+        s.passes_done,
+        s.passes_target,
+        si(s.counters.total_rays() as f64),
+        s.render_time.as_secs_f64(),
+        si(s.rays_per_second())
+    )
+}
 
 /// Writes the window's pixels to `path` as an RGB PNG.
 pub fn save(image: &egui::ColorImage, path: &Path) -> Result<()> {

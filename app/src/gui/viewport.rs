@@ -50,6 +50,8 @@ pub struct ViewportResponse {
     pub dragging_camera: bool,
     /// The image pixel under the cursor, in the displayed image's pixels.
     pub hovered_pixel: Option<(u32, u32)>,
+    /// Where the (first) image is drawn on screen, for overlays.
+    pub image_rect: Option<Rect>,
 }
 
 impl ViewportResponse {
@@ -58,6 +60,7 @@ impl ViewportResponse {
         self.gestures.extend(other.gestures);
         self.dragging_camera |= other.dragging_camera;
         self.hovered_pixel = self.hovered_pixel.or(other.hovered_pixel);
+        self.image_rect = self.image_rect.or(other.image_rect);
         self
     }
 }
@@ -70,13 +73,13 @@ pub struct SplitWith<'a> {
     pub at: &'a mut f32,
 }
 
-/// Shows `texture` (an image of `image_size` pixels standing for a render
-/// of `full_size`) in the available space, and `split`'s image right of its
-/// divider.
+/// Shows `layers` (bottom first; the top one an image of `image_size`
+/// pixels standing for a render of `full_size`, each stretched over the same
+/// area) in the available space, and `split`'s image right of its divider.
 pub fn show(
     ui: &mut egui::Ui,
     view: &mut ViewState,
-    texture: Option<&TextureHandle>,
+    layers: &[&TextureHandle],
     split: Option<SplitWith<'_>>,
     image_size: [usize; 2],
     full_size: [u32; 2],
@@ -102,7 +105,7 @@ pub fn show(
     let image_rect = Rect::from_center_size(rect.center() + view.offset, full * scale);
 
     let whole = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
-    if let Some(texture) = texture {
+    for texture in layers {
         ui.painter()
             .with_clip_rect(rect)
             .image(texture.id(), image_rect, whole, Color32::WHITE);
@@ -176,6 +179,7 @@ pub fn show(
     if let Some(pointer) = response.hover_pos() {
         out.hovered_pixel = pixel_at(pointer, image_rect, image_size);
     }
+    out.image_rect = Some(image_rect);
     out
 }
 

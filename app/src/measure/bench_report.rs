@@ -94,13 +94,13 @@ fn columns(layout: Layout) -> Vec<Column> {
             RAYS_PER_SECOND,
             Column {
                 header: "tests/ray",
-                pretty: |m| format!("{:.2}", per_ray(m, m.stats.counters.intersection_tests)),
-                raw: |m| format!("{:.4}", per_ray(m, m.stats.counters.intersection_tests)),
+                pretty: |m| format!("{:.2}", m.tests_per_ray()),
+                raw: |m| format!("{:.4}", m.tests_per_ray()),
             },
             Column {
                 header: "nodes/ray",
-                pretty: |m| format!("{:.2}", per_ray(m, m.stats.counters.nodes_visited)),
-                raw: |m| format!("{:.4}", per_ray(m, m.stats.counters.nodes_visited)),
+                pretty: |m| format!("{:.2}", m.steps_per_ray()),
+                raw: |m| format!("{:.4}", m.steps_per_ray()),
             },
         ],
         Layout::Matrix => vec![
@@ -132,10 +132,6 @@ fn columns(layout: Layout) -> Vec<Column> {
             RAYS_PER_SECOND,
         ],
     }
-}
-
-fn per_ray(m: &Measurement, count: u64) -> f64 {
-    count as f64 / m.rays().max(1) as f64
 }
 
 /// "N=4" with anti-aliasing, as the seed's column header has it.
@@ -181,7 +177,7 @@ pub fn table(rows: &[Measurement], layout: Layout, format: Format) -> String {
 }
 
 /// Left-aligned first column, the rest right-aligned, two spaces apart.
-fn text(headers: &[String], rows: &[Vec<String>]) -> String {
+pub fn text(headers: &[String], rows: &[Vec<String>]) -> String {
     let widths: Vec<usize> = (0..headers.len())
         .map(|i| {
             rows.iter()
@@ -214,7 +210,8 @@ fn text(headers: &[String], rows: &[Vec<String>]) -> String {
         .collect()
 }
 
-fn markdown(headers: &[String], rows: &[Vec<String>]) -> String {
+/// A Markdown table, numbers right-aligned.
+pub fn markdown(headers: &[String], rows: &[Vec<String>]) -> String {
     let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
     let rule = format!(
         "|{}|\n",
@@ -227,7 +224,7 @@ fn markdown(headers: &[String], rows: &[Vec<String>]) -> String {
 }
 
 /// RFC 4180: fields with a comma, quote or line break are quoted.
-fn csv(headers: &[String], rows: &[Vec<String>]) -> String {
+pub fn csv(headers: &[String], rows: &[Vec<String>]) -> String {
     let field = |f: &String| {
         if f.contains([',', '"', '\n']) {
             format!("\"{}\"", f.replace('"', "\"\""))

@@ -197,6 +197,22 @@ impl Measurement {
     pub fn rays_per_second(&self) -> f64 {
         self.rays() as f64 / self.median().as_secs_f64().max(1e-9)
     }
+
+    /// Ray-primitive intersection tests per ray: the work a structure
+    /// failed to avoid.
+    pub fn tests_per_ray(&self) -> f64 {
+        self.per_ray(self.stats.counters.intersection_tests)
+    }
+
+    /// Grid cells or BVH nodes visited per ray: what the structure itself
+    /// costs to walk.
+    pub fn steps_per_ray(&self) -> f64 {
+        self.per_ray(self.stats.counters.nodes_visited)
+    }
+
+    fn per_ray(&self, count: u64) -> f64 {
+        count as f64 / self.rays().max(1) as f64
+    }
 }
 
 fn median(values: &[Duration]) -> Duration {
@@ -220,6 +236,46 @@ pub struct Outcome {
 /// Frame times come from the render itself, so polling does not skew them.
 const POLL: Duration = Duration::from_millis(10);
 
+/// Structures built over one world, kept so that every case (and every
+/// later run over the same world) tracing against the same structure uses
+/// the one already built.
+#[derive(Default)]
+pub struct Structures {
+    built: Vec<Arc<SceneIndex>>,
+}
+
+impl Structures {
+    /// The structure `accel` (with cell multiplier `grid_multiplier` for a
+    /// grid) over `world`, built on first use.
+    pub fn get(
+        &mut self,
+        world: &World,
+        accel: AccelKind,
+        grid_multiplier: f32,
+    ) -> Arc<SceneIndex> {
+        if let Some(index) = self
+            .built
+            .iter()
+            .find(|i| i.matches(accel, grid_multiplier))
+        {
+            return index.clone();
+        }
+        let index = Arc::new(SceneIndex::build(&world.shapes, accel, grid_multiplier));
+        self.built.push(index.clone());
+        index
+    }
+}
+
+/// When a run stops before its last case.
+#[derive(Debug, Clone, Copy)]
+pub struct Stop<'a> {
+    /// Stop at once: the frame under way is abandoned between tiles.
+    pub now: &'a AtomicBool,
+    /// Stop when the frame under way is done: that frame counts, and the
+    /// case it belongs to is reported with the frames it has.
+    pub after_frame: &'a AtomicBool,
+}
+
 /// Renders every case `options.runs` times, in order. Structures are built
 /// once and shared by the cases that use them. Setting `cancel` stops the
 /// frame under way between tiles; the cases finished by then are returned
@@ -231,25 +287,34 @@ pub fn run(
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Outcome> {
-    let mut indices: Vec<Arc<SceneIndex>> = Vec::new();
+    let stop = Stop {
+        now: cancel,
+        after_frame: &AtomicBool::new(false),
+    };
+    run_with(
+        world,
+        cases,
+        options,
+        &mut Structures::default(),
+        stop,
+        on_event,
+    )
+}
+
+/// [`run`] with structures kept by the caller (a study measures one world
+/// in several runs) and a stop that can wait for the frame under way.
+pub fn run_with(
+    world: &Arc<World>,
+    cases: &[Case],
+    options: RunOptions,
+    structures: &mut Structures,
+    stop: Stop,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Outcome> {
     let mut outcome = Outcome::default();
     for (case_no, case) in cases.iter().enumerate() {
         let settings = &case.settings;
-        let index = match indices
-            .iter()
-            .find(|i| i.matches(settings.accel, settings.grid_multiplier))
-        {
-            Some(index) => index.clone(),
-            None => {
-                let index = Arc::new(SceneIndex::build(
-                    &world.shapes,
-                    settings.accel,
-                    settings.grid_multiplier,
-                ));
-                indices.push(index.clone());
-                index
-            }
-        };
+        let index = structures.get(world, settings.accel, settings.grid_multiplier);
         let mut times = Vec::new();
         let mut last = None;
         for run in 0..options.runs.max(1) {
@@ -267,7 +332,7 @@ pub fn run(
                 * u64::from(settings.height)
                 * u64::from(settings.samples_per_pixel());
             while !job.is_finished() {
-                if cancel.load(Ordering::Relaxed) {
+                if stop.now.load(Ordering::Relaxed) {
                     job.cancel();
                 }
                 let fraction = job.stats().counters.eye_rays as f32 / samples.max(1) as f32;
@@ -289,6 +354,9 @@ pub fn run(
             }
             times.push(stats.render_time);
             last = Some((film, stats));
+            if stop.after_frame.load(Ordering::Relaxed) {
+                break;
+            }
         }
         let (film, stats) = last.context("no frame was rendered")?;
         let measurement = Measurement {
@@ -303,7 +371,7 @@ pub fn run(
             measurement: &measurement,
         });
         outcome.measurements.push(measurement);
-        if cancel.load(Ordering::Relaxed) {
+        if stop.now.load(Ordering::Relaxed) || stop.after_frame.load(Ordering::Relaxed) {
             outcome.cancelled = true;
             break;
         }

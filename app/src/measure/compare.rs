@@ -1,13 +1,16 @@
 //! A/B comparison: render one scene with two settings, measure both, and
-//! say how the images differ (MSE, PSNR, FLIP and a heat map). The command
-//! line and the window share it.
+//! say how the images differ (MSE, PSNR, FLIP and a heat map). B may also
+//! be a reference image (another renderer's output, an earlier figure).
+//! The command line and the window share it.
 
+use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result};
 use image::{Rgb, RgbImage};
 use tracer::metrics::{self, Palette};
+use tracer::render::Encoding;
 use tracer::world::World;
 
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
@@ -121,6 +124,104 @@ pub fn run(
     }))
 }
 
+/// A reference image read for side B, at the size it is compared at.
+#[derive(Debug, Clone)]
+pub struct Reference {
+    pub image: RgbImage,
+    /// The file's own size, when it was resized to fit the render.
+    pub resized_from: Option<(u32, u32)>,
+}
+
+/// Reads a PNG, JPEG or OpenEXR image to compare a render with. EXR holds
+/// linear floats: they are encoded with `encoding`, as the render is.
+pub fn read_reference(path: &Path, encoding: Encoding) -> Result<RgbImage> {
+    let image = image::open(path)
+        .with_context(|| format!("cannot read the reference image {}", path.display()))?;
+    Ok(match image {
+        image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_) => {
+            let linear = image.to_rgb32f();
+            RgbImage::from_fn(linear.width(), linear.height(), |x, y| {
+                Rgb(linear.get_pixel(x, y).0.map(|v| encoding.encode(v)))
+            })
+        }
+        other => other.to_rgb8(),
+    })
+}
+
+/// `image` at `size` (the render's): resized when `fit`, else refused with
+/// what to do when the sizes differ.
+pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<Reference> {
+    let own = image.dimensions();
+    if own == size {
+        return Ok(Reference {
+            image,
+            resized_from: None,
+        });
+    }
+    if !fit {
+        anyhow::bail!(
+            "the reference image is {}x{} but the render is {}x{}: render at its size \
+             (--width {} --height {}) or resize it with --fit",
+            own.0,
+            own.1,
+            size.0,
+            size.1,
+            own.0,
+            own.1
+        );
+    }
+    let image = image::imageops::resize(
+        &image,
+        size.0,
+        size.1,
+        image::imageops::FilterType::Triangle,
+    );
+    Ok(Reference {
+        image,
+        resized_from: Some(own),
+    })
+}
+
+/// A render compared with a reference image.
+#[derive(Debug, Clone)]
+pub struct ImageComparison {
+    pub a: Measurement,
+    pub reference: Reference,
+    pub metrics: Metrics,
+    pub heatmap: RgbImage,
+}
+
+/// Renders `a` once and compares it with `reference` (fitted to A's size
+/// by [`fit_reference`] first, so a mismatch costs no render). `None` when
+/// `cancel` stopped it.
+pub fn run_against_image(
+    world: &Arc<World>,
+    a: Case,
+    reference: Reference,
+    threads: Option<usize>,
+    heatmap: Heatmap,
+    cancel: &AtomicBool,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Option<ImageComparison>> {
+    let options = RunOptions { runs: 1, threads };
+    let outcome = benchmark::run(world, &[a], options, cancel, on_event)?;
+    let Some(a) = outcome
+        .measurements
+        .into_iter()
+        .next()
+        .filter(|_| !outcome.cancelled)
+    else {
+        return Ok(None);
+    };
+    let (metrics, heatmap) = measure(&a.image, &reference.image, heatmap)?;
+    Ok(Some(ImageComparison {
+        a,
+        reference,
+        metrics,
+        heatmap,
+    }))
+}
+
 /// Gap between panels, in pixels.
 const GAP: u32 = 4;
 const BACKGROUND: Rgb<u8> = Rgb([32, 32, 32]);
@@ -170,6 +271,47 @@ mod tests {
         );
         // Nothing under A and B.
         assert_eq!(out.get_pixel(0, y), &BACKGROUND);
+    }
+
+    /// A reference image whose difference from a known image is known:
+    /// every channel 10 levels off gives MSE 100 and PSNR 10 log10(255^2/100).
+    #[test]
+    fn a_reference_image_measures_against_a_known_image() {
+        let dir = std::env::temp_dir().join(format!("compare-ref-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let render = RgbImage::from_pixel(8, 6, Rgb([100, 150, 200]));
+        let png = dir.join("ref.png");
+        RgbImage::from_pixel(8, 6, Rgb([110, 140, 210]))
+            .save(&png)
+            .unwrap();
+        let reference = read_reference(&png, Encoding::Linear).unwrap();
+        let reference = fit_reference(reference, (8, 6), false).unwrap();
+        assert_eq!(reference.resized_from, None);
+        let (m, _) = measure(&render, &reference.image, Heatmap::Flip).unwrap();
+        assert_eq!(m.mse, 100.0);
+        assert!((m.psnr - 10.0 * (255.0f64 * 255.0 / 100.0).log10()).abs() < 1e-9);
+        assert!(m.flip > 0.0);
+
+        // An EXR reference is encoded as the render is: linear 0.5 is 128.
+        let exr = dir.join("ref.exr");
+        image::Rgb32FImage::from_pixel(8, 6, Rgb([0.5, 2.0, 0.0]))
+            .save(&exr)
+            .unwrap();
+        let reference = read_reference(&exr, Encoding::Linear).unwrap();
+        assert_eq!(reference.get_pixel(3, 3).0, [128, 255, 0]);
+
+        // A size mismatch says what to do, unless asked to fit.
+        let error = fit_reference(reference.clone(), (16, 12), false).unwrap_err();
+        let text = error.to_string();
+        assert!(
+            text.contains("8x6 but the render is 16x12") && text.contains("--fit"),
+            "{text}"
+        );
+        let fitted = fit_reference(reference, (16, 12), true).unwrap();
+        assert_eq!(fitted.image.dimensions(), (16, 12));
+        assert_eq!(fitted.resized_from, Some((8, 6)));
+        assert!(read_reference(&dir.join("missing.png"), Encoding::Linear).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

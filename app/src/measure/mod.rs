@@ -1,9 +1,15 @@
 //! Headless measuring, shared by the command line (`commands/`) and the
 //! window (`gui/`): the benchmark runner with its cases and the seed's timing
-//! matrix, A/B comparison, settings described in words, and result tables.
-//! Nothing here prints or draws.
+//! matrix, A/B comparison, what a frame will cost, parameter studies with
+//! their charts, settings described in words, and result tables. Nothing
+//! here prints or touches a window.
 
 pub mod bench_report;
 pub mod benchmark;
 pub mod compare;
+pub mod cost;
 pub mod describe;
+pub mod overlay_image;
+pub mod ray_tree_report;
+pub mod study;
+pub mod view_image;

@@ -295,6 +295,14 @@ fn cell_counts(dim: Vec3A, objects: usize, m: f32) -> IVec3 {
     IVec3::ONE
 }
 
+impl Grid {
+    /// The grid's box and its cells per axis, read only, for drawing its
+    /// lattice over the image.
+    pub fn lattice(&self) -> (Aabb, [u32; 3]) {
+        (self.bounds, self.cells.as_uvec3().to_array())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

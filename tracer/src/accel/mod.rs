@@ -6,6 +6,7 @@ mod brute;
 mod bvh;
 mod grid;
 mod packed;
+mod structure_view;
 #[cfg(test)]
 mod tests;
 
@@ -17,6 +18,7 @@ use crate::stats::Counters;
 pub use brute::BruteForce;
 pub use bvh::{Bvh, BvhParams};
 pub use grid::{Grid, GridStats};
+pub use structure_view::StructureLayer;
 
 /// Which structure to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -36,6 +36,20 @@ impl Tile {
     pub fn pixel_count(&self) -> usize {
         self.width as usize * self.height as usize
     }
+
+    /// The tile's rows of `values` (row-major within the tile), each with
+    /// the index of its first pixel in an image `image_width` wide.
+    pub fn rows<'a, T>(
+        &self,
+        image_width: u32,
+        values: &'a [T],
+    ) -> impl Iterator<Item = (usize, &'a [T])> {
+        let (x, y) = (self.x as usize, self.y as usize);
+        values
+            .chunks(self.width.max(1) as usize)
+            .enumerate()
+            .map(move |(row, chunk)| ((y + row) * image_width as usize + x, chunk))
+    }
 }
 
 /// Per-pixel sums of linear radiance and sample counts.
@@ -69,8 +83,7 @@ impl Film {
     /// Adds one sample to each pixel of `tile`; `values` is row-major
     /// within the tile.
     pub fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
-        for (row, chunk) in values.chunks(tile.width as usize).enumerate() {
-            let start = (tile.y as usize + row) * self.width as usize + tile.x as usize;
+        for (start, chunk) in tile.rows(self.width, values) {
             let sums = &mut self.sum[start..start + chunk.len()];
             for (s, v) in sums.iter_mut().zip(chunk) {
                 *s += *v;
@@ -106,6 +119,15 @@ impl Film {
             ]);
         }
         out
+    }
+
+    /// The mean linear radiance of every pixel as floats, before any
+    /// clamping or encoding (for OpenEXR output); black before a pixel's
+    /// first sample.
+    pub fn to_linear_image(&self) -> image::Rgb32FImage {
+        image::Rgb32FImage::from_fn(self.width, self.height, |x, y| {
+            image::Rgb(self.pixel(x, y).unwrap_or_default().to_array())
+        })
     }
 
     /// Resolves the film to an RGB image.

@@ -12,6 +12,8 @@ use crate::sampling::{SampleStream, concentric_disk, jittered, stratum_order};
 use crate::stats::Counters;
 use crate::world::World;
 
+use super::trace::{NoRecord, TraceRecorder};
+use super::view::{ViewRecorder, ViewSample};
 use super::{RenderSettings, Tile, Tracer};
 
 /// Side of a square tile, in pixels: small enough that cancellation and
@@ -86,34 +88,72 @@ impl Frame {
     /// random numbers.
     pub fn render_tile(&self, pass: u32, tile: &Tile, counters: &mut Counters) -> Vec<Vec3A> {
         let tracer = Tracer::new(&self.world, &self.index, &self.settings);
-        let stratum = self.order[(pass % self.passes_target()) as usize];
-        let n = self.settings.samples.max(1);
-        let aa = self.settings.antialiasing;
-        let lens = self.camera.has_lens();
         let mut values = Vec::with_capacity(tile.pixel_count());
         for y in tile.y..tile.y + tile.height {
             for x in tile.x..tile.x + tile.width {
-                let pixel = y * self.settings.width + x;
-                let mut rng = SampleStream::new(self.settings.seed, pixel, pass);
-                let offset = if aa {
-                    jittered(stratum, n, rng.next_2d())
-                } else {
-                    Vec2::splat(0.5)
-                };
-                // Without anti-aliasing the lens alone is stratified; with it,
-                // pixel strata already spread the samples, and a lens stratum
-                // tied to the pixel stratum would correlate the two.
-                let lens_point = match (lens, aa) {
-                    (false, _) => Vec2::ZERO,
-                    (true, false) => concentric_disk(jittered(stratum, n, rng.next_2d())),
-                    (true, true) => concentric_disk(rng.next_2d()),
-                };
-                let ray = self
-                    .camera
-                    .ray(x as f32 + offset.x, y as f32 + offset.y, lens_point);
-                values.push(tracer.trace_eye(&ray, self.camera.hither(), &mut rng, counters));
+                values.push(self.sample(&tracer, x, y, pass, counters, &mut NoRecord));
             }
         }
         values
+    }
+
+    /// [`Frame::render_tile`] that also measures what each pixel's sample
+    /// cost and saw, for the views: the same samples, traced by the same
+    /// code, so the image is identical bit for bit.
+    pub fn render_tile_with_views(
+        &self,
+        pass: u32,
+        tile: &Tile,
+        counters: &mut Counters,
+    ) -> (Vec<Vec3A>, Vec<ViewSample>) {
+        let tracer = Tracer::new(&self.world, &self.index, &self.settings);
+        let mut values = Vec::with_capacity(tile.pixel_count());
+        let mut samples = Vec::with_capacity(tile.pixel_count());
+        for y in tile.y..tile.y + tile.height {
+            for x in tile.x..tile.x + tile.width {
+                let before = *counters;
+                let mut recorder = ViewRecorder::default();
+                values.push(self.sample(&tracer, x, y, pass, counters, &mut recorder));
+                samples.push(recorder.finish(&self.world, &before, counters));
+            }
+        }
+        (values, samples)
+    }
+
+    /// Traces sample `pass` of pixel `(x, y)` and tells `recorder` every
+    /// ray: the one place the render, the views and the inspector draw a
+    /// pixel sample's random numbers, so they all trace the same rays.
+    #[inline(always)]
+    pub fn sample<R: TraceRecorder>(
+        &self,
+        tracer: &Tracer,
+        x: u32,
+        y: u32,
+        pass: u32,
+        counters: &mut Counters,
+        recorder: &mut R,
+    ) -> Vec3A {
+        let stratum = self.order[(pass % self.passes_target()) as usize];
+        let n = self.settings.samples.max(1);
+        let aa = self.settings.antialiasing;
+        let pixel = y * self.settings.width + x;
+        let mut rng = SampleStream::new(self.settings.seed, pixel, pass);
+        let offset = if aa {
+            jittered(stratum, n, rng.next_2d())
+        } else {
+            Vec2::splat(0.5)
+        };
+        // Without anti-aliasing the lens alone is stratified; with it,
+        // pixel strata already spread the samples, and a lens stratum
+        // tied to the pixel stratum would correlate the two.
+        let lens_point = match (self.camera.has_lens(), aa) {
+            (false, _) => Vec2::ZERO,
+            (true, false) => concentric_disk(jittered(stratum, n, rng.next_2d())),
+            (true, true) => concentric_disk(rng.next_2d()),
+        };
+        let ray = self
+            .camera
+            .ray(x as f32 + offset.x, y as f32 + offset.y, lens_point);
+        tracer.trace_eye_recorded(&ray, self.camera.hither(), &mut rng, counters, recorder)
     }
 }

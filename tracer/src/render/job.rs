@@ -15,6 +15,7 @@ use crate::stats::{Counters, RenderStats};
 use crate::world::World;
 
 use super::settings::SettingsError;
+use super::view::{View, ViewFilm, ViewHeatmap, view_rgba8};
 use super::{Encoding, Film, Frame, RenderSettings};
 
 /// Why a render could not start.
@@ -75,9 +76,13 @@ pub struct JobOptions {
     /// Called with the pass number (from 1) and the film as it stands after
     /// each completed pass, before the next begins: to record convergence.
     pub on_pass: Option<PassObserver>,
-    /// Run render threads at the lowest OS priority, so an interactive
-    /// viewer keeps its share of the cores while every core renders.
+    /// Let an interactive viewer's threads run first whenever they wake
+    /// (batch scheduling on Linux, the lowest priority elsewhere), while
+    /// render threads keep the share of the cores a headless render gets.
     pub low_priority: bool,
+    /// Also measure the views (cost and what each pixel saw) into a
+    /// [`ViewFilm`]; off, the render pays nothing for them.
+    pub views: bool,
 }
 
 /// See [`JobOptions::on_pass`].
@@ -85,6 +90,7 @@ pub type PassObserver = Box<dyn Fn(u32, &Film) + Send + Sync>;
 
 struct Progress {
     film: Film,
+    views: Option<ViewFilm>,
     stats: RenderStats,
     state: JobState,
 }
@@ -98,6 +104,7 @@ struct Shared {
     version: AtomicU64,
     on_progress: Option<Box<dyn Fn() + Send + Sync>>,
     on_pass: Option<PassObserver>,
+    views: bool,
 }
 
 /// Locks a mutex, ignoring poisoning: render panics are caught and
@@ -160,11 +167,7 @@ impl RenderJob {
             .thread_name(|i| format!("render-{i}"))
             .start_handler(move |_| {
                 if low_priority {
-                    // Best effort: a viewer stays responsive either way,
-                    // only less so if the OS refuses.
-                    let _ = thread_priority::set_current_thread_priority(
-                        thread_priority::ThreadPriority::Min,
-                    );
+                    yield_to_interactive_threads();
                 }
             })
             .build()
@@ -176,6 +179,9 @@ impl RenderJob {
             resumed: Condvar::new(),
             progress: Mutex::new(Progress {
                 film: Film::new(settings.width, settings.height),
+                views: options
+                    .views
+                    .then(|| ViewFilm::new(settings.width, settings.height)),
                 stats: RenderStats {
                     width: settings.width,
                     height: settings.height,
@@ -193,6 +199,7 @@ impl RenderJob {
             version: AtomicU64::new(0),
             on_progress: options.on_progress,
             on_pass: options.on_pass,
+            views: options.views,
         });
         let worker_shared = shared.clone();
         let worker = std::thread::Builder::new()
@@ -292,8 +299,57 @@ impl RenderJob {
         }
     }
 
+    /// The film as it stands, as linear floats (see
+    /// [`Film::to_linear_image`]), for saving HDR output mid-render.
+    pub fn linear_image(&self) -> image::Rgb32FImage {
+        self.shared.progress().film.to_linear_image()
+    }
+
+    /// The image under `view` as it stands (the shaded image for
+    /// [`View::Shaded`] or a job without views), with its statistics.
+    pub fn view_snapshot(&self, view: View, heat: &ViewHeatmap, encoding: Encoding) -> Snapshot {
+        let paused = self.is_paused();
+        let p = self.shared.progress();
+        Snapshot {
+            width: p.film.width(),
+            height: p.film.height(),
+            rgba: view_rgba8(&p.film, p.views.as_ref(), view, heat, encoding),
+            stats: p.stats.clone(),
+            state: p.state.clone(),
+            paused,
+        }
+    }
+
+    /// The values of scalar view `view` so far (see [`ViewFilm::values`]);
+    /// `None` unless the job measures views.
+    pub fn view_values(&self, view: View) -> Option<Vec<Option<f32>>> {
+        self.shared
+            .progress()
+            .views
+            .as_ref()
+            .map(|v| v.values(view))
+    }
+
+    /// The value of scalar view `view` at pixel `(x, y)` so far; `None`
+    /// without a value (or views).
+    pub fn view_value(&self, view: View, x: u32, y: u32) -> Option<f32> {
+        self.shared.progress().views.as_ref()?.value(view, x, y)
+    }
+
+    /// The views measured so far (a copy); `None` unless the job was
+    /// started with [`JobOptions::views`].
+    pub fn view_film(&self) -> Option<ViewFilm> {
+        self.shared.progress().views.clone()
+    }
+
     /// Waits for the job to stop and returns its film and statistics.
-    pub fn wait(mut self) -> (Film, RenderStats, JobState) {
+    pub fn wait(self) -> (Film, RenderStats, JobState) {
+        let (film, _, stats, state) = self.wait_with_views();
+        (film, stats, state)
+    }
+
+    /// [`RenderJob::wait`], with the views when the job measured them.
+    pub fn wait_with_views(mut self) -> (Film, Option<ViewFilm>, RenderStats, JobState) {
         if let Some(worker) = self.worker.take() {
             // The worker catches render panics itself; a join error could
             // only come from the bookkeeping around it.
@@ -301,7 +357,7 @@ impl RenderJob {
         }
         let mut p = self.shared.progress();
         let film = std::mem::replace(&mut p.film, Film::new(0, 0));
-        (film, p.stats.clone(), p.state.clone())
+        (film, p.views.take(), p.stats.clone(), p.state.clone())
     }
 }
 
@@ -330,10 +386,18 @@ fn run_passes(frame: &Frame, shared: &Shared) {
                 return;
             }
             let mut counters = Counters::default();
-            let values = frame.render_tile(pass, tile, &mut counters);
+            let (values, views) = if shared.views {
+                let (values, views) = frame.render_tile_with_views(pass, tile, &mut counters);
+                (values, Some(views))
+            } else {
+                (frame.render_tile(pass, tile, &mut counters), None)
+            };
             {
                 let mut p = shared.progress();
                 p.film.add_tile(tile, &values);
+                if let (Some(film), Some(views)) = (&mut p.views, &views) {
+                    film.add_tile(tile, views);
+                }
                 p.stats.counters += counters;
                 p.stats.render_time = rendered + start.elapsed();
             }
@@ -356,6 +420,37 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             }
         }
         shared.notify();
+    }
+}
+
+/// Marks the calling render thread as batch work. The lowest priority
+/// (nice 19) made a viewer's render several times slower than a headless one
+/// as soon as anything else ran on the machine (the software rasterizer
+/// painting the window, other processes); `SCHED_BATCH` at the usual nice
+/// value keeps the thread's share of the cores and only gives way to
+/// threads that wake up, such as the UI's. Best effort: a viewer works
+/// either way, only less smoothly if the OS refuses.
+fn yield_to_interactive_threads() {
+    #[cfg(target_os = "linux")]
+    {
+        use thread_priority::unix::{
+            NormalThreadSchedulePolicy, ThreadSchedulePolicy, set_thread_priority_and_policy,
+            thread_native_id,
+        };
+        use thread_priority::{ThreadPriority, ThreadPriorityValue};
+        // The crate maps its 0..=99 scale onto nice 19..=-20: 47 is nice 0,
+        // the value every thread starts with.
+        if let Ok(usual) = ThreadPriorityValue::try_from(47u8) {
+            let _ = set_thread_priority_and_policy(
+                thread_native_id(),
+                ThreadPriority::Crossplatform(usual),
+                ThreadSchedulePolicy::Normal(NormalThreadSchedulePolicy::Batch),
+            );
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Min);
     }
 }
 

@@ -5,21 +5,28 @@
 mod film;
 mod frame;
 mod job;
+mod ray_tree;
 mod settings;
 #[cfg(test)]
 mod tests;
 mod trace;
+mod view;
 
 use std::sync::Arc;
 
-pub use film::{Film, Tile};
+pub use film::{Film, Tile, rgba_to_rgb_image};
 pub use frame::{Frame, TILE_SIZE};
 pub use job::{JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
+pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
     Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
     RenderSettings, SettingsError,
 };
-pub use trace::Tracer;
+pub use trace::{NoRecord, RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
+pub use view::{
+    EyeHit, HEAT_PALETTE, HeatScale, NO_VALUE, View, ViewFilm, ViewHeatmap, ViewRecorder,
+    ViewSample, ViewSummary, object_colour,
+};
 
 use crate::accel::SceneIndex;
 use crate::stats::RenderStats;

@@ -1,7 +1,8 @@
 //! Behaviour of the progressive renderer and of stochastic sampling.
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::{Arc, Mutex, mpsc};
+use std::time::{Duration, Instant};
 
 use glam::Vec3A;
 
@@ -34,6 +35,19 @@ s -1 0 0.7 0.7
 f 1 1 1 0.1 1 1 1 0.1 100 0.9 1.5
 s 1 -0.5 0.6 0.6
 ";
+
+/// Waits until `condition` holds, failing the test (not hanging it) after
+/// a minute: a job that never gets there is a bug to report.
+fn wait_for(what: &str, condition: impl Fn() -> bool) {
+    let start = Instant::now();
+    while !condition() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "gave up waiting for {what}"
+        );
+        std::thread::sleep(Duration::from_millis(1));
+    }
+}
 
 fn settings(width: u32, height: u32) -> RenderSettings {
     RenderSettings {
@@ -232,9 +246,7 @@ fn cancellation_stops_a_long_render() {
         },
     )
     .unwrap();
-    while tiles_done.load(Ordering::Relaxed) == 0 {
-        std::thread::yield_now();
-    }
+    wait_for("the first tile", || tiles_done.load(Ordering::Relaxed) > 0);
     job.cancel();
     let at_cancel = job.stats().counters.eye_rays;
     let (_, stats, state) = job.wait();
@@ -252,22 +264,45 @@ fn cancellation_stops_a_long_render() {
 
 #[test]
 fn pause_holds_the_render_until_resumed() {
+    // One render thread, held inside its first progress callback (after
+    // its first tile) while the test pauses the job: no sleep decides
+    // when the pause lands.
+    let (tile_done, tiles) = mpsc::channel();
+    let (open_gate, gate) = mpsc::channel::<()>();
+    let gate = Mutex::new(gate);
     let w = world(SCENE);
     let job = RenderJob::start(
         w.clone(),
         Some(index(&w, AccelKind::Bvh)),
         settings(64, 64),
-        JobOptions::default(),
+        JobOptions {
+            threads: Some(1),
+            on_progress: Some(Box::new(move || {
+                let _ = tile_done.send(());
+                // Returns at once when the gate is opened or dropped.
+                let _ = gate.lock().unwrap().recv();
+            })),
+            ..JobOptions::default()
+        },
     )
     .unwrap();
+    let minute = Duration::from_secs(60);
+    tiles.recv_timeout(minute).expect("the first tile");
     job.set_paused(true);
-    let before = job.stats().counters.eye_rays;
-    std::thread::sleep(std::time::Duration::from_millis(50));
-    let during = job.stats().counters.eye_rays;
-    // At most the tiles already started when paused complete.
-    assert!(during - before <= 2 * 32 * 32, "{before} -> {during}");
-    assert!(!job.is_finished() || job.stats().passes_done == 9);
+    open_gate.send(()).unwrap();
+    // Paused between tiles: no further tile may finish. A broken pause
+    // fails at once; only a working one waits out the window.
+    let next = tiles.recv_timeout(Duration::from_millis(300));
+    assert_eq!(
+        next,
+        Err(mpsc::RecvTimeoutError::Timeout),
+        "a tile finished while paused"
+    );
+    assert!(!job.is_finished());
+    assert_eq!(job.stats().counters.eye_rays, 32 * 32);
     job.set_paused(false);
+    drop(open_gate);
+    tiles.recv_timeout(minute).expect("a tile after resuming");
     let (_, stats, state) = job.wait();
     assert_eq!(state, JobState::Done);
     assert_eq!(stats.passes_done, 9);
@@ -313,9 +348,7 @@ fn a_panic_inside_a_job_is_reported_and_what_was_rendered_stays() {
         },
     )
     .unwrap();
-    while !job.is_finished() {
-        std::thread::yield_now();
-    }
+    wait_for("the job to stop", || job.is_finished());
     let snapshot = job.snapshot(super::Encoding::Linear);
     assert_eq!(snapshot.rgba.len(), 64 * 64 * 4);
     let (_, stats, state) = job.wait();

@@ -13,6 +13,82 @@ use crate::world::{Light, Surface, World, perpendicular_basis};
 
 use super::RenderSettings;
 
+/// Why a ray was traced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RayKind {
+    Eye,
+    Reflection,
+    Refraction,
+    Shadow,
+}
+
+impl RayKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            RayKind::Eye => "eye",
+            RayKind::Reflection => "reflection",
+            RayKind::Refraction => "refraction",
+            RayKind::Shadow => "shadow",
+        }
+    }
+}
+
+/// Where a ray met a surface, as the shading saw it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceHit {
+    pub t: f32,
+    /// Index into the world's shapes.
+    pub shape: u32,
+    pub point: Vec3A,
+    /// The shading normal, facing the side the ray came from.
+    pub normal: Vec3A,
+    /// Whether the ray arrived from outside the surface.
+    pub outside: bool,
+}
+
+/// One shadow ray's outcome.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowSample {
+    /// Index into the world's lights.
+    pub light: usize,
+    pub ray: Ray,
+    /// Distance to the light's sample point: the ray's extent.
+    pub distance: f32,
+    pub blocked: bool,
+    /// Light this sample adds to its surface (zero when blocked), before the
+    /// weights of the rays above it.
+    pub radiance: Vec3A,
+}
+
+/// Watches a trace as it happens, so the cost views and the ray-tree
+/// inspector read the very rays the shaded render traces instead of a
+/// second tracer that could drift from it. Every method does nothing by
+/// default: the render's [`NoRecord`] compiles away entirely.
+///
+/// Calls nest: [`TraceRecorder::ray`] opens a ray, then come its hit (or
+/// background), its shadow samples and its child rays, and
+/// [`TraceRecorder::end`] closes it with its radiance.
+pub trait TraceRecorder {
+    /// A ray starts; its radiance reaches its parent times `weight`.
+    fn ray(&mut self, _kind: RayKind, _depth: u32, _ray: &Ray, _weight: Vec3A) {}
+    /// The open ray hit a surface; `ambient` is the light it adds directly.
+    fn hit(&mut self, _hit: &SurfaceHit, _ambient: Vec3A) {}
+    /// The open ray hit a transmitter: Fresnel reflectance `kr`, and whether
+    /// the refraction was lost to total internal reflection.
+    fn fresnel(&mut self, _kr: f32, _total_internal_reflection: bool) {}
+    /// The open ray left the scene and took `background`.
+    fn background(&mut self, _background: Vec3A) {}
+    /// A shadow ray from the open ray's hit point.
+    fn shadow(&mut self, _sample: &ShadowSample) {}
+    /// The open ray is done and brings `radiance`.
+    fn end(&mut self, _radiance: Vec3A) {}
+}
+
+/// The recorder of a plain render: records nothing, costs nothing.
+pub struct NoRecord;
+
+impl TraceRecorder for NoRecord {}
+
 /// How shadow rays sample a light.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ShadowMode {
@@ -70,34 +146,58 @@ impl<'a> Tracer<'a> {
         rng: &mut SampleStream,
         counters: &mut Counters,
     ) -> Vec3A {
-        counters.eye_rays += 1;
-        self.trace(ray, t_min, 0, rng, counters)
+        self.trace_eye_recorded(ray, t_min, rng, counters, &mut NoRecord)
     }
 
-    fn trace(
+    /// [`Tracer::trace_eye`], telling `recorder` every ray it traces.
+    #[inline]
+    pub fn trace_eye_recorded<R: TraceRecorder>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        rng: &mut SampleStream,
+        counters: &mut Counters,
+        recorder: &mut R,
+    ) -> Vec3A {
+        counters.eye_rays += 1;
+        recorder.ray(RayKind::Eye, 0, ray, Vec3A::ONE);
+        self.trace(ray, t_min, 0, rng, counters, recorder)
+    }
+
+    /// Radiance along a ray already announced to `recorder`; closes it.
+    fn trace<R: TraceRecorder>(
         &self,
         ray: &Ray,
         t_min: f32,
         depth: u32,
         rng: &mut SampleStream,
         counters: &mut Counters,
+        recorder: &mut R,
     ) -> Vec3A {
-        match self
-            .index
-            .closest_hit(&self.world.shapes, ray, t_min, f32::INFINITY, counters)
-        {
-            Some(hit) => self.shade(ray, hit, depth, rng, counters),
-            None => self.world.background(ray.dir),
-        }
+        let radiance =
+            match self
+                .index
+                .closest_hit(&self.world.shapes, ray, t_min, f32::INFINITY, counters)
+            {
+                Some(hit) => self.shade(ray, hit, depth, rng, counters, recorder),
+                None => {
+                    let background = self.world.background(ray.dir);
+                    recorder.background(background);
+                    background
+                }
+            };
+        recorder.end(radiance);
+        radiance
     }
 
-    fn shade(
+    fn shade<R: TraceRecorder>(
         &self,
         ray: &Ray,
         hit: Hit,
         depth: u32,
         rng: &mut SampleStream,
         counters: &mut Counters,
+        recorder: &mut R,
     ) -> Vec3A {
         let surface = self.world.surface(hit.shape);
         let p = ray.at(hit.t);
@@ -121,7 +221,17 @@ impl<'a> Tracer<'a> {
         let above = p + ng * offset;
 
         let mut color = surface.diffuse * self.settings.ambient;
-        color += self.direct_light(above, ns, -ray.dir, surface, rng, counters);
+        recorder.hit(
+            &SurfaceHit {
+                t: hit.t,
+                shape: hit.shape,
+                point: p,
+                normal: ns,
+                outside,
+            },
+            color,
+        );
+        color += self.direct_light(above, ns, -ray.dir, surface, rng, counters, recorder);
         if depth >= self.settings.max_depth {
             return color;
         }
@@ -137,6 +247,7 @@ impl<'a> Tracer<'a> {
             if let Some(dir) = refract(ray.dir, ns, eta).filter(|t| t.dot(ng) < 0.0) {
                 refraction = Some((dir, surface.transmittance * (1.0 - kr)));
             }
+            recorder.fresnel(kr, refraction.is_none());
         }
 
         if reflect_weight.max_element() > 0.0 {
@@ -145,13 +256,16 @@ impl<'a> Tracer<'a> {
                 dir = reflect(ray.dir, ng);
             }
             counters.reflection_rays += 1;
-            let bounced = self.trace(&Ray::new(above, dir), 0.0, depth + 1, rng, counters);
+            let bounce = Ray::new(above, dir);
+            recorder.ray(RayKind::Reflection, depth + 1, &bounce, reflect_weight);
+            let bounced = self.trace(&bounce, 0.0, depth + 1, rng, counters, recorder);
             color += reflect_weight * bounced;
         }
         if let Some((dir, weight)) = refraction.filter(|(_, w)| *w > 0.0) {
             counters.refraction_rays += 1;
-            let below = p - ng * offset;
-            let through = self.trace(&Ray::new(below, dir), 0.0, depth + 1, rng, counters);
+            let below = Ray::new(p - ng * offset, dir);
+            recorder.ray(RayKind::Refraction, depth + 1, &below, Vec3A::splat(weight));
+            let through = self.trace(&below, 0.0, depth + 1, rng, counters, recorder);
             color += through * weight;
         }
         color
@@ -159,7 +273,8 @@ impl<'a> Tracer<'a> {
 
     /// Diffuse and specular light from every light the surface faces, with
     /// shadow rays from `origin` (already lifted off the surface).
-    fn direct_light(
+    #[allow(clippy::too_many_arguments)]
+    fn direct_light<R: TraceRecorder>(
         &self,
         origin: Vec3A,
         n: Vec3A,
@@ -167,52 +282,71 @@ impl<'a> Tracer<'a> {
         surface: &Surface,
         rng: &mut SampleStream,
         counters: &mut Counters,
+        recorder: &mut R,
     ) -> Vec3A {
         let mut total = Vec3A::ZERO;
         let has_highlight = surface.specular.max_element() > 0.0;
-        for light in &self.world.lights {
+        for (light_index, light) in self.world.lights.iter().enumerate() {
             let mut from_light = Vec3A::ZERO;
-            let mut add_sample = |target: Vec3A, weight: f32, counters: &mut Counters| {
-                let to_light = target - origin;
-                let distance = to_light.length();
-                if distance <= 0.0 {
-                    return;
-                }
-                let l = to_light / distance;
-                if n.dot(l) <= 0.0 {
-                    return;
-                }
-                counters.shadow_rays += 1;
-                let shadow = Ray::new(origin, l);
-                if self
-                    .index
-                    .any_hit(&self.world.shapes, &shadow, 0.0, distance, counters)
-                {
-                    return;
-                }
-                // The highlight's power is the costliest term: only lit
-                // points of specular surfaces pay for it.
-                let (diffuse, specular) = if has_highlight {
-                    blinn_phong(n, l, to_viewer, surface.shine)
-                } else {
-                    (n.dot(l), 0.0)
+            let mut add_sample =
+                |target: Vec3A, weight: f32, counters: &mut Counters, recorder: &mut R| {
+                    let to_light = target - origin;
+                    let distance = to_light.length();
+                    if distance <= 0.0 {
+                        return;
+                    }
+                    let l = to_light / distance;
+                    if n.dot(l) <= 0.0 {
+                        return;
+                    }
+                    counters.shadow_rays += 1;
+                    let shadow = Ray::new(origin, l);
+                    let mut sample = ShadowSample {
+                        light: light_index,
+                        ray: shadow,
+                        distance,
+                        blocked: true,
+                        radiance: Vec3A::ZERO,
+                    };
+                    if self
+                        .index
+                        .any_hit(&self.world.shapes, &shadow, 0.0, distance, counters)
+                    {
+                        recorder.shadow(&sample);
+                        return;
+                    }
+                    // The highlight's power is the costliest term: only lit
+                    // points of specular surfaces pay for it.
+                    let (diffuse, specular) = if has_highlight {
+                        blinn_phong(n, l, to_viewer, surface.shine)
+                    } else {
+                        (n.dot(l), 0.0)
+                    };
+                    let lit = (surface.diffuse * diffuse + surface.specular * specular) * weight;
+                    sample.blocked = false;
+                    sample.radiance = lit * light.color;
+                    recorder.shadow(&sample);
+                    from_light += lit;
                 };
-                from_light += (surface.diffuse * diffuse + surface.specular * specular) * weight;
-            };
             match self.shadow_mode {
-                ShadowMode::Hard => add_sample(light.position, 1.0, counters),
+                ShadowMode::Hard => add_sample(light.position, 1.0, counters, recorder),
                 ShadowMode::Stratified(n) => {
                     let (u, v) = self.light_area(light, origin);
                     let weight = 1.0 / (n * n) as f32;
                     for stratum in 0..n * n {
                         let s = jittered(stratum, n, rng.next_2d()) - 0.5;
-                        add_sample(light.position + u * s.x + v * s.y, weight, counters);
+                        add_sample(
+                            light.position + u * s.x + v * s.y,
+                            weight,
+                            counters,
+                            recorder,
+                        );
                     }
                 }
                 ShadowMode::OnePerSample => {
                     let (u, v) = self.light_area(light, origin);
                     let s = rng.next_2d() - 0.5;
-                    add_sample(light.position + u * s.x + v * s.y, 1.0, counters);
+                    add_sample(light.position + u * s.x + v * s.y, 1.0, counters, recorder);
                 }
             }
             total += from_light * light.color;

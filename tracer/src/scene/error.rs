@@ -102,6 +102,13 @@ pub enum ParseErrorKind {
         needed: u64,
         remaining: u64,
     },
+    /// A file with nothing to render; says what is missing.
+    #[error("the scene is empty: {0}")]
+    EmptyScene(&'static str),
+    /// A `mesh_file` that cannot be used: the mesh file's own error, which
+    /// names it and the line or element at fault.
+    #[error("{0}")]
+    MeshFile(String),
     /// The file could not be read (the message of the I/O error).
     #[error("cannot read the scene: {0}")]
     Io(String),

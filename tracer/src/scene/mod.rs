@@ -148,6 +148,26 @@ pub struct Object {
     pub material: u32,
 }
 
+/// Where each object was declared in its file, as 1-based (line, column)
+/// parallel to [`Scene::objects`]: empty for scenes built in code. Where
+/// something was written is not what it is, so positions never make two
+/// documents differ (a written and re-read scene equals the original).
+#[derive(Debug, Clone, Default)]
+pub struct ObjectPositions(pub Vec<(u32, u32)>);
+
+impl PartialEq for ObjectPositions {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl ObjectPositions {
+    /// Where object `index` was declared, if the scene came from a file.
+    pub fn get(&self, index: usize) -> Option<(u32, u32)> {
+        self.0.get(index).copied()
+    }
+}
+
 /// The whole document. Commands may come in any order in the file; the
 /// document keeps what they declare, not their order (except objects).
 #[derive(Debug, Clone, PartialEq)]
@@ -159,6 +179,8 @@ pub struct Scene {
     pub lights: Vec<LightSpec>,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
+    /// Where each object was declared (for the inspector).
+    pub object_positions: ObjectPositions,
     /// `accel k`: 0 none, 1 uniform grid, 2 BVH.
     pub accel: Option<u32>,
     /// `spp n`: 0 one centred sample, n > 0 n x n jittered samples.
@@ -176,6 +198,7 @@ impl Default for Scene {
             lights: Vec::new(),
             materials: Vec::new(),
             objects: Vec::new(),
+            object_positions: ObjectPositions::default(),
             accel: None,
             spp: None,
             base_dir: None,

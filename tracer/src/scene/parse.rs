@@ -3,6 +3,7 @@
 
 mod appearance;
 mod cursor;
+mod mesh_file;
 mod shapes;
 mod view;
 
@@ -15,9 +16,10 @@ use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene};
 
 /// Every command word, for telling a misspelt `v` field from the next
 /// command. `#` comments are removed by the lexer.
-pub(super) const COMMANDS: [&str; 16] = [
-    "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "accel",
-    "spp",
+#[rustfmt::skip]
+pub(super) const COMMANDS: [&str; 17] = [
+    "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "mesh_file",
+    "accel", "spp",
 ];
 
 /// Parses scene text; `file` only labels errors and sets `base_dir` (its
@@ -35,11 +37,22 @@ pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<S
         scene: Scene::default(),
         material: None,
         primitives: 0,
+        view_given: false,
     };
+    let mut commands = 0usize;
     while let Some(token) = parser.cursor.next_token() {
         parser.cursor.set_command(Some(token.text));
         parser.command(token)?;
         parser.cursor.set_command(None);
+        commands += 1;
+    }
+    if !parser.view_given && parser.scene.objects.is_empty() {
+        let what = if commands == 0 {
+            "the file holds no command (only comments or blank lines)"
+        } else {
+            "it has no camera (`v`) and no objects"
+        };
+        return Err(file_error(file, ParseErrorKind::EmptyScene(what)));
     }
     let mut scene = parser.scene;
     scene.base_dir = file.map(|f| match f.parent() {
@@ -105,12 +118,18 @@ struct Parser<'a, 'l> {
     material: Option<u32>,
     /// Primitives so far, polygons and meshes counted as their triangles.
     primitives: usize,
+    /// Whether a `v` command came: a file with neither a camera nor an
+    /// object is refused as empty.
+    view_given: bool,
 }
 
 impl Parser<'_, '_> {
     fn command(&mut self, token: Token<'_>) -> Result<(), ParseError> {
         match token.text {
-            "v" => self.view(token.pos),
+            "v" => {
+                self.view_given = true;
+                self.view(token.pos)
+            }
             "b" | "bclr" => self.background(),
             "env" => self.env(),
             "l" => self.point_light(token.pos),
@@ -123,6 +142,7 @@ impl Parser<'_, '_> {
             "c" => self.cone(token.pos),
             "box" => self.aabox(token.pos),
             "mesh" => self.mesh(token.pos),
+            "mesh_file" => self.mesh_file(token.pos),
             "accel" => self.accel(),
             "spp" => self.spp(),
             word => {
@@ -141,6 +161,20 @@ impl Parser<'_, '_> {
     /// Adds an object with the material in force, pushing the default
     /// material first if no `f` came yet.
     fn push_object(&mut self, primitive: Primitive, pos: Pos) -> Result<(), ParseError> {
+        let material = match self.material {
+            Some(index) => index,
+            None => self.push_material(super::Material::default(), pos)?,
+        };
+        self.push_object_with(primitive, material, pos)
+    }
+
+    /// Adds an object with the material at index `material`.
+    fn push_object_with(
+        &mut self,
+        primitive: Primitive,
+        material: u32,
+        pos: Pos,
+    ) -> Result<(), ParseError> {
         let objects = self.scene.objects.len();
         if objects >= self.limits.max_objects {
             return Err(self.above_limit("object count", objects, self.limits.max_objects, pos));
@@ -154,14 +188,11 @@ impl Parser<'_, '_> {
         };
         self.check_primitives(primitives, pos)?;
         self.primitives += primitives;
-        let material = match self.material {
-            Some(index) => index,
-            None => self.push_material(super::Material::default(), pos)?,
-        };
         self.scene.objects.push(Object {
             primitive,
             material,
         });
+        self.scene.object_positions.0.push((pos.line, pos.column));
         Ok(())
     }
 

@@ -4,6 +4,7 @@ mod commands;
 mod corpus;
 mod errors;
 mod fuzz;
+mod mesh_file;
 mod roundtrip;
 
 use std::path::Path;

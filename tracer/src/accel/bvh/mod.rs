@@ -337,3 +337,39 @@ impl<T: Copy> NodeStack<T> {
         Some(unsafe { self.slots[self.len].assume_init() })
     }
 }
+
+impl Bvh {
+    /// The boxes of the 4-wide nodes' children at `depth` (0 is the whole
+    /// scene's box, 1 the root's up to four children), with the leaves above
+    /// it so the scene stays covered; every leaf for `None`. Read only, for
+    /// drawing the structure over the image.
+    pub fn boxes(&self, depth: Option<u32>) -> Vec<Aabb> {
+        let used = |node: &Node4| {
+            (0..4)
+                .filter(|&i| node.count[i] != EMPTY)
+                .collect::<Vec<_>>()
+        };
+        let Some(root) = self.nodes.first() else {
+            return Vec::new();
+        };
+        if depth == Some(0) {
+            let all = used(root).into_iter().map(|i| root.bounds(i));
+            return all.reduce(|a, b| a.union(&b)).into_iter().collect();
+        }
+        let mut out = Vec::new();
+        let mut stack = vec![(0usize, 1u32)];
+        while let Some((index, d)) = stack.pop() {
+            let Some(node) = self.nodes.get(index) else {
+                continue;
+            };
+            for i in used(node) {
+                if node.count[i] != 0 || depth == Some(d) {
+                    out.push(node.bounds(i));
+                } else {
+                    stack.push((node.first[i] as usize, d + 1));
+                }
+            }
+        }
+        out
+    }
+}

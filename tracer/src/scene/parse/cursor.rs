@@ -41,6 +41,11 @@ impl<'a> Cursor<'a> {
         }
     }
 
+    /// The file being parsed, if the text came from one.
+    pub fn file(&self) -> Option<&'a Path> {
+        self.file
+    }
+
     /// Sets the command that later errors name.
     pub fn set_command(&mut self, command: Option<&'a str>) {
         self.command = command;

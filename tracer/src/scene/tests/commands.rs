@@ -36,20 +36,20 @@ fn view_defaults_to_pinhole_focused_on_the_view_plane() {
 
 #[test]
 fn background_both_spellings_env_accel_spp() {
-    let scene = parse_ok("b 0.1 0.2 0.3");
+    let scene = parse_ok("v\nb 0.1 0.2 0.3");
     assert_eq!(scene.background, Vec3::new(0.1, 0.2, 0.3));
-    let scene = parse_ok("bclr 1 +2 3e-1\nenv skybox\naccel 2\nspp 4");
+    let scene = parse_ok("v\nbclr 1 +2 3e-1\nenv skybox\naccel 2\nspp 4");
     assert_eq!(scene.background, Vec3::new(1.0, 2.0, 0.3));
     assert_eq!(scene.env.as_deref(), Some("skybox"));
     assert_eq!((scene.accel, scene.spp), (Some(2), Some(4)));
-    let scene = parse_ok("accel 0 spp 0");
+    let scene = parse_ok("v accel 0 spp 0");
     assert_eq!((scene.accel, scene.spp), (Some(0), Some(0)));
 }
 
 #[test]
 fn lights_with_and_without_color() {
     let scene =
-        parse_ok("l 1 2 3\nl 4 5 6 0.5 0.5 1\nal 0 5 0 0 0 0 2 1\nal 0 5 0 0 0 0 2 1 1 1 0");
+        parse_ok("v\nl 1 2 3\nl 4 5 6 0.5 0.5 1\nal 0 5 0 0 0 0 2 1\nal 0 5 0 0 0 0 2 1 1 1 0");
     assert_eq!(
         scene.lights,
         vec![
@@ -125,8 +125,8 @@ fn materials_in_both_forms_and_the_default_before_any_f() {
 fn default_material_is_pushed_once_and_only_when_needed() {
     let scene = parse_ok("s 0 0 0 1 s 1 1 1 1");
     assert_eq!(scene.materials, vec![Material::default()]);
-    assert!(parse_ok("f 1 1 1 1 0 1 0 1").objects.is_empty());
-    assert!(parse_ok("").materials.is_empty());
+    assert!(parse_ok("v f 1 1 1 1 0 1 0 1").objects.is_empty());
+    assert!(parse_ok("v").materials.is_empty());
 }
 
 fn primitives(text: &str) -> Vec<Primitive> {

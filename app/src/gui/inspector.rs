@@ -1,0 +1,210 @@
+//! The ray-tree inspector panel: click a pixel to pin it; its sample's
+//! tree of rays is recorded again whenever the settings change, so a user
+//! toggles soft shadows or the grid and watches the tree change. In compare
+//! mode the same pixel is inspected on A and B.
+
+use egui::{Color32, Rect, Stroke, Ui, pos2};
+use glam::Vec3A;
+use tracer::render::{Frame, Outcome, RayKind, RayNode, RayTree, RenderSettings};
+
+use super::engine::Engine;
+use crate::measure::ray_tree_report::{self, describe_node, headline, triple};
+
+/// The pinned pixel and its trees (A, and B while comparing).
+#[derive(Default)]
+pub struct Inspector {
+    pub pinned: Option<(u32, u32)>,
+    /// Which of the pixel's samples.
+    pub sample: u32,
+    trees: [Option<Inspected>; 2],
+    /// Ray paths drawn over the image in the last frame.
+    pub paths_drawn: usize,
+}
+
+/// A tree and what it was recorded for.
+struct Inspected {
+    of: (RenderSettings, (u32, u32), u32),
+    tree: Result<RayTree, String>,
+}
+
+impl Inspector {
+    /// Pins `pixel`: the panel opens on its tree.
+    pub fn pin(&mut self, pixel: (u32, u32)) {
+        self.pinned = Some(pixel);
+    }
+
+    /// The recorded tree of side A (0) or B (1).
+    pub fn tree(&self, side: usize) -> Option<&Result<RayTree, String>> {
+        self.trees.get(side)?.as_ref().map(|t| &t.tree)
+    }
+
+    /// Records the trees again for what changed: the pixel, the sample or
+    /// an engine's settings. Recording one sample takes microseconds, so it
+    /// runs on the UI thread.
+    pub fn update(&mut self, a: &Engine, b: Option<&Engine>) {
+        let Some(pixel) = self.pinned else {
+            self.trees = [None, None];
+            return;
+        };
+        for (side, engine) in [Some(a), b].into_iter().enumerate() {
+            let slot = &mut self.trees[side];
+            let (Some(engine), Some(settings), Some(scene)) = (
+                engine,
+                engine.and_then(Engine::settings),
+                engine.and_then(Engine::scene),
+            ) else {
+                *slot = None;
+                continue;
+            };
+            let of = (settings.clone(), pixel, self.sample);
+            if slot.as_ref().is_some_and(|s| s.of == of) {
+                continue;
+            }
+            let tree = ray_tree_report::inspect(
+                &scene.world,
+                engine.index(),
+                settings,
+                pixel,
+                self.sample,
+            )
+            .map_err(|e| format!("{e:#}"));
+            *slot = Some(Inspected { of, tree });
+        }
+    }
+
+    /// The inspector window, open while a pixel is pinned.
+    pub fn window(&mut self, ctx: &egui::Context, comparing: bool) {
+        let Some((x, y)) = self.pinned else {
+            return;
+        };
+        let mut open = true;
+        egui::Window::new("Ray tree")
+            .open(&mut open)
+            .default_width(520.0)
+            .show(ctx, |ui| {
+                ui.horizontal(|ui| {
+                    ui.label(format!("Pixel ({x}, {y}), sample"));
+                    ui.add(egui::DragValue::new(&mut self.sample).range(0..=4095));
+                });
+                ui.small("Click another pixel to inspect it; the tree follows every setting.");
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    for side in 0..if comparing { 2 } else { 1 } {
+                        if comparing {
+                            ui.strong(if side == 0 { "A" } else { "B" });
+                        }
+                        match self.tree(side) {
+                            Some(Ok(tree)) => show_tree(ui, tree, side),
+                            Some(Err(e)) => {
+                                ui.colored_label(ui.visuals().error_fg_color, e);
+                            }
+                            None => {
+                                ui.label("waiting for the scene");
+                            }
+                        }
+                    }
+                });
+            });
+        if !open {
+            self.pinned = None;
+        }
+    }
+}
+
+impl Inspector {
+    /// Draws side A's tree over the image in `image_rect`: every ray from
+    /// its origin to its hit projected through the camera, coloured by
+    /// kind; shadow rays to their light sample, dashed when blocked; rays
+    /// that leave the scene as a short stub. Returns the segments drawn.
+    pub fn paint_paths(&self, ui: &Ui, engine: &Engine, image_rect: Rect) -> usize {
+        let (Some(Ok(tree)), Some(settings), Some(scene)) =
+            (self.tree(0), engine.settings(), engine.scene())
+        else {
+            return 0;
+        };
+        let Ok(camera) = Frame::camera(&scene.world, settings) else {
+            return 0;
+        };
+        let size = egui::vec2(settings.width as f32, settings.height as f32);
+        let to_screen = |p: Vec3A| {
+            let p = camera.project(p)?;
+            let s = image_rect.min + egui::vec2(p.x, p.y) / size * image_rect.size();
+            s.is_finite().then(|| pos2(s.x, s.y))
+        };
+        let stub = scene.world.bounds.extent().length().max(1.0) * 0.25;
+        let painter = ui
+            .painter()
+            .with_clip_rect(image_rect.intersect(ui.clip_rect()));
+        let mut drawn = 0;
+        for node in &tree.nodes {
+            let (end, blocked) = path_end(node, stub);
+            let (Some(a), Some(b)) = (to_screen(node.origin), to_screen(end)) else {
+                continue;
+            };
+            let stroke = Stroke::new(2.0, kind_colour(node.kind));
+            if blocked {
+                painter.extend(egui::Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
+            } else {
+                painter.line_segment([a, b], stroke);
+            }
+            drawn += 1;
+        }
+        drawn
+    }
+}
+
+/// Where a ray's drawn path ends, and whether it was blocked.
+fn path_end(node: &RayNode, stub: f32) -> (Vec3A, bool) {
+    match &node.outcome {
+        Outcome::Surface(s) => (s.point, false),
+        Outcome::Background => (node.origin + node.dir * stub, false),
+        Outcome::Light {
+            distance, occluder, ..
+        } => (node.origin + node.dir * *distance, occluder.is_some()),
+    }
+}
+
+/// The colour of each kind of ray, in the paths and nowhere else.
+fn kind_colour(kind: RayKind) -> Color32 {
+    match kind {
+        RayKind::Eye => Color32::from_rgb(255, 255, 255),
+        RayKind::Reflection => Color32::from_rgb(90, 200, 255),
+        RayKind::Refraction => Color32::from_rgb(255, 120, 220),
+        RayKind::Shadow => Color32::from_rgb(255, 220, 60),
+    }
+}
+
+/// The tree as collapsible lines, children under their parents; hovering a
+/// line shows the ray's origin, direction and weight.
+fn show_tree(ui: &mut Ui, tree: &RayTree, side: usize) {
+    ui.label(headline(tree));
+    for root in tree.children(None) {
+        show_node(ui, tree, root, side);
+    }
+}
+
+fn show_node(ui: &mut Ui, tree: &RayTree, index: usize, side: usize) {
+    let node = &tree.nodes[index];
+    let line = describe_node(node);
+    let details = format!(
+        "origin {}\ndirection {}\nweight {}\nradiance {}",
+        triple(node.origin),
+        triple(node.dir),
+        triple(node.weight),
+        triple(node.radiance)
+    );
+    let mut children = tree.children(Some(index)).peekable();
+    if children.peek().is_none() {
+        ui.label(line).on_hover_text(details);
+        return;
+    }
+    egui::CollapsingHeader::new(line)
+        .id_salt(("ray", side, index))
+        .default_open(true)
+        .show(ui, |ui| {
+            for child in children {
+                show_node(ui, tree, child, side);
+            }
+        })
+        .header_response
+        .on_hover_text(details);
+}

@@ -1,0 +1,88 @@
+//! The acceleration structure drawn over an image: its 3D wireframe
+//! projected through the render's camera, as thin lines.
+
+use glam::{Vec2, Vec3A};
+use image::{Rgb, RgbImage};
+use tracer::camera::Camera;
+
+/// The colour of the wireframe: visible on both the shaded image and the
+/// heat maps.
+pub const WIRE: Rgb<u8> = Rgb([80, 255, 120]);
+
+/// Draws each 3D segment of `segments` projected by `camera`; segments
+/// reaching behind the eye are left out.
+pub fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A; 2]]) {
+    for [a, b] in segments {
+        if let (Some(a), Some(b)) = (camera.project(*a), camera.project(*b)) {
+            draw_line(image, a, b, WIRE);
+        }
+    }
+}
+
+/// A one-pixel line from `a` to `b` (image coordinates), clipped to the
+/// image first, so a segment reaching far off-screen costs no more than
+/// one across it.
+fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
+    let size = Vec2::new(image.width() as f32, image.height() as f32);
+    let Some((a, b)) = clip(a, b, size) else {
+        return;
+    };
+    let steps = (b - a).abs().max_element().ceil().max(1.0);
+    for i in 0..=steps as u32 {
+        let p = a + (b - a) * (i as f32 / steps);
+        if p.x >= 0.0 && p.y >= 0.0 && p.x < size.x && p.y < size.y {
+            image.put_pixel(p.x as u32, p.y as u32, colour);
+        }
+    }
+}
+
+/// The part of segment `a`-`b` inside `[0, size]` (Liang and Barsky);
+/// `None` when none is, or for non-finite ends.
+fn clip(a: Vec2, b: Vec2, size: Vec2) -> Option<(Vec2, Vec2)> {
+    if !a.is_finite() || !b.is_finite() {
+        return None;
+    }
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f32, 1.0f32);
+    for (p, q) in [
+        (-d.x, a.x),
+        (d.x, size.x - a.x),
+        (-d.y, a.y),
+        (d.y, size.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    (t0 <= t1).then(|| (a + d * t0, a + d * t1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_are_drawn_and_clipped() {
+        let mut image = RgbImage::new(10, 10);
+        draw_line(&mut image, Vec2::new(0.5, 5.5), Vec2::new(20.0, 5.5), WIRE);
+        assert!((0..10).all(|x| *image.get_pixel(x, 5) == WIRE));
+        assert_eq!(*image.get_pixel(5, 4), Rgb([0, 0, 0]));
+        draw_line(
+            &mut image,
+            Vec2::new(2.5, -50.0),
+            Vec2::new(2.5, 50.0),
+            WIRE,
+        );
+        assert!((0..10).all(|y| *image.get_pixel(2, y) == WIRE));
+        draw_line(&mut image, Vec2::NAN, Vec2::ONE, WIRE);
+    }
+}

@@ -1,0 +1,196 @@
+//! The ray-tree inspector, headless: record the tree of one pixel sample
+//! under some settings, and say it as an indented tree or JSON. The command
+//! line and the window's inspector panel share it.
+
+use std::sync::Arc;
+
+use anyhow::{Result, anyhow};
+use glam::Vec3A;
+use tracer::accel::SceneIndex;
+use tracer::render::{Frame, Outcome, RayNode, RayTree, RenderSettings};
+use tracer::world::World;
+
+/// The ray tree of sample `sample` of pixel `(x, y)` under `settings`,
+/// reusing `index` when it was built for them.
+pub fn inspect(
+    world: &Arc<World>,
+    index: Option<Arc<SceneIndex>>,
+    settings: &RenderSettings,
+    (x, y): (u32, u32),
+    sample: u32,
+) -> Result<RayTree> {
+    settings.validate()?;
+    if sample >= settings.samples_per_pixel() && !settings.keep_refining {
+        return Err(anyhow!(
+            "sample {sample} does not exist: these settings take {} sample(s) per pixel",
+            settings.samples_per_pixel()
+        ));
+    }
+    let index = index
+        .filter(|i| i.matches(settings.accel, settings.grid_multiplier))
+        .unwrap_or_else(|| {
+            Arc::new(SceneIndex::build(
+                &world.shapes,
+                settings.accel,
+                settings.grid_multiplier,
+            ))
+        });
+    let frame = Frame::new(world.clone(), index, settings.clone())?;
+    frame.inspect(x, y, sample).ok_or_else(|| {
+        anyhow!(
+            "pixel ({x}, {y}) is outside the {}x{} image",
+            settings.width,
+            settings.height
+        )
+    })
+}
+
+/// A colour or vector as `(r, g, b)` with 3 decimals.
+pub fn triple(v: Vec3A) -> String {
+    format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z)
+}
+
+/// The first line: the pixel, its colour and the sum of the contributions.
+pub fn headline(tree: &RayTree) -> String {
+    format!(
+        "pixel ({}, {}), sample {}: colour {}, contributions add up to {}",
+        tree.x,
+        tree.y,
+        tree.sample,
+        triple(tree.colour),
+        triple(tree.contributions())
+    )
+}
+
+/// An object as `sphere #3 (line 12:1)`: kind, index in the file and
+/// where the file declares it.
+pub fn object_name(kind: &str, index: u32, position: Option<(u32, u32)>) -> String {
+    match position {
+        Some((line, column)) => format!("{kind} #{index} (line {line}:{column})"),
+        None => format!("{kind} #{index}"),
+    }
+}
+
+/// One node in one line: its kind, what it met and what it added.
+pub fn describe_node(node: &RayNode) -> String {
+    let kind = node.kind.name();
+    let adds = format!("adds {}", triple(node.contribution));
+    match &node.outcome {
+        Outcome::Surface(s) => {
+            let m = &s.surface;
+            let fresnel = match s.fresnel {
+                Some((kr, true)) => format!(", Fresnel {kr:.3}, total internal reflection"),
+                Some((kr, false)) => format!(", Fresnel {kr:.3}"),
+                None => String::new(),
+            };
+            format!(
+                "{kind} (depth {}): hit {} at t {:.4}, normal {}{}; Kd {} Ks {} shine {} T {} ior {}{fresnel}; {adds}",
+                node.depth,
+                object_name(s.object_kind, s.object, s.object_position),
+                s.t,
+                triple(s.normal),
+                if s.outside { "" } else { " (from inside)" },
+                triple(m.diffuse),
+                triple(m.specular),
+                m.shine,
+                m.transmittance,
+                m.ior,
+            )
+        }
+        Outcome::Background => format!("{kind} (depth {}): background; {adds}", node.depth),
+        Outcome::Light {
+            light,
+            occluder: Some(o),
+            ..
+        } => format!(
+            "shadow to light {light}: blocked by {} at t {:.4}",
+            object_name(o.object_kind, o.object, o.object_position),
+            o.t
+        ),
+        Outcome::Light { light, .. } => format!("shadow to light {light}: lit; {adds}"),
+    }
+}
+
+/// The tree indented two spaces per generation, children under parents.
+pub fn text(tree: &RayTree) -> String {
+    let mut out = headline(tree);
+    out.push('\n');
+    let mut stack: Vec<(usize, usize)> = tree.children(None).map(|i| (i, 0)).collect();
+    stack.reverse();
+    while let Some((i, level)) = stack.pop() {
+        out.push_str(&"  ".repeat(level));
+        out.push_str(&describe_node(&tree.nodes[i]));
+        out.push('\n');
+        let children: Vec<usize> = tree.children(Some(i)).collect();
+        stack.extend(children.into_iter().rev().map(|c| (c, level + 1)));
+    }
+    out
+}
+
+/// The tree as JSON: every node with its parent's index.
+pub fn json(tree: &RayTree) -> serde_json::Value {
+    let v = |v: Vec3A| [v.x, v.y, v.z];
+    let nodes: Vec<serde_json::Value> = tree
+        .nodes
+        .iter()
+        .map(|n| {
+            let mut node = serde_json::json!({
+                "kind": n.kind.name(),
+                "depth": n.depth,
+                "parent": n.parent,
+                "origin": v(n.origin),
+                "direction": v(n.dir),
+                "weight": v(n.weight),
+                "radiance": v(n.radiance),
+                "contribution": v(n.contribution),
+            });
+            node["outcome"] = match &n.outcome {
+                Outcome::Surface(s) => serde_json::json!({
+                    "hit": "surface",
+                    "t": s.t,
+                    "shape": s.shape,
+                    "object": s.object,
+                    "object_kind": s.object_kind,
+                    "line_column": s.object_position.map(|(l, c)| [l, c]),
+                    "point": v(s.point),
+                    "normal": v(s.normal),
+                    "from_inside": !s.outside,
+                    "material": {
+                        "diffuse": v(s.surface.diffuse),
+                        "specular": v(s.surface.specular),
+                        "shine": s.surface.shine,
+                        "transmittance": s.surface.transmittance,
+                        "ior": s.surface.ior,
+                    },
+                    "fresnel": s.fresnel.map(|(kr, _)| kr),
+                    "total_internal_reflection": s.fresnel.map(|(_, tir)| tir),
+                }),
+                Outcome::Background => serde_json::json!({ "hit": "background" }),
+                Outcome::Light {
+                    light,
+                    distance,
+                    occluder,
+                } => serde_json::json!({
+                    "hit": if occluder.is_some() { "blocked" } else { "light" },
+                    "light": light,
+                    "distance": distance,
+                    "occluder": occluder.map(|o| serde_json::json!({
+                        "t": o.t,
+                        "shape": o.shape,
+                        "object": o.object,
+                        "object_kind": o.object_kind,
+                        "line_column": o.object_position.map(|(l, c)| [l, c]),
+                    })),
+                }),
+            };
+            node
+        })
+        .collect();
+    serde_json::json!({
+        "pixel": [tree.x, tree.y],
+        "sample": tree.sample,
+        "colour": v(tree.colour),
+        "sum_of_contributions": v(tree.contributions()),
+        "nodes": nodes,
+    })
+}

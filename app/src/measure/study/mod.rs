@@ -1,0 +1,598 @@
+//! Parameter studies: one setting swept over a list of values, for one or
+//! more acceleration structures, each point measured as the benchmark
+//! measures a row (repeated frames, median, build time apart). The `level`
+//! study sweeps the size of a generated scene instead, so that the number
+//! of primitives is the x axis; the `spp` study also measures each image's
+//! error against a high-N reference of the same scene.
+
+pub mod analysis;
+pub mod plot;
+pub mod report;
+pub mod values;
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+
+use anyhow::{Context, Result, bail};
+use image::RgbImage;
+use tracer::accel::AccelKind;
+use tracer::generate::{self, GenerateOptions, GeneratorName};
+use tracer::render::{Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings};
+use tracer::scene::Scene;
+use tracer::world::World;
+
+use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
+use crate::measure::compare::{self, Heatmap, Metrics};
+
+/// The setting a study sweeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Param {
+    /// The uniform grid's cell multiplier m.
+    GridM,
+    /// N, with anti-aliasing on: N x N samples per pixel.
+    Spp,
+    /// The maximum number of bounces.
+    Depth,
+    /// The side of the square lights, with soft shadows on.
+    LightSize,
+    /// The lens diameter in pixels, with depth of field on (0: a pinhole).
+    Aperture,
+    /// The image width in pixels; the height keeps the scene's aspect.
+    Resolution,
+    /// The level of a generated scene (its size).
+    Level,
+}
+
+impl Param {
+    pub const ALL: [Param; 7] = [
+        Param::GridM,
+        Param::Spp,
+        Param::Depth,
+        Param::LightSize,
+        Param::Aperture,
+        Param::Resolution,
+        Param::Level,
+    ];
+
+    /// The name on the command line (`--param grid-m`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::GridM => "grid-m",
+            Param::Spp => "spp",
+            Param::Depth => "depth",
+            Param::LightSize => "light-size",
+            Param::Aperture => "aperture",
+            Param::Resolution => "resolution",
+            Param::Level => "level",
+        }
+    }
+
+    /// The x axis of its chart, with the unit.
+    pub fn axis(self) -> &'static str {
+        match self {
+            Param::GridM => "grid cell multiplier m",
+            Param::Spp => "N (N x N samples per pixel)",
+            Param::Depth => "maximum depth (bounces)",
+            Param::LightSize => "light size (scene units)",
+            Param::Aperture => "aperture (pixels)",
+            Param::Resolution => "image width (pixels)",
+            Param::Level => "primitives",
+        }
+    }
+
+    /// Whether only whole numbers make sense.
+    pub fn is_integer(self) -> bool {
+        matches!(
+            self,
+            Param::Spp | Param::Depth | Param::Resolution | Param::Level
+        )
+    }
+
+    /// Why `value` cannot be used, if it cannot.
+    pub fn check(self, value: f64) -> Result<(), String> {
+        let name = self.name();
+        let shown = values::format(value);
+        if self.is_integer() && value.fract() != 0.0 {
+            return Err(format!("{name} takes whole numbers, not {shown}"));
+        }
+        let (low, high) = match self {
+            Param::GridM => (f64::MIN_POSITIVE, 1e4),
+            Param::Spp => (1.0, f64::from(MAX_SAMPLES)),
+            Param::Depth => (0.0, f64::from(MAX_DEPTH)),
+            Param::LightSize | Param::Aperture => (0.0, f64::from(f32::MAX)),
+            Param::Resolution => (1.0, f64::from(MAX_IMAGE_SIDE)),
+            Param::Level => (0.0, f64::from(u32::MAX)),
+        };
+        if !(low..=high).contains(&value) {
+            let range = match self {
+                Param::GridM => "above 0, at most 10000".to_string(),
+                Param::LightSize | Param::Aperture => "0 or more".to_string(),
+                _ => format!("{} to {}", values::format(low), values::format(high)),
+            };
+            return Err(format!("{name} {shown} is out of range ({range})"));
+        }
+        Ok(())
+    }
+
+    /// `settings` with this parameter at `value`, and the feature it
+    /// belongs to turned on (anti-aliasing for N, soft shadows for the
+    /// light size, depth of field for a non-zero aperture). A level is not
+    /// a render setting: it leaves `settings` alone.
+    pub fn apply(self, settings: &mut RenderSettings, value: f64) {
+        match self {
+            Param::GridM => settings.grid_multiplier = value as f32,
+            Param::Spp => {
+                settings.antialiasing = true;
+                settings.samples = value as u32;
+            }
+            Param::Depth => settings.max_depth = value as u32,
+            Param::LightSize => {
+                settings.soft_shadows = true;
+                settings.light_size = value as f32;
+            }
+            Param::Aperture => {
+                settings.aperture = value as f32;
+                settings.depth_of_field = value > 0.0;
+            }
+            Param::Resolution => {
+                let aspect = f64::from(settings.height) / f64::from(settings.width.max(1));
+                settings.width = value as u32;
+                settings.height = ((value * aspect).round() as u32).max(1);
+            }
+            Param::Level => {}
+        }
+    }
+
+    /// Values worth a first look, as the values syntax writes them.
+    pub fn default_values(self, base: &RenderSettings) -> String {
+        match self {
+            Param::GridM => "0.25..8:x2".into(),
+            Param::Spp => "1..6".into(),
+            Param::Depth => "0..6".into(),
+            Param::LightSize => [0.25, 0.5, 1.0, 2.0, 4.0]
+                .map(|f| format!("{:.3}", f64::from(base.light_size) * f))
+                .map(|v| values::format(v.parse().unwrap_or_default()))
+                .join(","),
+            Param::Aperture => "0..16:4".into(),
+            Param::Resolution => "64..512:x2".into(),
+            Param::Level => "1..4".into(),
+        }
+    }
+
+    /// The structures a study of this parameter measures unless told:
+    /// the grid for its multiplier, all three for scaling, else `current`.
+    pub fn default_structures(self, current: AccelKind) -> Vec<AccelKind> {
+        match self {
+            Param::GridM => vec![AccelKind::Grid],
+            Param::Level => vec![AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
+            _ => vec![current],
+        }
+    }
+}
+
+impl fmt::Display for Param {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Param {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Param::ALL
+            .into_iter()
+            .find(|p| p.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| {
+                let names: Vec<&str> = Param::ALL.iter().map(|p| p.name()).collect();
+                format!(
+                    "unknown parameter `{s}` (expected one of {})",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+/// What a study renders.
+pub enum Subject {
+    /// One scene, with the settings every point starts from.
+    Scene {
+        world: Arc<World>,
+        base: RenderSettings,
+    },
+    /// The level study: a built-in generator's scene at each level, with
+    /// the settings each generated scene gets.
+    Generated {
+        generator: GeneratorName,
+        seed: u64,
+        settings: Box<dyn Fn(&Scene) -> RenderSettings + Send>,
+    },
+}
+
+/// A study: which parameter, which values, which structures, how measured.
+#[derive(Debug, Clone)]
+pub struct Study {
+    pub param: Param,
+    /// Ascending (see [`values::parse`]).
+    pub values: Vec<f64>,
+    pub structures: Vec<AccelKind>,
+    pub options: RunOptions,
+    pub encoding: Encoding,
+    /// N of the `spp` study's reference; `None`: twice the largest N.
+    pub reference_samples: Option<u32>,
+}
+
+impl Study {
+    /// How many points it measures.
+    pub fn len(&self) -> usize {
+        self.values.len() * self.structures.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The points in the order they are measured: structure by structure
+    /// over one scene (each structure's built ones are kept), level by
+    /// level for generated scenes (each level is generated once).
+    pub fn plan(&self) -> Vec<(AccelKind, f64)> {
+        let mut plan = Vec::new();
+        if self.param == Param::Level {
+            for &value in &self.values {
+                plan.extend(self.structures.iter().map(|&a| (a, value)));
+            }
+        } else {
+            for &accel in &self.structures {
+                plan.extend(self.values.iter().map(|&v| (accel, v)));
+            }
+        }
+        plan
+    }
+
+    /// N of the reference image of the `spp` study.
+    pub fn reference_samples(&self) -> u32 {
+        self.reference_samples.unwrap_or_else(|| {
+            let largest = self.values.iter().copied().fold(1.0, f64::max) as u32;
+            (2 * largest).min(MAX_SAMPLES)
+        })
+    }
+
+    /// Refuses a study that cannot run, before anything is rendered.
+    pub fn check(&self, subject: &Subject) -> Result<()> {
+        if self.values.is_empty() {
+            bail!("the study has no values");
+        }
+        if self.structures.is_empty() {
+            bail!("the study has no structures");
+        }
+        for &value in &self.values {
+            self.param.check(value).map_err(anyhow::Error::msg)?;
+        }
+        match subject {
+            Subject::Scene { base, .. } => {
+                if self.param == Param::Level {
+                    bail!(
+                        "the level study sweeps a generated scene: give a generator, not a scene"
+                    );
+                }
+                for (accel, value) in self.plan() {
+                    let settings = point_settings(base, self.param, accel, value);
+                    settings
+                        .validate()
+                        .with_context(|| format!("{} = {}", self.param, values::format(value)))?;
+                }
+            }
+            Subject::Generated { generator, .. } => {
+                if self.param != Param::Level {
+                    bail!(
+                        "a generated scene is swept by level; for {} give a scene file",
+                        self.param
+                    );
+                }
+                let range = generate::level_range(*generator);
+                if let Some(bad) = self.values.iter().find(|&&v| !range.contains(&(v as u32))) {
+                    bail!(
+                        "{generator} has levels {}..={}, not {}",
+                        range.start(),
+                        range.end(),
+                        values::format(*bad)
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The settings of one point.
+fn point_settings(
+    base: &RenderSettings,
+    param: Param,
+    accel: AccelKind,
+    value: f64,
+) -> RenderSettings {
+    let mut settings = RenderSettings {
+        accel,
+        ..base.clone()
+    };
+    param.apply(&mut settings, value);
+    settings
+}
+
+fn point_case(study: &Study, base: &RenderSettings, accel: AccelKind, value: f64) -> Case {
+    Case {
+        label: format!(
+            "{} {} = {}",
+            accel.name(),
+            study.param,
+            values::format(value)
+        ),
+        settings: point_settings(base, study.param, accel, value),
+        encoding: study.encoding,
+    }
+}
+
+/// One measured point.
+#[derive(Debug, Clone)]
+pub struct Point {
+    /// The parameter's value.
+    pub value: f64,
+    /// Where it goes on the x axis: the value, or the primitive count for
+    /// the level study.
+    pub x: f64,
+    /// Primitives of the scene rendered.
+    pub primitives: usize,
+    pub measurement: Measurement,
+    /// The image's error against the reference (the `spp` study).
+    pub error: Option<Metrics>,
+}
+
+impl Point {
+    pub fn accel(&self) -> AccelKind {
+        self.measurement.case.settings.accel
+    }
+
+    /// The median frame time in milliseconds.
+    pub fn frame_ms(&self) -> f64 {
+        self.measurement.median().as_secs_f64() * 1e3
+    }
+}
+
+/// The `spp` study's reference image.
+#[derive(Debug, Clone)]
+pub struct Reference {
+    pub samples: u32,
+    pub image: RgbImage,
+}
+
+/// What a study reports while it works.
+#[derive(Debug)]
+pub enum StudyEvent<'a> {
+    /// Work before the points: generating a level's scene, rendering the
+    /// reference; `fraction` (0..=1) of it done.
+    Preparing { what: &'a str, fraction: f32 },
+    /// Frame `run` of point `point` (in [`Study::plan`] order) is
+    /// `fraction` done.
+    Rendering {
+        point: usize,
+        run: usize,
+        fraction: f32,
+    },
+    /// Point `point` is measured.
+    Measured { point: usize, result: &'a Point },
+}
+
+/// The points measured, and whether the study stopped early.
+#[derive(Debug, Clone, Default)]
+pub struct StudyOutcome {
+    pub points: Vec<Point>,
+    pub cancelled: bool,
+    pub reference: Option<Reference>,
+}
+
+/// Measures every point of `study` on `subject`, in [`Study::plan`] order,
+/// reusing each built structure for all points that trace against it.
+/// `stop` ends it early with the points measured so far. Blocks.
+pub fn run(
+    study: &Study,
+    subject: &Subject,
+    stop: Stop,
+    on_event: &mut dyn FnMut(StudyEvent),
+) -> Result<StudyOutcome> {
+    study.check(subject)?;
+    match subject {
+        Subject::Scene { world, base } => run_scene(study, world, base, stop, on_event),
+        Subject::Generated {
+            generator,
+            seed,
+            settings,
+        } => run_levels(study, *generator, *seed, settings, stop, on_event),
+    }
+}
+
+/// Forwards the runner's events of `cases` (points `first..`) as study
+/// events, turning each measurement into a point.
+struct Forward<'a> {
+    first: usize,
+    x: Option<f64>,
+    primitives: usize,
+    values: Vec<f64>,
+    reference: Option<&'a RgbImage>,
+    points: &'a mut Vec<Point>,
+}
+
+impl Forward<'_> {
+    fn event(&mut self, event: Event, on_event: &mut dyn FnMut(StudyEvent)) {
+        match event {
+            Event::Rendering {
+                case,
+                run,
+                fraction,
+            } => on_event(StudyEvent::Rendering {
+                point: self.first + case,
+                run,
+                fraction,
+            }),
+            Event::Measured { case, measurement } => {
+                let value = self.values[case];
+                let error = self.reference.and_then(|reference| {
+                    compare::measure(&measurement.image, reference, Heatmap::Flip)
+                        .ok()
+                        .map(|(metrics, _)| metrics)
+                });
+                let point = Point {
+                    value,
+                    x: self.x.unwrap_or(value),
+                    primitives: self.primitives,
+                    measurement: measurement.clone(),
+                    error,
+                };
+                on_event(StudyEvent::Measured {
+                    point: self.first + case,
+                    result: &point,
+                });
+                self.points.push(point);
+            }
+        }
+    }
+}
+
+fn run_scene(
+    study: &Study,
+    world: &Arc<World>,
+    base: &RenderSettings,
+    stop: Stop,
+    on_event: &mut dyn FnMut(StudyEvent),
+) -> Result<StudyOutcome> {
+    let mut structures = Structures::default();
+    let mut outcome = StudyOutcome::default();
+    let one_frame = RunOptions {
+        runs: 1,
+        ..study.options
+    };
+    if study.param == Param::Spp {
+        let samples = study.reference_samples();
+        let what = format!("reference image, N = {samples}");
+        // The image does not depend on the structure: use the first one,
+        // so it is built once for the reference and the points.
+        let case = point_case(study, base, study.structures[0], f64::from(samples));
+        let reference = benchmark::run_with(
+            world,
+            &[case],
+            one_frame,
+            &mut structures,
+            stop,
+            &mut |event| {
+                if let Event::Rendering { fraction, .. } = event {
+                    on_event(StudyEvent::Preparing {
+                        what: &what,
+                        fraction,
+                    });
+                }
+            },
+        )?;
+        match reference.measurements.into_iter().next() {
+            Some(m) if !reference.cancelled => {
+                outcome.reference = Some(Reference {
+                    samples,
+                    image: m.image,
+                })
+            }
+            _ => {
+                outcome.cancelled = true;
+                return Ok(outcome);
+            }
+        }
+    }
+    let reference = outcome.reference.as_ref().map(|r| &r.image);
+    for (i, &accel) in study.structures.iter().enumerate() {
+        let cases: Vec<Case> = study
+            .values
+            .iter()
+            .map(|&v| point_case(study, base, accel, v))
+            .collect();
+        let mut forward = Forward {
+            first: i * study.values.len(),
+            x: None,
+            primitives: world.counts.primitives,
+            values: study.values.clone(),
+            reference,
+            points: &mut outcome.points,
+        };
+        let measured = benchmark::run_with(
+            world,
+            &cases,
+            study.options,
+            &mut structures,
+            stop,
+            &mut |event| forward.event(event, on_event),
+        )?;
+        if measured.cancelled {
+            outcome.cancelled = true;
+            break;
+        }
+    }
+    Ok(outcome)
+}
+
+fn run_levels(
+    study: &Study,
+    generator: GeneratorName,
+    seed: u64,
+    settings: &dyn Fn(&Scene) -> RenderSettings,
+    stop: Stop,
+    on_event: &mut dyn FnMut(StudyEvent),
+) -> Result<StudyOutcome> {
+    let mut outcome = StudyOutcome::default();
+    for (i, &level) in study.values.iter().enumerate() {
+        if stop.now.load(Ordering::Relaxed) || stop.after_frame.load(Ordering::Relaxed) {
+            outcome.cancelled = true;
+            break;
+        }
+        let what = format!("generating {generator} level {}", values::format(level));
+        on_event(StudyEvent::Preparing {
+            what: &what,
+            fraction: 0.0,
+        });
+        let options = GenerateOptions {
+            level: level as u32,
+            seed,
+        };
+        let scene = generate::generate(generator, &options)?;
+        let world = Arc::new(World::build(&scene));
+        let base = settings(&scene);
+        let cases: Vec<Case> = study
+            .structures
+            .iter()
+            .map(|&accel| point_case(study, &base, accel, level))
+            .collect();
+        let mut forward = Forward {
+            first: i * study.structures.len(),
+            x: Some(world.counts.primitives as f64),
+            primitives: world.counts.primitives,
+            values: vec![level; cases.len()],
+            reference: None,
+            points: &mut outcome.points,
+        };
+        // A new world: its structures are built once each, here.
+        let measured = benchmark::run_with(
+            &world,
+            &cases,
+            study.options,
+            &mut Structures::default(),
+            stop,
+            &mut |event| forward.event(event, on_event),
+        )
+        .with_context(|| format!("{generator} level {}", values::format(level)))?;
+        if measured.cancelled {
+            outcome.cancelled = true;
+            break;
+        }
+    }
+    Ok(outcome)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,190 @@
+//! A study as a table (aligned text, Markdown, CSV, JSON) with one row per
+//! (structure, value), and a summary in words of what it shows.
+
+use std::time::Duration;
+
+use super::analysis::{self, Best};
+use super::{Param, Point, values};
+use crate::measure::bench_report::{self, Format};
+use crate::report::si;
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// The headers and the readable cells of every row, as the text table
+/// has them (the window's table shows the same).
+pub fn rows(param: Param, points: &[Point]) -> (Vec<String>, Vec<Vec<String>>) {
+    cells(param, points, false)
+}
+
+/// The headers and the (pretty or raw) cells of every row.
+fn cells(param: Param, points: &[Point], raw: bool) -> (Vec<String>, Vec<Vec<String>>) {
+    let best = analysis::best(param, points);
+    let with_error = points.iter().any(|p| p.error.is_some());
+    let mut headers = vec!["accel".to_string(), param.name().to_string()];
+    if param == Param::Level {
+        headers.push("primitives".into());
+    }
+    headers.extend(
+        [
+            "build ms",
+            "frame ms",
+            "min..max ms",
+            "runs",
+            "rays",
+            "rays/s",
+            "tests/ray",
+            "steps/ray",
+        ]
+        .map(String::from),
+    );
+    if with_error {
+        headers.extend(["MSE", "PSNR dB", "FLIP"].map(String::from));
+    }
+    if !best.is_empty() {
+        headers.push("best".into());
+    }
+    let rows = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let m = &p.measurement;
+            let (digits, ratio) = if raw { (3, 4) } else { (1, 2) };
+            let mut row = vec![p.accel().name().to_string(), values::format(p.value)];
+            if param == Param::Level {
+                row.push(p.primitives.to_string());
+            }
+            row.extend([
+                format!("{:.digits$}", ms(m.index.build_time)),
+                format!("{:.digits$}", ms(m.median())),
+                format!("{:.digits$}..{:.digits$}", ms(m.min()), ms(m.max())),
+                m.times.len().to_string(),
+                if raw {
+                    m.rays().to_string()
+                } else {
+                    si(m.rays() as f64)
+                },
+                if raw {
+                    format!("{:.0}", m.rays_per_second())
+                } else {
+                    si(m.rays_per_second())
+                },
+                format!("{:.ratio$}", m.tests_per_ray()),
+                format!("{:.ratio$}", m.steps_per_ray()),
+            ]);
+            if with_error {
+                row.extend(match p.error {
+                    Some(e) => [
+                        format!("{:.ratio$}", e.mse),
+                        format!("{:.ratio$}", e.psnr),
+                        format!("{:.4}", e.flip),
+                    ],
+                    None => ["", "", ""].map(String::from),
+                });
+            }
+            if !best.is_empty() {
+                row.push(match best.iter().find(|(b, _)| *b == i) {
+                    Some((_, Best::Fastest)) => "fastest".into(),
+                    Some((_, Best::Knee)) => "knee".into(),
+                    None => String::new(),
+                });
+            }
+            row
+        })
+        .collect();
+    (headers, rows)
+}
+
+/// The points in `format`, in measuring order.
+pub fn table(param: Param, points: &[Point], format: Format) -> String {
+    match format {
+        Format::Text => {
+            let (headers, rows) = cells(param, points, false);
+            bench_report::text(&headers, &rows)
+        }
+        Format::Markdown => {
+            let (headers, rows) = cells(param, points, false);
+            bench_report::markdown(&headers, &rows)
+        }
+        Format::Csv => {
+            let (headers, rows) = cells(param, points, true);
+            bench_report::csv(&headers, &rows)
+        }
+        Format::Json => json(param, points),
+    }
+}
+
+/// Every point with its numbers, times in seconds.
+fn json(param: Param, points: &[Point]) -> String {
+    let best = analysis::best(param, points);
+    let secs = |d: Duration| d.as_secs_f64();
+    let rows: Vec<serde_json::Value> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let m = &p.measurement;
+            serde_json::json!({
+                "accel": p.accel().name(),
+                "param": param.name(),
+                "value": p.value,
+                "x": p.x,
+                "primitives": p.primitives,
+                "width": m.case.settings.width,
+                "height": m.case.settings.height,
+                "samples_per_pixel": m.case.settings.samples_per_pixel(),
+                "runs": m.times.len(),
+                "seconds": m.times.iter().map(|&t| secs(t)).collect::<Vec<_>>(),
+                "median_seconds": secs(m.median()),
+                "min_seconds": secs(m.min()),
+                "max_seconds": secs(m.max()),
+                "build_seconds": secs(m.index.build_time),
+                "memory_bytes": m.index.memory_bytes,
+                "rays": m.rays(),
+                "rays_per_second": m.rays_per_second(),
+                "tests_per_ray": m.tests_per_ray(),
+                "steps_per_ray": m.steps_per_ray(),
+                "mse": p.error.map(|e| e.mse),
+                "psnr": p.error.map(|e| e.psnr).filter(|v| v.is_finite()),
+                "flip": p.error.map(|e| e.flip),
+                "best": best.iter().any(|(b, _)| *b == i),
+            })
+        })
+        .collect();
+    serde_json::to_string_pretty(&rows).unwrap_or_default() + "\n"
+}
+
+/// One line per structure saying what the study found: the best value
+/// (with its time), or for the level study the log-log slope.
+pub fn summary(param: Param, points: &[Point]) -> Vec<String> {
+    if param == Param::Level {
+        return analysis::structures(points)
+            .into_iter()
+            .filter_map(|accel| {
+                analysis::slope(points, accel).map(|s| {
+                    format!(
+                        "{}: frame time grows as primitives^{s:.2} (log-log slope)",
+                        accel.name()
+                    )
+                })
+            })
+            .collect();
+    }
+    analysis::best(param, points)
+        .into_iter()
+        .map(|(i, why)| {
+            let p = &points[i];
+            let what = match why {
+                Best::Fastest => "fastest",
+                Best::Knee => "knee of error vs time",
+            };
+            format!(
+                "{}: {what} at {} = {} ({:.1} ms)",
+                p.accel().name(),
+                param,
+                values::format(p.value),
+                p.frame_ms()
+            )
+        })
+        .collect()
+}

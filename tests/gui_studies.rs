@@ -1,0 +1,182 @@
+//! The Studies window driven as a user would, with `egui_kittest`: open it
+//! by its key, type values, run, watch the progress, cancel, run again,
+//! hover a point of the chart and apply points to the main view.
+
+use std::thread::sleep;
+use std::time::{Duration, Instant};
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use tracer::accel::AccelKind;
+use workbench::gui::WorkbenchApp;
+use workbench::load::SceneSource;
+
+/// A guard against hanging on a slow machine, never a measure of speed.
+const PATIENCE: Duration = Duration::from_secs(300);
+
+type Window = Harness<'static, WorkbenchApp>;
+
+/// The window on the bundled `balls_low` at an eighth of its size, with
+/// the Studies window open.
+fn studies_window() -> Window {
+    let mut harness = Harness::builder()
+        .with_size([1280.0, 900.0])
+        .build_eframe(|cc| {
+            WorkbenchApp::new(
+                &cc.egui_ctx,
+                None,
+                Some(SceneSource::Bundled("balls_low".into())),
+            )
+        });
+    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    step_until(&mut harness, "the scene", |app| {
+        app.engine().settings().is_some()
+    });
+    harness.key_press(egui::Key::P);
+    harness.run_steps(3);
+    assert!(harness.state().studies().open);
+    harness
+}
+
+fn step_until(harness: &mut Window, what: &str, done: impl Fn(&WorkbenchApp) -> bool) {
+    let start = Instant::now();
+    while !done(harness.state()) {
+        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
+        harness.step();
+        sleep(Duration::from_millis(5));
+    }
+}
+
+/// Replaces the values text, as typing over a selection does.
+fn type_values(harness: &mut Window, text: &str) {
+    harness
+        .get_by_role_and_label(Role::TextInput, "values")
+        .focus();
+    harness.run_steps(2);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness
+        .get_by_role_and_label(Role::TextInput, "values")
+        .type_text(text);
+    harness.run_steps(2);
+}
+
+fn choose(harness: &mut Window, combo: &str, option: &str) {
+    harness.get_by_role_and_label(Role::ComboBox, combo).click();
+    harness.run_steps(2);
+    harness.get_by_label(option).click();
+    harness.run_steps(2);
+}
+
+#[test]
+fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
+    let mut harness = studies_window();
+    // A slow study first (brute force on thousands of spheres), to cancel.
+    choose(&mut harness, "parameter", "level");
+    type_values(&mut harness, "4..5");
+    harness
+        .get_by_role_and_label(Role::CheckBox, "grid")
+        .click();
+    harness.get_by_role_and_label(Role::CheckBox, "bvh").click();
+    harness.run_steps(2);
+    harness.get_by_role_and_label(Role::Button, "Run").click();
+    harness.run_steps(2);
+    assert!(harness.state().studies().is_running());
+    step_until(&mut harness, "progress", |app| {
+        app.studies()
+            .progress()
+            .is_some_and(|(_, what)| what.contains("none"))
+    });
+    harness
+        .get_by_role_and_label(Role::Button, "Cancel")
+        .click();
+    step_until(&mut harness, "the cancel", |app| {
+        !app.studies().is_running()
+    });
+    let studies = harness.state().studies();
+    assert!(studies.points().count() < 2);
+    assert!(
+        studies.message().unwrap().contains("cancelled"),
+        "{:?}",
+        studies.message()
+    );
+
+    // Bad values are refused with the reason, and nothing runs.
+    choose(&mut harness, "parameter", "grid-m");
+    type_values(&mut harness, "1..x");
+    harness.get_by_role_and_label(Role::Button, "Run").click();
+    harness.run_steps(2);
+    assert!(!harness.state().studies().is_running());
+    let message = harness.state().studies().message().unwrap().to_string();
+    assert!(message.contains("`x` in `1..x`"), "{message}");
+
+    // A quick grid-m study to the end: one point per value, on the grid.
+    type_values(&mut harness, "1,3,4");
+    harness.get_by_role_and_label(Role::Button, "Run").click();
+    step_until(&mut harness, "the study", |app| {
+        !app.studies().is_running() && app.studies().points().count() > 0
+    });
+    let m: Vec<f64> = harness
+        .state()
+        .studies()
+        .points()
+        .map(|p| p.value)
+        .collect();
+    assert_eq!(m, [1.0, 3.0, 4.0]);
+    assert!(
+        harness
+            .state()
+            .studies()
+            .points()
+            .all(|p| p.accel() == AccelKind::Grid)
+    );
+    harness.run_steps(2);
+
+    // Hovering a point of the chart shows its numbers; clicking it shows
+    // its settings in the main view. The points sit above the table's
+    // header, where their times put them: look for one.
+    let header = harness.get_by_label("accel").rect();
+    let hint = "click to show it in the main view";
+    let mut on_point = None;
+    'scan: for up in (40..=260).step_by(10) {
+        for x in (0..=800).step_by(10) {
+            let pos = egui::pos2(x as f32, header.top() - up as f32);
+            harness.hover_at(pos);
+            harness.step();
+            if harness.query_by_label(hint).is_some() {
+                on_point = Some(pos);
+                break 'scan;
+            }
+        }
+    }
+    let pos = on_point.expect("a point of the chart shows its numbers when hovered");
+    for pressed in [true, false] {
+        harness.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        harness.step();
+    }
+    step_until(&mut harness, "the clicked point's settings", |app| {
+        app.engine().settings().is_some_and(|s| {
+            s.accel == AccelKind::Grid && [1.0, 3.0, 4.0].contains(&s.grid_multiplier)
+        })
+    });
+    let clicked = harness.state().engine().settings().unwrap().grid_multiplier;
+
+    // Apply on a row does the same: take a row of another value.
+    let row = if clicked == 1.0 { 2 } else { 0 };
+    let wanted = [1.0, 3.0, 4.0][row];
+    harness
+        .get_all_by_role_and_label(Role::Button, "Apply")
+        .nth(row)
+        .unwrap()
+        .click();
+    step_until(&mut harness, "the row's settings", |app| {
+        app.engine()
+            .settings()
+            .is_some_and(|s| s.grid_multiplier == wanted)
+    });
+}

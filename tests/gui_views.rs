@@ -1,0 +1,203 @@
+//! The window's views, driven as a user would with `egui_kittest`: the view
+//! selector and its key, the scale shared by both sides of a comparison.
+
+use std::thread::sleep;
+use std::time::{Duration, Instant};
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use tracer::render::{JobState, View};
+use workbench::gui::{Activity, WorkbenchApp};
+use workbench::load::SceneSource;
+
+/// Only a guard against hanging, never a measure of speed.
+const PATIENCE: Duration = Duration::from_secs(180);
+
+fn window() -> Harness<'static, WorkbenchApp> {
+    let mut harness = Harness::builder()
+        .with_size([1280.0, 1400.0])
+        .build_eframe(|cc| {
+            WorkbenchApp::new(
+                &cc.egui_ctx,
+                None,
+                Some(SceneSource::Bundled("balls_low".into())),
+            )
+        });
+    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    wait_for(&mut harness, "the scene to load", |app| {
+        app.engine().settings().is_some()
+    });
+    harness
+}
+
+fn wait_for(
+    harness: &mut Harness<'static, WorkbenchApp>,
+    what: &str,
+    done: impl Fn(&WorkbenchApp) -> bool,
+) {
+    let start = Instant::now();
+    loop {
+        harness.step();
+        if done(harness.state()) {
+            return;
+        }
+        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
+        sleep(Duration::from_millis(5));
+    }
+}
+
+fn done(app: &WorkbenchApp) -> bool {
+    let finished = |e: &workbench::gui::Engine| e.activity() == Activity::Job(JobState::Done);
+    finished(app.engine()) && app.comparison().is_none_or(|c| finished(&c.engine))
+}
+
+#[test]
+fn the_view_selector_makes_the_render_measure_the_chosen_view() {
+    let mut harness = window();
+    wait_for(&mut harness, "the shaded render", done);
+    // The plain render measures nothing.
+    assert_eq!(
+        harness.state().engine().view_value(View::Tests, 10, 10),
+        None
+    );
+
+    harness.get_by_role_and_label(Role::Button, "tests").click();
+    harness.run_steps(3);
+    assert_eq!(harness.state().views().view, View::Tests);
+    wait_for(&mut harness, "the render with views", |app| {
+        done(app) && app.engine().view_value(View::Tests, 10, 10).is_some()
+    });
+    wait_for(&mut harness, "the summary", |app| {
+        app.views().summary(0).is_some()
+    });
+    // The panel draws before the frame's new numbers arrive: one more frame.
+    harness.run_steps(2);
+    let summary = *harness.state().views().summary(0).unwrap();
+    assert!(
+        summary.mean > 0.0 && summary.max >= summary.p99,
+        "{summary:?}"
+    );
+    // The panel shows the numbers and the scale's choices.
+    harness.get_by_label_contains("mean");
+    harness.get_by_role_and_label(Role::Button, "p99").click();
+    harness.run_steps(3);
+    assert_eq!(
+        harness.state().views().scale,
+        tracer::render::HeatScale::P99
+    );
+
+    // V cycles through every view and back to the shaded image.
+    for expected in View::ALL.iter().skip(2).chain(&View::ALL[..1]) {
+        harness.key_press(egui::Key::V);
+        harness.run_steps(2);
+        assert_eq!(harness.state().views().view, *expected);
+    }
+}
+
+#[test]
+fn both_sides_of_a_comparison_read_on_one_scale() {
+    let mut harness = window();
+    harness.key_press(egui::Key::B);
+    harness.run_steps(3);
+    harness.key_press(egui::Key::G);
+    harness.get_by_role_and_label(Role::Button, "tests").click();
+    wait_for(&mut harness, "both sides' views", |app| {
+        done(app) && app.views().summary(0).is_some() && app.views().summary(1).is_some()
+    });
+    harness.run_steps(2);
+    let app = harness.state();
+    let (a, b) = (
+        app.views().summary(0).unwrap(),
+        app.views().summary(1).unwrap(),
+    );
+    // One scale: the larger maximum of the two sides.
+    let top = app.views().heat().unwrap().top;
+    assert_eq!(top, a.max.max(b.max));
+    harness.get_by_label_contains("A: mean");
+    harness.get_by_label_contains("B: mean");
+}
+
+fn shadow_rays(tree: &tracer::render::RayTree) -> usize {
+    tree.nodes
+        .iter()
+        .filter(|n| n.kind == tracer::render::RayKind::Shadow)
+        .count()
+}
+
+#[test]
+fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
+    let mut harness = window();
+    wait_for(&mut harness, "the render", done);
+    // A click on the image pins the pixel under it (the centre here).
+    harness.get_by_role_and_label(Role::Image, "Render").click();
+    wait_for(&mut harness, "the tree", |app| {
+        matches!(app.inspector().tree(0), Some(Ok(_)))
+    });
+    harness.run_steps(2);
+    let pinned = harness.state().inspector().pinned.expect("a pinned pixel");
+    let settings = harness.state().engine().settings().unwrap().clone();
+    assert!(pinned.0 < settings.width && pinned.1 < settings.height);
+    harness.get_by_label_contains("eye (depth 0)");
+    harness.get_by_label_contains("contributions add up to");
+    // The paths are drawn over the image: at least the eye ray.
+    assert!(harness.state().inspector().paths_drawn >= 1);
+    let Some(Ok(tree)) = harness.state().inspector().tree(0) else {
+        unreachable!()
+    };
+    let colour = tree.colour;
+    assert!((tree.contributions() - colour).abs().max_element() < 1e-4);
+
+    // Another pixel, and soft shadows: the tree is recorded again.
+    harness.state_mut().inspect((20, 30));
+    harness.key_press(egui::Key::S);
+    wait_for(&mut harness, "the new tree", |app| {
+        let soft = app.engine().settings().is_some_and(|s| s.soft_shadows);
+        soft && matches!(app.inspector().tree(0), Some(Ok(t)) if (t.x, t.y) == (20, 30) && shadow_rays(t) > 0)
+    });
+    let Some(Ok(tree)) = harness.state().inspector().tree(0) else {
+        unreachable!()
+    };
+    assert!((tree.contributions() - tree.colour).abs().max_element() < 1e-4);
+    assert_ne!(tree.colour, colour, "another pixel, other settings");
+
+    // Compare mode inspects the same pixel on both sides.
+    harness.key_press(egui::Key::B);
+    wait_for(
+        &mut harness,
+        "B's tree",
+        |app| matches!(app.inspector().tree(1), Some(Ok(t)) if (t.x, t.y) == (20, 30)),
+    );
+    harness.run_steps(2);
+    let eyes = harness.get_all_by_label_contains("eye (depth 0)").count();
+    assert_eq!(eyes, 2, "A's tree and B's");
+}
+
+#[test]
+fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
+    let mut harness = window();
+    wait_for(&mut harness, "the render", done);
+    assert_eq!(harness.state().overlay().segments(), 0);
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    wait_for(&mut harness, "the root box", |app| {
+        app.overlay().segments() == 12
+    });
+    harness
+        .get_by_role_and_label(Role::CheckBox, "leaves")
+        .click();
+    wait_for(&mut harness, "the leaves", |app| {
+        app.overlay().segments() > 12
+    });
+    // The grid: its box and lattice, once its structure is built.
+    harness.key_press(egui::Key::G);
+    wait_for(&mut harness, "the grid's lattice", |app| {
+        done(app) && app.overlay().segments() > 24
+    });
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().overlay().segments(), 0);
+}

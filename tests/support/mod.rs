@@ -1,0 +1,69 @@
+//! What the window's kittest suites share: waiting on the window, and the
+//! broken scene a user drops on it.
+
+use std::path::{Path, PathBuf};
+use std::thread::sleep;
+use std::time::{Duration, Instant};
+
+use egui_kittest::{Harness, HarnessBuilder};
+use workbench::gui::WorkbenchApp;
+use workbench::load::SceneSource;
+
+/// Long enough for any render in these tests on a slow CI machine; only a
+/// guard against hanging, never a measure of speed.
+pub const PATIENCE: Duration = Duration::from_secs(180);
+
+/// The window (1280 x 820) on the bundled `balls_low` at 1/8 of its
+/// resolution, 64 x 64, so renders are quick.
+pub fn small_window(builder: HarnessBuilder<WorkbenchApp>) -> Harness<'static, WorkbenchApp> {
+    let mut harness = builder.with_size([1280.0, 820.0]).build_eframe(|cc| {
+        WorkbenchApp::new(
+            &cc.egui_ctx,
+            None,
+            Some(SceneSource::Bundled("balls_low".into())),
+        )
+    });
+    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    harness
+}
+
+/// Steps the window until `done` holds (the render runs on other threads).
+pub fn wait_for(
+    harness: &mut Harness<'static, WorkbenchApp>,
+    what: &str,
+    done: impl Fn(&WorkbenchApp) -> bool,
+) {
+    let start = Instant::now();
+    loop {
+        harness.step();
+        if done(harness.state()) {
+            return;
+        }
+        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
+        sleep(Duration::from_millis(5));
+    }
+}
+
+/// Writes a scene whose line 5, column 7 is wrong, in a folder of its own
+/// named after `test`.
+pub fn broken_scene(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("workbench-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("broken.p3f");
+    std::fs::write(&path, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
+    path
+}
+
+/// A file dropped on the window, as the native integration delivers it.
+#[derive(Debug)]
+pub struct DroppedPath(pub PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}

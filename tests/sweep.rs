@@ -1,0 +1,271 @@
+//! `workbench sweep` end to end: a tiny grid-m study as CSV with its
+//! chart, the level study on small levels, the spp study's error columns,
+//! bad input, and Ctrl-C keeping what was measured.
+
+mod common;
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use common::{scratch, workbench, write};
+
+/// Two spheres on a floor under a point light.
+const SCENE: &str = "\
+v
+from 0 -7 2.5
+at 0 0 0.8
+up 0 0 1
+angle 40
+hither 0.01
+resolution 48 32
+l 4 -3 6 1 1 1
+f 0.7 0.7 0.7 1 1 1 1 0.1 10 0 1
+p 4
+-6 -6 0  6 -6 0  6 6 0  -6 6 0
+f 0.9 0.2 0.1 0.8 1 1 1 0.3 40 0.5 1
+s -1 1 1 1
+s 1.2 -1 0.8 0.8
+";
+
+fn scene(dir: &Path) -> PathBuf {
+    write(dir, "scene.p3f", SCENE)
+}
+
+/// stdout of a run that must succeed.
+fn ok(args: &[&str]) -> String {
+    let run = workbench(args);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8(run.stdout).unwrap()
+}
+
+/// stderr of a run that must fail.
+fn fails(args: &[&str]) -> String {
+    let run = workbench(args);
+    assert!(!run.status.success(), "{args:?} should fail");
+    String::from_utf8(run.stderr).unwrap()
+}
+
+#[test]
+fn a_grid_m_sweep_prints_a_csv_row_per_point_and_draws_the_chart() {
+    let dir = scratch("sweep-grid-m");
+    let scene = scene(&dir);
+    let chart = dir.join("chart.png");
+    let csv = ok(&[
+        "sweep",
+        scene.to_str().unwrap(),
+        "--param",
+        "grid-m",
+        "--values",
+        "0.5..2:x2",
+        "--structures",
+        "grid,bvh",
+        "--runs",
+        "2",
+        "--format",
+        "csv",
+        "--plot",
+        chart.to_str().unwrap(),
+        "--threads",
+        "1",
+    ]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "accel,grid-m,build ms,frame ms,min..max ms,runs,rays,rays/s,tests/ray,steps/ray,best"
+    );
+    assert_eq!(lines.len(), 1 + 2 * 3, "{csv}");
+    let rows: Vec<Vec<&str>> = lines[1..].iter().map(|l| l.split(',').collect()).collect();
+    let firsts: Vec<(&str, &str)> = rows.iter().map(|r| (r[0], r[1])).collect();
+    assert_eq!(
+        firsts,
+        [
+            ("grid", "0.5"),
+            ("grid", "1"),
+            ("grid", "2"),
+            ("bvh", "0.5"),
+            ("bvh", "1"),
+            ("bvh", "2")
+        ]
+    );
+    for row in &rows {
+        assert_eq!(row.len(), 11);
+        assert_eq!(row[5], "2", "two runs per point");
+        assert!(row[3].parse::<f64>().unwrap() > 0.0);
+        // Every structure traces the same rays.
+        assert_eq!(row[6], rows[0][6]);
+    }
+    // The grid's fastest m is marked (m changes nothing for the BVH).
+    let fastest: Vec<&Vec<&str>> = rows.iter().filter(|r| r[10] == "fastest").collect();
+    assert_eq!(fastest.len(), 1);
+    assert_eq!(fastest[0][0], "grid");
+    let image = image::open(&chart).unwrap().to_rgb8();
+    assert_eq!(image.dimensions(), (800, 500));
+}
+
+#[test]
+fn the_level_study_grows_a_generated_scene() {
+    let json = ok(&[
+        "sweep",
+        "--param",
+        "level",
+        "--generator",
+        "balls",
+        "--levels",
+        "0..2",
+        "--structures",
+        "none,bvh",
+        "--runs",
+        "1",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "--format",
+        "json",
+    ]);
+    let points: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    assert_eq!(points.len(), 6);
+    let primitives: Vec<u64> = points
+        .iter()
+        .map(|p| p["primitives"].as_u64().unwrap())
+        .collect();
+    assert!(primitives[0] < primitives[2] && primitives[2] < primitives[4]);
+    for p in &points {
+        assert_eq!(p["x"].as_f64().unwrap(), p["primitives"].as_f64().unwrap());
+        assert_eq!(p["width"], 16);
+    }
+    // Brute force tests more primitives per ray as the scene grows.
+    let none: Vec<f64> = points
+        .iter()
+        .filter(|p| p["accel"] == "none")
+        .map(|p| p["tests_per_ray"].as_f64().unwrap())
+        .collect();
+    assert!(none.windows(2).all(|w| w[0] < w[1]), "{none:?}");
+}
+
+#[test]
+fn the_spp_study_reports_image_error() {
+    let dir = scratch("sweep-spp");
+    let scene = scene(&dir);
+    let run = workbench(&[
+        "sweep",
+        scene.to_str().unwrap(),
+        "--param",
+        "spp",
+        "--values",
+        "1,2",
+        "--runs",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert!(run.status.success());
+    let points: Vec<serde_json::Value> = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(points.len(), 2);
+    for p in &points {
+        assert!(p["mse"].as_f64().unwrap() > 0.0, "{p}");
+        assert!(p["flip"].as_f64().unwrap() > 0.0, "{p}");
+    }
+    let stderr = String::from_utf8(run.stderr).unwrap();
+    assert!(stderr.contains("reference of N = 4"), "{stderr}");
+}
+
+#[test]
+fn bad_input_gets_a_clear_error() {
+    let dir = scratch("sweep-bad");
+    let scene = scene(&dir);
+    let scene = scene.to_str().unwrap();
+    let bad_values = fails(&["sweep", scene, "--param", "depth", "--values", "1..x"]);
+    assert!(bad_values.contains("`x` in `1..x`"), "{bad_values}");
+    let backwards = fails(&["sweep", scene, "--param", "depth", "--values", "5..1"]);
+    assert!(backwards.contains("backwards"), "{backwards}");
+    let fraction = fails(&["sweep", scene, "--param", "spp", "--values", "1.5"]);
+    assert!(fraction.contains("whole numbers"), "{fraction}");
+    let param = fails(&["sweep", scene, "--param", "speed"]);
+    assert!(param.contains("grid-m"), "{param}");
+    let level = fails(&["sweep", "--param", "level"]);
+    assert!(level.contains("--generator"), "{level}");
+    let generator = fails(&["sweep", "--param", "level", "--generator", "teapot"]);
+    assert!(
+        generator.contains("unknown generator `teapot`"),
+        "{generator}"
+    );
+    let range = fails(&[
+        "sweep",
+        "--param",
+        "level",
+        "--generator",
+        "balls",
+        "--levels",
+        "4..7",
+    ]);
+    assert!(range.contains("levels 0..=5"), "{range}");
+    let no_scene = fails(&["sweep", "--param", "grid-m"]);
+    assert!(no_scene.contains("scene file"), "{no_scene}");
+}
+
+#[test]
+fn ctrl_c_stops_after_the_frame_and_prints_what_was_measured() {
+    let dir = scratch("sweep-interrupt");
+    let scene = scene(&dir);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
+        .args([
+            "sweep",
+            scene.to_str().unwrap(),
+            "--param",
+            "depth",
+            "--values",
+            "1..8",
+            "--runs",
+            "5",
+            "--width",
+            "480",
+            "--height",
+            "320",
+            "--format",
+            "csv",
+            "--threads",
+            "1",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The header comes once Ctrl-C is caught.
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut header = String::new();
+    stderr.read_line(&mut header).unwrap();
+    assert!(header.contains("per point"), "{header}");
+    let interrupted = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(interrupted.success());
+    let mut rest = String::new();
+    stderr.read_to_string(&mut rest).unwrap();
+    let mut csv = String::new();
+    child
+        .stdout
+        .take()
+        .unwrap()
+        .read_to_string(&mut csv)
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert!(!status.success(), "an interrupted sweep must fail");
+    assert!(rest.contains("interrupted"), "{rest}");
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    // The frame under way was finished and its point printed.
+    assert!(!rows.is_empty() && rows.len() < 8, "{csv}");
+    let last_runs: usize = rows[rows.len() - 1]
+        .split(',')
+        .nth(5)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((1..=5).contains(&last_runs));
+}

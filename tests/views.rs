@@ -1,0 +1,260 @@
+//! End-to-end tests of the views: `render --view` and `compare --view`.
+
+mod common;
+
+use common::{scratch, workbench, write};
+use tracer::render::{HEAT_PALETTE, NO_VALUE};
+
+/// A red sphere on a grey slab (a box) under one light.
+const SMALL_SCENE: &str = "\
+bclr 0.1 0.2 0.4
+v from 0 -6 2 at 0 0 0.5 up 0 0 1 angle 40 hither 0.01 resolution 48 32
+l 3 -3 6 1 1 1
+f 0.6 0.6 0.6 1 1 1 1 0 10 0 1
+box -5 -5 -0.2 5 5 0
+f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
+s 0 0 1 1
+";
+
+fn run_ok(args: &[&str]) -> String {
+    let run = workbench(args);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8_lossy(&run.stdout).into_owned()
+}
+
+#[test]
+fn render_view_writes_a_heat_map_with_its_legend_and_numbers() {
+    let dir = scratch("view-tests");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let out = dir.join("tests.png");
+    let (scene, out_str) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let stdout = run_ok(&[
+        "render", scene, "-o", out_str, "--view", "tests", "--accel", "none", "--stats", "json",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let view = &json["view"];
+    assert_eq!(view["name"], "tests");
+    let number = |k: &str| view[k].as_f64().unwrap();
+    let (median, p99, max) = (number("median"), number("p99"), number("max"));
+    assert!(median > 0.0 && median <= p99 && p99 <= max, "{view}");
+    assert_eq!(number("scale_top"), max);
+    assert_eq!(view["pixels_with_value"], 48 * 32);
+    // The mean over the pixels is the render's tests per pixel.
+    let tests = json["intersection_tests"].as_f64().unwrap();
+    assert!(
+        (number("mean") - tests / (48.0 * 32.0)).abs() < 1e-3,
+        "{view}"
+    );
+
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.width(), 48);
+    assert!(img.height() > 32, "the legend goes under the image");
+    // The top-left pixel sees the sky: its eye ray tested the 2 primitives.
+    let expected = HEAT_PALETTE.colour((2.0 / max) as f32);
+    assert_eq!(img.get_pixel(0, 0), &expected);
+    // The legend bar runs over the whole palette.
+    let bar = (0..img.height())
+        .find(|&y| *img.get_pixel(47, y) == HEAT_PALETTE.colour(1.0) && y > 32)
+        .expect("a legend bar");
+    assert_eq!(img.get_pixel(0, bar), &HEAT_PALETTE.colour(0.0));
+}
+
+#[test]
+fn render_views_scale_log_and_colour_views() {
+    let dir = scratch("view-kinds");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = scene.to_str().unwrap();
+    let out = dir.join("v.png");
+    let out_str = out.to_str().unwrap();
+
+    // No structure: no steps anywhere.
+    let stdout = run_ok(&[
+        "render", scene, "-o", out_str, "--view", "steps", "--accel", "none",
+    ]);
+    assert!(
+        stdout.contains("view steps: mean 0, median 0, p99 0, max 0"),
+        "{stdout}"
+    );
+
+    // A fixed scale tops out: everything above it is the palette's end.
+    run_ok(&[
+        "render",
+        scene,
+        "-o",
+        out_str,
+        "--view",
+        "rays",
+        "--view-scale",
+        "1",
+    ]);
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.get_pixel(0, 0), &HEAT_PALETTE.colour(1.0));
+
+    // Distance: the sky has no value.
+    let stdout = run_ok(&[
+        "render", scene, "-o", out_str, "--view", "distance", "--log",
+    ]);
+    assert!(stdout.contains("(log)"), "{stdout}");
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.get_pixel(0, 0).0, NO_VALUE[..3]);
+
+    // Objects: a colour image without a legend, the sky black.
+    let stdout = run_ok(&["render", scene, "-o", out_str, "--view", "objects"]);
+    assert!(stdout.contains("view objects: colours"), "{stdout}");
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (48, 32));
+    assert_eq!(img.get_pixel(0, 0).0, [0, 0, 0]);
+    assert_ne!(
+        img.get_pixel(24, 11),
+        img.get_pixel(40, 30),
+        "sphere vs floor"
+    );
+
+    let bad = workbench(&["render", scene, "-o", out_str, "--view", "cost"]);
+    assert!(!bad.status.success());
+    let stderr = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        stderr.contains("no view 'cost'") && stderr.contains("tests, steps"),
+        "{stderr}"
+    );
+    let bad = workbench(&["render", scene, "--view", "tests", "--view-scale", "-3"]);
+    assert!(!bad.status.success());
+}
+
+#[test]
+fn compare_views_share_one_scale() {
+    let dir = scratch("view-compare");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/balls_low.p3f");
+    let out = dir.join("cmp.png");
+    let stdout = run_ok(&[
+        "compare",
+        scene,
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--a",
+        "--accel none",
+        "--b",
+        "--accel bvh",
+        "--view",
+        "tests",
+        "--format",
+        "json",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let (a, b) = (&json["view"]["a"], &json["view"]["b"]);
+    // One scale: the larger side's maximum.
+    assert_eq!(a["scale_top"], b["scale_top"]);
+    assert_eq!(a["scale_top"], a["max"]);
+    assert!(
+        a["mean"].as_f64().unwrap() > 3.0 * b["mean"].as_f64().unwrap(),
+        "{json}"
+    );
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.width(), 3 * 40 + 2 * 4);
+    assert!(img.height() > 30);
+}
+
+#[test]
+fn inspect_prints_the_ray_tree_as_json_and_as_text() {
+    let dir = scratch("inspect");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = scene.to_str().unwrap();
+    // Above the centre the eye ray meets the red sphere: object 1, after
+    // the slab.
+    let stdout = run_ok(&["inspect", scene, "--pixel", "24", "11", "--format", "json"]);
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(json["pixel"], serde_json::json!([24, 11]));
+    let nodes = json["nodes"].as_array().unwrap();
+    let eye = &nodes[0];
+    assert_eq!(eye["kind"], "eye");
+    assert_eq!(eye["parent"], serde_json::Value::Null);
+    assert_eq!(eye["outcome"]["object_kind"], "sphere");
+    assert_eq!(eye["outcome"]["object"], 1);
+    assert_eq!(eye["outcome"]["line_column"], serde_json::json!([7, 1]));
+    assert_eq!(eye["outcome"]["material"]["shine"], 40.0);
+    // A shadow ray towards the one light, and a reflection (Ks > 0).
+    let kinds: Vec<&str> = nodes.iter().map(|n| n["kind"].as_str().unwrap()).collect();
+    assert!(
+        kinds.contains(&"shadow") && kinds.contains(&"reflection"),
+        "{kinds:?}"
+    );
+    for n in &nodes[1..] {
+        let parent = n["parent"].as_u64().unwrap() as usize;
+        assert!(parent < nodes.len());
+    }
+    // The parts add up to the colour.
+    for c in 0..3 {
+        let colour = json["colour"][c].as_f64().unwrap();
+        let sum = json["sum_of_contributions"][c].as_f64().unwrap();
+        assert!((colour - sum).abs() < 1e-4, "{json}");
+    }
+
+    // The floor behind the sphere is in its shadow: blocked by the sphere.
+    let stdout = run_ok(&["inspect", scene, "--pixel", "20", "19"]);
+    assert!(
+        stdout.starts_with("pixel (20, 19), sample 0: colour"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("eye (depth 0): hit box #0"), "{stdout}");
+    assert!(
+        stdout.contains("  shadow to light 0: blocked by sphere #1"),
+        "{stdout}"
+    );
+
+    let outside = workbench(&["inspect", scene, "--pixel", "48", "0"]);
+    assert!(!outside.status.success());
+    let stderr = String::from_utf8_lossy(&outside.stderr);
+    assert!(stderr.contains("outside the 48x32 image"), "{stderr}");
+    let no_sample = workbench(&["inspect", scene, "--pixel", "1", "1", "--sample", "1"]);
+    assert!(!no_sample.status.success());
+    let stderr = String::from_utf8_lossy(&no_sample.stderr);
+    assert!(stderr.contains("1 sample(s) per pixel"), "{stderr}");
+}
+
+#[test]
+fn render_overlay_draws_the_structure_over_the_image() {
+    let dir = scratch("overlay");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = scene.to_str().unwrap();
+    let out = dir.join("o.png");
+    let out_str = out.to_str().unwrap();
+    let wire = |path: &std::path::Path| {
+        let img = image::open(path).unwrap().to_rgb8();
+        img.pixels().filter(|p| p.0 == [80, 255, 120]).count()
+    };
+    run_ok(&["render", scene, "-o", out_str]);
+    assert_eq!(wire(&out), 0);
+    run_ok(&["render", scene, "-o", out_str, "--overlay", "bvh:0"]);
+    let root = wire(&out);
+    assert!(root > 50, "{root}");
+    run_ok(&["render", scene, "-o", out_str, "--overlay", "grid"]);
+    let grid = wire(&out);
+    assert!(
+        grid > root,
+        "the lattice draws more than one box: {grid} vs {root}"
+    );
+    // Over a view too, with the legend kept below.
+    run_ok(&[
+        "render",
+        scene,
+        "-o",
+        out_str,
+        "--overlay",
+        "bvh:leaves",
+        "--view",
+        "tests",
+    ]);
+    assert!(wire(&out) > 0);
+    for bad in ["bvh:x", "octree"] {
+        let run = workbench(&["render", scene, "-o", out_str, "--overlay", bad]);
+        assert!(!run.status.success(), "{bad}");
+    }
+}
