@@ -2,50 +2,28 @@
 //! by its key, type values, run, watch the progress, cancel, run again,
 //! hover a point of the chart and apply points to the main view.
 
-use std::thread::sleep;
-use std::time::{Duration, Instant};
-
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::accel::AccelKind;
 use workbench::gui::WorkbenchApp;
-use workbench::load::SceneSource;
 
-/// A guard against hanging on a slow machine, never a measure of speed.
-const PATIENCE: Duration = Duration::from_secs(300);
+mod support;
+use support::{small_window_sized, wait_for};
 
 type Window = Harness<'static, WorkbenchApp>;
 
 /// The window on the bundled `balls_low` at an eighth of its size, with
 /// the Studies window open.
 fn studies_window() -> Window {
-    let mut harness = Harness::builder()
-        .with_size([1280.0, 900.0])
-        .build_eframe(|cc| {
-            WorkbenchApp::new(
-                &cc.egui_ctx,
-                None,
-                Some(SceneSource::Bundled("balls_low".into())),
-            )
-        });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
-    step_until(&mut harness, "the scene", |app| {
+    let mut harness = small_window_sized(Harness::builder(), [1280.0, 900.0]);
+    wait_for(&mut harness, "the scene", |app| {
         app.engine().settings().is_some()
     });
     harness.key_press(egui::Key::P);
     harness.run_steps(3);
     assert!(harness.state().studies().open);
     harness
-}
-
-fn step_until(harness: &mut Window, what: &str, done: impl Fn(&WorkbenchApp) -> bool) {
-    let start = Instant::now();
-    while !done(harness.state()) {
-        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
-        harness.step();
-        sleep(Duration::from_millis(5));
-    }
 }
 
 /// Replaces the values text, as typing over a selection does.
@@ -82,7 +60,7 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
     harness.get_by_role_and_label(Role::Button, "Run").click();
     harness.run_steps(2);
     assert!(harness.state().studies().is_running());
-    step_until(&mut harness, "progress", |app| {
+    wait_for(&mut harness, "progress", |app| {
         app.studies()
             .progress()
             .is_some_and(|(_, what)| what.contains("none"))
@@ -90,7 +68,7 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
     harness
         .get_by_role_and_label(Role::Button, "Cancel")
         .click();
-    step_until(&mut harness, "the cancel", |app| {
+    wait_for(&mut harness, "the cancel", |app| {
         !app.studies().is_running()
     });
     let studies = harness.state().studies();
@@ -113,7 +91,7 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
     // A quick grid-m study to the end: one point per value, on the grid.
     type_values(&mut harness, "1,3,4");
     harness.get_by_role_and_label(Role::Button, "Run").click();
-    step_until(&mut harness, "the study", |app| {
+    wait_for(&mut harness, "the study", |app| {
         !app.studies().is_running() && app.studies().points().count() > 0
     });
     let m: Vec<f64> = harness
@@ -159,7 +137,7 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
         });
         harness.step();
     }
-    step_until(&mut harness, "the clicked point's settings", |app| {
+    wait_for(&mut harness, "the clicked point's settings", |app| {
         app.engine().settings().is_some_and(|s| {
             s.accel == AccelKind::Grid && [1.0, 3.0, 4.0].contains(&s.grid_multiplier)
         })
@@ -174,7 +152,7 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
         .nth(row)
         .unwrap()
         .click();
-    step_until(&mut harness, "the row's settings", |app| {
+    wait_for(&mut harness, "the row's settings", |app| {
         app.engine()
             .settings()
             .is_some_and(|s| s.grid_multiplier == wanted)

@@ -1,50 +1,22 @@
 //! The window's views, driven as a user would with `egui_kittest`: the view
 //! selector and its key, the scale shared by both sides of a comparison.
 
-use std::thread::sleep;
-use std::time::{Duration, Instant};
-
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::render::{JobState, View};
 use workbench::gui::{Activity, WorkbenchApp};
-use workbench::load::SceneSource;
 
-/// Only a guard against hanging, never a measure of speed.
-const PATIENCE: Duration = Duration::from_secs(180);
+mod support;
+use support::{small_window_sized, wait_for};
 
+/// The window on balls_low, tall enough for the whole side panel.
 fn window() -> Harness<'static, WorkbenchApp> {
-    let mut harness = Harness::builder()
-        .with_size([1280.0, 1400.0])
-        .build_eframe(|cc| {
-            WorkbenchApp::new(
-                &cc.egui_ctx,
-                None,
-                Some(SceneSource::Bundled("balls_low".into())),
-            )
-        });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    let mut harness = small_window_sized(Harness::builder(), [1280.0, 1400.0]);
     wait_for(&mut harness, "the scene to load", |app| {
         app.engine().settings().is_some()
     });
     harness
-}
-
-fn wait_for(
-    harness: &mut Harness<'static, WorkbenchApp>,
-    what: &str,
-    done: impl Fn(&WorkbenchApp) -> bool,
-) {
-    let start = Instant::now();
-    loop {
-        harness.step();
-        if done(harness.state()) {
-            return;
-        }
-        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
-        sleep(Duration::from_millis(5));
-    }
 }
 
 fn done(app: &WorkbenchApp) -> bool {

@@ -1,5 +1,7 @@
 //! What the window's kittest suites share: waiting on the window, and the
 //! broken scene a user drops on it.
+// Each suite compiles this module on its own and uses a part of it.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 use std::thread::sleep;
@@ -16,7 +18,15 @@ pub const PATIENCE: Duration = Duration::from_secs(180);
 /// The window (1280 x 820) on the bundled `balls_low` at 1/8 of its
 /// resolution, 64 x 64, so renders are quick.
 pub fn small_window(builder: HarnessBuilder<WorkbenchApp>) -> Harness<'static, WorkbenchApp> {
-    let mut harness = builder.with_size([1280.0, 820.0]).build_eframe(|cc| {
+    small_window_sized(builder, [1280.0, 820.0])
+}
+
+/// [`small_window`] at another window size (a taller side panel, say).
+pub fn small_window_sized(
+    builder: HarnessBuilder<WorkbenchApp>,
+    size: [f32; 2],
+) -> Harness<'static, WorkbenchApp> {
+    let mut harness = builder.with_size(size).build_eframe(|cc| {
         WorkbenchApp::new(
             &cc.egui_ctx,
             None,
