@@ -4,24 +4,18 @@
 //! limits that need huge files or odd settings are checked through the
 //! library or the command line's overrides instead.
 
-use std::io::Read;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
+use std::time::Duration;
+
+use common::{output_within, scratch};
 
 use tracer::scene::{Limits, ParseErrorKind, parse_scene, parse_scene_file};
 
 fn corpus() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/bad_scenes")
-}
-
-/// A fresh folder for one test's outputs.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-bad-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// Longest a single `workbench render` of a small scene may run before it
@@ -42,48 +36,6 @@ fn render(scene: &str, out: &Path, extra: &[&str]) -> Output {
         .args(extra);
     output_within(command, RUN_TIMEOUT)
         .unwrap_or_else(|e| panic!("workbench render {scene} {extra:?}: {e}"))
-}
-
-/// Runs `command` to completion like [`Command::output`], but kills it
-/// and reports an error once it has run for `timeout`.
-fn output_within(mut command: Command, timeout: Duration) -> Result<Output, String> {
-    let mut child = command
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("cannot start: {e}"))?;
-    let stdout = drain(child.stdout.take());
-    let stderr = drain(child.stderr.take());
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
-            break status;
-        }
-        if start.elapsed() >= timeout {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(format!("still running after {timeout:?}: killed"));
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    Ok(Output {
-        status,
-        stdout: stdout.join().unwrap_or_default(),
-        stderr: stderr.join().unwrap_or_default(),
-    })
-}
-
-/// Reads a child's pipe to the end on its own thread, so a chatty child
-/// cannot block on a full pipe while the test waits for it to exit.
-fn drain(pipe: Option<impl Read + Send + 'static>) -> JoinHandle<Vec<u8>> {
-    std::thread::spawn(move || {
-        let mut bytes = Vec::new();
-        if let Some(mut pipe) = pipe {
-            let _ = pipe.read_to_end(&mut bytes);
-        }
-        bytes
-    })
 }
 
 struct Expected {
@@ -407,4 +359,18 @@ fn a_failed_render_or_save_leaves_existing_files_alone_and_no_temporaries() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+}
+
+#[test]
+fn a_run_that_hangs_is_killed_and_reported() {
+    let mut command = Command::new("sleep");
+    command.arg("30");
+    let start = std::time::Instant::now();
+    let error = output_within(command, Duration::from_millis(200)).unwrap_err();
+    assert!(error.contains("killed"), "{error}");
+    assert!(
+        start.elapsed() < Duration::from_secs(10),
+        "{:?}",
+        start.elapsed()
+    );
 }
