@@ -154,7 +154,16 @@ impl Controls {
         camera: Option<CameraPose>,
         preview: bool,
     ) -> RenderSettings {
-        let base = RenderSettings::from_scene(scene);
+        self.settings_over(RenderSettings::from_scene(scene), camera, preview)
+    }
+
+    /// [`Controls::render_settings`] over `base`, the scene's own settings.
+    fn settings_over(
+        &self,
+        base: RenderSettings,
+        camera: Option<CameraPose>,
+        preview: bool,
+    ) -> RenderSettings {
         let scale = if preview {
             self.resolution_scale * 0.25
         } else {
@@ -178,6 +187,38 @@ impl Controls {
             keep_refining: self.keep_refining && !preview,
             camera,
             ..base
+        }
+    }
+
+    /// `change` applied to the render settings these controls make for a
+    /// scene `scene_width` pixels wide, and the result taken back: so a
+    /// setting is changed in one place (a study parameter's `apply`) for
+    /// the command line and the window alike.
+    pub fn change_settings(&mut self, scene_width: u32, change: impl FnOnce(&mut RenderSettings)) {
+        let base = RenderSettings {
+            width: scene_width.max(1),
+            height: scene_width.max(1),
+            ..RenderSettings::default()
+        };
+        let before = self.settings_over(base, None, false);
+        let mut s = before.clone();
+        change(&mut s);
+        self.antialiasing = s.antialiasing;
+        self.samples = s.samples;
+        self.soft_shadows = s.soft_shadows;
+        self.light_size = s.light_size;
+        self.depth_of_field = s.depth_of_field;
+        self.aperture = s.aperture;
+        self.focal = s.focal;
+        self.set_accel(s.accel.into());
+        self.grid_multiplier = s.grid_multiplier;
+        self.max_depth = s.max_depth;
+        self.ambient = s.ambient;
+        self.keep_refining = s.keep_refining;
+        // Only a changed size moves the scale: the round trip through whole
+        // pixels would otherwise nudge it.
+        if s.width != before.width {
+            self.resolution_scale = s.width as f32 / scene_width.max(1) as f32;
         }
     }
 }

@@ -66,28 +66,10 @@ impl Applied {
     /// Sets `controls` to the point's structure and value; `scene_width`
     /// turns a resolution into the controls' scale.
     pub fn apply_to(&self, controls: &mut Controls, scene_width: u32) {
-        controls.set_accel(self.accel.into());
-        let v = self.value;
-        match self.param {
-            Param::GridM => controls.grid_multiplier = v as f32,
-            Param::Spp => {
-                controls.antialiasing = true;
-                controls.samples = v as u32;
-            }
-            Param::Depth => controls.max_depth = v as u32,
-            Param::LightSize => {
-                controls.soft_shadows = true;
-                controls.light_size = v as f32;
-            }
-            Param::Aperture => {
-                controls.aperture = v as f32;
-                controls.depth_of_field = v > 0.0;
-            }
-            Param::Resolution => {
-                controls.resolution_scale = (v / f64::from(scene_width.max(1))) as f32
-            }
-            Param::Level => {}
-        }
+        controls.change_settings(scene_width, |settings| {
+            settings.accel = self.accel;
+            self.param.apply(settings, self.value);
+        });
     }
 
     /// For a level study's point, its generated scene written as P3F in
@@ -686,6 +668,11 @@ mod tests {
         assert_eq!(controls.resolution_scale, 0.25);
         point(Param::Aperture, 0.0).apply_to(&mut controls, 200);
         assert!(!controls.depth_of_field);
+        // A scale that no whole width gives exactly survives other points.
+        controls.resolution_scale = 0.3719;
+        point(Param::GridM, 2.5).apply_to(&mut controls, 200);
+        assert_eq!(controls.grid_multiplier, 2.5);
+        assert_eq!(controls.resolution_scale, 0.3719);
         assert_eq!(point(Param::GridM, 2.0).scene_file().unwrap(), None);
     }
 
