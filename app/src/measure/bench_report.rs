@@ -240,13 +240,12 @@ pub fn csv(headers: &[String], rows: &[Vec<String>]) -> String {
 
 /// Every row with every number, times in seconds.
 fn json(rows: &[Measurement]) -> String {
-    let secs = |d: Duration| d.as_secs_f64();
     let rows: Vec<serde_json::Value> = rows
         .iter()
         .map(|m| {
             let s = &m.case.settings;
             let c = &m.stats.counters;
-            serde_json::json!({
+            m.with_timing_json(serde_json::json!({
                 "label": m.case.label,
                 "accel": s.accel.name(),
                 "grid_multiplier": m.index.grid_multiplier,
@@ -259,23 +258,14 @@ fn json(rows: &[Measurement]) -> String {
                 "width": s.width,
                 "height": s.height,
                 "samples_per_pixel": s.samples_per_pixel(),
-                "runs": m.times.len(),
-                "seconds": m.times.iter().map(|&t| secs(t)).collect::<Vec<_>>(),
-                "median_seconds": secs(m.median()),
-                "min_seconds": secs(m.min()),
-                "max_seconds": secs(m.max()),
-                "mad_seconds": secs(m.mad()),
-                "build_seconds": secs(m.index.build_time),
-                "memory_bytes": m.index.memory_bytes,
-                "rays": c.total_rays(),
-                "rays_per_second": m.rays_per_second(),
+                "mad_seconds": m.mad().as_secs_f64(),
                 "eye_rays": c.eye_rays,
                 "shadow_rays": c.shadow_rays,
                 "reflection_rays": c.reflection_rays,
                 "refraction_rays": c.refraction_rays,
                 "intersection_tests": c.intersection_tests,
                 "nodes_visited": c.nodes_visited,
-            })
+            }))
         })
         .collect();
     serde_json::to_string_pretty(&rows).unwrap_or_default() + "\n"

@@ -210,6 +210,34 @@ impl Measurement {
         self.per_ray(self.stats.counters.nodes_visited)
     }
 
+    /// `row` (a JSON object) with the timing figures every report gives:
+    /// runs, frame times, build time, memory, rays and rays per second,
+    /// times in seconds.
+    pub fn with_timing_json(&self, mut row: serde_json::Value) -> serde_json::Value {
+        let secs = |d: Duration| serde_json::json!(d.as_secs_f64());
+        if let Some(fields) = row.as_object_mut() {
+            let times: Vec<f64> = self.times.iter().map(Duration::as_secs_f64).collect();
+            fields.extend([
+                ("runs".to_string(), serde_json::json!(self.times.len())),
+                ("seconds".to_string(), serde_json::json!(times)),
+                ("median_seconds".to_string(), secs(self.median())),
+                ("min_seconds".to_string(), secs(self.min())),
+                ("max_seconds".to_string(), secs(self.max())),
+                ("build_seconds".to_string(), secs(self.index.build_time)),
+                (
+                    "memory_bytes".to_string(),
+                    serde_json::json!(self.index.memory_bytes),
+                ),
+                ("rays".to_string(), serde_json::json!(self.rays())),
+                (
+                    "rays_per_second".to_string(),
+                    serde_json::json!(self.rays_per_second()),
+                ),
+            ]);
+        }
+        row
+    }
+
     fn per_ray(&self, count: u64) -> f64 {
         count as f64 / self.rays().max(1) as f64
     }

@@ -118,13 +118,12 @@ pub fn table(param: Param, points: &[Point], format: Format) -> String {
 /// Every point with its numbers, times in seconds.
 fn json(param: Param, points: &[Point]) -> String {
     let best = analysis::best(param, points);
-    let secs = |d: Duration| d.as_secs_f64();
     let rows: Vec<serde_json::Value> = points
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let m = &p.measurement;
-            serde_json::json!({
+            m.with_timing_json(serde_json::json!({
                 "accel": p.accel().name(),
                 "param": param.name(),
                 "value": p.value,
@@ -133,22 +132,13 @@ fn json(param: Param, points: &[Point]) -> String {
                 "width": m.case.settings.width,
                 "height": m.case.settings.height,
                 "samples_per_pixel": m.case.settings.samples_per_pixel(),
-                "runs": m.times.len(),
-                "seconds": m.times.iter().map(|&t| secs(t)).collect::<Vec<_>>(),
-                "median_seconds": secs(m.median()),
-                "min_seconds": secs(m.min()),
-                "max_seconds": secs(m.max()),
-                "build_seconds": secs(m.index.build_time),
-                "memory_bytes": m.index.memory_bytes,
-                "rays": m.rays(),
-                "rays_per_second": m.rays_per_second(),
                 "tests_per_ray": m.tests_per_ray(),
                 "steps_per_ray": m.steps_per_ray(),
                 "mse": p.error.map(|e| e.mse),
                 "psnr": p.error.map(|e| e.psnr).filter(|v| v.is_finite()),
                 "flip": p.error.map(|e| e.flip),
                 "best": best.iter().any(|(b, _)| *b == i),
-            })
+            }))
         })
         .collect();
     serde_json::to_string_pretty(&rows).unwrap_or_default() + "\n"
