@@ -6,7 +6,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{scratch, workbench, write};
+use common::{scratch, workbench, workbench_ok, write};
 
 /// A matte and a glass sphere on a floor under a point light: soft
 /// shadows, anti-aliasing and depth of field all change it.
@@ -29,20 +29,11 @@ f 1 1 1 0.1 1 1 1 0.2 100 0.8 1.5
 s 1.2 -1 0.8 0.8
 ";
 
-fn ok(run: &std::process::Output) -> String {
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    String::from_utf8(run.stdout.clone()).unwrap()
-}
-
 /// `workbench compare` with `a` and `b` at 48x48, JSON metrics.
 fn compare(dir: &Path, a: &str, b: &str) -> serde_json::Value {
     let scene = write(dir, "scene.p3f", SCENE);
     let out = dir.join("compare.png");
-    let stdout = ok(&workbench(&[
+    let stdout = workbench_ok(&[
         "compare",
         scene.to_str().unwrap(),
         "--a",
@@ -53,7 +44,7 @@ fn compare(dir: &Path, a: &str, b: &str) -> serde_json::Value {
         out.to_str().unwrap(),
         "--format",
         "json",
-    ]));
+    ]);
     // A | B | difference, 4 px apart, with a 4 px legend under a 4 px gap.
     let image = image::open(&out).unwrap().to_rgb8();
     assert_eq!(image.dimensions(), (3 * 48 + 8, 48 + 8));
@@ -92,7 +83,7 @@ fn compare_prints_times_and_metrics_as_text() {
     let dir = scratch("compare-text");
     let scene = write(&dir, "scene.p3f", SCENE);
     let out = dir.join("c.png");
-    let stdout = ok(&workbench(&[
+    let stdout = workbench_ok(&[
         "compare",
         scene.to_str().unwrap(),
         "--width",
@@ -104,7 +95,7 @@ fn compare_prints_times_and_metrics_as_text() {
         "abs",
         "-o",
         out.to_str().unwrap(),
-    ]));
+    ]);
     for word in [
         "A: no DOF",
         "B: DOF aperture 4",
@@ -166,7 +157,7 @@ fn bench(dir: &Path, extra: &[&str]) -> String {
         "2",
     ];
     args.extend_from_slice(extra);
-    ok(&workbench(&args))
+    workbench_ok(&args)
 }
 
 #[test]
@@ -334,7 +325,7 @@ fn images_can_be_thumbnails() {
     let dir = scratch("bench-thumbnails");
     let scene = write(&dir, "scene.p3f", SCENE);
     let images = dir.join("thumbs");
-    ok(&workbench(&[
+    workbench_ok(&[
         "bench",
         scene.to_str().unwrap(),
         "--runs",
@@ -349,7 +340,7 @@ fn images_can_be_thumbnails() {
         images.to_str().unwrap(),
         "--thumbnail",
         "10",
-    ]));
+    ]);
     let thumb = image::open(images.join("bvh.png")).unwrap().to_rgb8();
     assert_eq!(thumb.dimensions(), (10, 5));
 }

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{scratch, workbench, write};
+use common::{scratch, workbench_fails, workbench_ok, write};
 
 /// A red sphere on a grey floor under one light, seen from above the floor.
 const SMALL_SCENE: &str = "\
@@ -27,18 +27,12 @@ fn render_writes_the_scene_as_a_png() {
     let dir = scratch("render");
     let scene = write(&dir, "small.p3f", SMALL_SCENE);
     let out = dir.join("small.png");
-    let run = workbench(&[
+    let stdout = workbench_ok(&[
         "render",
         scene.to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
     ]);
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
     assert!(stdout.contains("48x32"), "{stdout}");
     assert!(stdout.contains("1 sphere"), "{stdout}");
 
@@ -61,7 +55,7 @@ fn overrides_change_the_size_and_stats_come_as_json() {
     let dir = scratch("json");
     let scene = write(&dir, "small.p3f", SMALL_SCENE);
     let out = dir.join("small.png");
-    let run = workbench(&[
+    let stdout = workbench_ok(&[
         "render",
         scene.to_str().unwrap(),
         "-o",
@@ -77,12 +71,7 @@ fn overrides_change_the_size_and_stats_come_as_json() {
         "--stats",
         "json",
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let stats: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let stats: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(stats["width"], 20);
     assert_eq!(stats["rays"]["eye"], 200);
     assert!(stats["rays"]["shadow"].as_u64().unwrap() > 0);
@@ -95,27 +84,24 @@ fn a_bad_scene_fails_with_file_line_and_column() {
     let dir = scratch("bad");
     let scene = write(&dir, "bad.p3f", "bclr 0 0 0\ns 0 0 0 zero\n");
     let out = dir.join("bad.png");
-    let run = workbench(&[
+    let stderr = workbench_fails(&[
         "render",
         scene.to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(!run.status.success());
-    let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("bad.p3f:2:9"), "{stderr}");
     assert!(!out.exists());
 }
 
 #[test]
 fn a_missing_scene_and_an_unwritable_output_are_errors() {
-    let run = workbench(&["render", "/nonexistent/scene.p3f"]);
-    assert!(!run.status.success());
-    assert!(String::from_utf8_lossy(&run.stderr).contains("/nonexistent/scene.p3f"));
+    let stderr = workbench_fails(&["render", "/nonexistent/scene.p3f"]);
+    assert!(stderr.contains("/nonexistent/scene.p3f"), "{stderr}");
 
     let dir = scratch("unwritable");
     let scene = write(&dir, "small.p3f", SMALL_SCENE);
-    let run = workbench(&[
+    let stderr = workbench_fails(&[
         "render",
         scene.to_str().unwrap(),
         "-o",
@@ -125,8 +111,6 @@ fn a_missing_scene_and_an_unwritable_output_are_errors() {
         "--height",
         "8",
     ]);
-    assert!(!run.status.success());
-    let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(
         stderr.contains("cannot write image /nonexistent/dir/out.png"),
         "{stderr}"
@@ -135,9 +119,7 @@ fn a_missing_scene_and_an_unwritable_output_are_errors() {
 
 #[test]
 fn help_lists_the_subcommands() {
-    let run = workbench(&["--help"]);
-    assert!(run.status.success());
-    let out = String::from_utf8_lossy(&run.stdout);
+    let out = workbench_ok(&["--help"]);
     for sub in ["render", "bench", "compare", "gen"] {
         assert!(out.contains(sub), "{out}");
     }

@@ -8,7 +8,7 @@ use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use common::{scratch, workbench, write};
+use common::{scratch, workbench, workbench_fails, workbench_ok, write};
 
 /// Two spheres on a floor under a point light.
 const SCENE: &str = "\
@@ -32,30 +32,12 @@ fn scene(dir: &Path) -> PathBuf {
     write(dir, "scene.p3f", SCENE)
 }
 
-/// stdout of a run that must succeed.
-fn ok(args: &[&str]) -> String {
-    let run = workbench(args);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    String::from_utf8(run.stdout).unwrap()
-}
-
-/// stderr of a run that must fail.
-fn fails(args: &[&str]) -> String {
-    let run = workbench(args);
-    assert!(!run.status.success(), "{args:?} should fail");
-    String::from_utf8(run.stderr).unwrap()
-}
-
 #[test]
 fn a_grid_m_sweep_prints_a_csv_row_per_point_and_draws_the_chart() {
     let dir = scratch("sweep-grid-m");
     let scene = scene(&dir);
     let chart = dir.join("chart.png");
-    let csv = ok(&[
+    let csv = workbench_ok(&[
         "sweep",
         scene.to_str().unwrap(),
         "--param",
@@ -109,7 +91,7 @@ fn a_grid_m_sweep_prints_a_csv_row_per_point_and_draws_the_chart() {
 
 #[test]
 fn the_level_study_grows_a_generated_scene() {
-    let json = ok(&[
+    let json = workbench_ok(&[
         "sweep",
         "--param",
         "level",
@@ -180,22 +162,22 @@ fn bad_input_gets_a_clear_error() {
     let dir = scratch("sweep-bad");
     let scene = scene(&dir);
     let scene = scene.to_str().unwrap();
-    let bad_values = fails(&["sweep", scene, "--param", "depth", "--values", "1..x"]);
+    let bad_values = workbench_fails(&["sweep", scene, "--param", "depth", "--values", "1..x"]);
     assert!(bad_values.contains("`x` in `1..x`"), "{bad_values}");
-    let backwards = fails(&["sweep", scene, "--param", "depth", "--values", "5..1"]);
+    let backwards = workbench_fails(&["sweep", scene, "--param", "depth", "--values", "5..1"]);
     assert!(backwards.contains("backwards"), "{backwards}");
-    let fraction = fails(&["sweep", scene, "--param", "spp", "--values", "1.5"]);
+    let fraction = workbench_fails(&["sweep", scene, "--param", "spp", "--values", "1.5"]);
     assert!(fraction.contains("whole numbers"), "{fraction}");
-    let param = fails(&["sweep", scene, "--param", "speed"]);
+    let param = workbench_fails(&["sweep", scene, "--param", "speed"]);
     assert!(param.contains("grid-m"), "{param}");
-    let level = fails(&["sweep", "--param", "level"]);
+    let level = workbench_fails(&["sweep", "--param", "level"]);
     assert!(level.contains("--generator"), "{level}");
-    let generator = fails(&["sweep", "--param", "level", "--generator", "teapot"]);
+    let generator = workbench_fails(&["sweep", "--param", "level", "--generator", "teapot"]);
     assert!(
         generator.contains("unknown generator `teapot`"),
         "{generator}"
     );
-    let range = fails(&[
+    let range = workbench_fails(&[
         "sweep",
         "--param",
         "level",
@@ -205,7 +187,7 @@ fn bad_input_gets_a_clear_error() {
         "4..7",
     ]);
     assert!(range.contains("levels 0..=5"), "{range}");
-    let no_scene = fails(&["sweep", "--param", "grid-m"]);
+    let no_scene = workbench_fails(&["sweep", "--param", "grid-m"]);
     assert!(no_scene.contains("scene file"), "{no_scene}");
 }
 

@@ -23,6 +23,25 @@ pub fn workbench(args: &[&str]) -> Output {
     output_within(command, RUN_TIMEOUT).unwrap_or_else(|e| panic!("workbench {args:?}: {e}"))
 }
 
+/// stdout of a `workbench` run that must succeed (its stderr shown if
+/// not).
+pub fn workbench_ok(args: &[&str]) -> String {
+    let run = workbench(args);
+    assert!(
+        run.status.success(),
+        "workbench {args:?} failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8_lossy(&run.stdout).into_owned()
+}
+
+/// stderr of a `workbench` run that must fail.
+pub fn workbench_fails(args: &[&str]) -> String {
+    let run = workbench(args);
+    assert!(!run.status.success(), "workbench {args:?} should fail");
+    String::from_utf8_lossy(&run.stderr).into_owned()
+}
+
 /// Runs `command` to completion like [`Command::output`], but kills it
 /// and reports an error once it has run for `timeout`.
 pub fn output_within(mut command: Command, timeout: Duration) -> Result<Output, String> {
