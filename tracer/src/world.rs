@@ -106,7 +106,7 @@ impl World {
         }
         kinds.sort_unstable();
 
-        let mut warnings = Vec::new();
+        let mut warnings = scene.warnings.clone();
         if builder.degenerate > 0 {
             warnings.push(format!(
                 "skipped {} degenerate primitive(s) (zero area or zero size)",

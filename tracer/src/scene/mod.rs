@@ -187,6 +187,10 @@ pub struct Scene {
     pub spp: Option<u32>,
     /// Folder of the scene file, for resolving `env`; `None` for in-memory text.
     pub base_dir: Option<PathBuf>,
+    /// What the parser noticed that did not stop it (a `mesh_file`'s
+    /// missing MTL materials), each naming file, line and column: shown
+    /// with the world's warnings.
+    pub warnings: Vec<String>,
 }
 
 impl Default for Scene {
@@ -202,6 +206,7 @@ impl Default for Scene {
             accel: None,
             spp: None,
             base_dir: None,
+            warnings: Vec::new(),
         }
     }
 }

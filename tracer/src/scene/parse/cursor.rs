@@ -79,6 +79,18 @@ impl<'a> Cursor<'a> {
         }
     }
 
+    /// `message` with the place a warning is about, written the way errors
+    /// are (`file:line:column: in `command`: message`).
+    pub fn warning_at(&self, pos: Pos, message: &str) -> String {
+        let file = self
+            .file
+            .map_or_else(|| "<input>".to_string(), |f| f.display().to_string());
+        let command = self
+            .command
+            .map_or_else(String::new, |c| format!("in `{c}`: "));
+        format!("{file}:{}:{}: {command}{message}", pos.line, pos.column)
+    }
+
     /// The next token, or a [`ParseErrorKind::MissingValue`] at the end.
     pub fn expect(&mut self, expected: &'static str) -> Result<Token<'a>, ParseError> {
         let end = self.here();

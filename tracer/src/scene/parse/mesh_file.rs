@@ -47,6 +47,11 @@ impl Parser<'_, '_> {
             self.cursor
                 .error_at(path_pos, ParseErrorKind::MeshFile(e.to_string()))
         })?;
+        for warning in &mesh.warnings {
+            let message = format!("{}: {warning}", path.display());
+            let located = self.cursor.warning_at(path_pos, &message);
+            self.scene.warnings.push(located);
+        }
         mesh.transform(scale, offset);
         if !(mesh.parts.iter())
             .flat_map(|p| &p.vertices)

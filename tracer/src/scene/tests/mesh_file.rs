@@ -111,3 +111,22 @@ fn an_empty_scene_says_what_is_missing() {
     assert!(parse("v from 0 0 5 at 0 0 0").is_ok());
     assert!(parse("s 0 0 0 1").is_ok());
 }
+
+#[test]
+fn a_mesh_files_warnings_reach_the_world_with_the_scene_line() {
+    let dir = scene_folder("mtl-warning", "v from 0 0 5 at 0 0 0\nmesh_file tri.obj\n");
+    let obj = "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    std::fs::write(dir.join("tri.obj"), obj).unwrap();
+    let scene = parse_file(&dir).unwrap();
+    let warnings = scene.warnings.join("\n");
+    assert!(
+        warnings.contains("scene.p3f:2:11: in `mesh_file`: ") && warnings.contains("gone.mtl"),
+        "{warnings}"
+    );
+    let world = crate::world::World::build(&scene);
+    assert!(
+        world.warnings.iter().any(|w| w.contains("gone.mtl")),
+        "{:?}",
+        world.warnings
+    );
+}
