@@ -415,11 +415,12 @@ impl WorkbenchApp {
         });
         let mut start = false;
         let applied = self.studies.show(ctx, &base, &mut start);
-        if start && let Some(scene) = self.engine.scene() {
+        if start {
             let wake = ctx.clone();
-            let name = scene.source.label();
+            let scene = self.engine.scene();
+            let name = scene.map_or_else(String::new, |s| s.source.label());
             self.studies.start(
-                scene.world.clone(),
+                scene.map(|s| s.world.clone()),
                 &base,
                 &self.state.controls,
                 &name,

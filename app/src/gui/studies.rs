@@ -157,12 +157,13 @@ impl StudiesWindow {
     }
 
     /// Starts the study the window is set to: on `world` from `base` (the
-    /// current scene, camera and size), or for the level study on the
+    /// current scene, camera and size; without one only the level study
+    /// can run), or for the level study on the
     /// generator's scenes with `controls` applied to each. `wake` asks the
     /// window to redraw.
     pub fn start(
         &mut self,
-        world: Arc<World>,
+        world: Option<Arc<World>>,
         base: &RenderSettings,
         controls: &Controls,
         scene_name: &str,
@@ -197,6 +198,10 @@ impl StudiesWindow {
             };
             (subject, self.generator.to_string())
         } else {
+            let Some(world) = world else {
+                self.message = Some("open a scene first: this study renders it".into());
+                return;
+            };
             let base = base.clone();
             (Subject::Scene { world, base }, scene_name.to_string())
         };
@@ -689,6 +694,28 @@ mod tests {
             tracer::scene::parse_scene_file(&path, &tracer::scene::Limits::default()).unwrap();
         assert_eq!(scene.accel, Some(0));
         assert_eq!(World::build(&scene).counts.primitives, 12);
+    }
+
+    #[test]
+    fn the_level_study_needs_no_open_scene_the_others_say_so() {
+        let mut window = StudiesWindow {
+            values: "1".into(),
+            runs: 1,
+            ..StudiesWindow::default()
+        };
+        let controls = Controls {
+            resolution_scale: 0.05,
+            ..Controls::default()
+        };
+        let base = RenderSettings::default();
+        window.start(None, &base, &controls, "", || {});
+        assert!(!window.is_running());
+        assert!(window.message().unwrap().contains("open a scene first"));
+
+        window.param = Param::Level;
+        window.start(None, &base, &controls, "", || {});
+        assert!(window.is_running(), "{:?}", window.message());
+        window.stop();
     }
 
     #[test]
