@@ -204,7 +204,7 @@ fn an_inspected_pixel_draws_the_cells_its_eye_ray_walked() {
             )
             && app.overlay().visits_drawn == app.inspector().eye_visits().len()
     });
-    harness.get_by_label_contains("grid cells");
+    harness.get_by_label_contains("eye ray walked");
     // Off with the overlay.
     harness
         .get_by_role_and_label(Role::CheckBox, "Structure overlay")
