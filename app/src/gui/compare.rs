@@ -546,10 +546,12 @@ pub fn difference_controls(ui: &mut Ui, compare: &mut Compare) {
             ui.label(format!("−{top}"));
             colour_bar(ui, |t| diverging_colour(2.0 * t - 1.0));
             ui.label(format!("+{top}"));
-            ui.weak(format!(
-                "A − B of {}: red where A is higher, blue where B is",
-                view.name()
-            ));
+            ui.weak("A − B: red where A is higher, blue where B is")
+                .on_hover_text(format!(
+                    "The difference of the {} values per pixel; the bar's ends are the \
+                     99th percentile of |A − B|, larger differences take the end colours",
+                    view.name()
+                ));
         });
         return;
     }

@@ -11,7 +11,9 @@ use tracer::render::NO_VALUE;
 pub struct ValueDifference {
     /// A - B per pixel; `None` where either side has no value.
     pub values: Vec<Option<f32>>,
-    /// The palette's ends are -scale and +scale: the largest |A - B|.
+    /// The palette's ends are -scale and +scale: the 99th percentile of
+    /// |A - B|, so a few extreme pixels do not leave the rest dark (larger
+    /// differences take the end colours).
     pub scale: f32,
     pub stats: ValueStats,
 }
@@ -48,6 +50,11 @@ impl ValueDifference {
                 pixels += 1;
             }
         }
+        let mut magnitudes: Vec<f32> = values.iter().flatten().map(|d| d.abs()).collect();
+        magnitudes.sort_unstable_by(f32::total_cmp);
+        let p99 = magnitudes.len().checked_sub(1).map_or(0.0, |last| {
+            magnitudes[(last as f32 * 0.99).round() as usize]
+        });
         let n = pixels.max(1) as f64;
         let (mean_a, mean_b) = ((sum_a / n) as f32, (sum_b / n) as f32);
         let ratio = if mean_a == mean_b {
@@ -57,7 +64,7 @@ impl ValueDifference {
         };
         Some(ValueDifference {
             values,
-            scale: max_abs,
+            scale: if p99 > 0.0 { p99 } else { max_abs },
             stats: ValueStats {
                 pixels,
                 mean_a,
@@ -124,6 +131,23 @@ mod tests {
             "B larger: blue {blue:?}"
         );
         assert!(ValueDifference::of(&a, &b[..2]).is_none());
+    }
+
+    #[test]
+    fn the_scale_is_the_99th_percentile_of_the_magnitudes() {
+        // 200 pixels differing by 1, one by 1000.
+        let a: Vec<Option<f32>> = (0..201)
+            .map(|i| Some(if i == 0 { 1000.0 } else { 1.0 }))
+            .collect();
+        let b = vec![Some(0.0); 201];
+        let d = ValueDifference::of(&a, &b).unwrap();
+        assert_eq!(d.scale, 1.0);
+        assert_eq!(d.stats.max_abs_difference, 1000.0);
+        assert_eq!(
+            &d.rgba8()[..4],
+            &[255, 80, 50, 255],
+            "beyond the scale: the end colour"
+        );
     }
 
     #[test]
