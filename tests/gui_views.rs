@@ -4,6 +4,7 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use tracer::accel::Visit;
 use tracer::render::{JobState, View};
 use workbench::gui::{Activity, WorkbenchApp};
 
@@ -172,4 +173,91 @@ fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
         .click();
     harness.run_steps(2);
     assert_eq!(harness.state().overlay().segments(), 0);
+}
+
+#[test]
+fn an_inspected_pixel_draws_the_cells_its_eye_ray_walked() {
+    let mut harness = window();
+    wait_for(&mut harness, "the render", done);
+    let settings = harness.state().engine().settings().unwrap().clone();
+    // The centre of balls_low: the eye ray meets the balls.
+    harness
+        .state_mut()
+        .inspect((settings.width / 2, settings.height / 2));
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    // The BVH: the eye ray's descent, the root's box first.
+    wait_for(&mut harness, "the BVH descent", |app| {
+        app.overlay().visits_drawn > 0
+    });
+    let bvh = harness.state().inspector().eye_visits().to_vec();
+    assert!(matches!(bvh[0], Visit::Node { depth: 0, .. }), "{bvh:?}");
+    harness.get_by_label_contains("BVH nodes and tested");
+    // The grid: its walk, once the grid is built and the tree recorded.
+    harness.key_press(egui::Key::G);
+    wait_for(&mut harness, "the grid walk", |app| {
+        done(app)
+            && matches!(
+                app.inspector().eye_visits().first(),
+                Some(Visit::Cell { .. })
+            )
+            && app.overlay().visits_drawn == app.inspector().eye_visits().len()
+    });
+    harness.get_by_label_contains("eye ray walked");
+    // Off with the overlay.
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().overlay().visits_drawn, 0);
+}
+
+#[test]
+fn a_cost_view_in_compare_mode_compares_values_not_colours() {
+    let mut harness = window();
+    harness.key_press(egui::Key::B);
+    harness.run_steps(3);
+    // B traces the grid, A the BVH.
+    harness.key_press(egui::Key::G);
+    harness.get_by_role_and_label(Role::Button, "tests").click();
+    harness
+        .get_by_role_and_label(Role::Button, "Difference")
+        .click();
+    wait_for(&mut harness, "the values' difference", |app| {
+        done(app)
+            && app.views().summary(1).is_some()
+            && app
+                .comparison()
+                .is_some_and(|c| c.value_difference().is_some() && c.difference().is_some())
+    });
+    harness.run_steps(2);
+    let app = harness.state();
+    let (view, d) = app.comparison().unwrap().value_difference().unwrap();
+    assert_eq!(view, View::Tests);
+    // Every pixel has a count: the means are the sides' own.
+    let (a, b) = (
+        app.views().summary(0).unwrap(),
+        app.views().summary(1).unwrap(),
+    );
+    assert_eq!(d.stats.pixels, a.pixels);
+    assert!(
+        (d.stats.mean_a - a.mean).abs() <= 1e-3 * a.mean,
+        "{d:?} {a:?}"
+    );
+    assert!(
+        (d.stats.mean_b - b.mean).abs() <= 1e-3 * b.mean,
+        "{d:?} {b:?}"
+    );
+    assert_ne!(
+        d.stats.mean_a, d.stats.mean_b,
+        "the BVH and the grid test differently"
+    );
+    assert!(d.values.iter().flatten().any(|&v| v != 0.0));
+    // The numbers are the values', not MSE, PSNR and FLIP of heat-map colours.
+    harness.get_by_label_contains("Mean |A − B|");
+    harness.get_by_label_contains("Ratio A/B");
+    harness.get_by_label_contains("red where A is higher");
+    assert!(harness.query_by_label("MSE").is_none());
+    assert!(harness.query_by_label("FLIP").is_none());
 }

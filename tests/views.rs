@@ -258,3 +258,93 @@ fn render_overlay_draws_the_structure_over_the_image() {
         assert!(!run.status.success(), "{bad}");
     }
 }
+
+/// Cells of an inspected eye ray as `[x, y, z]`, from `inspect`'s JSON.
+fn walked_cells(json: &serde_json::Value) -> Vec<[i64; 3]> {
+    json["eye_visits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| {
+            assert_eq!(v["kind"], "cell", "{v}");
+            let c = |i: usize| v["cell"][i].as_i64().unwrap();
+            [c(0), c(1), c(2)]
+        })
+        .collect()
+}
+
+#[test]
+fn inspect_lists_the_cells_and_nodes_the_eye_ray_visited() {
+    let dir = scratch("inspect-visits");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = scene.to_str().unwrap();
+    let inspect = |accel: &str| {
+        let stdout = run_ok(&[
+            "inspect", scene, "--pixel", "24", "11", "--accel", accel, "--format", "json",
+        ]);
+        serde_json::from_str::<serde_json::Value>(&stdout).unwrap()
+    };
+    // The grid: an Amanatides-Woo walk, each cell a face neighbour of the
+    // one before.
+    let cells = walked_cells(&inspect("grid"));
+    assert!(!cells.is_empty());
+    for pair in cells.windows(2) {
+        let steps: i64 = (0..3).map(|i| (pair[1][i] - pair[0][i]).abs()).sum();
+        assert_eq!(steps, 1, "{cells:?}");
+    }
+    // The BVH: the root's box first, then boxes below it.
+    let bvh = inspect("bvh");
+    let visits = bvh["eye_visits"].as_array().unwrap();
+    assert_eq!(visits[0]["kind"], "node");
+    assert_eq!(visits[0]["depth"], 0);
+    assert!(visits.iter().any(|v| v["kind"] == "leaf"), "{bvh}");
+    assert!(
+        visits[1..]
+            .iter()
+            .all(|v| v["depth"].as_u64().unwrap() >= 1)
+    );
+    assert!(inspect("none")["eye_visits"].as_array().unwrap().is_empty());
+
+    let text = run_ok(&["inspect", scene, "--pixel", "24", "11", "--accel", "grid"]);
+    let heading = format!("eye ray walked {} grid cells:", cells.len());
+    assert!(text.contains(&heading), "{text}");
+    let [x, y, z] = cells[0];
+    assert!(
+        text.contains(&format!("  cell ({x}, {y}, {z}), box (")),
+        "{text}"
+    );
+}
+
+#[test]
+fn render_overlay_highlights_the_pixels_eye_ray_walk() {
+    let dir = scratch("overlay-pixel");
+    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = scene.to_str().unwrap();
+    let (plain, walk) = (dir.join("plain.png"), dir.join("walk.png"));
+    let render = |out: &std::path::Path, extra: &[&str]| {
+        let mut args = vec!["render", scene, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        run_ok(&args);
+        image::open(out).unwrap().to_rgb8()
+    };
+    for layer in ["grid", "bvh:1"] {
+        let without = render(&plain, &["--overlay", layer]);
+        let with = render(&walk, &["--overlay", layer, "--pixel", "24", "11"]);
+        let changed: Vec<[u8; 3]> = without
+            .pixels()
+            .zip(with.pixels())
+            .filter(|(a, b)| a != b)
+            .map(|(_, b)| b.0)
+            .collect();
+        assert!(changed.len() > 20, "{layer}: {}", changed.len());
+        // Only the walk's colours: yellow (first) through red (last).
+        assert!(
+            changed.iter().all(|&[r, _, b]| r == 255 && b <= 40),
+            "{layer}: {changed:?}"
+        );
+        assert!(changed.contains(&[255, 230, 0]), "{layer}: the first visit");
+    }
+    // --pixel draws on the overlay: without one it is refused.
+    let run = workbench(&["render", scene, "-o", "x.png", "--pixel", "1", "1"]);
+    assert!(!run.status.success());
+}

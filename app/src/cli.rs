@@ -349,6 +349,13 @@ pub struct RenderArgs {
     /// cell lattice), projected through the camera.
     #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
     pub overlay: Option<StructureLayer>,
+    /// With --overlay: highlight the grid cells (or BVH nodes and leaves)
+    /// this pixel's eye ray visited, from yellow (first) to red (last).
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], requires = "overlay")]
+    pub pixel: Option<Vec<u32>>,
+    /// Which of the --pixel's samples (the pass that traces it, from 0).
+    #[arg(long, default_value_t = 0, value_name = "K", requires = "pixel")]
+    pub sample: u32,
 }
 
 fn parse_overlay(text: &str) -> Result<StructureLayer, String> {

@@ -10,7 +10,7 @@ use tracer::render::{RenderSettings, View, ViewSummary};
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
 use crate::load::load_scene;
 use crate::measure::benchmark::{Case, Measurement};
-use crate::measure::compare::{self, Comparison, Heatmap, ImageComparison};
+use crate::measure::compare::{self, Comparison, Heatmap, ImageComparison, SideOptions};
 use crate::measure::view_image;
 use crate::output::save_png;
 use crate::report::si;
@@ -48,13 +48,16 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     }
     let b = side("b", &args.b)?;
     super::warn_brute_force(&b.settings, &loaded.world.counts);
-    let sides = (a.settings.clone(), b.settings.clone());
     let mut progress = super::runner_progress(vec!["A".into(), "B".into()], 1);
+    let options = SideOptions {
+        threads: args.threads,
+        views: args.view.view().is_some(),
+    };
     let comparison = compare::run(
         &loaded.world,
         a,
         b,
-        args.threads,
+        options,
         heatmap,
         &AtomicBool::new(false),
         &mut progress,
@@ -62,7 +65,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let comparison = finished(comparison, args)?;
     let c = &comparison;
     let views = match args.view.view() {
-        Some(view) => Some(compare_views(args, &loaded.world, view, &sides)?),
+        Some(view) => Some(compare_views(args, view, c)?),
         None => {
             save_png(
                 &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
@@ -209,23 +212,16 @@ struct ViewReport {
     json: serde_json::Value,
 }
 
-/// Measures `view` on both sides, writes A | B | difference on a shared
-/// scale, and reports both sides' numbers.
-fn compare_views(
-    args: &CompareArgs,
-    world: &std::sync::Arc<tracer::world::World>,
-    view: View,
-    (a, b): &(RenderSettings, RenderSettings),
-) -> Result<ViewReport> {
-    let measure = |s| {
-        view_image::measure_views(world, s, args.threads)
-            .with_context(|| format!("cannot measure the view {}", view.name()))
+/// Writes `view` of both sides (measured in the comparison's own frames)
+/// as A | B | difference on a shared scale, and reports both sides' numbers.
+fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewReport> {
+    let (Some(fa), Some(fb)) = (&c.a.views, &c.b.views) else {
+        anyhow::bail!("the renders measured no views");
     };
-    let (fa, fb) = (measure(a)?, measure(b)?);
     let (va, vb) = (fa.values(view), fb.values(view));
     let heat = args.view.heatmap(&[&va, &vb]);
     save_png(
-        &view_image::compose_sides(&fa, &fb, view, &heat)?,
+        &view_image::compose_sides(fa, fb, view, &heat)?,
         &args.output,
     )?;
     let (sa, sb) = (ViewSummary::of(&va), ViewSummary::of(&vb));

@@ -2,15 +2,17 @@
 //! and the command line's overrides.
 
 use std::io::IsTerminal;
+use std::sync::Arc;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
+use tracer::accel::{AccelKind, SceneIndex, StructureLayer, Visit};
 use tracer::render::{Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
+use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::load::load_scene;
-use crate::measure::{overlay_image, view_image};
+use crate::measure::{overlay_image, ray_tree_report, view_image};
 use crate::output::{is_exr, save_exr, save_png};
 use crate::report;
 
@@ -42,9 +44,19 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.output.display()
         );
     }
+    // The overlay's structure, built once: the render reuses it when it
+    // traces with the same structure.
+    let overlay = args.overlay.map(|layer| {
+        let accel = overlay_accel(layer);
+        let m = settings.grid_multiplier;
+        (
+            layer,
+            Arc::new(SceneIndex::build(&loaded.world.shapes, accel, m)),
+        )
+    });
     let job = RenderJob::start(
         loaded.world.clone(),
-        None,
+        overlay.as_ref().map(|(_, index)| index.clone()),
         settings.clone(),
         JobOptions {
             threads: args.threads,
@@ -79,16 +91,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             }
             None => film.to_image(encoding),
         };
-        if let Some(layer) = args.overlay {
-            let accel = match layer {
-                StructureLayer::Grid => AccelKind::Grid,
-                _ => AccelKind::Bvh,
-            };
+        if let Some((layer, index)) = &overlay {
             let world = &loaded.world;
-            let index = SceneIndex::build(&world.shapes, accel, settings.grid_multiplier);
             let camera = Frame::camera(world, &settings)
                 .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
-            overlay_image::draw_wireframe(&mut image, &camera, &index.wireframe(layer));
+            overlay_image::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
+            if let Some(pixel) = &args.pixel {
+                let visits = eye_visits(args, &loaded.world, index, &settings, pixel)?;
+                overlay_image::draw_visits(&mut image, &camera, &visits);
+            }
         }
         match &view {
             Some((v, _, _, heat)) if v.is_scalar() => {
@@ -121,6 +132,33 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The structure an overlay layer draws.
+fn overlay_accel(layer: StructureLayer) -> AccelKind {
+    match layer {
+        StructureLayer::Grid => AccelKind::Grid,
+        _ => AccelKind::Bvh,
+    }
+}
+
+/// What `--pixel`'s eye ray visited in the overlay's structure `index`
+/// (the same rays whatever the structure: only what they visit differs).
+fn eye_visits(
+    args: &RenderArgs,
+    world: &Arc<World>,
+    index: &Arc<SceneIndex>,
+    settings: &RenderSettings,
+    pixel: &[u32],
+) -> Result<Vec<Visit>> {
+    let [x, y] = pixel[..] else {
+        anyhow::bail!("--pixel takes two numbers, X and Y");
+    };
+    let mut settings = settings.clone();
+    settings.accel = index.kind();
+    let tree = ray_tree_report::inspect(world, Some(index.clone()), &settings, (x, y), args.sample)
+        .with_context(|| format!("cannot inspect a pixel of {}", args.scene.display()))?;
+    Ok(tree.eye_visits)
 }
 
 /// A progress bar on stderr, counting eye rays against the target.

@@ -641,7 +641,13 @@ impl WorkbenchApp {
             .refresh(ctx, &self.engine, encoding, self.progress_pace.get());
         if let Some(compare) = &mut self.compare {
             compare.image.set_view(shown);
-            compare.refresh(ctx, (&self.engine, &self.image), self.progress_pace.get());
+            let view = shown.map(|(view, _)| view);
+            compare.refresh(
+                ctx,
+                (&self.engine, &self.image),
+                self.progress_pace.get(),
+                view,
+            );
         }
     }
 
@@ -827,7 +833,8 @@ impl WorkbenchApp {
         self.dragging_camera = response.dragging_camera;
         self.hovered_pixel = response.hovered_pixel;
         if let Some(rect) = response.image_rect {
-            self.overlay.paint(ui, &self.engine, rect);
+            let visits = self.inspector.eye_visits();
+            self.overlay.paint(ui, &self.engine, rect, visits);
             self.inspector.paths_drawn = self.inspector.paint_paths(ui, &self.engine, rect);
         }
         if let Some(pixel) = self.hovered_pixel
@@ -965,15 +972,7 @@ fn compare_header(
         });
     }
     if compare.view == CompareView::Difference {
-        ui.horizontal(|ui| {
-            ui.add(
-                egui::Slider::new(&mut compare.gain, 1.0..=64.0)
-                    .logarithmic(true)
-                    .text("Amplification"),
-            )
-            .on_hover_text("Multiplies |A - B| before colouring, so small differences show");
-            compare::legend(ui, compare.gain);
-        });
+        compare::difference_controls(ui, compare);
     }
 }
 

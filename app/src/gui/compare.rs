@@ -1,8 +1,10 @@
 //! Compare mode: a second settings set B renders the same scene from the
 //! same camera beside A, shown side by side, split by a divider, flipped, or
 //! as a difference heat map, with the numbers that say what B costs and
-//! changes (time, rays, speed ratio, MSE, PSNR, FLIP). B may instead be
-//! an image from disk ([`super::reference`]).
+//! changes (time, rays, speed ratio, MSE, PSNR, FLIP). With a cost view
+//! on, the difference and the numbers are of the view's values instead
+//! (A - B signed; means, ratio, mean |A - B|). B may instead be an image
+//! from disk ([`super::reference`]).
 
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
@@ -11,10 +13,12 @@ use egui::{Color32, ColorImage, RichText, TextureHandle, TextureOptions, Ui};
 use image::RgbImage;
 use tracer::camera::CameraPose;
 use tracer::metrics::{self, Palette};
-use tracer::render::{JobState, RenderSettings, Snapshot};
+use tracer::render::{JobState, RenderSettings, Snapshot, View};
 
 use crate::measure::compare::{Heatmap, Metrics, measure};
 use crate::measure::describe::side_labels;
+use crate::measure::value_difference::{ValueDifference, ValueStats, diverging_colour};
+use crate::measure::view_image::format_number;
 
 use super::engine::{Activity, Engine, LoadedScene, Version};
 use super::live_image::LiveImage;
@@ -29,7 +33,7 @@ pub enum CompareView {
     Split,
     /// A, or B while the flip key is held.
     Flip,
-    /// |A - B| as a heat map.
+    /// |A - B| as a heat map (A - B of the values with a view on).
     Difference,
 }
 
@@ -51,6 +55,9 @@ impl CompareView {
     }
 }
 
+/// The versions of A and B and the view a values' difference is of.
+type ValuesKey = (Version, Version, View);
+
 /// The B side and how the comparison is shown.
 pub struct Compare {
     /// Renders B.
@@ -65,8 +72,11 @@ pub struct Compare {
     /// Whether the side panel edits B (else A).
     pub editing_b: bool,
     difference: Option<TextureHandle>,
-    /// Versions of the images the difference map was made from, and its gain.
-    difference_of: Option<(Version, Version, f32)>,
+    /// What the difference map was made from: the images' versions, its
+    /// gain, and the view whose values it shows (`None`: the images).
+    difference_of: Option<(Version, Version, f32, Option<View>)>,
+    /// The values' difference while a view is on, and what it is of.
+    values: Option<(ValuesKey, ValueDifference)>,
     /// Metrics of the last pair of finished images, and the versions they
     /// belong to; FLIP runs on its own thread.
     metrics: Option<Result<Metrics, String>>,
@@ -102,6 +112,7 @@ impl Compare {
             editing_b: true,
             difference: None,
             difference_of: None,
+            values: None,
             metrics: None,
             metrics_of: None,
             pending: None,
@@ -212,6 +223,7 @@ impl Compare {
         self.metrics_of = None;
         self.pending = None;
         self.difference_of = None;
+        self.values = None;
     }
 
     /// B's render settings, seen from the shared camera.
@@ -233,17 +245,25 @@ impl Compare {
     }
 
     /// Uploads B's image, and refreshes the difference map and the metrics
-    /// when either side changed.
+    /// when either side changed: of the values of `view` when it is a cost
+    /// view (and B a render), else of the images.
     pub fn refresh(
         &mut self,
         ctx: &egui::Context,
         a: (&Engine, &LiveImage),
         interval: std::time::Duration,
+        view: Option<View>,
     ) {
         self.image
             .refresh(ctx, &self.engine, self.controls.encoding(), interval);
         let (engine_a, image_a) = a;
         let versions = (engine_a.version(), self.b_version());
+        let value_view = view.filter(|v| v.is_scalar() && self.reference.is_none());
+        if let Some(view) = value_view {
+            self.refresh_values(ctx, engine_a, (versions.0, versions.1, view));
+            return;
+        }
+        self.values = None;
         if self.metrics_of.is_some_and(|of| of != versions) {
             // A side changed: the metrics no longer describe what is shown.
             self.metrics = None;
@@ -254,7 +274,7 @@ impl Compare {
             let b_done = self.reference.is_some()
                 || (is_done(&self.engine) && self.image.is_current(&self.engine));
             let redraw_difference = self.view == CompareView::Difference
-                && self.difference_of != Some((versions.0, versions.1, self.gain));
+                && self.difference_of != Some((versions.0, versions.1, self.gain, None));
             let measure_now = b_done
                 && is_done(engine_a)
                 && image_a.is_current(engine_a)
@@ -265,7 +285,7 @@ impl Compare {
                         if redraw_difference && let Some(a) = rgb(sa) {
                             self.difference =
                                 difference_texture(ctx, &a, &sb, self.gain, self.difference.take());
-                            self.difference_of = Some((versions.0, versions.1, self.gain));
+                            self.difference_of = Some((versions.0, versions.1, self.gain, None));
                         }
                         if measure_now {
                             self.metrics_of = Some(versions);
@@ -288,6 +308,40 @@ impl Compare {
             self.metrics = Some(result);
             self.pending = None;
         }
+    }
+
+    /// The values' difference of `key`'s view, computed again when a side
+    /// changed, and its map while the difference view shows. Image metrics
+    /// of heat-map colours would mean nothing: none are computed.
+    fn refresh_values(&mut self, ctx: &egui::Context, a: &Engine, key: ValuesKey) {
+        self.metrics = None;
+        self.metrics_of = None;
+        self.pending = None;
+        let (version_a, version_b, view) = key;
+        if self.values.as_ref().is_none_or(|(of, _)| *of != key)
+            && let (Some(a), Some(b)) = (a.view_values(view), self.engine.view_values(view))
+        {
+            self.values = ValueDifference::of(&a, &b).map(|d| (key, d));
+        }
+        let shown = (version_a, version_b, self.gain, Some(view));
+        if self.view == CompareView::Difference
+            && self.difference_of != Some(shown)
+            && let Some((of, d)) = &self.values
+            && *of == key
+        {
+            let size = a.settings().map(|s| [s.width as usize, s.height as usize]);
+            // A's settings may already be of the next render's size.
+            if let Some(size) = size.filter(|[w, h]| w * h == d.values.len()) {
+                let image = ColorImage::from_rgba_unmultiplied(size, &d.rgba8());
+                self.difference = Some(upload(ctx, image, self.difference.take()));
+                self.difference_of = Some(shown);
+            }
+        }
+    }
+
+    /// The values' difference and statistics while a cost view is on.
+    pub fn value_difference(&self) -> Option<(View, &ValueDifference)> {
+        self.values.as_ref().map(|((_, _, view), d)| (*view, d))
     }
 
     /// B's image at A's `size`: the reference (or why it does not fit) or
@@ -354,14 +408,19 @@ fn difference_texture(
 ) -> Option<TextureHandle> {
     let map = metrics::diff_heatmap(a, b, gain).ok()?;
     let image = ColorImage::from_rgb([map.width() as usize, map.height() as usize], map.as_raw());
+    Some(upload(ctx, image, texture))
+}
+
+/// `image` as the difference texture (reusing `texture`).
+fn upload(ctx: &egui::Context, image: ColorImage, texture: Option<TextureHandle>) -> TextureHandle {
     let options = TextureOptions::NEAREST;
-    Some(match texture {
+    match texture {
         Some(mut texture) => {
             texture.set(image, options);
             texture
         }
         None => ctx.load_texture("difference", image, options),
-    })
+    }
 }
 
 /// The labels of A and B: what differs, side by side.
@@ -418,6 +477,10 @@ pub fn show_numbers(
     ui.label(RichText::new(&labels.0).small());
     ui.label(RichText::new(&labels.1).small());
     ui.separator();
+    if let Some((view, d)) = compare.value_difference() {
+        show_value_stats(ui, view, &d.stats);
+        return;
+    }
     match compare.metrics() {
         Some(Ok(m)) => {
             egui::Grid::new("compare_metrics")
@@ -450,26 +513,81 @@ pub fn show_numbers(
     }
 }
 
+/// The view's statistics of both sides, in place of the image metrics.
+fn show_value_stats(ui: &mut Ui, view: View, s: &ValueStats) {
+    let unit = view.unit();
+    let number = |v: f32| format!("{} {unit}", format_number(v));
+    egui::Grid::new("compare_values")
+        .num_columns(2)
+        .show(ui, |ui| {
+            let mut row = |name: &str, value: String| {
+                ui.label(name);
+                ui.monospace(value);
+                ui.end_row();
+            };
+            row(&format!("Mean A ({})", view.name()), number(s.mean_a));
+            row(&format!("Mean B ({})", view.name()), number(s.mean_b));
+            row("Ratio A/B", format!("{:.3}", s.ratio));
+            row("Mean |A − B|", number(s.mean_abs_difference));
+            row("Max |A − B|", number(s.max_abs_difference));
+        });
+    ui.weak(format!(
+        "over the {} pixels where both sides have a value",
+        s.pixels
+    ));
+}
+
+/// Under the difference view: the diverging legend of the values'
+/// difference with its numbers, or the images' amplification and legend.
+pub fn difference_controls(ui: &mut Ui, compare: &mut Compare) {
+    if let Some((view, d)) = compare.value_difference() {
+        let top = format!("{} {}", format_number(d.scale), view.unit());
+        ui.horizontal(|ui| {
+            ui.label(format!("−{top}"));
+            colour_bar(ui, |t| diverging_colour(2.0 * t - 1.0));
+            ui.label(format!("+{top}"));
+            ui.weak("A − B: red where A is higher, blue where B is")
+                .on_hover_text(format!(
+                    "The difference of the {} values per pixel; the bar's ends are the \
+                     99th percentile of |A − B|, larger differences take the end colours",
+                    view.name()
+                ));
+        });
+        return;
+    }
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::Slider::new(&mut compare.gain, 1.0..=64.0)
+                .logarithmic(true)
+                .text("Amplification"),
+        )
+        .on_hover_text("Multiplies |A - B| before colouring, so small differences show");
+        legend(ui, compare.gain);
+    });
+}
+
+/// A horizontal bar of `colour(t)` for `t` from 0 to 1.
+fn colour_bar(ui: &mut Ui, colour: impl Fn(f32) -> [u8; 3]) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(160.0, 12.0), egui::Sense::hover());
+    let steps = 32;
+    for i in 0..steps {
+        let c = colour(i as f32 / (steps - 1) as f32);
+        let x0 = rect.min.x + rect.width() * i as f32 / steps as f32;
+        let x1 = rect.min.x + rect.width() * (i + 1) as f32 / steps as f32;
+        ui.painter().rect_filled(
+            egui::Rect::from_min_max(egui::pos2(x0, rect.min.y), egui::pos2(x1, rect.max.y)),
+            0.0,
+            Color32::from_rgb(c[0], c[1], c[2]),
+        );
+    }
+}
+
 /// A colour bar from 0 to `1 / gain` of the full range, for the difference
 /// view.
-pub fn legend(ui: &mut Ui, gain: f32) {
-    ui.horizontal(|ui| {
-        ui.label("0");
-        let (rect, _) = ui.allocate_exact_size(egui::vec2(160.0, 12.0), egui::Sense::hover());
-        let steps = 32;
-        for i in 0..steps {
-            let t = i as f32 / (steps - 1) as f32;
-            let c = Palette::Heat.colour(t).0;
-            let x0 = rect.min.x + rect.width() * i as f32 / steps as f32;
-            let x1 = rect.min.x + rect.width() * (i + 1) as f32 / steps as f32;
-            ui.painter().rect_filled(
-                egui::Rect::from_min_max(egui::pos2(x0, rect.min.y), egui::pos2(x1, rect.max.y)),
-                0.0,
-                Color32::from_rgb(c[0], c[1], c[2]),
-            );
-        }
-        ui.label(format!("{:.0}+ levels", 255.0 / gain.max(1e-3)));
-    });
+fn legend(ui: &mut Ui, gain: f32) {
+    ui.label("0");
+    colour_bar(ui, |t| Palette::Heat.colour(t).0);
+    ui.label(format!("{:.0}+ levels", 255.0 / gain.max(1e-3)));
 }
 
 #[cfg(test)]
@@ -529,7 +647,7 @@ mod tests {
         let mut compare = Compare::new(Arc::new(|| {}), &Controls::default(), None);
         let measured = |compare: &mut Compare| {
             wait_until(|| {
-                compare.refresh(&ctx, (&engine_a, &image_a), Duration::ZERO);
+                compare.refresh(&ctx, (&engine_a, &image_a), Duration::ZERO, None);
                 compare.metrics().is_some()
             });
             compare.metrics().cloned().unwrap()

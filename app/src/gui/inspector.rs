@@ -5,10 +5,13 @@
 
 use egui::{Color32, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
+use tracer::accel::Visit;
 use tracer::render::{Frame, Outcome, RayKind, RayNode, RayTree, RenderSettings};
 
 use super::engine::Engine;
-use crate::measure::ray_tree_report::{self, describe_node, headline, triple};
+use crate::measure::ray_tree_report::{
+    self, describe_node, describe_visit, headline, triple, visits_heading,
+};
 
 /// The pinned pixel and its trees (A, and B while comparing).
 #[derive(Default)]
@@ -36,6 +39,15 @@ impl Inspector {
     /// The recorded tree of side A (0) or B (1).
     pub fn tree(&self, side: usize) -> Option<&Result<RayTree, String>> {
         self.trees.get(side)?.as_ref().map(|t| &t.tree)
+    }
+
+    /// The cells or nodes side A's eye ray visited (empty without a tree),
+    /// for the structure overlay.
+    pub fn eye_visits(&self) -> &[Visit] {
+        match self.tree(0) {
+            Some(Ok(tree)) => &tree.eye_visits,
+            _ => &[],
+        }
     }
 
     /// Records the trees again for what changed: the pixel, the sample or
@@ -180,6 +192,15 @@ fn show_tree(ui: &mut Ui, tree: &RayTree, side: usize) {
     for root in tree.children(None) {
         show_node(ui, tree, root, side);
     }
+    let visits = &tree.eye_visits;
+    egui::CollapsingHeader::new(visits_heading(visits))
+        .id_salt(("visits", side))
+        .show(ui, |ui| {
+            ui.small("Drawn over the image with the structure overlay, yellow first, red last.");
+            for visit in visits {
+                ui.label(describe_visit(visit));
+            }
+        });
 }
 
 fn show_node(ui: &mut Ui, tree: &RayTree, index: usize, side: usize) {

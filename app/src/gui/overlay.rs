@@ -1,14 +1,16 @@
 //! The acceleration structure drawn over the image in the window: the
 //! BVH's boxes at a chosen depth (or its leaves), or the grid's box and
 //! lattice, projected through the current camera each frame, so the
-//! wireframe follows camera moves before the image re-renders.
+//! wireframe follows camera moves before the image re-renders. With a
+//! pinned pixel, the cells or nodes its eye ray visited are drawn on top.
 
 use egui::{Color32, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
-use tracer::accel::{AccelKind, StructureLayer};
+use tracer::accel::{AccelKind, StructureLayer, Visit};
 use tracer::render::Frame;
 
 use super::engine::Engine;
+use crate::measure::overlay_image;
 
 /// The overlay's controls and the segments of the structure it draws.
 #[derive(Default)]
@@ -20,6 +22,9 @@ pub struct StructureOverlay {
     pub leaves: bool,
     /// The segments and what they were made from.
     cache: Option<(CacheKey, Vec<[Vec3A; 2]>)>,
+    /// Cells or nodes of the inspected pixel's eye ray drawn in the last
+    /// frame.
+    pub visits_drawn: usize,
 }
 
 /// The structure (its address: one per build) and the layer drawn.
@@ -61,8 +66,11 @@ impl StructureOverlay {
     }
 
     /// Draws the structure of `engine`'s current job over `image_rect`
-    /// through the camera of its current settings.
-    pub fn paint(&mut self, ui: &Ui, engine: &Engine, image_rect: Rect) {
+    /// through the camera of its current settings, and over it the cells
+    /// or nodes of `visits` (the inspected pixel's eye ray), yellow to red
+    /// in visiting order.
+    pub fn paint(&mut self, ui: &Ui, engine: &Engine, image_rect: Rect, visits: &[Visit]) {
+        self.visits_drawn = 0;
         if !self.on {
             return;
         }
@@ -87,14 +95,32 @@ impl StructureOverlay {
         let painter = ui
             .painter()
             .with_clip_rect(image_rect.intersect(ui.clip_rect()));
-        let stroke = Stroke::new(1.0, Color32::from_rgb(80, 255, 120));
-        for [a, b] in self.cache.iter().flat_map(|(_, s)| s) {
-            if let (Some(a), Some(b)) = (camera.project(*a), camera.project(*b)) {
+        let line = |[a, b]: [Vec3A; 2], stroke: Stroke| {
+            if let (Some(a), Some(b)) = (camera.project(a), camera.project(b)) {
                 let (a, b) = (to_screen(a), to_screen(b));
                 if a.is_finite() && b.is_finite() {
                     painter.line_segment([pos2(a.x, a.y), pos2(b.x, b.y)], stroke);
                 }
             }
+        };
+        let stroke = Stroke::new(1.0, Color32::from_rgb(80, 255, 120));
+        for segment in self.cache.iter().flat_map(|(_, s)| s) {
+            line(*segment, stroke);
         }
+        // Only visits of the structure drawn: for one frame after a switch
+        // the inspector still holds the other structure's.
+        let grid = layer == StructureLayer::Grid;
+        let visits: Vec<&Visit> = visits
+            .iter()
+            .filter(|v| matches!(v, Visit::Cell { .. }) == grid)
+            .collect();
+        for (i, visit) in visits.iter().enumerate() {
+            let [r, g, b] = overlay_image::visit_colour(i, visits.len());
+            let stroke = Stroke::new(2.0, Color32::from_rgb(r, g, b));
+            for segment in visit.edges() {
+                line(segment, stroke);
+            }
+        }
+        self.visits_drawn = visits.len();
     }
 }

@@ -10,7 +10,7 @@ use std::time::Duration;
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use tracer::accel::{AccelInfo, AccelKind, SceneIndex};
-use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings};
+use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings, ViewFilm};
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
@@ -164,6 +164,9 @@ pub struct Measurement {
     pub index: AccelInfo,
     /// The last frame's image.
     pub image: RgbImage,
+    /// The last frame's per-pixel views, when the run measured them
+    /// ([`run_measuring_views`]).
+    pub views: Option<ViewFilm>,
 }
 
 impl Measurement {
@@ -315,18 +318,37 @@ pub fn run(
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Outcome> {
+    run_cancellable(world, cases, options, cancel, false, on_event)
+}
+
+/// [`run`] measuring the per-pixel views in the same frames, so a
+/// comparison of views renders each side once; the frame times include
+/// the views' bookkeeping.
+pub fn run_measuring_views(
+    world: &Arc<World>,
+    cases: &[Case],
+    options: RunOptions,
+    cancel: &AtomicBool,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Outcome> {
+    run_cancellable(world, cases, options, cancel, true, on_event)
+}
+
+/// [`run`], measuring the views or not.
+fn run_cancellable(
+    world: &Arc<World>,
+    cases: &[Case],
+    options: RunOptions,
+    cancel: &AtomicBool,
+    views: bool,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Outcome> {
     let stop = Stop {
         now: cancel,
         after_frame: &AtomicBool::new(false),
     };
-    run_with(
-        world,
-        cases,
-        options,
-        &mut Structures::default(),
-        stop,
-        on_event,
-    )
+    let structures = &mut Structures::default();
+    run_cases(world, cases, options, structures, stop, views, on_event)
 }
 
 /// [`run`] with structures kept by the caller (a study measures one world
@@ -337,6 +359,19 @@ pub fn run_with(
     options: RunOptions,
     structures: &mut Structures,
     stop: Stop,
+    on_event: &mut dyn FnMut(Event),
+) -> Result<Outcome> {
+    run_cases(world, cases, options, structures, stop, false, on_event)
+}
+
+/// The runner behind [`run_with`] and [`run_measuring_views`].
+fn run_cases(
+    world: &Arc<World>,
+    cases: &[Case],
+    options: RunOptions,
+    structures: &mut Structures,
+    stop: Stop,
+    views: bool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Outcome> {
     let mut outcome = Outcome::default();
@@ -352,6 +387,7 @@ pub fn run_with(
                 settings.clone(),
                 JobOptions {
                     threads: options.threads,
+                    views,
                     ..JobOptions::default()
                 },
             )
@@ -371,7 +407,7 @@ pub fn run_with(
                 });
                 std::thread::sleep(POLL);
             }
-            let (film, stats, state) = job.wait();
+            let (film, view_film, stats, state) = job.wait_with_views();
             match state {
                 JobState::Failed(message) => bail!("{}: render failed: {message}", case.label),
                 JobState::Cancelled => {
@@ -381,18 +417,19 @@ pub fn run_with(
                 _ => {}
             }
             times.push(stats.render_time);
-            last = Some((film, stats));
+            last = Some((film, view_film, stats));
             if stop.after_frame.load(Ordering::Relaxed) {
                 break;
             }
         }
-        let (film, stats) = last.context("no frame was rendered")?;
+        let (film, views, stats) = last.context("no frame was rendered")?;
         let measurement = Measurement {
             case: case.clone(),
             times,
             stats,
             index: index.info().clone(),
             image: film.to_image(case.encoding),
+            views,
         };
         on_event(Event::Measured {
             case: case_no,
@@ -533,6 +570,7 @@ mod tests {
             stats: RenderStats::default(),
             index: SceneIndex::build(&[], AccelKind::None, 1.0).info().clone(),
             image: RgbImage::new(1, 1),
+            views: None,
         };
         let odd = m(vec![ms(30), ms(10), ms(20), ms(100), ms(25)]);
         assert_eq!(odd.median(), ms(25));

@@ -96,20 +96,38 @@ impl Comparison {
     }
 }
 
+/// How both sides of a comparison render.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SideOptions {
+    /// Worker threads; `None` uses every core.
+    pub threads: Option<usize>,
+    /// Measure the per-pixel views in the same frames (each side is still
+    /// rendered once).
+    pub views: bool,
+}
+
 /// Renders `a` then `b` once each (progress reported as cases 0 and 1) and
 /// compares them. `None` when `cancel` stopped it.
 pub fn run(
     world: &Arc<World>,
     a: Case,
     b: Case,
-    threads: Option<usize>,
+    sides: SideOptions,
     heatmap: Heatmap,
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Option<Comparison>> {
     let labels = side_labels(&a.settings, &b.settings);
-    let options = RunOptions { runs: 1, threads };
-    let outcome = benchmark::run(world, &[a, b], options, cancel, on_event)?;
+    let options = RunOptions {
+        runs: 1,
+        threads: sides.threads,
+    };
+    let cases = [a, b];
+    let outcome = if sides.views {
+        benchmark::run_measuring_views(world, &cases, options, cancel, on_event)?
+    } else {
+        benchmark::run(world, &cases, options, cancel, on_event)?
+    };
     let [a, b]: [Measurement; 2] = match outcome.measurements.try_into() {
         Ok(sides) if !outcome.cancelled => sides,
         _ => return Ok(None),

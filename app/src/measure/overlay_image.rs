@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3A};
 use image::{Rgb, RgbImage};
+use tracer::accel::Visit;
 use tracer::camera::Camera;
 
 /// The colour of the wireframe: visible on both the shaded image and the
@@ -15,6 +16,27 @@ pub fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A;
     for [a, b] in segments {
         if let (Some(a), Some(b)) = (camera.project(*a), camera.project(*b)) {
             draw_line(image, a, b, WIRE);
+        }
+    }
+}
+
+/// The colour of visit `i` of `n` in a traversal: yellow for the first,
+/// through orange, to red for the last, so the order of a walk reads off
+/// the image. The window's overlay uses it too.
+pub fn visit_colour(i: usize, n: usize) -> [u8; 3] {
+    let t = i as f32 / n.saturating_sub(1).max(1) as f32;
+    [255, (230.0 - 200.0 * t) as u8, (40.0 * t) as u8]
+}
+
+/// Draws the boxes of one ray's `visits` over `image`, coloured by their
+/// order ([`visit_colour`]).
+pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
+    for (i, visit) in visits.iter().enumerate() {
+        let colour = Rgb(visit_colour(i, visits.len()));
+        for [a, b] in visit.edges() {
+            if let (Some(a), Some(b)) = (camera.project(a), camera.project(b)) {
+                draw_line(image, a, b, colour);
+            }
         }
     }
 }
@@ -84,5 +106,14 @@ mod tests {
         );
         assert!((0..10).all(|y| *image.get_pixel(2, y) == WIRE));
         draw_line(&mut image, Vec2::NAN, Vec2::ONE, WIRE);
+    }
+
+    #[test]
+    fn visits_run_from_yellow_to_red() {
+        assert_eq!(visit_colour(0, 5), [255, 230, 0]);
+        assert_eq!(visit_colour(4, 5), [255, 30, 40]);
+        let greens: Vec<u8> = (0..5).map(|i| visit_colour(i, 5)[1]).collect();
+        assert!(greens.windows(2).all(|w| w[0] > w[1]), "{greens:?}");
+        assert_eq!(visit_colour(0, 1), [255, 230, 0]);
     }
 }

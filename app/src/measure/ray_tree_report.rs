@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use anyhow::{Result, anyhow};
 use glam::Vec3A;
-use tracer::accel::SceneIndex;
+use tracer::accel::{SceneIndex, Visit};
 use tracer::render::{Frame, Outcome, RayNode, RayTree, RenderSettings};
 use tracer::world::World;
 
@@ -124,6 +124,68 @@ pub fn text(tree: &RayTree) -> String {
         let children: Vec<usize> = tree.children(Some(i)).collect();
         stack.extend(children.into_iter().rev().map(|c| (c, level + 1)));
     }
+    out.push_str(&visits_text(&tree.eye_visits));
+    out
+}
+
+/// What the eye ray's traversal visited: a heading with the counts, then
+/// one line per cell, node or leaf in visiting order.
+pub fn visits_text(visits: &[Visit]) -> String {
+    let mut out = visits_heading(visits);
+    out.push_str(if visits.is_empty() { "\n" } else { ":\n" });
+    for visit in visits {
+        out.push_str("  ");
+        out.push_str(&describe_visit(visit));
+        out.push('\n');
+    }
+    out
+}
+
+/// How many cells, or nodes and leaves, the eye ray visited.
+pub fn visits_heading(visits: &[Visit]) -> String {
+    let nodes = visits
+        .iter()
+        .filter(|v| matches!(v, Visit::Node { .. }))
+        .count();
+    match visits.first() {
+        None => "eye ray: no cells or nodes visited (brute force, or it misses the structure)"
+            .to_string(),
+        Some(Visit::Cell { .. }) => format!("eye ray walked {} grid cells", visits.len()),
+        Some(_) => format!(
+            "eye ray visited {nodes} BVH nodes and tested {} leaves",
+            visits.len() - nodes
+        ),
+    }
+}
+
+/// One visit in one line: what it is and its box.
+pub fn describe_visit(visit: &Visit) -> String {
+    let b = visit.bounds();
+    let what = match visit {
+        Visit::Cell {
+            cell: [x, y, z], ..
+        } => format!("cell ({x}, {y}, {z})"),
+        Visit::Node { depth, .. } => format!("node at depth {depth}"),
+        Visit::Leaf {
+            depth, primitives, ..
+        } => format!("leaf at depth {depth}, {primitives} primitives tested"),
+    };
+    format!("{what}, box {} .. {}", triple(b.min), triple(b.max))
+}
+
+/// One visit as JSON: its kind, box and what identifies it.
+fn visit_json(visit: &Visit) -> serde_json::Value {
+    let b = visit.bounds();
+    let v = |v: Vec3A| [v.x, v.y, v.z];
+    let mut out = match visit {
+        Visit::Cell { cell, .. } => serde_json::json!({ "kind": "cell", "cell": cell }),
+        Visit::Node { depth, .. } => serde_json::json!({ "kind": "node", "depth": depth }),
+        Visit::Leaf {
+            depth, primitives, ..
+        } => serde_json::json!({ "kind": "leaf", "depth": depth, "primitives": primitives }),
+    };
+    out["min"] = serde_json::json!(v(b.min));
+    out["max"] = serde_json::json!(v(b.max));
     out
 }
 
@@ -192,5 +254,6 @@ pub fn json(tree: &RayTree) -> serde_json::Value {
         "colour": v(tree.colour),
         "sum_of_contributions": v(tree.contributions()),
         "nodes": nodes,
+        "eye_visits": tree.eye_visits.iter().map(visit_json).collect::<Vec<_>>(),
     })
 }

@@ -2,14 +2,9 @@
 //! carries its numbers (0 on the left, the top of the scale on the right),
 //! and the view's summary. Shared by `render --view` and `compare --view`.
 
-use std::sync::Arc;
-
 use anyhow::{Result, anyhow};
 use image::{Rgb, RgbImage};
-use tracer::render::{
-    JobOptions, JobState, RenderJob, RenderSettings, View, ViewFilm, ViewHeatmap, ViewSummary,
-};
-use tracer::world::World;
+use tracer::render::{View, ViewFilm, ViewHeatmap, ViewSummary};
 
 /// Background of the legend strip.
 const BACKGROUND: Rgb<u8> = Rgb([32, 32, 32]);
@@ -24,25 +19,6 @@ const DOT: u32 = 2;
 pub fn view_image(film: &ViewFilm, view: View, heat: &ViewHeatmap) -> Option<RgbImage> {
     let rgba = film.to_rgba8(view, heat)?;
     tracer::render::rgba_to_rgb_image(film.width(), film.height(), &rgba)
-}
-
-/// Renders `settings` once with the views measured, and returns them.
-pub fn measure_views(
-    world: &Arc<World>,
-    settings: &RenderSettings,
-    threads: Option<usize>,
-) -> Result<ViewFilm> {
-    let options = JobOptions {
-        threads,
-        views: true,
-        ..JobOptions::default()
-    };
-    let job = RenderJob::start(world.clone(), None, settings.clone(), options)?;
-    match job.wait_with_views() {
-        (_, _, _, JobState::Failed(message)) => Err(anyhow!("rendering failed: {message}")),
-        (_, Some(views), _, _) => Ok(views),
-        (_, None, _, _) => Err(anyhow!("the render measured no views")),
-    }
 }
 
 /// The view of two sides on one shared scale, and the absolute difference

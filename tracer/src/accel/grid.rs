@@ -8,6 +8,7 @@ use glam::{IVec3, Vec3A};
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
+use super::visits::{NoLog, Step, VisitLog};
 use super::{Hit, Nearest};
 
 /// Most cells a grid may have, whatever the multiplier: 16 Mi cells take
@@ -145,18 +146,19 @@ impl Grid {
         (self.offsets.len() + self.refs.len()) * 4
     }
 
-    /// The nearest hit in `(t_min, t_max)`.
+    /// The nearest hit in `(t_min, t_max)`, telling `log` each cell walked.
     #[inline]
-    pub fn closest_hit(
+    pub(in crate::accel) fn closest_hit(
         &self,
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
         t_max: f32,
         counters: &mut Counters,
+        log: &mut impl VisitLog,
     ) -> Option<Hit> {
         let mut nearest = Nearest::new(t_max);
-        self.walk(ray, t_min, t_max, counters, |id, counters| {
+        self.walk(ray, t_min, t_max, counters, log, |id, counters| {
             counters.intersection_tests += 1;
             if let Some(t) = shapes[id as usize].intersect(ray, t_min, nearest.limit) {
                 nearest.offer(t, id);
@@ -178,7 +180,7 @@ impl Grid {
         counters: &mut Counters,
     ) -> bool {
         let mut found = false;
-        self.walk(ray, t_min, t_max, counters, |id, counters| {
+        self.walk(ray, t_min, t_max, counters, &mut NoLog, |id, counters| {
             counters.intersection_tests += 1;
             if shapes[id as usize].intersect(ray, t_min, t_max).is_some() {
                 found = true;
@@ -200,6 +202,7 @@ impl Grid {
         t_min: f32,
         t_max: f32,
         counters: &mut Counters,
+        log: &mut impl VisitLog,
         mut test: impl FnMut(u32, &mut Counters) -> f32,
     ) {
         let Some((t_enter, _)) = self.bounds.intersect(ray, t_min, t_max) else {
@@ -231,6 +234,7 @@ impl Grid {
         let mut nearest = f32::INFINITY;
         loop {
             counters.nodes_visited += 1;
+            log.step(Step::Cell(cell));
             let i = (cell.x + self.cells.x * (cell.y + self.cells.y * cell.z)) as usize;
             let (from, to) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
             for &id in &self.refs[from..to] {

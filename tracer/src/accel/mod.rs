@@ -9,16 +9,19 @@ mod packed;
 mod structure_view;
 #[cfg(test)]
 mod tests;
+mod visits;
 
 use std::time::{Duration, Instant};
 
 use crate::geometry::{Ray, Shape};
 use crate::stats::Counters;
+use visits::{NoLog, VisitLog};
 
 pub use brute::BruteForce;
 pub use bvh::{Bvh, BvhParams};
 pub use grid::{Grid, GridStats};
 pub use structure_view::StructureLayer;
+pub use visits::{Traversal, Visit};
 
 /// Which structure to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -204,10 +207,25 @@ impl SceneIndex {
         t_max: f32,
         counters: &mut Counters,
     ) -> Option<Hit> {
+        self.closest_hit_logged(shapes, ray, t_min, t_max, counters, &mut NoLog)
+    }
+
+    /// [`SceneIndex::closest_hit`], telling `log` every cell or node the
+    /// traversal visits (a [`NoLog`] compiles the telling away).
+    #[inline]
+    fn closest_hit_logged(
+        &self,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+        log: &mut impl VisitLog,
+    ) -> Option<Hit> {
         let mut best = match &self.structure {
             Structure::None(b) => b.closest_hit(shapes, ray, t_min, t_max, counters),
-            Structure::Grid(g) => g.closest_hit(shapes, ray, t_min, t_max, counters),
-            Structure::Bvh(b) => b.closest_hit(shapes, ray, t_min, t_max, counters),
+            Structure::Grid(g) => g.closest_hit(shapes, ray, t_min, t_max, counters, log),
+            Structure::Bvh(b) => b.closest_hit(shapes, ray, t_min, t_max, counters, log),
         };
         let mut t_max = best.map_or(t_max, |h| h.t);
         for &i in &self.unbounded {

@@ -5,7 +5,7 @@ use glam::Vec3A;
 
 use crate::geometry::Aabb;
 
-use super::{SceneIndex, Structure};
+use super::{SceneIndex, Structure, Visit};
 
 /// What of the structure to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,6 +32,13 @@ impl SceneIndex {
             }
             _ => Vec::new(),
         }
+    }
+}
+
+impl Visit {
+    /// The 12 edges of the visited cell's, node's or leaf's box.
+    pub fn edges(&self) -> Vec<[Vec3A; 2]> {
+        box_edges(&[self.bounds()])
     }
 }
 

@@ -6,6 +6,7 @@
 
 use glam::Vec3A;
 
+use crate::accel::{Traversal, Visit};
 use crate::geometry::Ray;
 use crate::stats::Counters;
 use crate::world::Surface;
@@ -23,6 +24,9 @@ pub struct RayTree {
     /// The radiance the render traced for this sample.
     pub colour: Vec3A,
     pub nodes: Vec<RayNode>,
+    /// The grid cells, or BVH nodes and leaves, the eye ray's traversal
+    /// visited, in order (none with brute force).
+    pub eye_visits: Vec<Visit>,
 }
 
 impl RayTree {
@@ -129,13 +133,36 @@ impl Frame {
         for node in &mut nodes {
             self.complete(node);
         }
+        let eye_visits = nodes
+            .first()
+            .filter(|n| n.kind == RayKind::Eye)
+            .map(|eye| self.eye_traversal(eye).visits)
+            .unwrap_or_default();
         Some(RayTree {
             x,
             y,
             sample,
             colour,
             nodes,
+            eye_visits,
         })
+    }
+
+    /// The eye ray's closest-hit query again, with what it visited: the
+    /// recorded origin and direction are the traced ray's own, so it is
+    /// the same query, bit for bit.
+    fn eye_traversal(&self, eye: &RayNode) -> Traversal {
+        let ray = Ray {
+            origin: eye.origin,
+            dir: eye.dir,
+            inv_dir: eye.dir.recip(),
+        };
+        self.index.closest_hit_visits(
+            &self.world.shapes,
+            &ray,
+            self.camera.hither(),
+            f32::INFINITY,
+        )
     }
 
     /// Fills in what the recorder could not know: the scene objects, the
@@ -384,6 +411,36 @@ s 2.5 0 1 1
             assert!(close(bounce.dir, Vec3A::NEG_Y), "{:?}", bounce.dir);
             assert_eq!(bounce.contribution, Vec3A::new(0.2, 0.3, 0.5));
             assert!(close(tree.contributions(), tree.colour));
+        }
+    }
+
+    #[test]
+    fn the_eye_visits_lead_to_the_eye_hit() {
+        let holds = |b: &crate::geometry::Aabb, p: Vec3A| {
+            (p.cmpge(b.min - 1e-4) & p.cmple(b.max + 1e-4)).all()
+        };
+        for accel in [AccelKind::None, AccelKind::Grid, AccelKind::Bvh] {
+            let tree = frame(accel).inspect(20, 20, 0).unwrap();
+            let Outcome::Surface(mirror) = &tree.nodes[0].outcome else {
+                unreachable!()
+            };
+            let visits = &tree.eye_visits;
+            match accel {
+                AccelKind::None => assert!(visits.is_empty()),
+                // The walk stops in the cell of the hit.
+                AccelKind::Grid => {
+                    let last = visits.last().expect("cells walked");
+                    assert!(matches!(last, Visit::Cell { .. }));
+                    assert!(holds(&last.bounds(), mirror.point), "{last:?}");
+                }
+                // A tested leaf holds the hit.
+                AccelKind::Bvh => {
+                    assert!(matches!(visits[0], Visit::Node { depth: 0, .. }));
+                    assert!(visits.iter().any(
+                        |v| matches!(v, Visit::Leaf { .. }) && holds(&v.bounds(), mirror.point)
+                    ));
+                }
+            }
         }
     }
 

@@ -5,6 +5,7 @@
 
 mod build;
 mod node;
+mod visits;
 
 use std::mem::MaybeUninit;
 
@@ -15,6 +16,7 @@ use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
 use super::packed::PackedShape;
+use super::visits::{Step, VisitLog};
 use super::{Hit, Nearest};
 use build::{BuildPrim, build_node};
 use node::{EMPTY, Node4, WideRay, flatten};
@@ -161,15 +163,17 @@ impl Bvh {
         }
     }
 
-    /// The nearest hit in `(t_min, t_max)`.
+    /// The nearest hit in `(t_min, t_max)`, telling `log` each node
+    /// visited and each leaf tested.
     #[inline]
-    pub fn closest_hit(
+    pub(in crate::accel) fn closest_hit(
         &self,
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
         mut t_max: f32,
         counters: &mut Counters,
+        log: &mut impl VisitLog,
     ) -> Option<Hit> {
         if self.prims.is_empty() {
             return None;
@@ -187,6 +191,7 @@ impl Bvh {
         loop {
             if next.count > 0 {
                 let (first, count) = (next.first as usize, next.count as usize);
+                log.step(Step::Leaf(next.first, next.count));
                 tests += count as u64;
                 for prim in &self.prims[first..first + count] {
                     if let Some(t) = prim.intersect(shapes, ray, t_min, nearest.limit) {
@@ -196,6 +201,7 @@ impl Bvh {
                 }
             } else {
                 visited += 1;
+                log.step(Step::Node(next.first));
                 let node = &self.nodes[next.first as usize];
                 let (near, mut mask) = node.hit(&wide, t_min, t_max);
                 if mask != 0 {

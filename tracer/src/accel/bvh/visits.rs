@@ -1,0 +1,57 @@
+//! A BVH traversal's steps (node indices) turned into boxes and depths, for
+//! drawing the descent of one ray.
+
+use std::collections::HashMap;
+
+use crate::geometry::Aabb;
+
+use super::super::visits::{Step, Visit};
+use super::Bvh;
+use super::node::EMPTY;
+
+impl Bvh {
+    /// The visits of `steps` told by one traversal of this tree. A node is
+    /// only reached through a parent visited before it, which gives its box
+    /// and depth: only the visited nodes are read.
+    pub(in crate::accel) fn visits(&self, steps: &[Step]) -> Vec<Visit> {
+        // (first, count) of a slot -> its box and depth; the root is (0, 0).
+        let mut known: HashMap<(u32, u32), (Aabb, u32)> = HashMap::new();
+        if let Some(root) = self.nodes.first() {
+            let scene = (0..4)
+                .filter(|&i| root.count[i] != EMPTY)
+                .map(|i| root.bounds(i))
+                .reduce(|a, b| a.union(&b));
+            if let Some(scene) = scene {
+                known.insert((0, 0), (scene, 0));
+            }
+        }
+        let mut out = Vec::with_capacity(steps.len());
+        for &step in steps {
+            let (key, leaf) = match step {
+                Step::Node(index) => ((index, 0), false),
+                Step::Leaf(first, count) => ((first, count), true),
+                Step::Cell(_) => continue,
+            };
+            let Some(&(bounds, depth)) = known.get(&key) else {
+                continue;
+            };
+            if leaf {
+                out.push(Visit::Leaf {
+                    bounds,
+                    depth,
+                    primitives: key.1,
+                });
+                continue;
+            }
+            out.push(Visit::Node { bounds, depth });
+            let node = &self.nodes[key.0 as usize];
+            for slot in (0..4).filter(|&i| node.count[i] != EMPTY) {
+                known.insert(
+                    (node.first[slot], node.count[slot]),
+                    (node.bounds(slot), depth + 1),
+                );
+            }
+        }
+        out
+    }
+}
