@@ -157,9 +157,22 @@ fn compare_views_share_one_scale() {
         a["mean"].as_f64().unwrap() > 3.0 * b["mean"].as_f64().unwrap(),
         "{json}"
     );
+    // The difference is signed: brute force tests more everywhere, so
+    // A - B is positive (red) wherever there is a difference, never blue.
+    let d = &json["view"]["difference"];
+    assert!(d["ratio"].as_f64().unwrap() > 3.0, "{json}");
+    assert!(d["mean_abs_difference"].as_f64().unwrap() > 0.0, "{json}");
     let img = image::open(&out).unwrap().to_rgb8();
     assert_eq!(img.width(), 3 * 40 + 2 * 4);
     assert!(img.height() > 30);
+    let panel = (2 * (40 + 4)..3 * 40 + 2 * 4).flat_map(|x| (0..30).map(move |y| (x, y)));
+    let (mut red, mut blue) = (0, 0);
+    for (x, y) in panel {
+        let [r, _, b] = img.get_pixel(x, y).0;
+        red += usize::from(r > 100 && r > b);
+        blue += usize::from(b > 100 && b > r);
+    }
+    assert!(red > 100 && blue == 0, "red {red}, blue {blue}");
 }
 
 #[test]

@@ -220,20 +220,36 @@ fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewR
     };
     let (va, vb) = (fa.values(view), fb.values(view));
     let heat = args.view.heatmap(&[&va, &vb]);
-    save_png(
-        &view_image::compose_sides(fa, fb, view, &heat)?,
-        &args.output,
-    )?;
+    let (image, difference) = view_image::compose_sides(fa, fb, view, &heat)?;
+    save_png(&image, &args.output)?;
     let (sa, sb) = (ViewSummary::of(&va), ViewSummary::of(&vb));
+    let number = view_image::format_number;
+    let difference_line = difference.map_or_else(String::new, |d| {
+        format!(
+            "A - B: mean A / mean B {}, mean |A - B| {}, max |A - B| {} ({})\n",
+            number(d.ratio),
+            number(d.mean_abs_difference),
+            number(d.max_abs_difference),
+            view.unit()
+        )
+    });
     Ok(ViewReport {
         text: format!(
-            "A {}\nB {}\n",
+            "A {}\nB {}\n{difference_line}",
             view_image::describe(view, sa.as_ref(), &heat),
             view_image::describe(view, sb.as_ref(), &heat)
         ),
         json: serde_json::json!({
             "a": view_image::summary_json(view, sa.as_ref(), &heat),
             "b": view_image::summary_json(view, sb.as_ref(), &heat),
+            "difference": difference.map(|d| serde_json::json!({
+                "pixels": d.pixels,
+                "mean_a": d.mean_a,
+                "mean_b": d.mean_b,
+                "ratio": d.ratio.is_finite().then_some(d.ratio),
+                "mean_abs_difference": d.mean_abs_difference,
+                "max_abs_difference": d.max_abs_difference,
+            })),
         }),
     })
 }
@@ -251,7 +267,10 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
         args.scene.display(),
         args.output.display(),
         match args.view.view() {
-            Some(view) => format!("{0} | {0} | |A - B|, on one scale", view.name()),
+            Some(view) => format!(
+                "{0} | {0} on one scale | A - B (red: A larger, blue: B larger)",
+                view.name()
+            ),
             None => heatmap.legend(),
         },
         side("A", &c.labels.0, &c.a),

@@ -6,6 +6,8 @@ use anyhow::{Result, anyhow};
 use image::{Rgb, RgbImage};
 use tracer::render::{View, ViewFilm, ViewHeatmap, ViewSummary};
 
+use crate::measure::value_difference::{ValueDifference, ValueStats, diverging_colour};
+
 /// Background of the legend strip.
 const BACKGROUND: Rgb<u8> = Rgb([32, 32, 32]);
 const INK: Rgb<u8> = Rgb([230, 230, 230]);
@@ -21,16 +23,17 @@ pub fn view_image(film: &ViewFilm, view: View, heat: &ViewHeatmap) -> Option<Rgb
     tracer::render::rgba_to_rgb_image(film.width(), film.height(), &rgba)
 }
 
-/// The view of two sides on one shared scale, and the absolute difference
-/// of their values on its own: A | B | |A - B|, each scale's legend with
-/// its numbers under it. Colour views (normals, objects) get the largest
-/// channel difference instead, without numbers.
+/// The view of two sides on one shared scale, and the signed difference
+/// of their values on its own: A | B | A - B (red where A is larger, blue
+/// where B is, as in the window), each scale's legend with its numbers
+/// under it; with the difference's statistics. Colour views (normals,
+/// objects) get the largest channel difference instead, without numbers.
 pub fn compose_sides(
     a: &ViewFilm,
     b: &ViewFilm,
     view: View,
     heat: &ViewHeatmap,
-) -> Result<RgbImage> {
+) -> Result<(RgbImage, Option<ValueStats>)> {
     let size = |f: &ViewFilm| (f.width(), f.height());
     if size(a) != size(b) {
         return Err(anyhow!("the two sides differ in size"));
@@ -44,30 +47,45 @@ pub fn compose_sides(
     let mut pair = RgbImage::from_pixel(2 * w + GAP, h, BACKGROUND);
     image::imageops::replace(&mut pair, &ia, 0, 0);
     image::imageops::replace(&mut pair, &ib, i64::from(w + GAP), 0);
-    let (pair, difference) = if view.is_scalar() {
-        let (va, vb) = (a.values(view), b.values(view));
-        let diff: Vec<Option<f32>> = va
-            .iter()
-            .zip(&vb)
-            .map(|(a, b)| Some((a.unwrap_or(0.0) - b.unwrap_or(0.0)).abs()))
-            .collect();
-        let diff_heat = ViewHeatmap::fit(tracer::render::HeatScale::Max, heat.log, &[&diff]);
-        let rgba = diff_heat.rgba8(&diff, |_| true);
+    let (pair, difference, stats) = if view.is_scalar() {
+        let difference = ValueDifference::of(&a.values(view), &b.values(view))
+            .ok_or_else(|| anyhow!("the two sides differ in size"))?;
+        let rgba = difference.rgba8();
         let image = tracer::render::rgba_to_rgb_image(w, h, &rgba).ok_or_else(missing)?;
-        (with_legend(&pair, heat), with_legend(&image, &diff_heat))
+        let top = format_number(difference.scale);
+        let signed = legend_under(&image, diverging_legend, &format!("-{top}"), &top);
+        (with_legend(&pair, heat), signed, Some(difference.stats))
     } else {
         let diff = tracer::metrics::diff_heatmap(&ia, &ib, 8.0)?;
-        (pair, diff)
+        (pair, diff, None)
     };
     let mut out = RgbImage::from_pixel(3 * w + 2 * GAP, pair.height(), BACKGROUND);
     image::imageops::replace(&mut out, &pair, 0, 0);
     image::imageops::replace(&mut out, &difference, i64::from(2 * (w + GAP)), 0);
-    Ok(out)
+    Ok((out, stats))
+}
+
+/// The diverging palette over 0..=1 (-scale..+scale).
+fn diverging_legend(t: f32) -> Rgb<u8> {
+    Rgb(diverging_colour(2.0 * t - 1.0))
 }
 
 /// `image` with a legend strip under it: the palette from 0 to the scale's
 /// top, with both numbers written at its ends.
 pub fn with_legend(image: &RgbImage, heat: &ViewHeatmap) -> RgbImage {
+    let top = format_number(heat.top);
+    let top = if heat.log { format!("{top} log") } else { top };
+    legend_under(image, |t| tracer::render::HEAT_PALETTE.colour(t), "0", &top)
+}
+
+/// `image` with a strip of `palette` (over 0..=1) under it and the labels
+/// `left` and `right` at its ends.
+fn legend_under(
+    image: &RgbImage,
+    palette: impl Fn(f32) -> Rgb<u8>,
+    left: &str,
+    right: &str,
+) -> RgbImage {
     let (w, h) = image.dimensions();
     let bar = (h / 16).clamp(6, 20);
     let text = 5 * DOT;
@@ -75,17 +93,14 @@ pub fn with_legend(image: &RgbImage, heat: &ViewHeatmap) -> RgbImage {
     image::imageops::replace(&mut out, image, 0, 0);
     for x in 0..w {
         let t = x as f32 / (w.max(2) - 1) as f32;
-        let colour = tracer::render::HEAT_PALETTE.colour(t);
+        let colour = palette(t);
         for y in h + GAP..h + GAP + bar {
             out.put_pixel(x, y, colour);
         }
     }
     let y = h + GAP + bar + GAP;
-    draw_text(&mut out, "0", 0, y);
-    let top = format_number(heat.top);
-    let top = if heat.log { format!("{top} log") } else { top };
-    let right = w.saturating_sub(text_width(&top));
-    draw_text(&mut out, &top, right, y);
+    draw_text(&mut out, left, 0, y);
+    draw_text(&mut out, right, w.saturating_sub(text_width(right)), y);
     out
 }
 
