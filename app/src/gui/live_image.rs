@@ -45,8 +45,8 @@ impl LiveImage {
 
     /// Uploads `engine`'s image when it changed (or the encoding did), at
     /// most every `interval` while it renders; asks for a later frame when
-    /// it must wait. A finished render is uploaded at once: its last image
-    /// must reach the screen, and no render thread will ask for a frame.
+    /// it must wait. A finished render (or its last pass) is uploaded at
+    /// once: its last image must reach the screen.
     pub fn refresh(
         &mut self,
         ctx: &egui::Context,
@@ -63,7 +63,7 @@ impl LiveImage {
         let rendering = matches!(
             engine.activity(),
             Activity::Job(JobState::Rendering | JobState::Building)
-        );
+        ) && !engine.is_complete();
         let since = self.last_upload.elapsed();
         if rendering && since < interval && self.shown.is_some() && same_view {
             ctx.request_repaint_after(interval - since);
