@@ -108,7 +108,7 @@ impl WorkbenchApp {
             .unwrap_or_default();
         let (wake_ctx, wake_now_ctx) = (ctx.clone(), ctx.clone());
         let progress_pace = ProgressPace::default();
-        let pace = progress_pace.clone();
+        let (pace, catalog_pace) = (progress_pace.clone(), progress_pace.clone());
         let mut app = Self {
             engine: Engine::with_wakes(
                 Arc::new(move || wake_ctx.request_repaint_after(pace.get())),
@@ -130,8 +130,10 @@ impl WorkbenchApp {
             help_open: false,
             disk_scenes: scene_picker::scene_files(Path::new("scenes")),
             catalog: {
+                // At the progress pace: the counts must not add frames to
+                // the first render's.
                 let ctx = ctx.clone();
-                scene_picker::Catalog::spawn(move || ctx.request_repaint())
+                scene_picker::Catalog::spawn(move || ctx.request_repaint_after(catalog_pace.get()))
             },
             hovered_pixel: None,
             frame_meter: FrameMeter::default(),

@@ -225,7 +225,6 @@ impl Engine {
                 })),
                 low_priority: self.low_priority,
                 views: self.views,
-                ..JobOptions::default()
             },
         )
         .map_err(|e| e.to_string())?;
