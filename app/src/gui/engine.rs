@@ -421,4 +421,48 @@ mod tests {
         let snapshot = engine.snapshot(Encoding::Linear).unwrap();
         assert_eq!(snapshot.stats.passes_done, snapshot.stats.passes_target);
     }
+
+    #[test]
+    fn the_last_pass_wakes_the_window_at_once() {
+        let paced = Arc::new(AtomicU32::new(0));
+        let at_once = Arc::new(AtomicU32::new(0));
+        let (p, a) = (paced.clone(), at_once.clone());
+        let mut engine = Engine::with_wakes(
+            Arc::new(move || {
+                p.fetch_add(1, Ordering::Relaxed);
+            }),
+            Arc::new(move || {
+                a.fetch_add(1, Ordering::Relaxed);
+            }),
+        );
+        engine.load(SceneSource::Bundled("balls_low".into()));
+        wait_until(&mut engine, |e| e.poll_load().is_some());
+        let settings = RenderSettings {
+            width: 32,
+            height: 32,
+            antialiasing: true,
+            samples: 2,
+            ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+        };
+        engine.render(&settings).unwrap();
+        wait_until(&mut engine, |e| {
+            e.activity() == Activity::Job(JobState::Done)
+        });
+        assert!(engine.is_complete());
+        assert!(paced.load(Ordering::Relaxed) > 0, "tiles wake at the pace");
+        // The last pass's report and the job's end.
+        assert!(at_once.load(Ordering::Relaxed) >= 1);
+
+        // A render that keeps refining is never complete.
+        let refining = RenderSettings {
+            keep_refining: true,
+            ..settings
+        };
+        engine.render(&refining).unwrap();
+        assert!(!engine.is_complete(), "a new job starts incomplete");
+        wait_until(&mut engine, |e| {
+            e.snapshot(Encoding::Linear).unwrap().stats.passes_done > 5
+        });
+        assert!(!engine.is_complete());
+    }
 }

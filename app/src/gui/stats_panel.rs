@@ -136,15 +136,20 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                 "CPU time a frame costs on every thread but the render's: the UI's work and \
                  painting, including a software rasterizer's threads",
             );
+            // Short values: a wider column would widen the panel and move
+            // the image while it renders.
             row(
                 ui,
-                "Redraw while rendering",
+                "Redraw interval",
                 format!(
-                    "every {:.0} ms",
+                    "{:.0} ms",
                     view.frame_meter.progress_interval().as_secs_f64() * 1e3
                 ),
             )
-            .on_hover_text("Progress redraws take at most 1/8 of the CPU");
+            .on_hover_text(
+                "How often a render's progress redraws the window: progress redraws take at \
+                 most a tenth of the CPU the render gets",
+            );
         });
 
     if s.pass_times.len() > 1 {
