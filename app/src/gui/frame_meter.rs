@@ -28,7 +28,7 @@ const PAINT_SHARE: u32 = 10;
 /// rasterizer finishes a frame well after the UI thread handed it over.
 const CPU_SPAN: Duration = Duration::from_secs(2);
 
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct FrameMeter {
     /// Start times of the frames of the last [`WINDOW`].
     starts: VecDeque<Instant>,
@@ -321,19 +321,24 @@ mod tests {
 
     #[test]
     fn a_frame_costs_the_cpu_of_every_thread_but_the_render() {
-        // Frames every 500 ms; in each interval the render threads use
-        // 900 ms of CPU and the rest of the process (the UI thread, the
-        // rasterizer's threads) 150 ms.
         let mut meter = FrameMeter::default();
         let t0 = Instant::now();
         let mut cpu = CpuTimes::default();
-        for i in 0..10 {
-            let start = t0 + 500 * MS * i;
-            meter.begin(start, Some(0.010), Some(cpu));
-            meter.end(start + 5 * MS);
-            cpu.process += 1050 * MS;
-            cpu.render += 900 * MS;
-        }
+        // Frames `frames` every 500 ms; between two, the process uses
+        // `process` of CPU, of which the render threads `render`.
+        let mut run = |frames: std::ops::Range<u32>, process: Duration, render: Duration| {
+            for i in frames {
+                let start = t0 + 500 * MS * i;
+                meter.begin(start, Some(0.010), Some(cpu));
+                meter.end(start + 5 * MS);
+                cpu.process += process;
+                cpu.render += render;
+            }
+            meter.clone()
+        };
+        // The rest of the process (the UI thread, the rasterizer's threads)
+        // takes 150 ms a frame.
+        let meter = run(0..10, 1050 * MS, 900 * MS);
         assert_eq!(meter.cpu_per_frame(), Some(150 * MS));
         assert_eq!(meter.frame_cost(), 150 * MS);
         // The render got 1.8 cores: a frame may come every 150 ms * 10 /
@@ -343,23 +348,11 @@ mod tests {
 
         // On a busy machine the render gets 0.6 cores: redraws come less
         // often, down to the limit.
-        for i in 10..20 {
-            let start = t0 + 500 * MS * i;
-            meter.begin(start, Some(0.010), Some(cpu));
-            meter.end(start + 5 * MS);
-            cpu.process += 450 * MS;
-            cpu.render += 300 * MS;
-        }
+        let meter = run(10..20, 450 * MS, 300 * MS);
         assert_eq!(meter.progress_interval(), MAX_PROGRESS_INTERVAL);
 
         // The render alone taking CPU costs the window nothing.
-        for i in 20..30 {
-            let start = t0 + 500 * MS * i;
-            meter.begin(start, Some(0.010), Some(cpu));
-            meter.end(start + 5 * MS);
-            cpu.process += 900 * MS;
-            cpu.render += 900 * MS;
-        }
+        let meter = run(20..30, 900 * MS, 900 * MS);
         assert_eq!(meter.cpu_per_frame(), Some(Duration::ZERO));
         assert_eq!(meter.progress_interval(), MIN_PROGRESS_INTERVAL);
     }
