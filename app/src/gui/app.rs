@@ -18,7 +18,7 @@ use super::bench_window::BenchWindow;
 use super::commands::Command;
 use super::compare::{self, Compare, CompareView};
 use super::engine::{Activity, Engine};
-use super::frame_meter::{FrameMeter, ProgressPace};
+use super::frame_meter::{CpuTimes, FrameMeter, ProgressPace};
 use super::inspector::Inspector;
 use super::live_image::LiveImage;
 use super::overlay::StructureOverlay;
@@ -106,11 +106,14 @@ impl WorkbenchApp {
         let state: Persisted = storage
             .and_then(|s| eframe::get_value(s, eframe::APP_KEY))
             .unwrap_or_default();
-        let wake_ctx = ctx.clone();
+        let (wake_ctx, wake_now_ctx) = (ctx.clone(), ctx.clone());
         let progress_pace = ProgressPace::default();
-        let pace = progress_pace.clone();
+        let (pace, catalog_pace) = (progress_pace.clone(), progress_pace.clone());
         let mut app = Self {
-            engine: Engine::new(Arc::new(move || wake_ctx.request_repaint_after(pace.get()))),
+            engine: Engine::with_wakes(
+                Arc::new(move || wake_ctx.request_repaint_after(pace.get())),
+                Arc::new(move || wake_now_ctx.request_repaint()),
+            ),
             progress_pace,
             view: ViewState::default(),
             camera: None,
@@ -127,8 +130,10 @@ impl WorkbenchApp {
             help_open: false,
             disk_scenes: scene_picker::scene_files(Path::new("scenes")),
             catalog: {
+                // At the progress pace: the counts must not add frames to
+                // the first render's.
                 let ctx = ctx.clone();
-                scene_picker::Catalog::spawn(move || ctx.request_repaint())
+                scene_picker::Catalog::spawn(move || ctx.request_repaint_after(catalog_pace.get()))
             },
             hovered_pixel: None,
             frame_meter: FrameMeter::default(),
@@ -987,7 +992,7 @@ impl eframe::App for WorkbenchApp {
     fn ui(&mut self, ui: &mut Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
         self.frame_meter
-            .begin(Instant::now(), frame.info().cpu_usage);
+            .begin(Instant::now(), frame.info().cpu_usage, CpuTimes::now());
         self.engine.collect_retired();
         self.receive(&ctx);
         // Before anything is drawn, so the numbers and the image of a

@@ -3,6 +3,7 @@
 //! scenes off the UI thread. Settings go in; images and statistics come out.
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
@@ -14,6 +15,11 @@ use tracer::scene::Scene;
 use tracer::world::World;
 
 use crate::load::{SceneSource, load_source};
+
+use super::frame_meter::count_render_thread_cpu;
+
+/// Wakes the UI from a render thread.
+pub type Wake = Arc<dyn Fn() + Send + Sync>;
 
 /// Identifies what an engine shows: (jobs started, the job's own version).
 pub type Version = (u64, u64);
@@ -52,8 +58,12 @@ pub struct Engine {
     /// so the UI thread never waits for them.
     retired: Vec<RenderJob>,
     loading: Option<(String, Receiver<Result<LoadedScene, String>>)>,
-    /// Called by render threads to wake the UI.
-    wake: Arc<dyn Fn() + Send + Sync>,
+    /// Called by render threads to wake the UI, at its own pace.
+    wake: Wake,
+    /// Called once the last pass is in, to show it at once.
+    wake_now: Wake,
+    /// The current job rendered its last pass (set by a render thread).
+    complete: Arc<AtomicBool>,
     /// Render threads' priority: low so the window stays responsive.
     low_priority: bool,
     threads: Option<usize>,
@@ -71,7 +81,14 @@ pub struct Engine {
 
 impl Engine {
     /// An engine that calls `wake` whenever there is something new to show.
-    pub fn new(wake: Arc<dyn Fn() + Send + Sync>) -> Self {
+    pub fn new(wake: Wake) -> Self {
+        Self::with_wakes(wake.clone(), wake)
+    }
+
+    /// An engine that calls `wake` when a render progresses (the UI paces
+    /// its redraws) and `wake_now` when its last pass is in, which the UI
+    /// should show at once.
+    pub fn with_wakes(wake: Wake, wake_now: Wake) -> Self {
         Self {
             scene: None,
             job: None,
@@ -80,6 +97,8 @@ impl Engine {
             retired: Vec::new(),
             loading: None,
             wake,
+            wake_now,
+            complete: Arc::new(AtomicBool::new(false)),
             low_priority: true,
             threads: None,
             paused: false,
@@ -181,23 +200,38 @@ impl Engine {
             self.index = Some(index);
         }
         self.retire_job();
-        let wake = self.wake.clone();
+        let (wake, wake_now) = (self.wake.clone(), self.wake_now.clone());
+        let complete = Arc::new(AtomicBool::new(false));
+        let (last_pass_in, done) = (complete.clone(), complete.clone());
+        let last_pass = (!settings.keep_refining).then(|| settings.samples_per_pixel());
         let job = RenderJob::start(
             world,
             self.index.clone(),
             settings.clone(),
             JobOptions {
                 threads: self.threads,
-                on_progress: Some(Box::new(move || wake())),
+                on_progress: Some(Box::new(move || {
+                    count_render_thread_cpu();
+                    if done.load(Ordering::Relaxed) {
+                        wake_now();
+                    } else {
+                        wake();
+                    }
+                })),
+                on_pass: Some(Box::new(move |pass, _| {
+                    if Some(pass) == last_pass {
+                        last_pass_in.store(true, Ordering::Relaxed);
+                    }
+                })),
                 low_priority: self.low_priority,
                 views: self.views,
-                ..JobOptions::default()
             },
         )
         .map_err(|e| e.to_string())?;
         self.views_changed = false;
         job.set_paused(self.paused);
         self.job = Some(job);
+        self.complete = complete;
         self.failure_taken = false;
         self.jobs_started += 1;
         self.settings = Some(settings.clone());
@@ -235,6 +269,12 @@ impl Engine {
     /// Whether render threads run at low priority (next job on).
     pub fn set_low_priority(&mut self, low: bool) {
         self.low_priority = low;
+    }
+
+    /// Whether the current job rendered its last pass: its image is final
+    /// even while the job still reports itself rendering.
+    pub fn is_complete(&self) -> bool {
+        self.job.is_some() && self.complete.load(Ordering::Relaxed)
     }
 
     /// A number that changes whenever the image or statistics change,
@@ -380,5 +420,49 @@ mod tests {
         assert_eq!(engine.take_failure(), None);
         let snapshot = engine.snapshot(Encoding::Linear).unwrap();
         assert_eq!(snapshot.stats.passes_done, snapshot.stats.passes_target);
+    }
+
+    #[test]
+    fn the_last_pass_wakes_the_window_at_once() {
+        let paced = Arc::new(AtomicU32::new(0));
+        let at_once = Arc::new(AtomicU32::new(0));
+        let (p, a) = (paced.clone(), at_once.clone());
+        let mut engine = Engine::with_wakes(
+            Arc::new(move || {
+                p.fetch_add(1, Ordering::Relaxed);
+            }),
+            Arc::new(move || {
+                a.fetch_add(1, Ordering::Relaxed);
+            }),
+        );
+        engine.load(SceneSource::Bundled("balls_low".into()));
+        wait_until(&mut engine, |e| e.poll_load().is_some());
+        let settings = RenderSettings {
+            width: 32,
+            height: 32,
+            antialiasing: true,
+            samples: 2,
+            ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+        };
+        engine.render(&settings).unwrap();
+        wait_until(&mut engine, |e| {
+            e.activity() == Activity::Job(JobState::Done)
+        });
+        assert!(engine.is_complete());
+        assert!(paced.load(Ordering::Relaxed) > 0, "tiles wake at the pace");
+        // The last pass's report and the job's end.
+        assert!(at_once.load(Ordering::Relaxed) >= 1);
+
+        // A render that keeps refining is never complete.
+        let refining = RenderSettings {
+            keep_refining: true,
+            ..settings
+        };
+        engine.render(&refining).unwrap();
+        assert!(!engine.is_complete(), "a new job starts incomplete");
+        wait_until(&mut engine, |e| {
+            e.snapshot(Encoding::Linear).unwrap().stats.passes_done > 5
+        });
+        assert!(!engine.is_complete());
     }
 }

@@ -1,12 +1,18 @@
 //! The window's own responsiveness: frames drawn in the last second, the
-//! time the UI thread spends building one and what painting it costs, shown
-//! in the statistics so a user can see the render never starves the window;
-//! and the pace at which render progress may ask for a redraw, so drawing
-//! never starves the render.
+//! time the UI thread spends building one and what a frame costs in CPU,
+//! shown in the statistics so a user can see the render never starves the
+//! window; and the pace at which render progress may ask for a redraw, so
+//! drawing never starves the render.
+//!
+//! What a frame costs is measured as the process's CPU time minus the render
+//! threads': a software rasterizer (llvmpipe) paints on threads of its own,
+//! after the UI thread has handed the frame over, so the UI thread's clock
+//! alone saw a tenth of it and let redraws take half the machine.
 
+use std::cell::Cell;
 use std::collections::VecDeque;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
 /// The span over which frames are counted.
@@ -14,12 +20,15 @@ const WINDOW: Duration = Duration::from_secs(1);
 /// Fastest refresh of the progressive image: 30 Hz.
 pub const MIN_PROGRESS_INTERVAL: Duration = Duration::from_millis(33);
 /// Slowest refresh of the progressive image, however costly drawing is.
-const MAX_PROGRESS_INTERVAL: Duration = Duration::from_secs(1);
-/// Progress redraws may take at most 1 / PAINT_SHARE of the time: painting
-/// on a software rasterizer takes every core while it runs.
-const PAINT_SHARE: u32 = 8;
+const MAX_PROGRESS_INTERVAL: Duration = Duration::from_secs(2);
+/// Progress redraws may take at most 1 / PAINT_SHARE of the CPU the render
+/// gets: the window then renders at about 90% of a headless render's speed.
+const PAINT_SHARE: u32 = 10;
+/// The span over which the CPU cost of frames is averaged: a software
+/// rasterizer finishes a frame well after the UI thread handed it over.
+const CPU_SPAN: Duration = Duration::from_secs(2);
 
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct FrameMeter {
     /// Start times of the frames of the last [`WINDOW`].
     starts: VecDeque<Instant>,
@@ -28,9 +37,79 @@ pub struct FrameMeter {
     work: f32,
     /// The last frame's own work, to tell painting from it.
     last_work: f32,
-    /// Smoothed time spent tessellating and painting a frame, seconds: a
-    /// software rasterizer takes tens of milliseconds, a GPU well under one.
+    /// Smoothed time the UI thread spends tessellating and painting a
+    /// frame, seconds (eframe's measure, without the rasterizer's threads).
     paint: f32,
+    /// CPU times at the starts of the frames of the last [`CPU_SPAN`] (and
+    /// one before it), where the OS tells them.
+    cpu_marks: VecDeque<(Instant, CpuTimes)>,
+}
+
+/// CPU time used so far by the whole process and by its render threads.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct CpuTimes {
+    pub process: Duration,
+    pub render: Duration,
+}
+
+impl CpuTimes {
+    /// The times now; `None` where the OS has no per-process CPU clock.
+    pub fn now() -> Option<CpuTimes> {
+        Some(CpuTimes {
+            process: cpu_clock(CpuClock::Process)?,
+            render: Duration::from_nanos(RENDER_CPU_NANOS.load(Ordering::Relaxed)),
+        })
+    }
+}
+
+/// CPU time of every render thread so far, nanoseconds.
+static RENDER_CPU_NANOS: AtomicU64 = AtomicU64::new(0);
+
+/// Counts the CPU time the calling render thread used since its previous
+/// call as render time. Render threads call it with every progress report,
+/// so the window can tell its own cost from the render's.
+pub fn count_render_thread_cpu() {
+    thread_local! {
+        static COUNTED: Cell<Duration> = const { Cell::new(Duration::ZERO) };
+    }
+    let Some(now) = cpu_clock(CpuClock::Thread) else {
+        return;
+    };
+    let new = COUNTED.with(|counted| now.saturating_sub(counted.replace(now)));
+    RENDER_CPU_NANOS.fetch_add(new.as_nanos() as u64, Ordering::Relaxed);
+}
+
+enum CpuClock {
+    Process,
+    Thread,
+}
+
+/// CPU time used by the process or the calling thread.
+#[cfg(unix)]
+fn cpu_clock(clock: CpuClock) -> Option<Duration> {
+    let id = match clock {
+        CpuClock::Process => libc::CLOCK_PROCESS_CPUTIME_ID,
+        CpuClock::Thread => libc::CLOCK_THREAD_CPUTIME_ID,
+    };
+    let mut time = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime only writes the timespec it is given, which
+    // lives on this stack frame for the whole call.
+    let read = unsafe { libc::clock_gettime(id, &mut time) } == 0;
+    read.then(|| Duration::new(time.tv_sec as u64, time.tv_nsec as u32))
+}
+
+#[cfg(not(unix))]
+fn cpu_clock(_clock: CpuClock) -> Option<Duration> {
+    None
+}
+
+/// Cores the render and the window share.
+fn cores() -> u32 {
+    static CORES: OnceLock<u32> = OnceLock::new();
+    *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get() as u32))
 }
 
 /// Moves a smoothed value towards `sample`.
@@ -45,8 +124,9 @@ fn smooth(value: f32, sample: f32) -> f32 {
 impl FrameMeter {
     /// Marks the start of a frame at `now`. `previous_cost` is what the
     /// previous frame took from start to painted (eframe's `cpu_usage`:
-    /// the UI's work, tessellation and painting, waiting for vsync aside).
-    pub fn begin(&mut self, now: Instant, previous_cost: Option<f32>) {
+    /// the UI's work, tessellation and painting, waiting for vsync aside);
+    /// `cpu` the CPU times now ([`CpuTimes::now`]).
+    pub fn begin(&mut self, now: Instant, previous_cost: Option<f32>, cpu: Option<CpuTimes>) {
         while self
             .starts
             .front()
@@ -58,6 +138,20 @@ impl FrameMeter {
         self.current = Some(now);
         if let Some(cost) = previous_cost {
             self.paint = smooth(self.paint, (cost - self.last_work).max(0.0));
+        }
+        match cpu {
+            Some(cpu) => {
+                self.cpu_marks.push_back((now, cpu));
+                // The frames of the last CPU_SPAN and the one before them.
+                while self
+                    .cpu_marks
+                    .get(1)
+                    .is_some_and(|&(t, _)| now.duration_since(t) > CPU_SPAN)
+                {
+                    self.cpu_marks.pop_front();
+                }
+            }
+            None => self.cpu_marks.clear(),
         }
     }
 
@@ -80,17 +174,58 @@ impl FrameMeter {
         self.work
     }
 
-    /// What drawing one frame costs besides the UI's work.
-    pub fn paint_time(&self) -> Duration {
-        Duration::from_secs_f32(self.paint)
+    /// The CPU time one frame costs, on every thread but the render's
+    /// (the UI's work, tessellation, the rasterizer's threads), averaged
+    /// over the frames of the last two seconds; `None` until measured (or
+    /// where the OS has no CPU clocks).
+    pub fn cpu_per_frame(&self) -> Option<Duration> {
+        let (first, last, frames) = self.cpu_span()?;
+        let process = last.process.saturating_sub(first.process);
+        let render = last.render.saturating_sub(first.render);
+        Some(process.saturating_sub(render) / frames)
+    }
+
+    /// The CPU the render threads got over the last two seconds, in cores
+    /// (less than the machine's when other programs run too).
+    fn render_cores(&self) -> Option<f32> {
+        let (&(start, first), &(end, last)) = (self.cpu_marks.front()?, self.cpu_marks.back()?);
+        let wall = end.duration_since(start).as_secs_f32();
+        let render = last.render.saturating_sub(first.render).as_secs_f32();
+        (wall > 0.0).then(|| render / wall)
+    }
+
+    /// The first and last CPU marks and the frames between them.
+    fn cpu_span(&self) -> Option<(CpuTimes, CpuTimes, u32)> {
+        let frames = u32::try_from(self.cpu_marks.len().checked_sub(1)?).ok()?;
+        let (_, first) = self.cpu_marks.front()?;
+        let (_, last) = self.cpu_marks.back()?;
+        (frames > 0).then_some((*first, *last, frames))
+    }
+
+    /// What a frame costs: [`FrameMeter::cpu_per_frame`] where measured,
+    /// else the UI thread's time to build and paint it.
+    pub fn frame_cost(&self) -> Duration {
+        self.cpu_per_frame()
+            .unwrap_or_else(|| Duration::from_secs_f32(self.work + self.paint))
     }
 
     /// How long render progress should wait before asking for a redraw:
     /// 30 Hz when drawing is cheap, slower when it is costly, so that
-    /// redraws take at most 1 / [`PAINT_SHARE`] of the time.
+    /// redraws take at most 1 / [`PAINT_SHARE`] of the CPU the render gets
+    /// (all cores on an idle machine, less when other programs run).
     pub fn progress_interval(&self) -> Duration {
-        let frame = Duration::from_secs_f32(self.work + self.paint);
-        (frame * PAINT_SHARE).clamp(MIN_PROGRESS_INTERVAL, MAX_PROGRESS_INTERVAL)
+        let interval = match self.cpu_per_frame() {
+            Some(cpu) => {
+                let cores = self
+                    .render_cores()
+                    .filter(|&c| c > 0.05)
+                    .unwrap_or(cores() as f32);
+                cpu.mul_f32(PAINT_SHARE as f32 / cores)
+            }
+            // Without CPU clocks, painting is assumed to hold every core.
+            None => Duration::from_secs_f32(self.work + self.paint) * PAINT_SHARE,
+        };
+        interval.clamp(MIN_PROGRESS_INTERVAL, MAX_PROGRESS_INTERVAL)
     }
 }
 
@@ -129,29 +264,31 @@ mod tests {
         let t0 = Instant::now();
         for i in 0..5 {
             let start = t0 + 100 * MS * i;
-            meter.begin(start, None);
+            meter.begin(start, None, None);
             meter.end(start + 2 * MS);
         }
         assert_eq!(meter.frames_per_second(), 5);
         assert!((meter.work_per_frame() - 0.002).abs() < 1e-4);
         // Later, only the frames of the last second count (at 400 ms and
         // this one).
-        meter.begin(t0 + 1350 * MS, None);
+        meter.begin(t0 + 1350 * MS, None, None);
         assert_eq!(meter.frames_per_second(), 2);
     }
 
     #[test]
     fn costly_painting_slows_progress_redraws_down_to_a_limit() {
+        // Without CPU clocks: the UI thread's time, painting holding every
+        // core.
         let mut meter = FrameMeter::default();
         assert_eq!(meter.progress_interval(), MIN_PROGRESS_INTERVAL);
         // Frames of 5 ms of work painted in 45 ms more.
         let t0 = Instant::now();
         for i in 0..20 {
             let start = t0 + 500 * MS * i;
-            meter.begin(start, (i > 0).then_some(0.050));
+            meter.begin(start, (i > 0).then_some(0.050), None);
             meter.end(start + 5 * MS);
         }
-        let paint = meter.paint_time();
+        let paint = meter.frame_cost() - 5 * MS;
         assert!(paint > 44 * MS && paint < 46 * MS, "{paint:?}");
         let interval = meter.progress_interval().as_secs_f32();
         assert!(
@@ -161,7 +298,7 @@ mod tests {
         // Painting even slower reaches the limit.
         for i in 20..60 {
             let start = t0 + 500 * MS * i;
-            meter.begin(start, Some(0.400));
+            meter.begin(start, Some(0.800), None);
             meter.end(start + 5 * MS);
         }
         assert_eq!(meter.progress_interval(), MAX_PROGRESS_INTERVAL);
@@ -175,10 +312,66 @@ mod tests {
         let t0 = Instant::now();
         for i in 0..10 {
             let start = t0 + Duration::from_secs(5) * i;
-            meter.begin(start, (i > 0).then_some(0.004));
+            meter.begin(start, (i > 0).then_some(0.004), None);
             meter.end(start + 3 * MS);
         }
-        assert!(meter.paint_time() < 2 * MS, "{:?}", meter.paint_time());
+        assert!(meter.frame_cost() < 5 * MS, "{:?}", meter.frame_cost());
+        assert!(meter.progress_interval() < 2 * MIN_PROGRESS_INTERVAL);
+    }
+
+    #[test]
+    fn a_frame_costs_the_cpu_of_every_thread_but_the_render() {
+        let mut meter = FrameMeter::default();
+        let t0 = Instant::now();
+        let mut cpu = CpuTimes::default();
+        // Frames `frames` every 500 ms; between two, the process uses
+        // `process` of CPU, of which the render threads `render`.
+        let mut run = |frames: std::ops::Range<u32>, process: Duration, render: Duration| {
+            for i in frames {
+                let start = t0 + 500 * MS * i;
+                meter.begin(start, Some(0.010), Some(cpu));
+                meter.end(start + 5 * MS);
+                cpu.process += process;
+                cpu.render += render;
+            }
+            meter.clone()
+        };
+        // The rest of the process (the UI thread, the rasterizer's threads)
+        // takes 150 ms a frame.
+        let meter = run(0..10, 1050 * MS, 900 * MS);
+        assert_eq!(meter.cpu_per_frame(), Some(150 * MS));
+        assert_eq!(meter.frame_cost(), 150 * MS);
+        // The render got 1.8 cores: a frame may come every 150 ms * 10 /
+        // 1.8, so that redraws take a tenth of what the render gets.
+        let interval = meter.progress_interval().as_secs_f32();
+        assert!((interval - 0.150 * 10.0 / 1.8).abs() < 1e-3, "{interval}");
+
+        // On a busy machine the render gets 0.6 cores: redraws come less
+        // often, down to the limit.
+        let meter = run(10..20, 450 * MS, 300 * MS);
+        assert_eq!(meter.progress_interval(), MAX_PROGRESS_INTERVAL);
+
+        // The render alone taking CPU costs the window nothing.
+        let meter = run(20..30, 900 * MS, 900 * MS);
+        assert_eq!(meter.cpu_per_frame(), Some(Duration::ZERO));
         assert_eq!(meter.progress_interval(), MIN_PROGRESS_INTERVAL);
+    }
+
+    #[test]
+    fn render_threads_count_their_own_cpu_time() {
+        let before = CpuTimes::now().expect("CPU clocks on this OS");
+        std::thread::spawn(|| {
+            let mut x = 0u64;
+            while cpu_clock(CpuClock::Thread).unwrap() < 20 * MS {
+                x = std::hint::black_box(x.wrapping_mul(31).wrapping_add(1));
+            }
+            count_render_thread_cpu();
+        })
+        .join()
+        .unwrap();
+        let after = CpuTimes::now().unwrap();
+        let render = after.render - before.render;
+        assert!(render >= 20 * MS, "{render:?}");
+        assert!(after.process - before.process >= render);
     }
 }

@@ -10,6 +10,9 @@ use tracer::render::{Encoding, JobState, Snapshot, View, ViewHeatmap};
 
 use super::engine::{Activity, Engine, Version};
 
+/// Slowest refresh while a render's first pass has not covered the view.
+const FIRST_PASS_INTERVAL: Duration = Duration::from_millis(200);
+
 pub struct LiveImage {
     /// The texture's name for egui.
     name: &'static str,
@@ -45,8 +48,8 @@ impl LiveImage {
 
     /// Uploads `engine`'s image when it changed (or the encoding did), at
     /// most every `interval` while it renders; asks for a later frame when
-    /// it must wait. A finished render is uploaded at once: its last image
-    /// must reach the screen, and no render thread will ask for a frame.
+    /// it must wait. A finished render (or its last pass) is uploaded at
+    /// once: its last image must reach the screen.
     pub fn refresh(
         &mut self,
         ctx: &egui::Context,
@@ -63,7 +66,16 @@ impl LiveImage {
         let rendering = matches!(
             engine.activity(),
             Activity::Job(JobState::Rendering | JobState::Building)
-        );
+        ) && !engine.is_complete();
+        // A first pass shows its tiles sooner: until it covers the view,
+        // the user sees holes or the previous image.
+        let first_pass =
+            version.0 != self.version.0 || self.shown.as_ref().is_some_and(|s| !is_covered(s));
+        let interval = if first_pass {
+            interval.min(FIRST_PASS_INTERVAL)
+        } else {
+            interval
+        };
         let since = self.last_upload.elapsed();
         if rendering && since < interval && self.shown.is_some() && same_view {
             ctx.request_repaint_after(interval - since);

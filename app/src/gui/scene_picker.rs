@@ -32,6 +32,10 @@ impl Catalog {
         let _ = std::thread::Builder::new()
             .name("scene-catalog".into())
             .spawn(move || {
+                // Counting can wait: the first render must not.
+                let _ = thread_priority::set_current_thread_priority(
+                    thread_priority::ThreadPriority::Min,
+                );
                 for scene in bundled::SCENES {
                     let parsed =
                         parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());

@@ -20,10 +20,11 @@ pub struct StatsView<'a> {
     pub frame_meter: &'a FrameMeter,
 }
 
-fn row(ui: &mut Ui, name: &str, value: String) {
-    ui.label(name);
+fn row(ui: &mut Ui, name: &str, value: String) -> egui::Response {
+    let response = ui.label(name);
     ui.monospace(value);
     ui.end_row();
+    response
 }
 
 pub fn show(ui: &mut Ui, view: &StatsView) {
@@ -125,11 +126,29 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
             );
             row(
                 ui,
-                "UI paint per frame",
+                "UI CPU per frame",
                 format!(
                     "{:.1} ms",
-                    view.frame_meter.paint_time().as_secs_f64() * 1e3
+                    view.frame_meter.frame_cost().as_secs_f64() * 1e3
                 ),
+            )
+            .on_hover_text(
+                "CPU time a frame costs on every thread but the render's: the UI's work and \
+                 painting, including a software rasterizer's threads",
+            );
+            // Short values: a wider column would widen the panel and move
+            // the image while it renders.
+            row(
+                ui,
+                "Redraw interval",
+                format!(
+                    "{:.0} ms",
+                    view.frame_meter.progress_interval().as_secs_f64() * 1e3
+                ),
+            )
+            .on_hover_text(
+                "How often a render's progress redraws the window: progress redraws take at \
+                 most a tenth of the CPU the render gets",
             );
         });
 
