@@ -452,10 +452,11 @@ impl WorkbenchApp {
 
     fn toggle_compare(&mut self) {
         if self.compare.take().is_none() {
-            let ctx = self.repaint_ctx.clone();
+            let (ctx, now_ctx) = (self.repaint_ctx.clone(), self.repaint_ctx.clone());
             let pace = self.progress_pace.clone();
             self.compare = Some(Compare::new(
                 Arc::new(move || ctx.request_repaint_after(pace.get())),
+                Arc::new(move || now_ctx.request_repaint()),
                 &self.state.controls,
                 self.engine.scene(),
             ));
@@ -670,7 +671,14 @@ impl WorkbenchApp {
         }
         let state = match self.engine.activity() {
             Activity::Idle => "no scene".to_string(),
-            Activity::Loading(name) => format!("loading {name}…"),
+            Activity::Loading {
+                name,
+                fraction: None,
+            } => format!("loading {name}…"),
+            Activity::Loading {
+                name,
+                fraction: Some(f),
+            } => format!("loading {name}… {:.0}%", f * 100.0),
             Activity::Job(_) if self.is_camera_moving() => "preview (camera moving)".into(),
             Activity::Job(JobState::Building) => "building acceleration structure…".into(),
             Activity::Job(JobState::Rendering) if self.engine.is_paused() => "paused".into(),

@@ -92,13 +92,15 @@ pub struct Compare {
 }
 
 impl Compare {
-    /// B starts as a copy of A, on A's scene.
+    /// B starts as a copy of A, on A's scene. `wake` and `wake_now` as for
+    /// [`Engine::with_wakes`]: B's last pass shows at once, like A's.
     pub fn new(
         wake: Arc<dyn Fn() + Send + Sync>,
+        wake_now: Arc<dyn Fn() + Send + Sync>,
         controls: &Controls,
         scene: Option<&LoadedScene>,
     ) -> Self {
-        let mut engine = Engine::new(wake);
+        let mut engine = Engine::with_wakes(wake, wake_now);
         if let Some(scene) = scene {
             engine.show(scene.clone());
         }
@@ -644,7 +646,8 @@ mod tests {
             .sum();
         let expected_mse = squared / (3.0 * f64::from(a.width() * a.height()));
 
-        let mut compare = Compare::new(Arc::new(|| {}), &Controls::default(), None);
+        let mut compare =
+            Compare::new(Arc::new(|| {}), Arc::new(|| {}), &Controls::default(), None);
         let measured = |compare: &mut Compare| {
             wait_until(|| {
                 compare.refresh(&ctx, (&engine_a, &image_a), Duration::ZERO, None);

@@ -3,7 +3,7 @@
 //! scenes off the UI thread. Settings go in; images and statistics come out.
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
@@ -14,7 +14,7 @@ use tracer::render::{
 use tracer::scene::Scene;
 use tracer::world::World;
 
-use crate::load::{SceneSource, load_source};
+use crate::load::{SceneSource, load_source_with_progress};
 
 use super::frame_meter::count_render_thread_cpu;
 
@@ -39,11 +39,23 @@ pub struct LoadedScene {
 pub enum Activity {
     /// No scene yet.
     Idle,
-    /// A scene is being read and prepared.
-    Loading(String),
+    /// A scene is being read and prepared; `fraction` of a mesh file read
+    /// so far, when the file is large enough to report it.
+    Loading { name: String, fraction: Option<f32> },
     /// The render job's state.
     Job(JobState),
 }
+
+/// A scene being loaded on its thread.
+struct Loading {
+    label: String,
+    result: Receiver<Result<LoadedScene, String>>,
+    /// Thousandths of a mesh file read so far, or [`NO_FRACTION`].
+    per_mille: Arc<AtomicU32>,
+}
+
+/// A load that has reported no progress (a scene file, a small mesh).
+const NO_FRACTION: u32 = u32::MAX;
 
 /// Owns the current scene and its render job.
 pub struct Engine {
@@ -57,7 +69,7 @@ pub struct Engine {
     /// Cancelled jobs still finishing their last tiles; dropped once done
     /// so the UI thread never waits for them.
     retired: Vec<RenderJob>,
-    loading: Option<(String, Receiver<Result<LoadedScene, String>>)>,
+    loading: Option<Loading>,
     /// Called by render threads to wake the UI, at its own pace.
     wake: Wake,
     /// Called once the last pass is in, to show it at once.
@@ -115,11 +127,18 @@ impl Engine {
         let (tx, rx) = channel();
         let label = source.label();
         let wake = self.wake.clone();
+        let per_mille = Arc::new(AtomicU32::new(NO_FRACTION));
+        let progress = per_mille.clone();
         let spawned = std::thread::Builder::new()
             .name("scene-loader".into())
             .spawn(move || {
                 let start = Instant::now();
-                let result = load_source(&source)
+                let mut on_progress = |p: tracer::mesh_io::LoadProgress| {
+                    let fraction = p.bytes_read as f64 / p.total_bytes.max(1) as f64;
+                    progress.store((fraction.min(1.0) * 1000.0) as u32, Ordering::Relaxed);
+                    wake();
+                };
+                let result = load_source_with_progress(&source, &mut on_progress)
                     .map(|(scene, world)| LoadedScene {
                         source,
                         scene,
@@ -130,20 +149,25 @@ impl Engine {
                 let _ = tx.send(result);
                 wake();
             });
-        match spawned {
-            Ok(_) => self.loading = Some((label, rx)),
+        let result = match spawned {
+            Ok(_) => rx,
             Err(e) => {
                 let (tx, rx) = channel();
                 let _ = tx.send(Err(format!("cannot start the scene loader: {e}")));
-                self.loading = Some((label, rx));
+                rx
             }
-        }
+        };
+        self.loading = Some(Loading {
+            label,
+            result,
+            per_mille,
+        });
     }
 
     /// Takes a finished load, if any: `Some(Ok(scene))` to be shown with
     /// [`Engine::show`], `Some(Err(message))` when it failed.
     pub fn poll_load(&mut self) -> Option<Result<&LoadedScene, String>> {
-        let (_, rx) = self.loading.as_ref()?;
+        let rx = &self.loading.as_ref()?.result;
         match rx.try_recv() {
             Err(TryRecvError::Empty) => None,
             Err(TryRecvError::Disconnected) => {
@@ -343,8 +367,12 @@ impl Engine {
     }
 
     pub fn activity(&self) -> Activity {
-        if let Some((label, _)) = &self.loading {
-            return Activity::Loading(label.clone());
+        if let Some(loading) = &self.loading {
+            let per_mille = loading.per_mille.load(Ordering::Relaxed);
+            return Activity::Loading {
+                name: loading.label.clone(),
+                fraction: (per_mille != NO_FRACTION).then(|| per_mille as f32 / 1000.0),
+            };
         }
         match &self.job {
             Some(job) => Activity::Job(job.state()),
@@ -420,6 +448,43 @@ mod tests {
         assert_eq!(engine.take_failure(), None);
         let snapshot = engine.snapshot(Encoding::Linear).unwrap();
         assert_eq!(snapshot.stats.passes_done, snapshot.stats.passes_target);
+    }
+
+    #[test]
+    fn a_large_mesh_reports_how_much_is_read_while_it_loads() {
+        // About 10 MB of OBJ: progress comes every 4 MB.
+        let dir = std::env::temp_dir().join(format!("engine-mesh-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("big.obj");
+        let mut text = String::new();
+        for i in 0..150_000 {
+            let x = i as f32 * 1e-4;
+            text += &format!(
+                "v {x:.6} {:.6} 0.000000\nv {x:.6} 1.000000 0.500000\n",
+                x * 0.5
+            );
+        }
+        for i in 0..149_999 {
+            text += &format!("f {} {} {}\n", 2 * i + 1, 2 * i + 2, 2 * i + 3);
+        }
+        std::fs::write(&path, text).unwrap();
+        let mut engine = Engine::new(Arc::new(|| {}));
+        engine.load(SceneSource::File(path));
+        // The last fraction stays until the load is taken.
+        wait_until(
+            &mut engine,
+            |e| matches!(e.activity(), Activity::Loading { fraction: Some(f), .. } if f > 0.0),
+        );
+        let Activity::Loading { name, fraction } = engine.activity() else {
+            panic!("still loading until taken");
+        };
+        assert!(
+            name.contains("big.obj") && fraction.unwrap() <= 1.0,
+            "{name}"
+        );
+        wait_until(&mut engine, |e| e.poll_load().is_some());
+        assert_eq!(engine.scene().unwrap().world.counts.triangles, 149_999);
+        let _ = std::fs::remove_dir_all(dir);
     }
 
     #[test]
