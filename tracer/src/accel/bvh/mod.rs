@@ -15,7 +15,7 @@ use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
 use super::packed::PackedShape;
-use super::{Hit, Nearest};
+use super::{Hit, Nearest, first_occluder, offer_each};
 use build::{BuildPrim, build_node};
 use node::{EMPTY, Node4, WideRay, flatten};
 
@@ -187,13 +187,9 @@ impl Bvh {
         loop {
             if next.count > 0 {
                 let (first, count) = (next.first as usize, next.count as usize);
-                tests += count as u64;
-                for prim in &self.prims[first..first + count] {
-                    if let Some(t) = prim.intersect(shapes, ray, t_min, nearest.limit) {
-                        nearest.offer(t, prim.id());
-                        t_max = t;
-                    }
-                }
+                let prims = &self.prims[first..first + count];
+                offer_each(prims, shapes, ray, t_min, &mut nearest, &mut tests);
+                t_max = nearest.t_max(t_max);
             } else {
                 visited += 1;
                 let node = &self.nodes[next.first as usize];
@@ -246,38 +242,33 @@ impl Bvh {
         }
     }
 
-    /// Whether anything lies on the ray in `(t_min, t_max)`.
+    /// The first shape found on the ray in `(t_min, t_max)`.
     #[inline]
-    pub fn any_hit(
+    pub fn occluder(
         &self,
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
         t_max: f32,
         counters: &mut Counters,
-    ) -> bool {
+    ) -> Option<u32> {
         if self.prims.is_empty() {
-            return false;
+            return None;
         }
         let wide = WideRay::new(ray);
         // Children are deferred in slot order; any occluder ends the search,
         // so no sorting.
         let mut stack = NodeStack::<(u32, u32)>::new();
         let mut next = (0u32, 0u32);
-        let mut found = false;
+        let mut found = None;
         let mut visited = 0u64;
         let mut tests = 0u64;
         loop {
             let (first, count) = (next.0 as usize, next.1 as usize);
             if count > 0 {
-                for prim in &self.prims[first..first + count] {
-                    tests += 1;
-                    if prim.intersect(shapes, ray, t_min, t_max).is_some() {
-                        found = true;
-                        break;
-                    }
-                }
-                if found {
+                let prims = &self.prims[first..first + count];
+                found = first_occluder(prims, shapes, ray, t_min, t_max, &mut tests);
+                if found.is_some() {
                     break;
                 }
             } else {
