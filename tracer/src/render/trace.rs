@@ -121,10 +121,10 @@ pub struct Tracer<'a> {
     shadow_mode: ShadowMode,
     /// Offset floor: a millionth of the scene's size.
     min_offset: f32,
-    /// POV-Ray's shadow cache: per light, the shape that last blocked a
-    /// shadow ray towards it. Neighbouring points tend to be shadowed by
-    /// the same shape, so it is tested first, and when it blocks the ray no
-    /// traversal is needed. Which shape blocks never changes *whether* the
+    /// POV-Ray's shadow cache: per light, the shape that blocked the last
+    /// shadow ray towards it (none if that ray was unblocked). Neighbouring
+    /// points tend to be shadowed by the same shape, so it is tested first,
+    /// and when it blocks the ray no traversal is needed. Which shape blocks never changes *whether* the
     /// ray is blocked, so images are the same with or without it.
     last_occluder: Vec<Cell<Option<u32>>>,
 }
@@ -152,8 +152,8 @@ impl<'a> Tracer<'a> {
     }
 
     /// Whether anything blocks `shadow` before `distance`: the shape that
-    /// last blocked a ray towards light `light` first (one intersection
-    /// test), then the acceleration structure, whose occluder is kept.
+    /// blocked the last ray towards light `light` first (one intersection
+    /// test), then the acceleration structure, whose answer is kept.
     pub(super) fn shadowed(
         &self,
         light: usize,
@@ -174,9 +174,9 @@ impl<'a> Tracer<'a> {
             }
         }
         let occluder = self.index.occluder(shapes, shadow, 0.0, distance, counters);
-        if occluder.is_some() {
-            cached.set(occluder);
-        }
+        // An unblocked ray empties the cache: lit points come in runs too,
+        // and there the cached shape would only cost a test per ray.
+        cached.set(occluder);
         occluder.is_some()
     }
 
