@@ -85,6 +85,7 @@ pub fn json_value(stats: &RenderStats, counts: &SceneCounts) -> serde_json::Valu
         "intersection_tests": c.intersection_tests,
         "hits": c.hits,
         "nodes_visited": c.nodes_visited,
+        "shadow_cache_hits": c.shadow_cache_hits,
         "scene": {
             "objects": objects,
             "primitives": counts.primitives,

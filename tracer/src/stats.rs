@@ -19,6 +19,9 @@ pub struct Counters {
     pub hits: u64,
     /// Acceleration nodes or grid cells visited.
     pub nodes_visited: u64,
+    /// Shadow rays found blocked by the shape that last blocked a shadow
+    /// ray towards the same light, without a traversal.
+    pub shadow_cache_hits: u64,
 }
 
 impl Counters {
@@ -37,6 +40,7 @@ impl AddAssign for Counters {
         self.intersection_tests += o.intersection_tests;
         self.hits += o.hits;
         self.nodes_visited += o.nodes_visited;
+        self.shadow_cache_hits += o.shadow_cache_hits;
     }
 }
 

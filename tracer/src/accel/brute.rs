@@ -4,7 +4,7 @@
 use crate::geometry::{Ray, Shape};
 use crate::stats::Counters;
 
-use super::Hit;
+use super::{Hit, Nearest, first_occluder, offer_each};
 
 /// The list of bounded shapes, tested in order.
 #[derive(Debug, Clone)]
@@ -28,35 +28,26 @@ impl BruteForce {
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
-        mut t_max: f32,
+        t_max: f32,
         counters: &mut Counters,
     ) -> Option<Hit> {
-        let mut best = None;
-        counters.intersection_tests += self.shapes.len() as u64;
-        for &i in &self.shapes {
-            if let Some(t) = shapes[i as usize].intersect(ray, t_min, t_max) {
-                t_max = t;
-                best = Some(Hit { t, shape: i });
-            }
-        }
-        best
+        let mut nearest = Nearest::new(t_max);
+        let tests = &mut counters.intersection_tests;
+        offer_each(&self.shapes, shapes, ray, t_min, &mut nearest, tests);
+        nearest.best
     }
 
+    /// The first shape in list order on the ray in `(t_min, t_max)`.
     #[inline]
-    pub fn any_hit(
+    pub fn occluder(
         &self,
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
         t_max: f32,
         counters: &mut Counters,
-    ) -> bool {
-        for &i in &self.shapes {
-            counters.intersection_tests += 1;
-            if shapes[i as usize].intersect(ray, t_min, t_max).is_some() {
-                return true;
-            }
-        }
-        false
+    ) -> Option<u32> {
+        let tests = &mut counters.intersection_tests;
+        first_occluder(&self.shapes, shapes, ray, t_min, t_max, tests)
     }
 }

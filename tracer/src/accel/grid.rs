@@ -9,7 +9,7 @@ use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
 use super::visits::{NoLog, Step, VisitLog};
-use super::{Hit, Nearest};
+use super::{Hit, Nearest, first_occluder, offer_each};
 
 /// Most cells a grid may have, whatever the multiplier: 16 Mi cells take
 /// 64 MiB of offsets.
@@ -159,34 +159,33 @@ impl Grid {
     ) -> Option<Hit> {
         let mut nearest = Nearest::new(t_max);
         self.walk(ray, t_min, t_max, counters, log, |id, counters| {
-            counters.intersection_tests += 1;
-            if let Some(t) = shapes[id as usize].intersect(ray, t_min, nearest.limit) {
-                nearest.offer(t, id);
-            }
+            let tests = &mut counters.intersection_tests;
+            offer_each(&[id], shapes, ray, t_min, &mut nearest, tests);
             // Stop once the nearest hit lies before the cell's exit.
             nearest.t_max(t_max)
         });
         nearest.best
     }
 
-    /// Whether anything lies on the ray in `(t_min, t_max)`.
+    /// The first shape the walk meets on the ray in `(t_min, t_max)`.
     #[inline]
-    pub fn any_hit(
+    pub fn occluder(
         &self,
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
         t_max: f32,
         counters: &mut Counters,
-    ) -> bool {
-        let mut found = false;
+    ) -> Option<u32> {
+        let mut found = None;
         self.walk(ray, t_min, t_max, counters, &mut NoLog, |id, counters| {
-            counters.intersection_tests += 1;
-            if shapes[id as usize].intersect(ray, t_min, t_max).is_some() {
-                found = true;
-                return f32::NEG_INFINITY;
+            let tests = &mut counters.intersection_tests;
+            found = first_occluder(&[id], shapes, ray, t_min, t_max, tests);
+            if found.is_some() {
+                f32::NEG_INFINITY
+            } else {
+                f32::INFINITY
             }
-            f32::INFINITY
         });
         found
     }

@@ -96,6 +96,66 @@ impl Nearest {
     }
 }
 
+/// What a structure's leaves list: a world shape's index, or the BVH's
+/// packed copy of it. Both intersect bit for bit like the world's shape.
+trait Primitive {
+    /// The index of the shape in the world's shapes.
+    fn id(&self) -> u32;
+    /// `shapes[self.id()].intersect(ray, t_min, t_max)`.
+    fn intersect(&self, shapes: &[Shape], ray: &Ray, t_min: f32, t_max: f32) -> Option<f32>;
+}
+
+impl Primitive for u32 {
+    #[inline(always)]
+    fn id(&self) -> u32 {
+        *self
+    }
+
+    #[inline(always)]
+    fn intersect(&self, shapes: &[Shape], ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
+        shapes[*self as usize].intersect(ray, t_min, t_max)
+    }
+}
+
+/// The leaf loop of every closest-hit query: offers each of `prims` the
+/// ray meets to `nearest`, adding one to `tests` per primitive.
+#[inline(always)]
+fn offer_each<P: Primitive>(
+    prims: &[P],
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+    nearest: &mut Nearest,
+    tests: &mut u64,
+) {
+    *tests += prims.len() as u64;
+    for prim in prims {
+        if let Some(t) = prim.intersect(shapes, ray, t_min, nearest.limit) {
+            nearest.offer(t, prim.id());
+        }
+    }
+}
+
+/// The leaf loop of every any-hit query: the first of `prims` the ray
+/// meets in `(t_min, t_max)`, adding one to `tests` per primitive tested.
+#[inline(always)]
+fn first_occluder<P: Primitive>(
+    prims: &[P],
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    tests: &mut u64,
+) -> Option<u32> {
+    for prim in prims {
+        *tests += 1;
+        if prim.intersect(shapes, ray, t_min, t_max).is_some() {
+            return Some(prim.id());
+        }
+    }
+    None
+}
+
 /// The next float above a finite `t`.
 #[inline]
 fn next_up(t: f32) -> f32 {
@@ -252,16 +312,29 @@ impl SceneIndex {
         t_max: f32,
         counters: &mut Counters,
     ) -> bool {
-        for &i in &self.unbounded {
-            counters.intersection_tests += 1;
-            if shapes[i as usize].intersect(ray, t_min, t_max).is_some() {
-                return true;
-            }
+        self.occluder(shapes, ray, t_min, t_max, counters).is_some()
+    }
+
+    /// The first shape found on the ray with `t` in `(t_min, t_max)`, if
+    /// any: which one depends on the structure, that there is one does not.
+    /// Shadow rays remember it to test it first next time.
+    #[inline]
+    pub fn occluder(
+        &self,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+    ) -> Option<u32> {
+        let tests = &mut counters.intersection_tests;
+        if let Some(id) = first_occluder(&self.unbounded, shapes, ray, t_min, t_max, tests) {
+            return Some(id);
         }
         match &self.structure {
-            Structure::None(b) => b.any_hit(shapes, ray, t_min, t_max, counters),
-            Structure::Grid(g) => g.any_hit(shapes, ray, t_min, t_max, counters),
-            Structure::Bvh(b) => b.any_hit(shapes, ray, t_min, t_max, counters),
+            Structure::None(b) => b.occluder(shapes, ray, t_min, t_max, counters),
+            Structure::Grid(g) => g.occluder(shapes, ray, t_min, t_max, counters),
+            Structure::Bvh(b) => b.occluder(shapes, ray, t_min, t_max, counters),
         }
     }
 }

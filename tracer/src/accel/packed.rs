@@ -10,6 +10,8 @@ use glam::{Vec3A, Vec4};
 
 use crate::geometry::{Aabb, Ray, Shape, Sphere, intersect_edges};
 
+use super::Primitive;
+
 /// What a record holds, stored as float bits in `b.w`.
 const SPHERE: u32 = 0;
 const TRIANGLE: u32 = 1;
@@ -44,12 +46,6 @@ impl PackedShape {
         }
     }
 
-    /// The index of this primitive in the world's shapes.
-    #[inline]
-    pub(super) fn id(&self) -> u32 {
-        self.c.w.to_bits()
-    }
-
     /// The bounding box of a packed sphere or triangle, `None` for other
     /// shapes (whose data stays in the world), for validation.
     pub(super) fn bounds(&self) -> Option<Aabb> {
@@ -63,17 +59,18 @@ impl PackedShape {
             _ => None,
         }
     }
+}
+
+impl Primitive for PackedShape {
+    #[inline(always)]
+    fn id(&self) -> u32 {
+        self.c.w.to_bits()
+    }
 
     /// The same as `shapes[self.id()].intersect(ray, t_min, t_max)`, bit
     /// for bit.
-    #[inline]
-    pub(super) fn intersect(
-        &self,
-        shapes: &[Shape],
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-    ) -> Option<f32> {
+    #[inline(always)]
+    fn intersect(&self, shapes: &[Shape], ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
         match self.b.w.to_bits() {
             SPHERE => Sphere::new(Vec3A::from_vec4(self.a), self.a.w).intersect(ray, t_min, t_max),
             TRIANGLE => intersect_edges(

@@ -157,13 +157,18 @@ fn check_rays(shapes: &[Shape], seed: u64, rays: usize) {
                 "{:?} on {ray:?} in ({t_min}, {t_max})",
                 index.kind()
             );
-            let any = index.any_hit(shapes, &ray, t_min, t_max, &mut counters);
+            let occluder = index.occluder(shapes, &ray, t_min, t_max, &mut counters);
             assert_eq!(
-                any,
+                occluder.is_some(),
                 any_reference,
                 "{:?} on {ray:?} in ({t_min}, {t_max})",
                 index.kind()
             );
+            // The occluder reported is one the ray really meets.
+            if let Some(id) = occluder {
+                let t = shapes[id as usize].intersect(&ray, t_min, t_max);
+                assert!(t.is_some(), "{:?}: {id} is no occluder", index.kind());
+            }
         }
     }
 }

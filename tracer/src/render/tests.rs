@@ -112,6 +112,51 @@ fn every_structure_renders_the_same_image() {
     assert_eq!(films[0], films[2]);
 }
 
+/// A shadow ray blocked by the shape that blocked the previous one towards
+/// the same light costs one test and no traversal; any other ray costs
+/// that test on top of a traversal, and after an unblocked ray the next
+/// one goes straight to the structure; the answer is always the
+/// structure's.
+#[test]
+fn the_shadow_cache_tests_the_last_occluder_first() {
+    let world = world(
+        "v from 0 -5 2 at 0 0 0 up 0 0 1 angle 45 hither 0.01 resolution 8 8\n\
+         l 0 0 10\n\
+         f 1 1 1 1 0 0 0 0 1 0 1\n\
+         s 0 0 2 1\n\
+         s 9 9 2 1\n",
+    );
+    let settings = settings(8, 8);
+    for kind in [AccelKind::None, AccelKind::Grid, AccelKind::Bvh] {
+        let index = index(&world, kind);
+        let tracer = super::Tracer::new(&world, &index, &settings);
+        let shadow = |x: f32, counters: &mut Counters| {
+            let ray = crate::geometry::Ray::new(Vec3A::new(x, 0.0, 0.0), Vec3A::Z);
+            let expected = index.any_hit(&world.shapes, &ray, 0.0, 10.0, &mut Counters::default());
+            let blocked = tracer.shadowed(0, &ray, 10.0, counters);
+            assert_eq!(blocked, expected, "{kind:?} at x = {x}");
+            blocked
+        };
+        let mut first = Counters::default();
+        assert!(shadow(0.0, &mut first));
+        assert_eq!(first.shadow_cache_hits, 0);
+        let mut again = Counters::default();
+        assert!(shadow(0.1, &mut again), "{kind:?}");
+        assert_eq!(again.shadow_cache_hits, 1);
+        assert_eq!((again.intersection_tests, again.nodes_visited), (1, 0));
+        let mut lit = Counters::default();
+        assert!(!shadow(5.0, &mut lit));
+        assert_eq!(lit.shadow_cache_hits, 0);
+        let mut lit_again = Counters::default();
+        assert!(!shadow(5.0, &mut lit_again));
+        assert_eq!(
+            lit.intersection_tests,
+            lit_again.intersection_tests + 1,
+            "{kind:?}: the cached shape is tested once, then forgotten"
+        );
+    }
+}
+
 #[test]
 fn seeds_change_the_noise_but_not_the_picture() {
     let w = world(SCENE);

@@ -2,6 +2,8 @@
 //! faces, shadow rays, mirror reflection weighted by the specular colour,
 //! refraction with Fresnel weighting and total internal reflection.
 
+use std::cell::Cell;
+
 use glam::Vec3A;
 
 use crate::accel::{Hit, SceneIndex};
@@ -108,6 +110,10 @@ enum ShadowMode {
 const RELATIVE_OFFSET: f32 = 3e-5;
 
 /// Traces rays through one world with one set of settings.
+///
+/// A tracer belongs to one thread (each render thread makes its own per
+/// tile): it remembers, per light, the shape that last blocked a shadow
+/// ray towards it.
 pub struct Tracer<'a> {
     world: &'a World,
     index: &'a SceneIndex,
@@ -115,6 +121,12 @@ pub struct Tracer<'a> {
     shadow_mode: ShadowMode,
     /// Offset floor: a millionth of the scene's size.
     min_offset: f32,
+    /// POV-Ray's shadow cache: per light, the shape that blocked the last
+    /// shadow ray towards it (none if that ray was unblocked). Neighbouring
+    /// points tend to be shadowed by the same shape, so it is tested first,
+    /// and when it blocks the ray no traversal is needed. Which shape blocks never changes *whether* the
+    /// ray is blocked, so images are the same with or without it.
+    last_occluder: Vec<Cell<Option<u32>>>,
 }
 
 impl<'a> Tracer<'a> {
@@ -135,7 +147,37 @@ impl<'a> Tracer<'a> {
             settings,
             shadow_mode,
             min_offset: 1e-6 * size.min(1e30),
+            last_occluder: vec![Cell::new(None); world.lights.len()],
         }
+    }
+
+    /// Whether anything blocks `shadow` before `distance`: the shape that
+    /// blocked the last ray towards light `light` first (one intersection
+    /// test), then the acceleration structure, whose answer is kept.
+    pub(super) fn shadowed(
+        &self,
+        light: usize,
+        shadow: &Ray,
+        distance: f32,
+        counters: &mut Counters,
+    ) -> bool {
+        let shapes = &self.world.shapes;
+        let cached = &self.last_occluder[light];
+        if let Some(id) = cached.get() {
+            counters.intersection_tests += 1;
+            if shapes[id as usize]
+                .intersect(shadow, 0.0, distance)
+                .is_some()
+            {
+                counters.shadow_cache_hits += 1;
+                return true;
+            }
+        }
+        let occluder = self.index.occluder(shapes, shadow, 0.0, distance, counters);
+        // An unblocked ray empties the cache: lit points come in runs too,
+        // and there the cached shape would only cost a test per ray.
+        cached.set(occluder);
+        occluder.is_some()
     }
 
     /// Radiance along an eye ray, ignoring hits nearer than `t_min` (hither).
@@ -308,10 +350,7 @@ impl<'a> Tracer<'a> {
                         blocked: true,
                         radiance: Vec3A::ZERO,
                     };
-                    if self
-                        .index
-                        .any_hit(&self.world.shapes, &shadow, 0.0, distance, counters)
-                    {
+                    if self.shadowed(light_index, &shadow, distance, counters) {
                         recorder.shadow(&sample);
                         return;
                     }
