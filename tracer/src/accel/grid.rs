@@ -304,6 +304,14 @@ impl Grid {
     pub fn lattice(&self) -> (Aabb, [u32; 3]) {
         (self.bounds, self.cells.as_uvec3().to_array())
     }
+
+    /// The box of cell `c`, its faces where the walk places them.
+    pub(in crate::accel) fn cell_bounds(&self, c: IVec3) -> Aabb {
+        Aabb::new(
+            self.bounds.min + c.as_vec3a() * self.cell_size,
+            self.bounds.min + (c + 1).as_vec3a() * self.cell_size,
+        )
+    }
 }
 
 #[cfg(test)]

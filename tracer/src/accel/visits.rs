@@ -4,7 +4,7 @@
 //! the work the render counts. The render passes [`NoLog`], which compiles
 //! away; [`SceneIndex::closest_hit_visits`] passes a list.
 
-use glam::{IVec3, Vec3A};
+use glam::IVec3;
 
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
@@ -97,16 +97,16 @@ impl SceneIndex {
         let hit = self.closest_hit_logged(shapes, ray, t_min, t_max, &mut counters, &mut steps);
         let visits = match &self.structure {
             Structure::None(_) => Vec::new(),
-            Structure::Grid(grid) => {
-                let (bounds, cells) = grid.lattice();
-                steps
-                    .iter()
-                    .filter_map(|s| match s {
-                        Step::Cell(c) => Some(cell_visit(&bounds, cells, *c)),
-                        _ => None,
-                    })
-                    .collect()
-            }
+            Structure::Grid(grid) => steps
+                .iter()
+                .filter_map(|s| match *s {
+                    Step::Cell(c) => Some(Visit::Cell {
+                        cell: c.as_uvec3().to_array(),
+                        bounds: grid.cell_bounds(c),
+                    }),
+                    _ => None,
+                })
+                .collect(),
             Structure::Bvh(bvh) => bvh.visits(&steps),
         };
         Traversal {
@@ -117,21 +117,10 @@ impl SceneIndex {
     }
 }
 
-/// Cell `c` of a grid over `bounds` with `cells` per axis, its box placed
-/// as the walk places its boundaries.
-fn cell_visit(bounds: &Aabb, cells: [u32; 3], c: IVec3) -> Visit {
-    let size = bounds.extent() / Vec3A::from(cells.map(|n| n as f32));
-    Visit::Cell {
-        cell: c.as_uvec3().to_array(),
-        bounds: Aabb::new(
-            bounds.min + c.as_vec3a() * size,
-            bounds.min + (c + 1).as_vec3a() * size,
-        ),
-    }
-}
-
 #[cfg(test)]
 mod tests {
+    use glam::Vec3A;
+
     use super::*;
     use crate::accel::AccelKind;
     use crate::geometry::Sphere;

@@ -124,8 +124,9 @@ pub struct Tracer<'a> {
     /// POV-Ray's shadow cache: per light, the shape that blocked the last
     /// shadow ray towards it (none if that ray was unblocked). Neighbouring
     /// points tend to be shadowed by the same shape, so it is tested first,
-    /// and when it blocks the ray no traversal is needed. Which shape blocks never changes *whether* the
-    /// ray is blocked, so images are the same with or without it.
+    /// and when it blocks the ray no traversal is needed. Which shape
+    /// blocks never changes *whether* the ray is blocked, so images are the
+    /// same with or without it.
     last_occluder: Vec<Cell<Option<u32>>>,
 }
 

@@ -126,7 +126,7 @@ impl Bvh {
             let inside = |outer: &Aabb, b: &Aabb| {
                 (b.min.cmpge(outer.min) & b.max.cmple(outer.max)).all() || b.is_empty()
             };
-            let used = node.count.iter().take_while(|&&c| c != EMPTY).count();
+            let used = node.used_slots().count();
             if node.count[used..].iter().any(|&c| c != EMPTY) {
                 return Err(format!("node {index} has a gap between its children"));
             }
@@ -344,18 +344,18 @@ impl Bvh {
     /// scene's box, 1 the root's up to four children), with the leaves above
     /// it so the scene stays covered; every leaf for `None`. Read only, for
     /// drawing the structure over the image.
+    /// The box of depth 0 as drawn and inspected: the union of the root's
+    /// children (`None` for an empty tree).
+    pub(in crate::accel) fn scene_box(&self) -> Option<Aabb> {
+        let root = self.nodes.first()?;
+        root.used_slots()
+            .map(|i| root.bounds(i))
+            .reduce(|a, b| a.union(&b))
+    }
+
     pub fn boxes(&self, depth: Option<u32>) -> Vec<Aabb> {
-        let used = |node: &Node4| {
-            (0..4)
-                .filter(|&i| node.count[i] != EMPTY)
-                .collect::<Vec<_>>()
-        };
-        let Some(root) = self.nodes.first() else {
-            return Vec::new();
-        };
         if depth == Some(0) {
-            let all = used(root).into_iter().map(|i| root.bounds(i));
-            return all.reduce(|a, b| a.union(&b)).into_iter().collect();
+            return self.scene_box().into_iter().collect();
         }
         let mut out = Vec::new();
         let mut stack = vec![(0usize, 1u32)];
@@ -363,7 +363,7 @@ impl Bvh {
             let Some(node) = self.nodes.get(index) else {
                 continue;
             };
-            for i in used(node) {
+            for i in node.used_slots() {
                 if node.count[i] != 0 || depth == Some(d) {
                     out.push(node.bounds(i));
                 } else {

@@ -48,6 +48,11 @@ impl Node4 {
         self.count[i] = count;
     }
 
+    /// The slots that hold a child (they come first).
+    pub(super) fn used_slots(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..4).take_while(|&i| self.count[i] != EMPTY)
+    }
+
     /// The box of slot `i`.
     pub(super) fn bounds(&self, i: usize) -> Aabb {
         Aabb::new(

@@ -7,7 +7,6 @@ use crate::geometry::Aabb;
 
 use super::super::visits::{Step, Visit};
 use super::Bvh;
-use super::node::EMPTY;
 
 impl Bvh {
     /// The visits of `steps` told by one traversal of this tree. A node is
@@ -16,14 +15,8 @@ impl Bvh {
     pub(in crate::accel) fn visits(&self, steps: &[Step]) -> Vec<Visit> {
         // (first, count) of a slot -> its box and depth; the root is (0, 0).
         let mut known: HashMap<(u32, u32), (Aabb, u32)> = HashMap::new();
-        if let Some(root) = self.nodes.first() {
-            let scene = (0..4)
-                .filter(|&i| root.count[i] != EMPTY)
-                .map(|i| root.bounds(i))
-                .reduce(|a, b| a.union(&b));
-            if let Some(scene) = scene {
-                known.insert((0, 0), (scene, 0));
-            }
+        if let Some(scene) = self.scene_box() {
+            known.insert((0, 0), (scene, 0));
         }
         let mut out = Vec::with_capacity(steps.len());
         for &step in steps {
@@ -45,7 +38,7 @@ impl Bvh {
             }
             out.push(Visit::Node { bounds, depth });
             let node = &self.nodes[key.0 as usize];
-            for slot in (0..4).filter(|&i| node.count[i] != EMPTY) {
+            for slot in node.used_slots() {
                 known.insert(
                     (node.first[slot], node.count[slot]),
                     (node.bounds(slot), depth + 1),
