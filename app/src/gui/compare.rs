@@ -24,6 +24,7 @@ use super::engine::{Activity, Engine, LoadedScene, Version};
 use super::live_image::LiveImage;
 use super::reference::{PendingReference, ReferenceImage};
 use super::state::Controls;
+use super::view_select::colour_bar;
 
 /// How the two renders are shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -546,7 +547,7 @@ pub fn difference_controls(ui: &mut Ui, compare: &mut Compare) {
         let top = format!("{} {}", format_number(d.scale), view.unit());
         ui.horizontal(|ui| {
             ui.label(format!("−{top}"));
-            colour_bar(ui, |t| diverging_colour(2.0 * t - 1.0));
+            colour_bar(ui, 160.0, 32, |t| diverging_colour(2.0 * t - 1.0));
             ui.label(format!("+{top}"));
             ui.weak("A − B: red where A is higher, blue where B is")
                 .on_hover_text(format!(
@@ -568,27 +569,11 @@ pub fn difference_controls(ui: &mut Ui, compare: &mut Compare) {
     });
 }
 
-/// A horizontal bar of `colour(t)` for `t` from 0 to 1.
-fn colour_bar(ui: &mut Ui, colour: impl Fn(f32) -> [u8; 3]) {
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(160.0, 12.0), egui::Sense::hover());
-    let steps = 32;
-    for i in 0..steps {
-        let c = colour(i as f32 / (steps - 1) as f32);
-        let x0 = rect.min.x + rect.width() * i as f32 / steps as f32;
-        let x1 = rect.min.x + rect.width() * (i + 1) as f32 / steps as f32;
-        ui.painter().rect_filled(
-            egui::Rect::from_min_max(egui::pos2(x0, rect.min.y), egui::pos2(x1, rect.max.y)),
-            0.0,
-            Color32::from_rgb(c[0], c[1], c[2]),
-        );
-    }
-}
-
 /// A colour bar from 0 to `1 / gain` of the full range, for the difference
 /// view.
 fn legend(ui: &mut Ui, gain: f32) {
     ui.label("0");
-    colour_bar(ui, |t| Palette::Heat.colour(t).0);
+    colour_bar(ui, 160.0, 32, |t| Palette::Heat.colour(t).0);
     ui.label(format!("{:.0}+ levels", 255.0 / gain.max(1e-3)));
 }
 

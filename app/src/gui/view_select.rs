@@ -174,17 +174,7 @@ impl ViewChoice {
 /// A colour bar from 0 to the heat map's top, with the numbers and unit.
 fn legend(ui: &mut Ui, heat: &ViewHeatmap, view: View) {
     let width = ui.available_width().min(260.0);
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 12.0), egui::Sense::hover());
-    let steps = 64;
-    for i in 0..steps {
-        let t = i as f32 / (steps - 1) as f32;
-        let [r, g, b] = HEAT_PALETTE.colour(t).0;
-        let x0 = rect.left() + rect.width() * i as f32 / steps as f32;
-        let x1 = rect.left() + rect.width() * (i + 1) as f32 / steps as f32;
-        let cell = egui::Rect::from_x_y_ranges(x0..=x1, rect.y_range());
-        ui.painter()
-            .rect_filled(cell, 0.0, Color32::from_rgb(r, g, b));
-    }
+    colour_bar(ui, width, 64, |t| HEAT_PALETTE.colour(t).0);
     ui.horizontal(|ui| {
         ui.label("0");
         ui.label(format!(
@@ -194,6 +184,20 @@ fn legend(ui: &mut Ui, heat: &ViewHeatmap, view: View) {
             view.unit()
         ));
     });
+}
+
+/// A horizontal bar `width` wide of `colour(t)` for `t` from 0 to 1, in
+/// `steps` cells: the legends of the views and of compare's difference.
+pub(super) fn colour_bar(ui: &mut Ui, width: f32, steps: u32, colour: impl Fn(f32) -> [u8; 3]) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 12.0), egui::Sense::hover());
+    for i in 0..steps {
+        let [r, g, b] = colour(i as f32 / (steps - 1) as f32);
+        let x0 = rect.left() + rect.width() * i as f32 / steps as f32;
+        let x1 = rect.left() + rect.width() * (i + 1) as f32 / steps as f32;
+        let cell = egui::Rect::from_x_y_ranges(x0..=x1, rect.y_range());
+        ui.painter()
+            .rect_filled(cell, 0.0, Color32::from_rgb(r, g, b));
+    }
 }
 
 /// A view's tooltip.
