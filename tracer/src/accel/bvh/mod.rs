@@ -203,37 +203,9 @@ impl Bvh {
                 visited += 1;
                 log.step(Step::Node(next.first));
                 let node = &self.nodes[next.first as usize];
-                let (near, mut mask) = node.hit(&wide, t_min, t_max);
+                let (near, mask) = node.hit(&wide, t_min, t_max);
                 if mask != 0 {
-                    // Hit children sorted nearest first (ties in slot order):
-                    // visit the nearest now, defer the others farthest first.
-                    let mut order = [(0f32, 0usize); 4];
-                    let mut n = 0;
-                    while mask != 0 {
-                        let slot = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let entry = near[slot];
-                        let mut j = n;
-                        while j > 0 && order[j - 1].0 > entry {
-                            order[j] = order[j - 1];
-                            j -= 1;
-                        }
-                        order[j] = (entry, slot);
-                        n += 1;
-                    }
-                    for &(entry, slot) in order[1..n].iter().rev() {
-                        stack.push(Deferred {
-                            first: node.first[slot],
-                            count: node.count[slot],
-                            entry,
-                        });
-                    }
-                    let (entry, slot) = order[0];
-                    next = Deferred {
-                        first: node.first[slot],
-                        count: node.count[slot],
-                        entry,
-                    };
+                    next = visit_nearest(node, near.to_array(), mask, &mut stack);
                     continue;
                 }
             }
@@ -300,6 +272,58 @@ impl Bvh {
         counters.intersection_tests += tests;
         found
     }
+}
+
+/// The hit children of `node` (`mask`, entered at `near`) sorted nearest
+/// first, ties in slot order: the others are deferred farthest first and
+/// the nearest is returned to visit now. One and two hit children, the
+/// common cases, take no sort; `near` is an array because indexing a
+/// `Vec4` by a run-time slot compiled to a jump table (an indirect branch
+/// per child, mispredicted on triangle scenes).
+#[inline(always)]
+fn visit_nearest(
+    node: &Node4,
+    near: [f32; 4],
+    mut mask: u32,
+    stack: &mut NodeStack<Deferred>,
+) -> Deferred {
+    let child = |slot: usize| Deferred {
+        first: node.first[slot],
+        count: node.count[slot],
+        entry: near[slot],
+    };
+    let a = mask.trailing_zeros() as usize;
+    mask &= mask - 1;
+    if mask == 0 {
+        return child(a);
+    }
+    let b = mask.trailing_zeros() as usize;
+    mask &= mask - 1;
+    if mask == 0 {
+        let (now, later) = if near[b] < near[a] { (b, a) } else { (a, b) };
+        stack.push(child(later));
+        return child(now);
+    }
+    let mut order = [a, b, 0, 0];
+    let mut n = 2;
+    if near[b] < near[a] {
+        order.swap(0, 1);
+    }
+    while mask != 0 {
+        let slot = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        let mut j = n;
+        while j > 0 && near[order[j - 1]] > near[slot] {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = slot;
+        n += 1;
+    }
+    for &slot in order[1..n].iter().rev() {
+        stack.push(child(slot));
+    }
+    child(order[0])
 }
 
 /// The children a traversal has deferred: at most three per level of the
