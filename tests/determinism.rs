@@ -4,8 +4,12 @@
 //! of field), because every random number is a pure function of pixel,
 //! sample, dimension and seed, and tiles are summed in a fixed order.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 use std::process::Command;
+
+use common::Scratch;
 
 /// A glass and a matte sphere on a floor, lit by a point light and an area
 /// light; the aperture puts the far sphere out of focus.
@@ -31,13 +35,6 @@ f 1 1 1 0.1 1 1 1 0.2 100 0.8 1.5
 s 1.2 -1 0.8 0.8
 spp 3
 ";
-
-fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-determinism-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// Renders the scene with `threads` workers and `seed`; returns the PNG bytes.
 fn render(scene: &Path, out: &Path, threads: u32, seed: u32) -> Vec<u8> {
@@ -65,7 +62,7 @@ fn render(scene: &Path, out: &Path, threads: u32, seed: u32) -> Vec<u8> {
 
 #[test]
 fn same_seed_gives_identical_png_bytes_across_runs_and_thread_counts() {
-    let dir = scratch();
+    let dir = Scratch::new("determinism");
     let scene = dir.join("random.p3f");
     std::fs::write(&scene, SCENE).unwrap();
     let reference = render(&scene, &dir.join("t1a.png"), 1, 42);
@@ -80,5 +77,4 @@ fn same_seed_gives_identical_png_bytes_across_runs_and_thread_counts() {
     // about the random features.
     let other = render(&scene, &dir.join("seed7.png"), 2, 7);
     assert_ne!(other, reference, "a different seed gave the same image");
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -141,7 +141,7 @@ fn picking_a_scene_in_the_list_renders_it() {
 
 #[test]
 fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
-    let broken = broken_scene("drop");
+    let (_folder, broken) = broken_scene("drop");
 
     let mut harness = window();
     wait_for(&mut harness, "the first render", is_done);
@@ -163,7 +163,6 @@ fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
         harness.state().engine().activity(),
         Activity::Job(JobState::Done)
     );
-    std::fs::remove_dir_all(broken.parent().unwrap()).ok();
 }
 
 #[test]

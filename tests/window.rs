@@ -3,10 +3,13 @@
 //! --ignored`). Without a display they are skipped, as `cargo test` alone
 //! cannot open a window.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+use common::Scratch;
 use image::RgbImage;
 
 /// The viewport's background where no image is drawn (see `gui::viewport`).
@@ -16,12 +19,6 @@ const BACKGROUND: [u8; 3] = [24, 24, 24];
 const PATIENCE: Duration = Duration::from_secs(300);
 /// The scene both the window and the headless render show.
 const SCENE: &str = "../scenes/balls_low.p3f";
-
-fn work_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-window-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// Runs `command`, killing it if it outlives [`PATIENCE`].
 fn run_bounded(command: &mut Command) -> Output {
@@ -139,7 +136,9 @@ fn compare_viewport(shot: &RgbImage, reference: &RgbImage) -> usize {
 #[test]
 #[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
 fn the_window_shows_the_final_render_of_the_requested_scene() {
-    let dir = work_dir();
+    // The screenshot, the reference and the window's home (settings,
+    // shader caches) all go here.
+    let dir = Scratch::new("window");
     let shot = dir.join("window.png");
     let reference = dir.join("reference.png");
     run_bounded(
@@ -164,5 +163,4 @@ fn the_window_shows_the_final_render_of_the_requested_scene() {
         "{wrong} of {total} pixels of the viewport differ from `workbench render` ({})",
         shot.display()
     );
-    std::fs::remove_dir_all(&dir).ok();
 }

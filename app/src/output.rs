@@ -66,8 +66,7 @@ mod tests {
     /// The film's float values, HDR ones included, come back exactly.
     #[test]
     fn exr_round_trips_linear_values() {
-        let dir = std::env::temp_dir().join(format!("output-exr-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::Scratch::new("output-exr");
         let path = dir.join("film.EXR");
         assert!(is_exr(&path) && !is_exr(&dir.join("film.png")));
         let values = [[0.0, 0.5, 1.0], [4.25, 0.001, 1e-6], [1234.5, 0.25, 2.0]];
@@ -76,6 +75,5 @@ mod tests {
         save_exr(&image, &path).unwrap();
         let back = image::open(&path).unwrap().to_rgb32f();
         assert_eq!(back, image);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -9,6 +9,9 @@ use std::process::{Command, Output, Stdio};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
+mod scratch;
+pub use scratch::Scratch;
+
 /// Longest one `workbench` run of an end-to-end test may take before it is
 /// killed and the test fails: the slowest (a study, a large mesh on a
 /// loaded debug build) take seconds, so only a hang comes near it, and CI
@@ -84,12 +87,9 @@ fn drain(pipe: Option<impl Read + Send + 'static>) -> JoinHandle<Vec<u8>> {
     })
 }
 
-/// A fresh folder for one test's files.
-pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-e2e-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh folder for one test's files, removed when the test passes.
+pub fn scratch(name: &str) -> Scratch {
+    Scratch::new(&format!("e2e-{name}"))
 }
 
 /// Writes `text` as `dir/name` and returns its path.

@@ -11,6 +11,10 @@ use egui_kittest::{Harness, HarnessBuilder};
 use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
+#[path = "../common/scratch.rs"]
+mod scratch;
+pub use scratch::Scratch;
+
 /// Long enough for any render in these tests on a slow CI machine; only a
 /// guard against hanging, never a measure of speed.
 pub const PATIENCE: Duration = Duration::from_secs(180);
@@ -55,13 +59,13 @@ pub fn wait_for(
 }
 
 /// Writes a scene whose line 5, column 7 is wrong, in a folder of its own
-/// named after `test`.
-pub fn broken_scene(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("workbench-{test}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+/// named after `test`: the folder (keep it while the scene is used) and
+/// the scene's path.
+pub fn broken_scene(test: &str) -> (Scratch, PathBuf) {
+    let dir = Scratch::new(&format!("broken-{test}"));
     let path = dir.join("broken.p3f");
     std::fs::write(&path, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle forty\n").unwrap();
-    path
+    (dir, path)
 }
 
 /// A file dropped on the window, as the native integration delivers it.

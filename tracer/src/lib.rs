@@ -16,3 +16,8 @@ pub mod scene;
 pub mod skybox;
 pub mod stats;
 pub mod world;
+
+/// Scratch folders for unit tests, shared with `tests/` (one file).
+#[cfg(test)]
+#[path = "../../tests/common/scratch.rs"]
+mod scratch;

@@ -197,8 +197,7 @@ mod tests {
 
     #[test]
     fn loads_six_faces_from_a_folder_and_samples_them() {
-        let dir = std::env::temp_dir().join(format!("skybox-test-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::Scratch::new("skybox");
         for (i, name) in FACE_NAMES.iter().enumerate() {
             let v = (i as u8 + 1) * 40;
             let img = image::RgbImage::from_pixel(4, 4, image::Rgb([v, 0, 0]));

@@ -453,8 +453,7 @@ mod tests {
     #[test]
     fn a_large_mesh_reports_how_much_is_read_while_it_loads() {
         // About 10 MB of OBJ: progress comes every 4 MB.
-        let dir = std::env::temp_dir().join(format!("engine-mesh-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::Scratch::new("engine-mesh");
         let path = dir.join("big.obj");
         let mut text = String::new();
         for i in 0..150_000 {
@@ -484,7 +483,6 @@ mod tests {
         );
         wait_until(&mut engine, |e| e.poll_load().is_some());
         assert_eq!(engine.scene().unwrap().world.counts.triangles, 149_999);
-        let _ = std::fs::remove_dir_all(dir);
     }
 
     #[test]

@@ -694,6 +694,8 @@ mod tests {
             tracer::scene::parse_scene_file(&path, &tracer::scene::Limits::default()).unwrap();
         assert_eq!(scene.accel, Some(0));
         assert_eq!(World::build(&scene).counts.primitives, 12);
+        // Kept only when the test fails, to be inspected.
+        std::fs::remove_file(&path).unwrap();
     }
 
     #[test]
@@ -745,8 +747,7 @@ mod tests {
             after_frame: &never,
         };
         let outcome = study::run(&study, &subject, stop, &mut |_| {}).unwrap();
-        let dir =
-            std::env::temp_dir().join(format!("workbench-study-export-{}", std::process::id()));
+        let dir = crate::scratch::Scratch::new("study-export");
         let written = write_export(&dir, Param::Depth, &outcome.points, "tiny.p3f").unwrap();
         assert_eq!(written, dir.join("study-depth-tiny"));
         let csv = std::fs::read_to_string(written.join("table.csv")).unwrap();
@@ -758,6 +759,5 @@ mod tests {
         );
         let chart = image::open(written.join("chart.png")).unwrap();
         assert_eq!((chart.width(), chart.height()), plot::PANEL);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

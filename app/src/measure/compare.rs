@@ -295,8 +295,7 @@ mod tests {
     /// every channel 10 levels off gives MSE 100 and PSNR 10 log10(255^2/100).
     #[test]
     fn a_reference_image_measures_against_a_known_image() {
-        let dir = std::env::temp_dir().join(format!("compare-ref-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::Scratch::new("compare-ref");
         let render = RgbImage::from_pixel(8, 6, Rgb([100, 150, 200]));
         let png = dir.join("ref.png");
         RgbImage::from_pixel(8, 6, Rgb([110, 140, 210]))
@@ -329,7 +328,6 @@ mod tests {
         assert_eq!(fitted.image.dimensions(), (16, 12));
         assert_eq!(fitted.resized_from, Some((8, 6)));
         assert!(read_reference(&dir.join("missing.png"), Encoding::Linear).is_err());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -8,14 +8,12 @@ use glam::Vec3;
 
 use super::*;
 use crate::scene::{LightSpec, Primitive};
+use crate::scratch::Scratch;
 use crate::world::World;
 
 /// A fresh folder for one test's files.
-fn folder(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("mesh-io-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn folder(test: &str) -> Scratch {
+    Scratch::new(&format!("mesh-io-{test}"))
 }
 
 fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {

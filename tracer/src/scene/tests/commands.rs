@@ -222,14 +222,12 @@ fn comments_crlf_tabs_and_number_spellings() {
 
 #[test]
 fn parse_scene_file_sets_base_dir_and_names_the_file() {
-    let dir = std::env::temp_dir().join(format!("whitted-parse-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::scratch::Scratch::new("parse");
     let path = dir.join("scene.nff");
     std::fs::write(&path, "s 0 0 0 1\n").unwrap();
     let scene = crate::scene::parse_scene_file(&path, &Default::default()).unwrap();
-    assert_eq!(scene.base_dir.as_deref(), Some(dir.as_path()));
+    assert_eq!(scene.base_dir.as_deref(), Some(&*dir));
     std::fs::write(&path, "s 0 0 0 0\n").unwrap();
     let error = crate::scene::parse_scene_file(&path, &Default::default()).unwrap_err();
     assert_eq!(error.file.as_deref(), Some(path.as_path()));
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -2,17 +2,17 @@
 //! materials, and errors that name both the scene's line and the mesh
 //! file's; and the empty-scene error.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::Vec3;
 
 use super::parse;
 use crate::scene::{Limits, ParseErrorKind, Primitive, parse_scene_file};
+use crate::scratch::Scratch;
 
 /// A folder holding `scene.p3f` with `scene` and `models/tri.ply`.
-fn scene_folder(test: &str, scene: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("mesh-file-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+fn scene_folder(test: &str, scene: &str) -> Scratch {
+    let dir = Scratch::new(&format!("mesh-file-{test}"));
     std::fs::create_dir_all(dir.join("models")).unwrap();
     let ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
                property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
