@@ -46,13 +46,17 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                 "Render time",
                 format!("{:.3} s", s.render_time.as_secs_f64()),
             );
-            if let Some(last) = s.pass_times.last() {
-                row(
-                    ui,
-                    "Last pass",
-                    format!("{:.1} ms", last.as_secs_f64() * 1e3),
-                );
-            }
+            // Rows and plots are there from the first frame of a render
+            // on: a widget that appears mid-render makes egui lay the
+            // window out again, two more frames that take the render's CPU
+            // on a software rasterizer.
+            row(
+                ui,
+                "Last pass",
+                s.pass_times.last().map_or("-".into(), |last| {
+                    format!("{:.1} ms", last.as_secs_f64() * 1e3)
+                }),
+            );
             row(ui, "Rays", si(c.total_rays() as f64));
             row(ui, "  eye", si(c.eye_rays as f64));
             row(ui, "  shadow", si(c.shadow_rays as f64));
@@ -152,33 +156,79 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
             );
         });
 
-    if s.pass_times.len() > 1 {
-        ui.separator();
-        let times: PlotPoints = s
-            .pass_times
-            .iter()
-            .enumerate()
-            .map(|(i, t)| [i as f64 + 1.0, t.as_secs_f64() * 1e3])
-            .collect();
-        Plot::new("pass_times")
-            .height(120.0)
-            .legend(Legend::default())
-            .x_axis_label("pass")
-            .allow_scroll(false)
-            .show(ui, |plot| {
-                plot.line(Line::new("ms per pass", times));
+    ui.separator();
+    let times: PlotPoints = s
+        .pass_times
+        .iter()
+        .enumerate()
+        .map(|(i, t)| [i as f64 + 1.0, t.as_secs_f64() * 1e3])
+        .collect();
+    Plot::new("pass_times")
+        .height(120.0)
+        .legend(Legend::default())
+        .x_axis_label("pass")
+        .allow_scroll(false)
+        .show(ui, |plot| {
+            plot.line(Line::new("ms per pass", times));
+        });
+    let mut rays = Vec::new();
+    for (i, (t, n)) in s.pass_times.iter().zip(&s.pass_rays).enumerate() {
+        rays.push([i as f64 + 1.0, *n as f64 / t.as_secs_f64().max(1e-9) / 1e6]);
+    }
+    Plot::new("pass_rays")
+        .height(120.0)
+        .legend(Legend::default())
+        .x_axis_label("pass")
+        .allow_scroll(false)
+        .show(ui, |plot| {
+            plot.line(Line::new("Mrays/s", PlotPoints::from(rays)));
+        });
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use super::*;
+
+    /// The height the panel takes for `stats`, laid out in a bare context.
+    fn panel_height(stats: &RenderStats) -> f32 {
+        let ctx = egui::Context::default();
+        let counts = SceneCounts::default();
+        let meter = FrameMeter::default();
+        let view = StatsView {
+            stats,
+            counts: &counts,
+            accel: None,
+            load_time: Duration::ZERO,
+            frame_meter: &meter,
+        };
+        let mut height = 0.0;
+        // Two passes: the first one measures text, the second lays it out.
+        for _ in 0..2 {
+            let mut output = ctx.run_ui(egui::RawInput::default(), |ui| {
+                show(ui, &view);
+                height = ui.min_rect().height();
             });
-        let mut rays = Vec::new();
-        for (i, (t, n)) in s.pass_times.iter().zip(&s.pass_rays).enumerate() {
-            rays.push([i as f64 + 1.0, *n as f64 / t.as_secs_f64().max(1e-9) / 1e6]);
+            // Nothing is painted: the font atlas is never uploaded.
+            output.textures_delta.clear();
         }
-        Plot::new("pass_rays")
-            .height(120.0)
-            .legend(Legend::default())
-            .x_axis_label("pass")
-            .allow_scroll(false)
-            .show(ui, |plot| {
-                plot.line(Line::new("Mrays/s", PlotPoints::from(rays)));
-            });
+        height
+    }
+
+    #[test]
+    fn the_panel_keeps_its_layout_while_passes_complete() {
+        let before = RenderStats {
+            passes_target: 16,
+            ..RenderStats::default()
+        };
+        let during = RenderStats {
+            passes_done: 3,
+            pass_times: vec![Duration::from_millis(90); 3],
+            pass_rays: vec![1_000_000; 3],
+            render_time: Duration::from_millis(270),
+            ..before.clone()
+        };
+        assert_eq!(panel_height(&before), panel_height(&during));
     }
 }
