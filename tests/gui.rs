@@ -7,6 +7,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
+use eframe::App;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
@@ -263,8 +264,26 @@ fn value_rect(harness: &Harness<'static, WorkbenchApp>, name: &str) -> Option<eg
     labels.get(at + 1).map(|n| n.rect())
 }
 
+/// Compares the window with the stored snapshot `name` as eframe shows it:
+/// the harness renders over a transparent background, where eframe clears
+/// the window with the app's clear colour (the panels' colour, which the
+/// panels leave to the clear).
 fn snapshot(harness: &mut Harness<'static, WorkbenchApp>, name: &str) {
-    harness.snapshot_options(
+    let mut image = harness.render().expect("the window renders");
+    let visuals = harness.ctx.global_style().visuals.clone();
+    let clear = harness.state().clear_color(&visuals).map(|c| c * 255.0);
+    for pixel in image.pixels_mut() {
+        // The render is premultiplied: what is left of each pixel's
+        // coverage shows the clear colour.
+        let cover = f32::from(pixel[3]) / 255.0;
+        for (channel, under) in pixel.0.iter_mut().zip(clear) {
+            *channel = (f32::from(*channel) + under * (1.0 - cover))
+                .round()
+                .min(255.0) as u8;
+        }
+    }
+    egui_kittest::image_snapshot_options(
+        &image,
         name,
         &egui_kittest::SnapshotOptions::new().output_path(SNAPSHOTS),
     );

@@ -996,6 +996,13 @@ fn default_scene() -> Option<SceneSource> {
         .map(|s| SceneSource::Bundled(s.name.to_string()))
 }
 
+/// `frame` without its fill: the window's clear paints the panels' colour
+/// at almost no cost, where a filled panel is a rectangle of fragments that a
+/// software rasterizer shades one by one in every frame.
+fn unfilled(frame: egui::Frame) -> egui::Frame {
+    frame.fill(Color32::TRANSPARENT)
+}
+
 impl eframe::App for WorkbenchApp {
     fn ui(&mut self, ui: &mut Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
@@ -1021,6 +1028,7 @@ impl eframe::App for WorkbenchApp {
         egui::Panel::left("controls")
             .resizable(true)
             .default_size(270.0)
+            .frame(unfilled(egui::Frame::side_top_panel(ui.style())))
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     let current = self.engine.scene().map(|s| s.source.clone());
@@ -1075,6 +1083,7 @@ impl eframe::App for WorkbenchApp {
             egui::Panel::right("statistics")
                 .resizable(true)
                 .default_size(280.0)
+                .frame(unfilled(egui::Frame::side_top_panel(ui.style())))
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
                         if let Some(compare) = &self.compare {
@@ -1112,7 +1121,9 @@ impl eframe::App for WorkbenchApp {
                 });
         }
 
-        egui::CentralPanel::default().show(ui, |ui| self.central(ui));
+        egui::CentralPanel::default()
+            .frame(unfilled(egui::Frame::central_panel(ui.style())))
+            .show(ui, |ui| self.central(ui));
 
         if let Some((text, since)) = &self.notice {
             if since.elapsed() < NOTICE_TIME {
@@ -1141,6 +1152,11 @@ impl eframe::App for WorkbenchApp {
         self.take_screenshot_when_due(&ctx);
         self.frame_meter.end(Instant::now());
         self.progress_pace.set(self.frame_meter.progress_interval());
+    }
+
+    /// The panels' colour: the panels leave their fill to the clear.
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        visuals.panel_fill.to_normalized_gamma_f32()
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
