@@ -157,31 +157,31 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
         });
 
     ui.separator();
-    let times: PlotPoints = s
+    let times = s.pass_times.iter().map(|t| t.as_secs_f64() * 1e3).collect();
+    pass_plot(ui, "pass_times", "ms per pass", times);
+    let rays = s
         .pass_times
         .iter()
-        .enumerate()
-        .map(|(i, t)| [i as f64 + 1.0, t.as_secs_f64() * 1e3])
+        .zip(&s.pass_rays)
+        .map(|(t, n)| *n as f64 / t.as_secs_f64().max(1e-9) / 1e6)
         .collect();
-    Plot::new("pass_times")
+    pass_plot(ui, "pass_rays", "Mrays/s", rays);
+}
+
+/// A plot of one value per completed pass (pass 1 first).
+fn pass_plot(ui: &mut Ui, id: &str, name: &str, values: Vec<f64>) {
+    let points: PlotPoints = values
+        .into_iter()
+        .enumerate()
+        .map(|(i, v)| [i as f64 + 1.0, v])
+        .collect();
+    Plot::new(id)
         .height(120.0)
         .legend(Legend::default())
         .x_axis_label("pass")
         .allow_scroll(false)
         .show(ui, |plot| {
-            plot.line(Line::new("ms per pass", times));
-        });
-    let mut rays = Vec::new();
-    for (i, (t, n)) in s.pass_times.iter().zip(&s.pass_rays).enumerate() {
-        rays.push([i as f64 + 1.0, *n as f64 / t.as_secs_f64().max(1e-9) / 1e6]);
-    }
-    Plot::new("pass_rays")
-        .height(120.0)
-        .legend(Legend::default())
-        .x_axis_label("pass")
-        .allow_scroll(false)
-        .show(ui, |plot| {
-            plot.line(Line::new("Mrays/s", PlotPoints::from(rays)));
+            plot.line(Line::new(name, points));
         });
 }
 
