@@ -18,8 +18,9 @@ use crate::geometry::Aabb;
 
 use super::{BvhParams, MAX_DEPTH};
 
-/// Most SAH bins per axis: the bins live in fixed arrays on the stack
-/// rather than in a dozen small allocations per node.
+/// Most SAH bins per axis: the bins live in fixed arrays, one set per
+/// rayon task reused from node to node, rather than in a dozen small
+/// allocations per node.
 const MAX_BINS: usize = 32;
 
 /// Primitives per chunk of a parallel pass: enough work per task to hide
