@@ -6,7 +6,7 @@ use glam::{BVec4A, Vec3A, Vec4};
 
 use crate::geometry::{Aabb, Ray};
 
-use super::build::BuildNode;
+use super::build::{BuildTree, NodeRef};
 
 /// `count` of a slot that holds no child.
 pub(super) const EMPTY: u32 = u32::MAX;
@@ -110,64 +110,55 @@ impl WideRay {
     }
 }
 
-/// Flattens the binary tree under `root` into 4-wide nodes, root first;
-/// every node's children are opened, largest box first, until it has four
-/// (or only leaves remain).
-pub(super) fn flatten(root: &BuildNode, prims: usize) -> Vec<Node4> {
+/// Flattens the binary tree `tree` into 4-wide nodes, root first; every
+/// node's children are opened, largest box first, until it has four (or
+/// only leaves remain).
+pub(super) fn flatten(tree: &BuildTree, prims: usize) -> Vec<Node4> {
     let mut nodes = Vec::with_capacity(prims.div_ceil(2).max(1));
     nodes.push(Node4::BLANK);
-    if prims == 0 {
+    if tree.is_empty() {
         return nodes;
     }
-    match root {
-        BuildNode::Leaf {
-            bounds,
-            first,
-            count,
-        } => nodes[0].set(0, bounds, *first, *count),
-        BuildNode::Inner { .. } => fill(root, 0, &mut nodes),
+    let root = tree.node(NodeRef::ROOT);
+    if root.is_leaf() {
+        nodes[0].set(0, &root.bounds, root.first, root.count);
+    } else {
+        fill(tree, NodeRef::ROOT, 0, &mut nodes);
     }
     nodes
 }
 
-/// Writes the children of the inner node `inner` into `nodes[index]`, and
-/// their own children into new nodes, recursively.
-fn fill(inner: &BuildNode, index: usize, nodes: &mut Vec<Node4>) {
-    let mut slots: [&BuildNode; 4] = [inner; 4];
+/// Writes the children of the inner node `inner` of `tree` into
+/// `nodes[index]`, and their own children into new nodes, recursively.
+fn fill(tree: &BuildTree, inner: NodeRef, index: usize, nodes: &mut Vec<Node4>) {
+    let mut slots = [inner; 4];
     let mut used = 1;
     // Open the inner child with the largest box until four slots are used.
     while used < 4 {
         let widest = slots[..used]
             .iter()
             .enumerate()
-            .filter_map(|(i, n)| match n {
-                BuildNode::Inner { bounds, .. } => Some((i, bounds.half_area())),
-                BuildNode::Leaf { .. } => None,
-            })
+            .map(|(i, &at)| (i, tree.node(at)))
+            .filter(|(_, n)| !n.is_leaf())
+            .map(|(i, n)| (i, n.bounds.half_area()))
             .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(i, _)| i);
         let Some(i) = widest else { break };
-        let BuildNode::Inner { children, .. } = slots[i] else {
-            unreachable!("only inner nodes are opened")
-        };
         // The right child goes last, the left one takes the opened slot.
-        slots[used] = &children[1];
-        slots[i] = &children[0];
+        let opened = tree.node(slots[i]);
+        slots[used] = opened.right();
+        slots[i] = opened.left(slots[i]);
         used += 1;
     }
-    for (slot, &child) in slots[..used].iter().enumerate() {
-        match child {
-            BuildNode::Leaf {
-                bounds,
-                first,
-                count,
-            } => nodes[index].set(slot, bounds, *first, *count),
-            BuildNode::Inner { bounds, .. } => {
-                let child_index = nodes.len();
-                nodes.push(Node4::BLANK);
-                nodes[index].set(slot, bounds, child_index as u32, 0);
-                fill(child, child_index, nodes);
-            }
+    for (slot, &at) in slots[..used].iter().enumerate() {
+        let child = tree.node(at);
+        if child.is_leaf() {
+            nodes[index].set(slot, &child.bounds, child.first, child.count);
+        } else {
+            let child_index = nodes.len();
+            nodes.push(Node4::BLANK);
+            nodes[index].set(slot, &child.bounds, child_index as u32, 0);
+            fill(tree, at, child_index, nodes);
         }
     }
 }
