@@ -5,18 +5,29 @@
 //! Every other shape stays a [`Shape`] in the world, reached through the
 //! index. Intersections run the primitives' own routines on the copied
 //! fields: same arithmetic, same bits as testing the [`Shape`].
+//!
+//! A leaf's spheres come first, four to a group of two records laid out
+//! lane by lane, and are tested four at once with SIMD (the `shells`
+//! scene's rays test ~125 spheres each); the leaf's other primitives
+//! follow, one record each.
 
 use glam::{Vec3A, Vec4};
 
-use crate::geometry::{Aabb, Ray, Shape, Sphere, intersect_edges};
+use crate::geometry::{Aabb, Ray, Shape, Sphere, V3, intersect_edges, intersect_spheres};
 
-use super::Primitive;
+use super::{Nearest, Primitive, first_occluder, offer_each};
 
 /// What a record holds, stored as float bits in `b.w`.
 const SPHERE: u32 = 0;
 const TRIANGLE: u32 = 1;
 /// Any other shape: tested through the world's [`Shape`].
 const OTHER: u32 = 2;
+/// The first record of a group of up to four spheres (see
+/// [`PackedShape::sphere_group`]).
+const SPHERES: u32 = 3;
+
+/// Spheres tested at once: the lanes of a `Vec4`.
+const LANES: usize = 4;
 
 /// One primitive: a sphere is `a = (centre, radius)`; a triangle is
 /// `a = (v0, parallel_eps)`, `b = e1`, `c = e2`; `b.w` is the kind and
@@ -44,6 +55,38 @@ impl PackedShape {
             b: b.extend(f32::from_bits(kind)),
             c: c.extend(f32::from_bits(id)),
         }
+    }
+
+    /// The two records of a group of up to four `spheres` (with their
+    /// indices in the world), one sphere a lane: the first holds the radii,
+    /// the group's size and kind, and the indices; the second the centres'
+    /// x, y and z. Lanes without a sphere are NaN, which no ray hits.
+    fn sphere_group(spheres: &[(u32, &Sphere)], leaf_spheres: usize) -> [Self; 2] {
+        let lane = |f: &dyn Fn(&Sphere) -> f32| {
+            Vec4::from_array(std::array::from_fn(|i| {
+                spheres.get(i).map_or(f32::NAN, |(_, s)| f(s))
+            }))
+        };
+        let ids = std::array::from_fn(|i| spheres.get(i).map_or(u32::MAX, |&(id, _)| id));
+        let sizes = [spheres.len(), leaf_spheres, 0, SPHERES as usize];
+        [
+            Self {
+                a: lane(&|s| s.radius),
+                b: Vec4::from_array(sizes.map(|n| f32::from_bits(n as u32))),
+                c: Vec4::from_array(ids.map(f32::from_bits)),
+            },
+            Self {
+                a: lane(&|s| s.centre.x),
+                b: lane(&|s| s.centre.y),
+                c: lane(&|s| s.centre.z),
+            },
+        ]
+    }
+
+    /// The kind of record: [`SPHERE`], [`TRIANGLE`], [`OTHER`] or [`SPHERES`].
+    #[inline(always)]
+    fn kind(&self) -> u32 {
+        self.b.w.to_bits()
     }
 
     /// The bounding box of a packed sphere or triangle, `None` for other
@@ -85,4 +128,180 @@ impl Primitive for PackedShape {
             _ => shapes[self.id() as usize].intersect(ray, t_min, t_max),
         }
     }
+}
+
+/// Appends the records of a leaf holding the shapes `ids`: its spheres
+/// first, in groups of four, then one record per other primitive.
+pub(super) fn pack_leaf(shapes: &[Shape], ids: &[u32], out: &mut Vec<PackedShape>) {
+    let spheres: Vec<(u32, &Sphere)> = ids
+        .iter()
+        .filter_map(|&id| match &shapes[id as usize] {
+            Shape::Sphere(s) => Some((id, s)),
+            _ => None,
+        })
+        .collect();
+    for group in spheres.chunks(LANES) {
+        out.extend(PackedShape::sphere_group(group, spheres.len()));
+    }
+    out.extend(ids.iter().filter_map(|&id| {
+        let shape = &shapes[id as usize];
+        (!matches!(shape, Shape::Sphere(_))).then(|| PackedShape::new(shape, id))
+    }));
+}
+
+/// A leaf's records as its loops read them.
+struct Leaf<'a> {
+    /// Two records per group of spheres.
+    groups: &'a [PackedShape],
+    /// The spheres in the groups (lanes in use).
+    spheres: usize,
+    /// One record per other primitive.
+    records: &'a [PackedShape],
+}
+
+impl<'a> Leaf<'a> {
+    /// The leaf of `count` primitives whose records start at `first`, or
+    /// `None` if they run past the end of `prims`.
+    #[inline(always)]
+    fn at(prims: &'a [PackedShape], first: usize, count: usize) -> Option<Self> {
+        let head = prims.get(first)?;
+        let spheres = match head.kind() {
+            SPHERES => head.b.y.to_bits() as usize,
+            _ => 0,
+        };
+        let (groups, rest) = prims
+            .get(first..)?
+            .split_at_checked(2 * spheres.div_ceil(LANES))?;
+        Some(Leaf {
+            groups,
+            spheres,
+            records: rest.get(..count.checked_sub(spheres)?)?,
+        })
+    }
+
+    /// The records the leaf takes up.
+    fn len(&self) -> usize {
+        self.groups.len() + self.records.len()
+    }
+}
+
+/// The spheres of a group (its two records) the ray meets in
+/// `(t_min, t_max)`, as a bit per lane, and where.
+#[inline(always)]
+fn group_hits(
+    group: &[PackedShape],
+    origin: V3<Vec4>,
+    dir: V3<Vec4>,
+    t_min: f32,
+    t_max: f32,
+) -> (u32, Vec4) {
+    let centre = V3::new(group[1].a, group[1].b, group[1].c);
+    let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
+    match intersect_spheres(centre, group[0].a, origin, dir, t_min, t_max) {
+        Some((hit, t)) => (hit.bitmask(), t),
+        None => (0, Vec4::ZERO),
+    }
+}
+
+/// The world index of the sphere in `lane` of a group.
+#[inline(always)]
+fn group_id(group: &[PackedShape], lane: u32) -> u32 {
+    // An array, not `Vec4` indexing, which compiles to a jump table.
+    group[0].c.to_array()[lane as usize].to_bits()
+}
+
+/// The spheres in a group: its lanes in use.
+#[inline(always)]
+fn group_size(group: &[PackedShape]) -> u64 {
+    group[0].b.x.to_bits() as u64
+}
+
+/// The BVH's leaf loop for closest hits ([`offer_each`] for a packed
+/// leaf): offers each primitive of the leaf of `count` primitives at
+/// `first` that the ray meets to `nearest`, four spheres at a time, adding
+/// one to `tests` per primitive tested (not per group, and not for
+/// unused lanes). The lanes of a group are all tested with the limit the
+/// group starts with; a lane's hit beyond a nearer lane's is then refused
+/// by [`Nearest::offer`], so the nearest hit, ties included, is the one
+/// testing them one by one finds.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn offer_leaf(
+    prims: &[PackedShape],
+    first: usize,
+    count: usize,
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+    nearest: &mut Nearest,
+    tests: &mut u64,
+) {
+    let leaf = Leaf::at(prims, first, count).expect("a leaf's records are in the tree");
+    if leaf.spheres > 0 {
+        *tests += leaf.spheres as u64;
+        let (origin, dir) = (V3::splat(ray.origin), V3::splat(ray.dir));
+        for group in leaf.groups.chunks_exact(2) {
+            let (mut hits, t) = group_hits(group, origin, dir, t_min, nearest.limit);
+            let t = t.to_array();
+            while hits != 0 {
+                let lane = hits.trailing_zeros();
+                hits &= hits - 1;
+                nearest.offer(t[lane as usize], group_id(group, lane));
+            }
+        }
+    }
+    offer_each(leaf.records, shapes, ray, t_min, nearest, tests);
+}
+
+/// The BVH's leaf loop for any hit ([`first_occluder`] for a packed leaf):
+/// the first primitive found on the ray in `(t_min, t_max)`, four spheres
+/// at a time. A group's spheres are tested at once, so all count as
+/// tested, even past the one that is hit.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn leaf_occluder(
+    prims: &[PackedShape],
+    first: usize,
+    count: usize,
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    tests: &mut u64,
+) -> Option<u32> {
+    let leaf = Leaf::at(prims, first, count).expect("a leaf's records are in the tree");
+    if leaf.spheres > 0 {
+        let (origin, dir) = (V3::splat(ray.origin), V3::splat(ray.dir));
+        for group in leaf.groups.chunks_exact(2) {
+            *tests += group_size(group);
+            let (hits, _) = group_hits(group, origin, dir, t_min, t_max);
+            if hits != 0 {
+                return Some(group_id(group, hits.trailing_zeros()));
+            }
+        }
+    }
+    first_occluder(leaf.records, shapes, ray, t_min, t_max, tests)
+}
+
+/// The records the leaf of `count` primitives at `first` takes up and the
+/// bounding box of each of its primitives (`None` for shapes whose data
+/// stays in the world), or `None` if the leaf runs past the end of
+/// `prims`: for validation.
+pub(super) fn leaf_bounds(
+    prims: &[PackedShape],
+    first: usize,
+    count: usize,
+) -> Option<(usize, Vec<Option<Aabb>>)> {
+    let leaf = Leaf::at(prims, first, count)?;
+    let mut bounds = Vec::with_capacity(count);
+    for group in leaf.groups.chunks_exact(2) {
+        let [radius, x, y, z] =
+            [group[0].a, group[1].a, group[1].b, group[1].c].map(|v| v.to_array());
+        bounds.extend(
+            (0..group_size(group) as usize)
+                .map(|i| Some(Sphere::new(Vec3A::new(x[i], y[i], z[i]), radius[i]).bounds())),
+        );
+    }
+    bounds.extend(leaf.records.iter().map(PackedShape::bounds));
+    Some((leaf.len(), bounds))
 }

@@ -15,9 +15,9 @@ use rayon::prelude::*;
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::packed::PackedShape;
+use super::packed::{PackedShape, leaf_bounds, leaf_occluder, offer_leaf, pack_leaf};
 use super::visits::{Step, VisitLog};
-use super::{Hit, Nearest, first_occluder, offer_each};
+use super::{Hit, Nearest};
 use build::{BuildPrim, build_node};
 use node::{EMPTY, Node4, WideRay, flatten};
 
@@ -86,13 +86,10 @@ impl Bvh {
             })
             .collect();
         let root = build_node(&mut prims, 0, 0, params);
-        Bvh {
-            nodes: flatten(&root, prims.len()),
-            prims: prims
-                .par_iter()
-                .map(|p| PackedShape::new(&shapes[p.id as usize], p.id))
-                .collect(),
-        }
+        let mut nodes = flatten(&root, prims.len());
+        let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
+        let prims = pack_leaves(&mut nodes, &ids, shapes);
+        Bvh { nodes, prims }
     }
 
     /// Nodes in the flattened tree (each holds up to four children).
@@ -145,18 +142,16 @@ impl Bvh {
                     stack.push((first, depth + 1, bounds));
                     continue;
                 }
-                let prims = self
-                    .prims
-                    .get(first..first + count)
+                let (records, boxes) = leaf_bounds(&self.prims, first, count)
                     .ok_or(format!("leaf {slot} of {index}: primitives missing"))?;
-                for (p, prim) in (first..).zip(prims) {
-                    seen[p] += 1;
-                    if let Some(b) = prim.bounds() {
-                        if !inside(&bounds, &b) {
-                            return Err(format!(
-                                "leaf {slot} of {index} does not bound primitive {p}"
-                            ));
-                        }
+                seen[first..first + records]
+                    .iter_mut()
+                    .for_each(|n| *n += 1);
+                for (p, b) in boxes.iter().enumerate() {
+                    if b.is_some_and(|b| !inside(&bounds, &b)) {
+                        return Err(format!(
+                            "leaf {slot} of {index} does not bound its primitive {p}"
+                        ));
                     }
                 }
             }
@@ -196,8 +191,17 @@ impl Bvh {
             if next.count > 0 {
                 let (first, count) = (next.first as usize, next.count as usize);
                 log.step(Step::Leaf(next.first, next.count));
-                let prims = &self.prims[first..first + count];
-                offer_each(prims, shapes, ray, t_min, &mut nearest, &mut tests);
+                let prims = &self.prims;
+                offer_leaf(
+                    prims,
+                    first,
+                    count,
+                    shapes,
+                    ray,
+                    t_min,
+                    &mut nearest,
+                    &mut tests,
+                );
                 t_max = nearest.t_max(t_max);
             } else {
                 visited += 1;
@@ -248,8 +252,8 @@ impl Bvh {
         loop {
             let (first, count) = (next.0 as usize, next.1 as usize);
             if count > 0 {
-                let prims = &self.prims[first..first + count];
-                found = first_occluder(prims, shapes, ray, t_min, t_max, &mut tests);
+                let prims = &self.prims;
+                found = leaf_occluder(prims, first, count, shapes, ray, t_min, t_max, &mut tests);
                 if found.is_some() {
                     break;
                 }
@@ -272,6 +276,23 @@ impl Bvh {
         counters.intersection_tests += tests;
         found
     }
+}
+
+/// The packed primitives of the leaves of `nodes`, leaf after leaf in
+/// node order, each leaf slot's `first` turned from its place in the
+/// build's order `ids` into the place of its records.
+fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<PackedShape> {
+    let mut prims = Vec::with_capacity(ids.len());
+    for node in nodes {
+        for slot in 0..4 {
+            let (first, count) = (node.first[slot] as usize, node.count[slot]);
+            if count != 0 && count != EMPTY {
+                node.first[slot] = prims.len() as u32;
+                pack_leaf(shapes, &ids[first..first + count as usize], &mut prims);
+            }
+        }
+    }
+    prims
 }
 
 /// The hit children of `node` (`mask`, entered at `near`) sorted nearest

@@ -1,0 +1,141 @@
+//! One arithmetic for one primitive or for four: a ray-primitive test
+//! written once over [`Lanes`] runs on `f32` (one primitive) and on `Vec4`
+//! (four primitives, one a lane) with the same IEEE operations in the same
+//! order in every lane. A BVH leaf testing four spheres at once therefore
+//! gets, bit for bit, the distances testing each alone gives.
+
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Sub};
+
+use glam::{BVec4A, Vec3A, Vec4};
+
+/// A number, or four numbers tested side by side. Only exactly rounded
+/// operations (no fused multiply-add, no approximate reciprocal), so one
+/// lane computes what the scalar does.
+pub(crate) trait Lanes:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
+    /// One truth value per lane.
+    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask>;
+
+    fn splat(value: f32) -> Self;
+    fn sqrt(self) -> Self;
+    /// `self` with the sign of `sign`.
+    fn copysign(self, sign: Self) -> Self;
+    fn lt(self, other: Self) -> Self::Mask;
+    fn le(self, other: Self) -> Self::Mask;
+    /// Per lane, `if_true` where `mask` holds, else `if_false`.
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    /// Whether `mask` holds in any lane.
+    fn any(mask: Self::Mask) -> bool;
+}
+
+impl Lanes for f32 {
+    type Mask = bool;
+
+    #[inline(always)]
+    fn splat(value: f32) -> Self {
+        value
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn copysign(self, sign: Self) -> Self {
+        f32::copysign(self, sign)
+    }
+    #[inline(always)]
+    fn lt(self, other: Self) -> bool {
+        self < other
+    }
+    #[inline(always)]
+    fn le(self, other: Self) -> bool {
+        self <= other
+    }
+    #[inline(always)]
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask { if_true } else { if_false }
+    }
+    #[inline(always)]
+    fn any(mask: bool) -> bool {
+        mask
+    }
+}
+
+impl Lanes for Vec4 {
+    type Mask = BVec4A;
+
+    #[inline(always)]
+    fn splat(value: f32) -> Self {
+        Vec4::splat(value)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        // Correctly rounded in every lane, like `f32::sqrt` (glam's `Vec4`
+        // has no square root; this compiles to one `sqrtps`).
+        Vec4::from_array(self.to_array().map(f32::sqrt))
+    }
+    #[inline(always)]
+    fn copysign(self, sign: Self) -> Self {
+        Vec4::copysign(self, sign)
+    }
+    #[inline(always)]
+    fn lt(self, other: Self) -> BVec4A {
+        self.cmplt(other)
+    }
+    #[inline(always)]
+    fn le(self, other: Self) -> BVec4A {
+        self.cmple(other)
+    }
+    #[inline(always)]
+    fn select(mask: BVec4A, if_true: Self, if_false: Self) -> Self {
+        Vec4::select(mask, if_true, if_false)
+    }
+    #[inline(always)]
+    fn any(mask: BVec4A) -> bool {
+        mask.any()
+    }
+}
+
+/// A vector whose coordinates are [`Lanes`]: one point, or the same
+/// coordinate of four points side by side.
+#[derive(Clone, Copy)]
+pub(crate) struct V3<L> {
+    pub x: L,
+    pub y: L,
+    pub z: L,
+}
+
+impl<L: Lanes> V3<L> {
+    #[inline(always)]
+    pub fn new(x: L, y: L, z: L) -> Self {
+        Self { x, y, z }
+    }
+
+    /// `v` in every lane.
+    #[inline(always)]
+    pub fn splat(v: Vec3A) -> Self {
+        Self::new(L::splat(v.x), L::splat(v.y), L::splat(v.z))
+    }
+
+    #[inline(always)]
+    pub fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+
+    #[inline(always)]
+    pub fn scale(self, s: L) -> Self {
+        Self::new(self.x * s, self.y * s, self.z * s)
+    }
+
+    /// `(x x' + y y') + z z'`, the order of glam's `Vec3A::dot`.
+    #[inline(always)]
+    pub fn dot(self, o: Self) -> L {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    #[inline(always)]
+    pub fn length_squared(self) -> L {
+        self.dot(self)
+    }
+}
