@@ -16,6 +16,9 @@ pub(crate) trait Lanes:
 {
     /// One truth value per lane.
     type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask>;
+    /// A 3D vector per lane: `Vec3A` for one (its SIMD dot product is the
+    /// scalar routines' own), [`V3`] for four.
+    type Vector: Vector<Self>;
 
     fn splat(value: f32) -> Self;
     fn sqrt(self) -> Self;
@@ -31,6 +34,7 @@ pub(crate) trait Lanes:
 
 impl Lanes for f32 {
     type Mask = bool;
+    type Vector = Vec3A;
 
     #[inline(always)]
     fn splat(value: f32) -> Self {
@@ -64,6 +68,7 @@ impl Lanes for f32 {
 
 impl Lanes for Vec4 {
     type Mask = BVec4A;
+    type Vector = V3<Vec4>;
 
     #[inline(always)]
     fn splat(value: f32) -> Self {
@@ -97,8 +102,36 @@ impl Lanes for Vec4 {
     }
 }
 
-/// A vector whose coordinates are [`Lanes`]: one point, or the same
-/// coordinate of four points side by side.
+/// The vector operations the tests use, per lane.
+pub(crate) trait Vector<L>: Copy {
+    fn sub(self, other: Self) -> Self;
+    fn scale(self, s: L) -> Self;
+    /// `(x x' + y y') + z z'`, the order of glam's `Vec3A::dot`.
+    fn dot(self, other: Self) -> L;
+    /// `v` in every lane.
+    fn splat(v: Vec3A) -> Self;
+}
+
+impl Vector<f32> for Vec3A {
+    #[inline(always)]
+    fn sub(self, other: Self) -> Self {
+        self - other
+    }
+    #[inline(always)]
+    fn scale(self, s: f32) -> Self {
+        self * s
+    }
+    #[inline(always)]
+    fn dot(self, other: Self) -> f32 {
+        Vec3A::dot(self, other)
+    }
+    #[inline(always)]
+    fn splat(v: Vec3A) -> Self {
+        v
+    }
+}
+
+/// Three [`Lanes`], the coordinates of four points side by side.
 #[derive(Clone, Copy)]
 pub(crate) struct V3<L> {
     pub x: L,
@@ -106,36 +139,33 @@ pub(crate) struct V3<L> {
     pub z: L,
 }
 
-impl<L: Lanes> V3<L> {
+impl<L: Lanes> Vector<L> for V3<L> {
     #[inline(always)]
-    pub fn new(x: L, y: L, z: L) -> Self {
-        Self { x, y, z }
+    fn sub(self, o: Self) -> Self {
+        Self {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
     }
-
-    /// `v` in every lane.
     #[inline(always)]
-    pub fn splat(v: Vec3A) -> Self {
-        Self::new(L::splat(v.x), L::splat(v.y), L::splat(v.z))
+    fn scale(self, s: L) -> Self {
+        Self {
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
+        }
     }
-
     #[inline(always)]
-    pub fn sub(self, o: Self) -> Self {
-        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
-    }
-
-    #[inline(always)]
-    pub fn scale(self, s: L) -> Self {
-        Self::new(self.x * s, self.y * s, self.z * s)
-    }
-
-    /// `(x x' + y y') + z z'`, the order of glam's `Vec3A::dot`.
-    #[inline(always)]
-    pub fn dot(self, o: Self) -> L {
+    fn dot(self, o: Self) -> L {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
-
     #[inline(always)]
-    pub fn length_squared(self) -> L {
-        self.dot(self)
+    fn splat(v: Vec3A) -> Self {
+        Self {
+            x: L::splat(v.x),
+            y: L::splat(v.y),
+            z: L::splat(v.z),
+        }
     }
 }

@@ -15,7 +15,7 @@ mod triangle;
 pub use aabb::Aabb;
 pub use aabox::AaBox;
 pub use cone::Cone;
-pub(crate) use lanes::V3;
+pub(crate) use lanes::{V3, Vector};
 pub use plane::Plane;
 pub use polygon::{PolygonError, triangulate_polygon};
 pub use ray::Ray;

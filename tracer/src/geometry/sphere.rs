@@ -2,7 +2,7 @@
 
 use glam::Vec3A;
 
-use super::lanes::{Lanes, V3};
+use super::lanes::{Lanes, Vector};
 use super::{Aabb, Ray};
 
 /// A sphere; hit from outside or from inside.
@@ -25,16 +25,8 @@ impl Sphere {
     /// sphere and for four side by side) is `intersect_spheres`'s.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        let origin = V3::splat(ray.origin);
-        let dir = V3::splat(ray.dir);
-        let (hit, t) = intersect_spheres(
-            V3::splat(self.centre),
-            self.radius,
-            origin,
-            dir,
-            t_min,
-            t_max,
-        )?;
+        let (hit, t) =
+            intersect_spheres(self.centre, self.radius, ray.origin, ray.dir, t_min, t_max)?;
         hit.then_some(t)
     }
 
@@ -65,23 +57,24 @@ impl Sphere {
 /// does not lose digits either (Ray Tracing Gems, ch. 7).
 #[inline(always)]
 pub(crate) fn intersect_spheres<L: Lanes>(
-    centre: V3<L>,
+    centre: L::Vector,
     radius: L,
-    origin: V3<L>,
-    dir: V3<L>,
+    origin: L::Vector,
+    dir: L::Vector,
     t_min: L,
     t_max: L,
 ) -> Option<(L::Mask, L)> {
     let oc = centre.sub(origin);
     let b = dir.dot(oc);
     let r2 = radius * radius;
-    let disc = r2 - oc.sub(dir.scale(b)).length_squared();
+    let diff = oc.sub(dir.scale(b));
+    let disc = r2 - diff.dot(diff);
     // A negative discriminant misses; a NaN one (non-finite input, or a
     // lane of padding) gives NaN roots, which the interval tests reject.
     if !L::any(L::splat(0.0).le(disc)) {
         return None;
     }
-    let c = oc.length_squared() - r2;
+    let c = oc.dot(oc) - r2;
     let q = b + disc.sqrt().copysign(b);
     // `c / q` is NaN only when q = c = 0 (a ray tangent at its own
     // origin); the comparisons below reject NaN.
