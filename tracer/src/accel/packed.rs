@@ -344,3 +344,136 @@ pub(super) fn leaf_bounds(
     bounds.extend(leaf.records.iter().map(PackedShape::bounds));
     Some((leaf.len(), bounds))
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3A;
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::geometry::strategies::{config, unit_vector};
+    use crate::geometry::{AaBox, Triangle};
+
+    /// One primitive of a test leaf: a sphere (`kind` 0 and 1, so spheres
+    /// dominate), a triangle (2) or a box (3), around `centre`; `copy`
+    /// repeats the previous shape instead, so rays meet some at exactly
+    /// the same distance.
+    fn shape(kind: u8, centre: Vec3A, size: f32, copy: bool, previous: Option<&Shape>) -> Shape {
+        if let (true, Some(p)) = (copy, previous) {
+            return p.clone();
+        }
+        let corner = centre + Vec3A::splat(size);
+        match kind {
+            0 | 1 => Shape::Sphere(Sphere::new(centre, size)),
+            2 => Triangle::new(centre, corner, centre + Vec3A::new(size, -size, 0.5))
+                .map_or(Shape::Sphere(Sphere::new(centre, size)), Shape::Triangle),
+            _ => Shape::Box(AaBox::new(centre, corner)),
+        }
+    }
+
+    fn leaf_shapes() -> impl Strategy<Value = Vec<Shape>> {
+        let part = (
+            0u8..4,
+            (-2.0f32..2.0, -2.0f32..2.0, -2.0f32..2.0),
+            0.1f32..1.5,
+            0u8..4,
+        );
+        prop::collection::vec(part, 1..24).prop_map(|parts| {
+            let mut shapes: Vec<Shape> = Vec::new();
+            for (kind, (x, y, z), size, copy) in parts {
+                let s = shape(kind, Vec3A::new(x, y, z), size, copy == 0, shapes.last());
+                shapes.push(s);
+            }
+            shapes
+        })
+    }
+
+    fn packed(shapes: &[Shape]) -> Vec<PackedShape> {
+        let ids: Vec<u32> = (0..shapes.len() as u32).collect();
+        let mut prims = Vec::new();
+        pack_leaf(shapes, &ids, &mut prims);
+        prims
+    }
+
+    proptest! {
+        #![proptest_config(config())]
+
+        /// The packed leaf (spheres four at a time) finds, bit for bit, the
+        /// hit testing every shape of the world one by one finds, ties to
+        /// the lowest index included, counting one test per primitive; and
+        /// an occluder exactly when there is one, really on the ray.
+        #[test]
+        fn packed_leaves_find_what_the_shapes_one_by_one_find(
+            shapes in leaf_shapes(),
+            origin in (-6.0f32..6.0, -6.0f32..6.0, -6.0f32..6.0),
+            dir in unit_vector(),
+            t_min in prop_oneof![Just(0.0f32), 0.0f32..4.0],
+        ) {
+            let prims = packed(&shapes);
+            let ids: Vec<u32> = (0..shapes.len() as u32).collect();
+            let ray = Ray::new(Vec3A::new(origin.0, origin.1, origin.2), dir);
+            let (mut packed_best, mut one_by_one) = (Nearest::new(f32::INFINITY), Nearest::new(f32::INFINITY));
+            let (mut packed_tests, mut scalar_tests) = (0, 0);
+            offer_leaf(&prims, 0, shapes.len(), &shapes, &ray, t_min, &mut packed_best, &mut packed_tests);
+            offer_each(&ids, &shapes, &ray, t_min, &mut one_by_one, &mut scalar_tests);
+            let bits = |n: &Nearest| n.best.map(|h| (h.t.to_bits(), h.shape));
+            prop_assert_eq!(bits(&packed_best), bits(&one_by_one));
+            prop_assert_eq!(packed_tests, shapes.len() as u64);
+
+            let t_max = one_by_one.best.map_or(8.0, |h| h.t + 0.5);
+            let mut tests = 0;
+            let found = leaf_occluder(&prims, 0, shapes.len(), &shapes, &ray, t_min, t_max, &mut tests);
+            let expected = first_occluder(&ids, &shapes, &ray, t_min, t_max, &mut 0);
+            prop_assert_eq!(found.is_some(), expected.is_some());
+            if let Some(id) = found {
+                prop_assert!(shapes[id as usize].intersect(&ray, t_min, t_max).is_some());
+            } else {
+                prop_assert_eq!(tests, shapes.len() as u64);
+            }
+            prop_assert!(tests <= shapes.len() as u64);
+        }
+    }
+
+    #[test]
+    fn spheres_come_first_in_groups_of_four_and_a_lone_sphere_keeps_its_record() {
+        let sphere = |x: f32| Shape::Sphere(Sphere::new(Vec3A::new(x, 0.0, 0.0), 0.5));
+        let tri = Shape::Triangle(Triangle::new(Vec3A::ZERO, Vec3A::X, Vec3A::Y).unwrap());
+        // Five spheres and a triangle: two groups (the second one sphere and
+        // three empty lanes), then the triangle's record.
+        let shapes = [
+            sphere(0.0),
+            tri.clone(),
+            sphere(1.0),
+            sphere(2.0),
+            sphere(3.0),
+            sphere(4.0),
+        ];
+        let prims = packed(&shapes);
+        assert_eq!(prims.len(), 2 + 2 + 1);
+        let (records, bounds) = leaf_bounds(&prims, 0, shapes.len()).unwrap();
+        assert_eq!(records, prims.len());
+        let expected: Vec<_> = [0, 2, 3, 4, 5, 1].map(|i| shapes[i].bounds()).into();
+        assert_eq!(bounds, expected);
+        // A ray along x meets all five spheres: the nearest is sphere 0,
+        // five spheres and one triangle are counted, not the empty lanes.
+        let ray = Ray::new(Vec3A::new(-5.0, 0.0, 0.0), Vec3A::X);
+        let mut nearest = Nearest::new(f32::INFINITY);
+        let mut tests = 0;
+        offer_leaf(
+            &prims,
+            0,
+            shapes.len(),
+            &shapes,
+            &ray,
+            0.0,
+            &mut nearest,
+            &mut tests,
+        );
+        assert_eq!(nearest.best.map(|h| (h.t, h.shape)), Some((4.5, 0)));
+        assert_eq!(tests, 6);
+
+        let lone = packed(&[tri, sphere(0.0)]);
+        assert_eq!(lone.len(), 2);
+        assert_eq!(lone[1].kind(), SPHERE);
+    }
+}

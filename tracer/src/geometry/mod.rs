@@ -19,6 +19,8 @@ pub(crate) use lanes::{V3, Vector};
 pub use plane::Plane;
 pub use polygon::{PolygonError, triangulate_polygon};
 pub use ray::Ray;
+#[cfg(test)]
+pub(crate) use ray::strategies;
 pub use shape::{Shape, SurfaceNormal};
 pub use sphere::Sphere;
 pub(crate) use sphere::intersect_spheres;
