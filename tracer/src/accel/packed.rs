@@ -6,14 +6,17 @@
 //! index. Intersections run the primitives' own routines on the copied
 //! fields: same arithmetic, same bits as testing the [`Shape`].
 //!
-//! A leaf's spheres come first, four to a group of two records laid out
-//! lane by lane, and are tested four at once with SIMD (the `shells`
-//! scene's rays test ~125 spheres each); the leaf's other primitives
-//! follow, one record each.
+//! A leaf's spheres come first, four to a group of records laid out lane
+//! by lane and tested four at once with SIMD (the `shells` scene's rays
+//! test ~125 spheres each), then its triangles likewise, then one record
+//! for each other primitive.
 
 use glam::{Vec3A, Vec4};
 
-use crate::geometry::{Aabb, Ray, Shape, Sphere, V3, Vector, intersect_edges, intersect_spheres};
+use crate::geometry::{
+    Aabb, Ray, Shape, Sphere, Triangle, V3, Vector, intersect_edges, intersect_spheres,
+    intersect_triangles,
+};
 
 use super::{Nearest, Primitive, first_occluder, offer_each};
 
@@ -22,16 +25,22 @@ const SPHERE: u32 = 0;
 const TRIANGLE: u32 = 1;
 /// Any other shape: tested through the world's [`Shape`].
 const OTHER: u32 = 2;
-/// The first record of a group of up to four spheres (see
-/// [`PackedShape::sphere_group`]).
+/// The first record of a group of up to four spheres ([`Spheres`]).
 const SPHERES: u32 = 3;
+/// The first record of a group of up to four triangles ([`Triangles`]).
+const TRIANGLES: u32 = 4;
 
-/// Spheres tested at once: the lanes of a `Vec4`.
+/// Primitives tested at once: the lanes of a `Vec4`.
 const LANES: usize = 4;
 
 /// One primitive: a sphere is `a = (centre, radius)`; a triangle is
 /// `a = (v0, parallel_eps)`, `b = e1`, `c = e2`; `b.w` is the kind and
 /// `c.w` the index in the world's shapes, both as float bits.
+///
+/// The first record of a group is its header: `b` holds the group's size,
+/// the spheres and the triangles grouped in its leaf, and the kind; `c` the
+/// world indices, a lane each. The group's other records hold its
+/// primitives' numbers lane by lane (see [`Group::pack`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(16))]
 pub(super) struct PackedShape {
@@ -57,33 +66,36 @@ impl PackedShape {
         }
     }
 
-    /// The two records of a group of up to four `spheres` (with their
-    /// indices in the world), one sphere a lane: the first holds the radii,
-    /// the group's size and kind, and the indices; the second the centres'
-    /// x, y and z. Lanes without a sphere are NaN, which no ray hits.
-    fn sphere_group(spheres: &[(u32, &Sphere)], leaf_spheres: usize) -> [Self; 2] {
-        let lane = |f: &dyn Fn(&Sphere) -> f32| {
+    /// A record of three numbers a lane, `f` of each of `prims`; NaN in
+    /// lanes without a primitive, which no ray hits.
+    fn lanes<T>(prims: &[(u32, &T)], f: impl Fn(&T) -> Vec3A) -> Self {
+        let [a, b, c] = std::array::from_fn(|axis| {
             Vec4::from_array(std::array::from_fn(|i| {
-                spheres.get(i).map_or(f32::NAN, |(_, s)| f(s))
+                prims.get(i).map_or(f32::NAN, |(_, p)| f(p)[axis])
             }))
-        };
-        let ids = std::array::from_fn(|i| spheres.get(i).map_or(u32::MAX, |&(id, _)| id));
-        let sizes = [spheres.len(), leaf_spheres, 0, SPHERES as usize];
-        [
-            Self {
-                a: lane(&|s| s.radius),
-                b: Vec4::from_array(sizes.map(|n| f32::from_bits(n as u32))),
-                c: Vec4::from_array(ids.map(f32::from_bits)),
-            },
-            Self {
-                a: lane(&|s| s.centre.x),
-                b: lane(&|s| s.centre.y),
-                c: lane(&|s| s.centre.z),
-            },
-        ]
+        });
+        Self { a, b, c }
     }
 
-    /// The kind of record: [`SPHERE`], [`TRIANGLE`], [`OTHER`] or [`SPHERES`].
+    /// The header of a group of `prims` of kind `kind` in a leaf grouping
+    /// `grouped` spheres and triangles; `a` holds `scalar` of each.
+    fn header<T>(
+        prims: &[(u32, &T)],
+        kind: u32,
+        grouped: [usize; 2],
+        scalar: impl Fn(&T) -> f32,
+    ) -> Self {
+        let sizes = [prims.len(), grouped[0], grouped[1], kind as usize];
+        let ids = std::array::from_fn(|i| prims.get(i).map_or(u32::MAX, |&(id, _)| id));
+        Self {
+            a: Self::lanes(prims, |p| Vec3A::splat(scalar(p))).a,
+            b: Vec4::from_array(sizes.map(|n| f32::from_bits(n as u32))),
+            c: Vec4::from_array(ids.map(f32::from_bits)),
+        }
+    }
+
+    /// The kind of record: [`SPHERE`], [`TRIANGLE`], [`OTHER`], or the
+    /// header of a group, [`SPHERES`] or [`TRIANGLES`].
     #[inline(always)]
     fn kind(&self) -> u32 {
         self.b.w.to_bits()
@@ -130,38 +142,175 @@ impl Primitive for PackedShape {
     }
 }
 
-/// Appends the records of a leaf holding the shapes `ids`: its spheres
-/// first, in groups of four, then one record per other primitive. A lone
-/// sphere keeps a record of its own: a group of one costs more than the
-/// scalar test (3% more time on `balls_medium`, whose leaves are all
-/// single spheres).
-pub(super) fn pack_leaf(shapes: &[Shape], ids: &[u32], out: &mut Vec<PackedShape>) {
-    let spheres: Vec<(u32, &Sphere)> = ids
-        .iter()
-        .filter_map(|&id| match &shapes[id as usize] {
-            Shape::Sphere(s) => Some((id, s)),
-            _ => None,
-        })
-        .collect();
-    let grouped = spheres.len() >= 2;
-    if grouped {
-        for group in spheres.chunks(LANES) {
-            out.extend(PackedShape::sphere_group(group, spheres.len()));
+/// A kind of primitive a leaf tests four at once: how a group of them is
+/// laid out in records and intersected.
+trait Group {
+    type Prim;
+    /// Records a group takes up, its header included.
+    const RECORDS: usize;
+    /// Fewest of them in a leaf worth grouping.
+    const MIN: usize;
+    /// Appends the group's records for up to four `prims` (with their
+    /// world indices) in a leaf grouping `grouped` spheres and triangles.
+    fn pack(prims: &[(u32, &Self::Prim)], grouped: [usize; 2], out: &mut Vec<PackedShape>);
+    /// The lanes of `group` the ray meets in `(t_min, t_max)`, a bit each,
+    /// and where.
+    fn hits(
+        group: &[PackedShape],
+        origin: V3<Vec4>,
+        dir: V3<Vec4>,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, Vec4);
+}
+
+/// Spheres, four to two records: radii in the header, then the centres'
+/// x, y and z. A lone sphere keeps a record of its own: a group of one
+/// costs more than the scalar test (3% more time on `balls_medium`, whose
+/// leaves are all single spheres).
+struct Spheres;
+
+impl Group for Spheres {
+    type Prim = Sphere;
+    const RECORDS: usize = 2;
+    const MIN: usize = 2;
+
+    fn pack(spheres: &[(u32, &Sphere)], grouped: [usize; 2], out: &mut Vec<PackedShape>) {
+        out.extend([
+            PackedShape::header(spheres, SPHERES, grouped, |s| s.radius),
+            PackedShape::lanes(spheres, |s| s.centre),
+        ]);
+    }
+
+    #[inline(always)]
+    fn hits(
+        group: &[PackedShape],
+        origin: V3<Vec4>,
+        dir: V3<Vec4>,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, Vec4) {
+        let centre = lanes(&group[1]);
+        let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
+        match intersect_spheres(centre, group[0].a, origin, dir, t_min, t_max) {
+            Some((hit, t)) => (hit.bitmask(), t),
+            None => (0, Vec4::ZERO),
         }
+    }
+}
+
+/// Triangles, four to four records: `parallel_eps` in the header, then
+/// `v0`, `e1` and `e2`. Only leaves of four or more are grouped: a group
+/// of four pays (`mesh_large`, whose leaves all hold four triangles: frames
+/// 0.84x), a half-full one does not (`mount_high`'s leaves of two: 6% more
+/// instructions, no faster).
+struct Triangles;
+
+impl Group for Triangles {
+    type Prim = Triangle;
+    const RECORDS: usize = 4;
+    const MIN: usize = 4;
+
+    fn pack(triangles: &[(u32, &Triangle)], grouped: [usize; 2], out: &mut Vec<PackedShape>) {
+        out.extend([
+            PackedShape::header(triangles, TRIANGLES, grouped, Triangle::parallel_eps),
+            PackedShape::lanes(triangles, |t| t.v0),
+            PackedShape::lanes(triangles, |t| t.e1),
+            PackedShape::lanes(triangles, |t| t.e2),
+        ]);
+    }
+
+    #[inline(always)]
+    fn hits(
+        group: &[PackedShape],
+        origin: V3<Vec4>,
+        dir: V3<Vec4>,
+        t_min: f32,
+        t_max: f32,
+    ) -> (u32, Vec4) {
+        let edges = [1, 2, 3].map(|i| lanes(&group[i]));
+        let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
+        match intersect_triangles(edges, group[0].a, origin, dir, t_min, t_max) {
+            Some((hit, t)) => (hit.bitmask(), t),
+            None => (0, Vec4::ZERO),
+        }
+    }
+}
+
+/// A record's three numbers a lane as a vector a lane.
+#[inline(always)]
+fn lanes(record: &PackedShape) -> V3<Vec4> {
+    V3 {
+        x: record.a,
+        y: record.b,
+        z: record.c,
+    }
+}
+
+/// The world index of the primitive in `lane` of a group.
+#[inline(always)]
+fn group_id(group: &[PackedShape], lane: u32) -> u32 {
+    // An array, not `Vec4` indexing, which compiles to a jump table.
+    group[0].c.to_array()[lane as usize].to_bits()
+}
+
+/// The primitives in a group: its lanes in use.
+#[inline(always)]
+fn group_size(group: &[PackedShape]) -> u64 {
+    group[0].b.x.to_bits() as u64
+}
+
+/// Appends the records of a leaf holding the shapes `ids`: its spheres
+/// first, then its triangles, each in groups of four (when there are
+/// enough of them, see [`Group::MIN`]), then one record per other
+/// primitive.
+pub(super) fn pack_leaf(shapes: &[Shape], ids: &[u32], out: &mut Vec<PackedShape>) {
+    let mut spheres = Vec::new();
+    let mut triangles = Vec::new();
+    for &id in ids {
+        match &shapes[id as usize] {
+            Shape::Sphere(s) => spheres.push((id, s)),
+            Shape::Triangle(t) => triangles.push((id, t)),
+            _ => {}
+        }
+    }
+    let grouped = [
+        if spheres.len() >= Spheres::MIN {
+            spheres.len()
+        } else {
+            0
+        },
+        if triangles.len() >= Triangles::MIN {
+            triangles.len()
+        } else {
+            0
+        },
+    ];
+    for group in spheres[..grouped[0]].chunks(LANES) {
+        Spheres::pack(group, grouped, out);
+    }
+    for group in triangles[..grouped[1]].chunks(LANES) {
+        Triangles::pack(group, grouped, out);
     }
     out.extend(ids.iter().filter_map(|&id| {
         let shape = &shapes[id as usize];
-        let in_group = grouped && matches!(shape, Shape::Sphere(_));
+        let in_group = match shape {
+            Shape::Sphere(_) => grouped[0] > 0,
+            Shape::Triangle(_) => grouped[1] > 0,
+            _ => false,
+        };
         (!in_group).then(|| PackedShape::new(shape, id))
     }));
 }
 
 /// A leaf's records as its loops read them.
 struct Leaf<'a> {
-    /// Two records per group of spheres.
-    groups: &'a [PackedShape],
-    /// The spheres in the groups (lanes in use).
-    spheres: usize,
+    /// [`Spheres::RECORDS`] records per group of spheres.
+    spheres: &'a [PackedShape],
+    /// [`Triangles::RECORDS`] records per group of triangles.
+    triangles: &'a [PackedShape],
+    /// The primitives in the groups (lanes in use).
+    grouped: usize,
     /// One record per other primitive.
     records: &'a [PackedShape],
 }
@@ -172,71 +321,43 @@ impl<'a> Leaf<'a> {
     #[inline(always)]
     fn at(prims: &'a [PackedShape], first: usize, count: usize) -> Option<Self> {
         let head = prims.get(first)?;
-        if head.kind() != SPHERES {
+        if !matches!(head.kind(), SPHERES | TRIANGLES) {
             return Some(Leaf {
-                groups: &[],
-                spheres: 0,
+                spheres: &[],
+                triangles: &[],
+                grouped: 0,
                 records: prims.get(first..first + count)?,
             });
         }
-        let spheres = head.b.y.to_bits() as usize;
-        let (groups, rest) = prims[first..].split_at_checked(2 * spheres.div_ceil(LANES))?;
+        let [spheres, triangles] = [head.b.y, head.b.z].map(|n| n.to_bits() as usize);
+        let run = prims.get(first..)?;
+        let (sphere_groups, run) =
+            run.split_at_checked(Spheres::RECORDS * spheres.div_ceil(LANES))?;
+        let (triangle_groups, run) =
+            run.split_at_checked(Triangles::RECORDS * triangles.div_ceil(LANES))?;
+        let grouped = spheres + triangles;
         Some(Leaf {
-            groups,
-            spheres,
-            records: rest.get(..count.checked_sub(spheres)?)?,
+            spheres: sphere_groups,
+            triangles: triangle_groups,
+            grouped,
+            records: run.get(..count.checked_sub(grouped)?)?,
         })
     }
 
     /// The records the leaf takes up.
     fn len(&self) -> usize {
-        self.groups.len() + self.records.len()
+        self.spheres.len() + self.triangles.len() + self.records.len()
     }
-}
-
-/// The spheres of a group (its two records) the ray meets in
-/// `(t_min, t_max)`, as a bit per lane, and where.
-#[inline(always)]
-fn group_hits(
-    group: &[PackedShape],
-    origin: V3<Vec4>,
-    dir: V3<Vec4>,
-    t_min: f32,
-    t_max: f32,
-) -> (u32, Vec4) {
-    let centre = V3 {
-        x: group[1].a,
-        y: group[1].b,
-        z: group[1].c,
-    };
-    let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
-    match intersect_spheres(centre, group[0].a, origin, dir, t_min, t_max) {
-        Some((hit, t)) => (hit.bitmask(), t),
-        None => (0, Vec4::ZERO),
-    }
-}
-
-/// The world index of the sphere in `lane` of a group.
-#[inline(always)]
-fn group_id(group: &[PackedShape], lane: u32) -> u32 {
-    // An array, not `Vec4` indexing, which compiles to a jump table.
-    group[0].c.to_array()[lane as usize].to_bits()
-}
-
-/// The spheres in a group: its lanes in use.
-#[inline(always)]
-fn group_size(group: &[PackedShape]) -> u64 {
-    group[0].b.x.to_bits() as u64
 }
 
 /// The BVH's leaf loop for closest hits ([`offer_each`] for a packed
 /// leaf): offers each primitive of the leaf of `count` primitives at
-/// `first` that the ray meets to `nearest`, four spheres at a time, adding
-/// one to `tests` per primitive tested (not per group, and not for
-/// unused lanes). The lanes of a group are all tested with the limit the
-/// group starts with; a lane's hit beyond a nearer lane's is then refused
-/// by [`Nearest::offer`], so the nearest hit, ties included, is the one
-/// testing them one by one finds.
+/// `first` that the ray meets to `nearest`, four spheres or triangles at
+/// a time, adding one to `tests` per primitive tested (not per group, and
+/// not for unused lanes). The lanes of a group are all tested with the
+/// limit the group starts with; a lane's hit beyond a nearer lane's is
+/// then refused by [`Nearest::offer`], so the nearest hit, ties included,
+/// is the one testing them one by one finds.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn offer_leaf(
@@ -250,17 +371,18 @@ pub(super) fn offer_leaf(
     tests: &mut u64,
 ) {
     let leaf = Leaf::at(prims, first, count).expect("a leaf's records are in the tree");
-    if leaf.spheres > 0 {
-        *tests += leaf.spheres as u64;
-        offer_groups(leaf.groups, ray, t_min, nearest);
+    if leaf.grouped > 0 {
+        *tests += leaf.grouped as u64;
+        offer_groups::<Spheres>(leaf.spheres, ray, t_min, nearest);
+        offer_groups::<Triangles>(leaf.triangles, ray, t_min, nearest);
     }
     offer_each(leaf.records, shapes, ray, t_min, nearest, tests);
 }
 
 /// The BVH's leaf loop for any hit ([`first_occluder`] for a packed leaf):
 /// the first primitive found on the ray in `(t_min, t_max)`, four spheres
-/// at a time. A group's spheres are tested at once, so all count as
-/// tested, even past the one that is hit.
+/// or triangles at a time. A group's primitives are tested at once, so all
+/// count as tested, even past the one that is hit.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn leaf_occluder(
@@ -274,23 +396,28 @@ pub(super) fn leaf_occluder(
     tests: &mut u64,
 ) -> Option<u32> {
     let leaf = Leaf::at(prims, first, count).expect("a leaf's records are in the tree");
-    if leaf.spheres > 0 {
-        if let Some(id) = groups_occluder(leaf.groups, ray, t_min, t_max, tests) {
-            return Some(id);
+    if leaf.grouped > 0 {
+        let found = groups_occluder::<Spheres>(leaf.spheres, ray, t_min, t_max, tests)
+            .or_else(|| groups_occluder::<Triangles>(leaf.triangles, ray, t_min, t_max, tests));
+        if found.is_some() {
+            return found;
         }
     }
     first_occluder(leaf.records, shapes, ray, t_min, t_max, tests)
 }
 
-/// Offers the spheres of `groups` the ray meets to `nearest`, four at a
-/// time. Out of line: inlined, the compiler splats the ray's coordinates
-/// into lanes on every traversal, spheres or not (3% more instructions on
+/// Offers the primitives of `groups` the ray meets to `nearest`, four at
+/// a time. Out of line: inlined, the compiler splats the ray's coordinates
+/// into lanes on every traversal, groups or not (3% more instructions on
 /// triangle scenes).
 #[inline(never)]
-fn offer_groups(groups: &[PackedShape], ray: &Ray, t_min: f32, nearest: &mut Nearest) {
+fn offer_groups<G: Group>(groups: &[PackedShape], ray: &Ray, t_min: f32, nearest: &mut Nearest) {
+    if groups.is_empty() {
+        return;
+    }
     let (origin, dir) = (V3::splat(ray.origin), V3::splat(ray.dir));
-    for group in groups.chunks_exact(2) {
-        let (mut hits, t) = group_hits(group, origin, dir, t_min, nearest.limit);
+    for group in groups.chunks_exact(G::RECORDS) {
+        let (mut hits, t) = G::hits(group, origin, dir, t_min, nearest.limit);
         let t = t.to_array();
         while hits != 0 {
             let lane = hits.trailing_zeros();
@@ -300,21 +427,24 @@ fn offer_groups(groups: &[PackedShape], ray: &Ray, t_min: f32, nearest: &mut Nea
     }
 }
 
-/// The first sphere of `groups` found on the ray in `(t_min, t_max)`,
-/// adding to `tests` the spheres of each group tested; out of line like
+/// The first primitive of `groups` found on the ray in `(t_min, t_max)`,
+/// adding to `tests` the primitives of each group tested; out of line like
 /// [`offer_groups`].
 #[inline(never)]
-fn groups_occluder(
+fn groups_occluder<G: Group>(
     groups: &[PackedShape],
     ray: &Ray,
     t_min: f32,
     t_max: f32,
     tests: &mut u64,
 ) -> Option<u32> {
+    if groups.is_empty() {
+        return None;
+    }
     let (origin, dir) = (V3::splat(ray.origin), V3::splat(ray.dir));
-    for group in groups.chunks_exact(2) {
+    for group in groups.chunks_exact(G::RECORDS) {
         *tests += group_size(group);
-        let (hits, _) = group_hits(group, origin, dir, t_min, t_max);
+        let (hits, _) = G::hits(group, origin, dir, t_min, t_max);
         if hits != 0 {
             return Some(group_id(group, hits.trailing_zeros()));
         }
@@ -333,13 +463,22 @@ pub(super) fn leaf_bounds(
 ) -> Option<(usize, Vec<Option<Aabb>>)> {
     let leaf = Leaf::at(prims, first, count)?;
     let mut bounds = Vec::with_capacity(count);
-    for group in leaf.groups.chunks_exact(2) {
-        let [radius, x, y, z] =
-            [group[0].a, group[1].a, group[1].b, group[1].c].map(|v| v.to_array());
+    let lane = |record: &PackedShape, i: usize| {
+        let [x, y, z] = [record.a, record.b, record.c].map(|v| v.to_array()[i]);
+        Vec3A::new(x, y, z)
+    };
+    for group in leaf.spheres.chunks_exact(Spheres::RECORDS) {
         bounds.extend(
             (0..group_size(group) as usize)
-                .map(|i| Some(Sphere::new(Vec3A::new(x[i], y[i], z[i]), radius[i]).bounds())),
+                .map(|i| Some(Sphere::new(lane(&group[1], i), group[0].a.to_array()[i]).bounds())),
         );
+    }
+    for group in leaf.triangles.chunks_exact(Triangles::RECORDS) {
+        bounds.extend((0..group_size(group) as usize).map(|i| {
+            let [v0, e1, e2] = [1, 2, 3].map(|r| lane(&group[r], i));
+            let [a, b, c] = [v0, v0 + e1, v0 + e2];
+            Some(Aabb::new(a.min(b).min(c), a.max(b).max(c)))
+        }));
     }
     bounds.extend(leaf.records.iter().map(PackedShape::bounds));
     Some((leaf.len(), bounds))
@@ -472,8 +611,18 @@ mod tests {
         assert_eq!(nearest.best.map(|h| (h.t, h.shape)), Some((4.5, 0)));
         assert_eq!(tests, 6);
 
-        let lone = packed(&[tri, sphere(0.0)]);
+        let lone = packed(&[tri.clone(), sphere(0.0)]);
         assert_eq!(lone.len(), 2);
         assert_eq!(lone[1].kind(), SPHERE);
+
+        // Four triangles make a group of four records, before the sphere's.
+        let four = [tri.clone(), tri.clone(), sphere(0.0), tri.clone(), tri];
+        let prims = packed(&four);
+        assert_eq!(prims[0].kind(), TRIANGLES);
+        assert_eq!(prims.len(), 4 + 1);
+        assert_eq!(prims[4].kind(), SPHERE);
+        let (records, bounds) = leaf_bounds(&prims, 0, four.len()).unwrap();
+        assert_eq!(records, 5);
+        assert_eq!(bounds[0], four[0].bounds());
     }
 }

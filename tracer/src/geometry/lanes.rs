@@ -22,6 +22,7 @@ pub(crate) trait Lanes:
 
     fn splat(value: f32) -> Self;
     fn sqrt(self) -> Self;
+    fn abs(self) -> Self;
     /// `self` with the sign of `sign`.
     fn copysign(self, sign: Self) -> Self;
     fn lt(self, other: Self) -> Self::Mask;
@@ -43,6 +44,10 @@ impl Lanes for f32 {
     #[inline(always)]
     fn sqrt(self) -> Self {
         f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f32::abs(self)
     }
     #[inline(always)]
     fn copysign(self, sign: Self) -> Self {
@@ -81,6 +86,10 @@ impl Lanes for Vec4 {
         Vec4::from_array(self.to_array().map(f32::sqrt))
     }
     #[inline(always)]
+    fn abs(self) -> Self {
+        Vec4::abs(self)
+    }
+    #[inline(always)]
     fn copysign(self, sign: Self) -> Self {
         Vec4::copysign(self, sign)
     }
@@ -108,6 +117,9 @@ pub(crate) trait Vector<L>: Copy {
     fn scale(self, s: L) -> Self;
     /// `(x x' + y y') + z z'`, the order of glam's `Vec3A::dot`.
     fn dot(self, other: Self) -> L;
+    /// `self x other`, each coordinate `a.y b.z - a.z b.y` and so on, as
+    /// glam's `Vec3A::cross` computes it.
+    fn cross(self, other: Self) -> Self;
     /// `v` in every lane.
     fn splat(v: Vec3A) -> Self;
 }
@@ -124,6 +136,10 @@ impl Vector<f32> for Vec3A {
     #[inline(always)]
     fn dot(self, other: Self) -> f32 {
         Vec3A::dot(self, other)
+    }
+    #[inline(always)]
+    fn cross(self, other: Self) -> Self {
+        Vec3A::cross(self, other)
     }
     #[inline(always)]
     fn splat(v: Vec3A) -> Self {
@@ -159,6 +175,14 @@ impl<L: Lanes> Vector<L> for V3<L> {
     #[inline(always)]
     fn dot(self, o: Self) -> L {
         self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    #[inline(always)]
+    fn cross(self, o: Self) -> Self {
+        Self {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
     }
     #[inline(always)]
     fn splat(v: Vec3A) -> Self {
