@@ -11,7 +11,7 @@
 //! test ~125 spheres each), then its triangles likewise, then one record
 //! for each other primitive.
 
-use glam::{Vec3A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
 
 use crate::geometry::{
     Aabb, Ray, Shape, Sphere, Triangle, V3, Vector, intersect_edges, intersect_spheres,
@@ -153,15 +153,9 @@ trait Group {
     /// Appends the group's records for up to four `prims` (with their
     /// world indices) in a leaf grouping `grouped` spheres and triangles.
     fn pack(prims: &[(u32, &Self::Prim)], grouped: [usize; 2], out: &mut Vec<PackedShape>);
-    /// The lanes of `group` the ray meets in `(t_min, t_max)`, a bit each,
-    /// and where.
-    fn hits(
-        group: &[PackedShape],
-        origin: V3<Vec4>,
-        dir: V3<Vec4>,
-        t_min: f32,
-        t_max: f32,
-    ) -> (u32, Vec4);
+    /// The lanes of `group` the ray meets in `(t_min, t_max)` and where,
+    /// `None` when no lane can be hit.
+    fn intersect(group: &[PackedShape], ray: &RayLanes, t: [Vec4; 2]) -> Option<(BVec4A, Vec4)>;
 }
 
 /// Spheres, four to two records: radii in the header, then the centres'
@@ -183,19 +177,16 @@ impl Group for Spheres {
     }
 
     #[inline(always)]
-    fn hits(
-        group: &[PackedShape],
-        origin: V3<Vec4>,
-        dir: V3<Vec4>,
-        t_min: f32,
-        t_max: f32,
-    ) -> (u32, Vec4) {
-        let centre = lanes(&group[1]);
-        let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
-        match intersect_spheres(centre, group[0].a, origin, dir, t_min, t_max) {
-            Some((hit, t)) => (hit.bitmask(), t),
-            None => (0, Vec4::ZERO),
-        }
+    fn intersect(group: &[PackedShape], ray: &RayLanes, t: [Vec4; 2]) -> Option<(BVec4A, Vec4)> {
+        let [t_min, t_max] = t;
+        intersect_spheres(
+            lanes(&group[1]),
+            group[0].a,
+            ray.origin,
+            ray.dir,
+            t_min,
+            t_max,
+        )
     }
 }
 
@@ -221,18 +212,39 @@ impl Group for Triangles {
     }
 
     #[inline(always)]
-    fn hits(
-        group: &[PackedShape],
-        origin: V3<Vec4>,
-        dir: V3<Vec4>,
-        t_min: f32,
-        t_max: f32,
-    ) -> (u32, Vec4) {
-        let edges = [1, 2, 3].map(|i| lanes(&group[i]));
-        let (t_min, t_max) = (Vec4::splat(t_min), Vec4::splat(t_max));
-        match intersect_triangles(edges, group[0].a, origin, dir, t_min, t_max) {
-            Some((hit, t)) => (hit.bitmask(), t),
-            None => (0, Vec4::ZERO),
+    fn intersect(group: &[PackedShape], ray: &RayLanes, t: [Vec4; 2]) -> Option<(BVec4A, Vec4)> {
+        let ([t_min, t_max], edges) = (t, [1, 2, 3].map(|i| lanes(&group[i])));
+        intersect_triangles(edges, group[0].a, ray.origin, ray.dir, t_min, t_max)
+    }
+}
+
+/// The lanes of a group of `G` the ray meets in `(t_min, t_max)`, a bit
+/// each, and where.
+#[inline(always)]
+fn group_hits<G: Group>(
+    group: &[PackedShape],
+    ray: &RayLanes,
+    t_min: f32,
+    t_max: f32,
+) -> (u32, Vec4) {
+    match G::intersect(group, ray, [t_min, t_max].map(Vec4::splat)) {
+        Some((hit, t)) => (hit.bitmask(), t),
+        None => (0, Vec4::ZERO),
+    }
+}
+
+/// A ray's origin and direction in all four lanes.
+struct RayLanes {
+    origin: V3<Vec4>,
+    dir: V3<Vec4>,
+}
+
+impl RayLanes {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        Self {
+            origin: V3::splat(ray.origin),
+            dir: V3::splat(ray.dir),
         }
     }
 }
@@ -415,9 +427,9 @@ fn offer_groups<G: Group>(groups: &[PackedShape], ray: &Ray, t_min: f32, nearest
     if groups.is_empty() {
         return;
     }
-    let (origin, dir) = (V3::splat(ray.origin), V3::splat(ray.dir));
+    let lanes = RayLanes::new(ray);
     for group in groups.chunks_exact(G::RECORDS) {
-        let (mut hits, t) = G::hits(group, origin, dir, t_min, nearest.limit);
+        let (mut hits, t) = group_hits::<G>(group, &lanes, t_min, nearest.limit);
         let t = t.to_array();
         while hits != 0 {
             let lane = hits.trailing_zeros();
@@ -441,10 +453,10 @@ fn groups_occluder<G: Group>(
     if groups.is_empty() {
         return None;
     }
-    let (origin, dir) = (V3::splat(ray.origin), V3::splat(ray.dir));
+    let lanes = RayLanes::new(ray);
     for group in groups.chunks_exact(G::RECORDS) {
         *tests += group_size(group);
-        let (hits, _) = G::hits(group, origin, dir, t_min, t_max);
+        let (hits, _) = group_hits::<G>(group, &lanes, t_min, t_max);
         if hits != 0 {
             return Some(group_id(group, hits.trailing_zeros()));
         }
