@@ -1,8 +1,8 @@
 //! One arithmetic for one primitive or for four: a ray-primitive test
 //! written once over [`Lanes`] runs on `f32` (one primitive) and on `Vec4`
 //! (four primitives, one a lane) with the same IEEE operations in the same
-//! order in every lane. A BVH leaf testing four spheres at once therefore
-//! gets, bit for bit, the distances testing each alone gives.
+//! order in every lane. A BVH leaf testing four spheres (or triangles) at once
+//! therefore gets, bit for bit, the distances testing each alone gives.
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Sub};
 
