@@ -50,6 +50,13 @@ pub(super) struct PackedShape {
 }
 
 impl PackedShape {
+    /// A blank record, overwritten by [`pack_leaf`].
+    pub(super) const BLANK: Self = Self {
+        a: Vec4::ZERO,
+        b: Vec4::ZERO,
+        c: Vec4::ZERO,
+    };
+
     /// The record of `shape`, which is shape `id` of the world.
     pub(super) fn new(shape: &Shape, id: u32) -> Self {
         let (a, b, c, kind) = match shape {
@@ -69,12 +76,15 @@ impl PackedShape {
     /// A record of three numbers a lane, `f` of each of `prims`; NaN in
     /// lanes without a primitive, which no ray hits.
     fn lanes<T>(prims: &[(u32, &T)], f: impl Fn(&T) -> Vec3A) -> Self {
-        let [a, b, c] = std::array::from_fn(|axis| {
-            Vec4::from_array(std::array::from_fn(|i| {
-                prims.get(i).map_or(f32::NAN, |(_, p)| f(p)[axis])
-            }))
-        });
-        Self { a, b, c }
+        let mut v = [Vec3A::NAN; LANES];
+        for (lane, (_, p)) in v.iter_mut().zip(prims) {
+            *lane = f(p);
+        }
+        Self {
+            a: Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
+            b: Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
+            c: Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
+        }
     }
 
     /// The header of a group of `prims` of kind `kind` in a leaf grouping
@@ -85,10 +95,13 @@ impl PackedShape {
         grouped: [usize; 2],
         scalar: impl Fn(&T) -> f32,
     ) -> Self {
+        let (mut a, mut ids) = ([f32::NAN; LANES], [u32::MAX; LANES]);
+        for ((a, id), &(prim_id, p)) in a.iter_mut().zip(&mut ids).zip(prims) {
+            (*a, *id) = (scalar(p), prim_id);
+        }
         let sizes = [prims.len(), grouped[0], grouped[1], kind as usize];
-        let ids = std::array::from_fn(|i| prims.get(i).map_or(u32::MAX, |&(id, _)| id));
         Self {
-            a: Self::lanes(prims, |p| Vec3A::splat(scalar(p))).a,
+            a: Vec4::from_array(a),
             b: Vec4::from_array(sizes.map(|n| f32::from_bits(n as u32))),
             c: Vec4::from_array(ids.map(f32::from_bits)),
         }
@@ -150,9 +163,11 @@ trait Group {
     const RECORDS: usize;
     /// Fewest of them in a leaf worth grouping.
     const MIN: usize;
-    /// Appends the group's records for up to four `prims` (with their
-    /// world indices) in a leaf grouping `grouped` spheres and triangles.
-    fn pack(prims: &[(u32, &Self::Prim)], grouped: [usize; 2], out: &mut Vec<PackedShape>);
+    /// Emits the group's records for up to four `prims` (with their world
+    /// indices) in a leaf grouping `grouped` spheres and triangles.
+    fn pack(prims: &[(u32, &Self::Prim)], grouped: [usize; 2], emit: &mut dyn FnMut(PackedShape));
+    /// The primitive `shape` is, if of this kind.
+    fn of(shape: &Shape) -> Option<&Self::Prim>;
     /// The lanes of `group` the ray meets in `(t_min, t_max)` and where,
     /// `None` when no lane can be hit.
     fn intersect(group: &[PackedShape], ray: &RayLanes, t: [Vec4; 2]) -> Option<(BVec4A, Vec4)>;
@@ -169,11 +184,16 @@ impl Group for Spheres {
     const RECORDS: usize = 2;
     const MIN: usize = 2;
 
-    fn pack(spheres: &[(u32, &Sphere)], grouped: [usize; 2], out: &mut Vec<PackedShape>) {
-        out.extend([
-            PackedShape::header(spheres, SPHERES, grouped, |s| s.radius),
-            PackedShape::lanes(spheres, |s| s.centre),
-        ]);
+    fn pack(spheres: &[(u32, &Sphere)], grouped: [usize; 2], emit: &mut dyn FnMut(PackedShape)) {
+        emit(PackedShape::header(spheres, SPHERES, grouped, |s| s.radius));
+        emit(PackedShape::lanes(spheres, |s| s.centre));
+    }
+
+    fn of(shape: &Shape) -> Option<&Sphere> {
+        match shape {
+            Shape::Sphere(s) => Some(s),
+            _ => None,
+        }
     }
 
     #[inline(always)]
@@ -202,13 +222,27 @@ impl Group for Triangles {
     const RECORDS: usize = 4;
     const MIN: usize = 4;
 
-    fn pack(triangles: &[(u32, &Triangle)], grouped: [usize; 2], out: &mut Vec<PackedShape>) {
-        out.extend([
-            PackedShape::header(triangles, TRIANGLES, grouped, Triangle::parallel_eps),
-            PackedShape::lanes(triangles, |t| t.v0),
-            PackedShape::lanes(triangles, |t| t.e1),
-            PackedShape::lanes(triangles, |t| t.e2),
-        ]);
+    fn pack(
+        triangles: &[(u32, &Triangle)],
+        grouped: [usize; 2],
+        emit: &mut dyn FnMut(PackedShape),
+    ) {
+        emit(PackedShape::header(
+            triangles,
+            TRIANGLES,
+            grouped,
+            Triangle::parallel_eps,
+        ));
+        emit(PackedShape::lanes(triangles, |t| t.v0));
+        emit(PackedShape::lanes(triangles, |t| t.e1));
+        emit(PackedShape::lanes(triangles, |t| t.e2));
+    }
+
+    fn of(shape: &Shape) -> Option<&Triangle> {
+        match shape {
+            Shape::Triangle(t) => Some(t),
+            _ => None,
+        }
     }
 
     #[inline(always)]
@@ -272,47 +306,78 @@ fn group_size(group: &[PackedShape]) -> u64 {
     group[0].b.x.to_bits() as u64
 }
 
-/// Appends the records of a leaf holding the shapes `ids`: its spheres
-/// first, then its triangles, each in groups of four (when there are
-/// enough of them, see [`Group::MIN`]), then one record per other
-/// primitive.
-pub(super) fn pack_leaf(shapes: &[Shape], ids: &[u32], out: &mut Vec<PackedShape>) {
-    let mut spheres = Vec::new();
-    let mut triangles = Vec::new();
+/// How many of a leaf's spheres and of its triangles go into groups: all
+/// of a kind when the leaf has at least [`Group::MIN`] of them, else none.
+fn grouping(shapes: &[Shape], ids: &[u32]) -> [usize; 2] {
+    let count = |of: fn(&Shape) -> bool| ids.iter().filter(|&&id| of(&shapes[id as usize])).count();
+    let spheres = count(|s| Spheres::of(s).is_some());
+    let triangles = count(|s| Triangles::of(s).is_some());
+    [
+        if spheres >= Spheres::MIN { spheres } else { 0 },
+        if triangles >= Triangles::MIN {
+            triangles
+        } else {
+            0
+        },
+    ]
+}
+
+/// The records a leaf holding the shapes `ids` takes up.
+pub(super) fn leaf_len(shapes: &[Shape], ids: &[u32]) -> usize {
+    let [spheres, triangles] = grouping(shapes, ids);
+    ids.len() - spheres - triangles
+        + Spheres::RECORDS * spheres.div_ceil(LANES)
+        + Triangles::RECORDS * triangles.div_ceil(LANES)
+}
+
+/// Writes the records of a leaf holding the shapes `ids` into `out`,
+/// [`leaf_len`] long: its spheres first, then its triangles, each in
+/// groups of four when grouped (see [`grouping`]), then one record per
+/// other primitive.
+pub(super) fn pack_leaf(shapes: &[Shape], ids: &[u32], out: &mut [PackedShape]) {
+    let grouped = grouping(shapes, ids);
+    let mut slots = out.iter_mut();
+    let mut emit = |record| *slots.next().expect("leaf_len records") = record;
+    if grouped[0] > 0 {
+        pack_groups::<Spheres>(shapes, ids, grouped, &mut emit);
+    }
+    if grouped[1] > 0 {
+        pack_groups::<Triangles>(shapes, ids, grouped, &mut emit);
+    }
     for &id in ids {
-        match &shapes[id as usize] {
-            Shape::Sphere(s) => spheres.push((id, s)),
-            Shape::Triangle(t) => triangles.push((id, t)),
-            _ => {}
-        }
-    }
-    let grouped = [
-        if spheres.len() >= Spheres::MIN {
-            spheres.len()
-        } else {
-            0
-        },
-        if triangles.len() >= Triangles::MIN {
-            triangles.len()
-        } else {
-            0
-        },
-    ];
-    for group in spheres[..grouped[0]].chunks(LANES) {
-        Spheres::pack(group, grouped, out);
-    }
-    for group in triangles[..grouped[1]].chunks(LANES) {
-        Triangles::pack(group, grouped, out);
-    }
-    out.extend(ids.iter().filter_map(|&id| {
         let shape = &shapes[id as usize];
         let in_group = match shape {
             Shape::Sphere(_) => grouped[0] > 0,
             Shape::Triangle(_) => grouped[1] > 0,
             _ => false,
         };
-        (!in_group).then(|| PackedShape::new(shape, id))
-    }));
+        if !in_group {
+            emit(PackedShape::new(shape, id));
+        }
+    }
+}
+
+/// Emits the groups of four of the leaf's primitives of kind `G`, in leaf
+/// order.
+fn pack_groups<G: Group>(
+    shapes: &[Shape],
+    ids: &[u32],
+    grouped: [usize; 2],
+    emit: &mut dyn FnMut(PackedShape),
+) {
+    let mut prims = ids
+        .iter()
+        .filter_map(|&id| Some((id, G::of(&shapes[id as usize])?)));
+    while let Some(first) = prims.next() {
+        let mut group = [first; LANES];
+        let mut n = 1;
+        while n < LANES {
+            let Some(prim) = prims.next() else { break };
+            group[n] = prim;
+            n += 1;
+        }
+        G::pack(&group[..n], grouped, emit);
+    }
 }
 
 /// A leaf's records as its loops read them.
@@ -541,7 +606,7 @@ mod tests {
 
     fn packed(shapes: &[Shape]) -> Vec<PackedShape> {
         let ids: Vec<u32> = (0..shapes.len() as u32).collect();
-        let mut prims = Vec::new();
+        let mut prims = vec![PackedShape::BLANK; leaf_len(shapes, &ids)];
         pack_leaf(shapes, &ids, &mut prims);
         prims
     }

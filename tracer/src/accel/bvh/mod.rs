@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::packed::{PackedShape, leaf_bounds, leaf_occluder, offer_leaf, pack_leaf};
+use super::packed::{PackedShape, leaf_bounds, leaf_len, leaf_occluder, offer_leaf, pack_leaf};
 use super::visits::{Step, VisitLog};
 use super::{Hit, Nearest};
 use build::{BuildPrim, build_node};
@@ -280,18 +280,36 @@ impl Bvh {
 }
 
 /// The packed primitives of the leaves of `nodes`, leaf after leaf in
-/// node order, each leaf slot's `first` turned from its place in the
-/// build's order `ids` into the place of its records.
+/// node order (packed in parallel), each leaf slot's `first` turned from
+/// its place in the build's order `ids` into the place of its records.
 fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<PackedShape> {
-    let mut prims = Vec::with_capacity(ids.len());
-    for node in nodes {
-        for slot in 0..4 {
-            let (first, count) = (node.first[slot] as usize, node.count[slot]);
-            if count != 0 && count != EMPTY {
-                node.first[slot] = prims.len() as u32;
-                pack_leaf(shapes, &ids[first..first + count as usize], &mut prims);
-            }
-        }
+    let leaves: Vec<(usize, usize)> = (0..nodes.len())
+        .flat_map(|n| (0..4).map(move |slot| (n, slot)))
+        .filter(|&(n, slot)| !matches!(nodes[n].count[slot], 0 | EMPTY))
+        .collect();
+    let ids_of = |&(n, slot): &(usize, usize)| {
+        let (first, count) = (nodes[n].first[slot] as usize, nodes[n].count[slot] as usize);
+        &ids[first..first + count]
+    };
+    let lens: Vec<usize> = leaves
+        .par_iter()
+        .map(|leaf| leaf_len(shapes, ids_of(leaf)))
+        .collect();
+    let mut prims = vec![PackedShape::BLANK; lens.iter().sum()];
+    let mut rest = prims.as_mut_slice();
+    let mut outs = Vec::with_capacity(leaves.len());
+    for &len in &lens {
+        let (out, tail) = rest.split_at_mut(len);
+        outs.push(out);
+        rest = tail;
+    }
+    outs.into_par_iter()
+        .zip(&leaves)
+        .for_each(|(out, leaf)| pack_leaf(shapes, ids_of(leaf), out));
+    let mut start = 0;
+    for (&(n, slot), len) in leaves.iter().zip(lens) {
+        nodes[n].first[slot] = start as u32;
+        start += len;
     }
     prims
 }
