@@ -15,7 +15,10 @@ use rayon::prelude::*;
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::packed::{PackedShape, leaf_bounds, leaf_len, leaf_occluder, offer_leaf, pack_leaf};
+use super::packed::{
+    PackedShape, leaf_bounds, leaf_first, leaf_len, leaf_occluder, leaf_start, offer_leaf,
+    pack_leaf,
+};
 use super::visits::{Step, VisitLog};
 use super::{Hit, Nearest};
 use build::{BuildPrim, build_node};
@@ -145,7 +148,8 @@ impl Bvh {
                 }
                 let (records, boxes) = leaf_bounds(&self.prims, first, count)
                     .ok_or(format!("leaf {slot} of {index}: primitives missing"))?;
-                seen[first..first + records]
+                let start = leaf_start(first);
+                seen[start..start + records]
                     .iter_mut()
                     .for_each(|n| *n += 1);
                 for (p, b) in boxes.iter().enumerate() {
@@ -291,14 +295,14 @@ fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<Packed
         let (first, count) = (nodes[n].first[slot] as usize, nodes[n].count[slot] as usize);
         &ids[first..first + count]
     };
-    let lens: Vec<usize> = leaves
+    let lens: Vec<(usize, bool)> = leaves
         .par_iter()
         .map(|leaf| leaf_len(shapes, ids_of(leaf)))
         .collect();
-    let mut prims = vec![PackedShape::BLANK; lens.iter().sum()];
+    let mut prims = vec![PackedShape::BLANK; lens.iter().map(|l| l.0).sum()];
     let mut rest = prims.as_mut_slice();
     let mut outs = Vec::with_capacity(leaves.len());
-    for &len in &lens {
+    for &(len, _) in &lens {
         let (out, tail) = rest.split_at_mut(len);
         outs.push(out);
         rest = tail;
@@ -307,8 +311,8 @@ fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<Packed
         .zip(&leaves)
         .for_each(|(out, leaf)| pack_leaf(shapes, ids_of(leaf), out));
     let mut start = 0;
-    for (&(n, slot), len) in leaves.iter().zip(lens) {
-        nodes[n].first[slot] = start as u32;
+    for (&(n, slot), (len, grouped)) in leaves.iter().zip(lens) {
+        nodes[n].first[slot] = leaf_first(start, grouped);
         start += len;
     }
     prims
