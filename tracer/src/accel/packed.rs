@@ -118,7 +118,7 @@ impl PackedShape {
     /// shapes (whose data stays in the world), for validation.
     pub(super) fn bounds(&self) -> Option<Aabb> {
         let a = Vec3A::from_vec4(self.a);
-        match self.b.w.to_bits() {
+        match self.kind() {
             SPHERE => Some(Sphere::new(a, self.a.w).bounds()),
             TRIANGLE => {
                 let [b, c] = [self.b, self.c].map(|e| a + Vec3A::from_vec4(e));
@@ -139,7 +139,7 @@ impl Primitive for PackedShape {
     /// for bit.
     #[inline(always)]
     fn intersect(&self, shapes: &[Shape], ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        match self.b.w.to_bits() {
+        match self.kind() {
             SPHERE => Sphere::new(Vec3A::from_vec4(self.a), self.a.w).intersect(ray, t_min, t_max),
             TRIANGLE => intersect_edges(
                 Vec3A::from_vec4(self.a),
