@@ -283,14 +283,16 @@ impl Bvh {
     }
 }
 
-/// The packed primitives of the leaves of `nodes`, leaf after leaf in
-/// node order (packed in parallel), each leaf slot's `first` turned from
-/// its place in the build's order `ids` into the place of its records.
+/// The packed primitives of the leaves of `nodes`, leaf after leaf in the
+/// build's order `ids` (packed in parallel), each leaf slot's `first`
+/// turned from its place in `ids` into the place of its records. Leaves
+/// without groups keep the records and places they had before groups.
 fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<PackedShape> {
-    let leaves: Vec<(usize, usize)> = (0..nodes.len())
+    let mut leaves: Vec<(usize, usize)> = (0..nodes.len())
         .flat_map(|n| (0..4).map(move |slot| (n, slot)))
         .filter(|&(n, slot)| !matches!(nodes[n].count[slot], 0 | EMPTY))
         .collect();
+    leaves.sort_unstable_by_key(|&(n, slot)| nodes[n].first[slot]);
     let ids_of = |&(n, slot): &(usize, usize)| {
         let (first, count) = (nodes[n].first[slot] as usize, nodes[n].count[slot] as usize);
         &ids[first..first + count]
