@@ -31,11 +31,16 @@ pub(crate) trait Lanes:
     fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
     /// Whether `mask` holds in any lane.
     fn any(mask: Self::Mask) -> bool;
+    /// Whether `mask` holds in every lane.
+    fn all(mask: Self::Mask) -> bool;
+    /// How many numbers side by side.
+    const LANES: usize;
 }
 
 impl Lanes for f32 {
     type Mask = bool;
     type Vector = Vec3A;
+    const LANES: usize = 1;
 
     #[inline(always)]
     fn splat(value: f32) -> Self {
@@ -69,11 +74,16 @@ impl Lanes for f32 {
     fn any(mask: bool) -> bool {
         mask
     }
+    #[inline(always)]
+    fn all(mask: bool) -> bool {
+        mask
+    }
 }
 
 impl Lanes for Vec4 {
     type Mask = BVec4A;
     type Vector = V3<Vec4>;
+    const LANES: usize = 4;
 
     #[inline(always)]
     fn splat(value: f32) -> Self {
@@ -108,6 +118,10 @@ impl Lanes for Vec4 {
     #[inline(always)]
     fn any(mask: BVec4A) -> bool {
         mask.any()
+    }
+    #[inline(always)]
+    fn all(mask: BVec4A) -> bool {
+        mask.all()
     }
 }
 
