@@ -4,6 +4,7 @@
 mod aabb;
 mod aabox;
 mod cone;
+mod lanes;
 mod plane;
 mod polygon;
 mod ray;
@@ -14,10 +15,14 @@ mod triangle;
 pub use aabb::Aabb;
 pub use aabox::AaBox;
 pub use cone::Cone;
+pub(crate) use lanes::{V3, Vector};
 pub use plane::Plane;
 pub use polygon::{PolygonError, triangulate_polygon};
 pub use ray::Ray;
+#[cfg(test)]
+pub(crate) use ray::strategies;
 pub use shape::{Shape, SurfaceNormal};
 pub use sphere::Sphere;
+pub(crate) use sphere::intersect_spheres;
 pub use triangle::Triangle;
-pub(crate) use triangle::intersect_edges;
+pub(crate) use triangle::{intersect_edges, intersect_triangles};

@@ -33,7 +33,7 @@ impl Ray {
 
 /// Seeded proptest strategies shared by the primitives' property tests.
 #[cfg(test)]
-pub(super) mod strategies {
+pub(crate) mod strategies {
     use glam::Vec3A;
     use proptest::prelude::*;
 

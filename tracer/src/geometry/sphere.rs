@@ -2,6 +2,7 @@
 
 use glam::Vec3A;
 
+use super::lanes::{Lanes, Vector};
 use super::{Aabb, Ray};
 
 /// A sphere; hit from outside or from inside.
@@ -20,39 +21,13 @@ impl Sphere {
     }
 
     /// The nearest hit in `(t_min, t_max)`: the entry point from outside,
-    /// the exit point from inside.
-    ///
-    /// Solves `t^2 - 2 b t + c = 0` with `b = d.(centre - origin)` and
-    /// `c = |centre - origin|^2 - r^2`. The discriminant is taken as
-    /// `r^2 - |oc - b d|^2` (the squared distance from the centre to the
-    /// ray's line, measured directly) rather than `b^2 - c`, which cancels
-    /// catastrophically for distant origins; the two roots come from
-    /// `q = b + sign(b) sqrt(disc)` as `q` and `c / q`, so the small root
-    /// does not lose digits either (Ray Tracing Gems, ch. 7).
+    /// the exit point from inside. The arithmetic (written once for one
+    /// sphere and for four side by side) is `intersect_spheres`'s.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        let oc = self.centre - ray.origin;
-        let b = ray.dir.dot(oc);
-        let r2 = self.radius * self.radius;
-        let disc = r2 - (oc - ray.dir * b).length_squared();
-        // A NaN discriminant (non-finite input) gives NaN roots, which the
-        // interval tests below reject.
-        if disc < 0.0 {
-            return None;
-        }
-        let c = oc.length_squared() - r2;
-        let q = b + disc.sqrt().copysign(b);
-        // `c / q` is NaN only when q = c = 0 (a ray tangent at its own
-        // origin); the comparisons below reject NaN.
-        let (t0, t1) = (c / q, q);
-        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        if near > t_min && near < t_max {
-            Some(near)
-        } else if far > t_min && far < t_max {
-            Some(far)
-        } else {
-            None
-        }
+        let (hit, t) =
+            intersect_spheres(self.centre, self.radius, ray.origin, ray.dir, t_min, t_max)?;
+        hit.then_some(t)
     }
 
     /// The outward unit normal at a point on the surface.
@@ -66,6 +41,55 @@ impl Sphere {
         let r = Vec3A::splat(self.radius.abs());
         Aabb::new(self.centre - r, self.centre + r)
     }
+}
+
+/// [`Sphere::intersect`] for one sphere (`f32`) or four side by side
+/// (`Vec4`, a sphere a lane), with the same operations in every lane: which
+/// lanes are hit in `(t_min, t_max)` and at what distance, or `None` when
+/// no lane's ray comes near enough to its sphere.
+///
+/// Solves `t^2 - 2 b t + c = 0` with `b = d.(centre - origin)` and
+/// `c = |centre - origin|^2 - r^2`. The discriminant is taken as
+/// `r^2 - |oc - b d|^2` (the squared distance from the centre to the
+/// ray's line, measured directly) rather than `b^2 - c`, which cancels
+/// catastrophically for distant origins; the two roots come from
+/// `q = b + sign(b) sqrt(disc)` as `q` and `c / q`, so the small root
+/// does not lose digits either (Ray Tracing Gems, ch. 7).
+#[inline(always)]
+pub(crate) fn intersect_spheres<L: Lanes>(
+    centre: L::Vector,
+    radius: L,
+    origin: L::Vector,
+    dir: L::Vector,
+    t_min: L,
+    t_max: L,
+) -> Option<(L::Mask, L)> {
+    let oc = centre.sub(origin);
+    let b = dir.dot(oc);
+    let r2 = radius * radius;
+    let diff = oc.sub(dir.scale(b));
+    let disc = r2 - diff.dot(diff);
+    // A negative discriminant misses; a NaN one (non-finite input, or a
+    // lane of padding) gives NaN roots, which the interval tests reject.
+    if !L::any(L::splat(0.0).le(disc)) {
+        return None;
+    }
+    let c = oc.dot(oc) - r2;
+    let q = b + disc.sqrt().copysign(b);
+    // `c / q` is NaN only when q = c = 0 (a ray tangent at its own
+    // origin); the comparisons below reject NaN.
+    let (t0, t1) = (c / q, q);
+    let ordered = t0.le(t1);
+    let (near, far) = (L::select(ordered, t0, t1), L::select(ordered, t1, t0));
+    // The entry point from outside, the exit point from inside. A single
+    // sphere hit from outside returns at once (1.3% of all instructions on
+    // `balls_medium`); four rarely all are, not worth a branch.
+    let near_in = t_min.lt(near) & near.lt(t_max);
+    if L::LANES == 1 && L::all(near_in) {
+        return Some((near_in, near));
+    }
+    let far_in = t_min.lt(far) & far.lt(t_max);
+    Some((near_in | far_in, L::select(near_in, near, far)))
 }
 
 #[cfg(test)]

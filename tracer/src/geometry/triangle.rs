@@ -2,6 +2,7 @@
 
 use glam::Vec3A;
 
+use super::lanes::{Lanes, Vector};
 use super::{Aabb, Ray, SurfaceNormal};
 
 /// Below this `|e1 x e2|` relative to `|e1| |e2|` (the sine of the corner
@@ -141,25 +142,46 @@ pub(crate) fn intersect_edges(
     t_min: f32,
     t_max: f32,
 ) -> Option<f32> {
-    let p = ray.dir.cross(e2);
+    let edges = [v0, e1, e2];
+    let (hit, t) = intersect_triangles(edges, parallel_eps, ray.origin, ray.dir, t_min, t_max)?;
+    hit.then_some(t)
+}
+
+/// [`intersect_edges`] for one triangle (`f32`) or four side by side
+/// (`Vec4`, a triangle a lane; `[v0, e1, e2]`), with the same operations in
+/// every lane: which lanes are hit in `(t_min, t_max)` and at what
+/// distance, or `None` as soon as no lane can be.
+#[inline(always)]
+pub(crate) fn intersect_triangles<L: Lanes>(
+    [v0, e1, e2]: [L::Vector; 3],
+    parallel_eps: L,
+    origin: L::Vector,
+    dir: L::Vector,
+    t_min: L,
+    t_max: L,
+) -> Option<(L::Mask, L)> {
+    let p = dir.cross(e2);
     let det = e1.dot(p);
-    if det.abs() <= parallel_eps {
+    // Range tests are written so that NaN fails them.
+    let mut hit = parallel_eps.lt(det.abs());
+    if !L::any(hit) {
         return None;
     }
-    let inv_det = det.recip();
-    let s = ray.origin - v0;
+    let inv_det = L::splat(1.0) / det;
+    let s = origin.sub(v0);
     let u = s.dot(p) * inv_det;
-    // Range tests are written so that NaN fails them.
-    if !(0.0..=1.0).contains(&u) {
+    hit = hit & L::splat(0.0).le(u) & u.le(L::splat(1.0));
+    if !L::any(hit) {
         return None;
     }
     let q = s.cross(e1);
-    let v = ray.dir.dot(q) * inv_det;
-    if !(v >= 0.0 && u + v <= 1.0) {
+    let v = dir.dot(q) * inv_det;
+    hit = hit & L::splat(0.0).le(v) & (u + v).le(L::splat(1.0));
+    if !L::any(hit) {
         return None;
     }
     let t = e2.dot(q) * inv_det;
-    (t > t_min && t < t_max).then_some(t)
+    Some((hit & t_min.lt(t) & t.lt(t_max), t))
 }
 
 #[cfg(test)]

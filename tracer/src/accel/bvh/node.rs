@@ -14,7 +14,8 @@ pub(super) const EMPTY: u32 = u32::MAX;
 /// A node: 128 bytes, two cache lines, aligned to them. Slot `i` is
 /// child `i`: its box is lane `i` of `min` and `max`; `count[i] == 0`
 /// makes it the inner node `first[i]`, `count[i] == EMPTY` an unused slot,
-/// any other count a leaf of primitives `first[i]..first[i] + count[i]`.
+/// any other count a leaf of `count[i]` primitives whose packed records
+/// `first[i]` locates (see `packed::leaf_first`).
 /// Used slots come first.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(64))]
