@@ -410,10 +410,6 @@ impl<T: Copy> NodeStack<T> {
 }
 
 impl Bvh {
-    /// The boxes of the 4-wide nodes' children at `depth` (0 is the whole
-    /// scene's box, 1 the root's up to four children), with the leaves above
-    /// it so the scene stays covered; every leaf for `None`. Read only, for
-    /// drawing the structure over the image.
     /// The box of depth 0 as drawn and inspected: the union of the root's
     /// children (`None` for an empty tree).
     pub(in crate::accel) fn scene_box(&self) -> Option<Aabb> {
@@ -423,6 +419,10 @@ impl Bvh {
             .reduce(|a, b| a.union(&b))
     }
 
+    /// The boxes of the 4-wide nodes' children at `depth` (0 is the whole
+    /// scene's box, 1 the root's up to four children), with the leaves above
+    /// it so the scene stays covered; every leaf for `None`. Read only, for
+    /// drawing the structure over the image.
     pub fn boxes(&self, depth: Option<u32>) -> Vec<Aabb> {
         if depth == Some(0) {
             return self.scene_box().into_iter().collect();
