@@ -783,3 +783,29 @@ fn a_camera_move_never_shows_an_empty_view() {
         sleep(Duration::from_millis(5));
     }
 }
+
+/// On a software rasterizer every shaded fragment costs the render CPU:
+/// the panels leave their background to the window's clear (the same
+/// colour) instead of painting a panel-sized rectangle in every frame.
+#[test]
+fn the_panels_paint_no_background_of_their_own() {
+    let mut harness = window();
+    harness.run_steps(2);
+    let visuals = harness.ctx.global_style().visuals.clone();
+    let clear = harness.state().clear_color(&visuals);
+    assert_eq!(clear, visuals.panel_fill.to_normalized_gamma_f32());
+    let backgrounds: Vec<egui::Rect> = harness
+        .output()
+        .shapes
+        .iter()
+        .filter_map(|clipped| match &clipped.shape {
+            egui::Shape::Rect(rect) if rect.fill == visuals.panel_fill => Some(rect.rect),
+            _ => None,
+        })
+        .filter(|rect| rect.area() > 40_000.0)
+        .collect();
+    assert!(
+        backgrounds.is_empty(),
+        "panel backgrounds painted: {backgrounds:?}"
+    );
+}
