@@ -225,11 +225,19 @@ fn a_cost_view_in_compare_mode_compares_values_not_colours() {
         .get_by_role_and_label(Role::Button, "Difference")
         .click();
     wait_for(&mut harness, "the values' difference", |app| {
+        // The views' summaries are refitted at most every REFIT_INTERVAL:
+        // wait for the fit over both finished images, not a partial one.
+        let whole = |side: usize, pixels: usize| {
+            app.views()
+                .summary(side)
+                .is_some_and(|s| s.pixels == pixels)
+        };
         done(app)
-            && app.views().summary(1).is_some()
-            && app
-                .comparison()
-                .is_some_and(|c| c.value_difference().is_some() && c.difference().is_some())
+            && app.comparison().is_some_and(|c| {
+                c.difference().is_some()
+                    && c.value_difference()
+                        .is_some_and(|(_, d)| whole(0, d.stats.pixels) && whole(1, d.stats.pixels))
+            })
     });
     harness.run_steps(2);
     let app = harness.state();
