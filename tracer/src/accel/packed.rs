@@ -14,8 +14,8 @@
 use glam::{BVec4A, Vec3A, Vec4};
 
 use crate::geometry::{
-    Aabb, Ray, Shape, Sphere, Triangle, V3, Vector, intersect_edges, intersect_spheres,
-    intersect_triangles,
+    Aabb, Ray, Shape, Sphere, Triangle, V3, Vector, edges_bounds, intersect_edges,
+    intersect_spheres, intersect_triangles,
 };
 
 use super::{Nearest, Primitive, first_occluder, offer_each};
@@ -120,10 +120,11 @@ impl PackedShape {
         let a = Vec3A::from_vec4(self.a);
         match self.kind() {
             SPHERE => Some(Sphere::new(a, self.a.w).bounds()),
-            TRIANGLE => {
-                let [b, c] = [self.b, self.c].map(|e| a + Vec3A::from_vec4(e));
-                Some(Aabb::new(a.min(b).min(c), a.max(b).max(c)))
-            }
+            TRIANGLE => Some(edges_bounds(
+                a,
+                Vec3A::from_vec4(self.b),
+                Vec3A::from_vec4(self.c),
+            )),
             _ => None,
         }
     }
@@ -369,11 +370,8 @@ pub(super) fn pack_leaf(shapes: &[Shape], ids: &[u32], out: &mut [PackedShape]) 
     }
     for &id in ids {
         let shape = &shapes[id as usize];
-        let in_group = match shape {
-            Shape::Sphere(_) => grouped[0] > 0,
-            Shape::Triangle(_) => grouped[1] > 0,
-            _ => false,
-        };
+        let in_group = (grouped[0] > 0 && Spheres::of(shape).is_some())
+            || (grouped[1] > 0 && Triangles::of(shape).is_some());
         if !in_group {
             emit(PackedShape::new(shape, id));
         }
@@ -576,8 +574,7 @@ pub(super) fn leaf_bounds(
     for group in leaf.triangles.chunks_exact(Triangles::RECORDS) {
         bounds.extend((0..group_size(group) as usize).map(|i| {
             let [v0, e1, e2] = [1, 2, 3].map(|r| lane(&group[r], i));
-            let [a, b, c] = [v0, v0 + e1, v0 + e2];
-            Some(Aabb::new(a.min(b).min(c), a.max(b).max(c)))
+            Some(edges_bounds(v0, e1, e2))
         }));
     }
     bounds.extend(leaf.records.iter().map(PackedShape::bounds));

@@ -25,4 +25,4 @@ pub use shape::{Shape, SurfaceNormal};
 pub use sphere::Sphere;
 pub(crate) use sphere::intersect_spheres;
 pub use triangle::Triangle;
-pub(crate) use triangle::{intersect_edges, intersect_triangles};
+pub(crate) use triangle::{edges_bounds, intersect_edges, intersect_triangles};

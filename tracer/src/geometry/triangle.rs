@@ -124,9 +124,16 @@ impl Triangle {
 
     /// The tight axis-aligned bounding box.
     pub fn bounds(&self) -> Aabb {
-        let [a, b, c] = self.vertices();
-        Aabb::new(a.min(b).min(c), a.max(b).max(c))
+        edges_bounds(self.v0, self.e1, self.e2)
     }
+}
+
+/// The box of the triangle stored as `v0` and its edges `e1`, `e2`: one
+/// body for [`Triangle::bounds`] and the acceleration structures' packed
+/// copies.
+pub(crate) fn edges_bounds(v0: Vec3A, e1: Vec3A, e2: Vec3A) -> Aabb {
+    let [a, b, c] = [v0, v0 + e1, v0 + e2];
+    Aabb::new(a.min(b).min(c), a.max(b).max(c))
 }
 
 /// Moller-Trumbore on a triangle's stored form (see [`Triangle::intersect`]):
