@@ -158,21 +158,15 @@ impl Extent {
     }
 }
 
-/// Builds the tree over `prims`, which start at `offset` in the final
-/// primitive order, its root at depth `depth`.
-pub(super) fn build_node(
-    prims: &mut [BuildPrim],
-    offset: u32,
-    depth: usize,
-    params: &BvhParams,
-) -> BuildTree {
+/// Builds the tree over `prims`, reordering them into leaf order.
+pub(super) fn build_tree(prims: &mut [BuildPrim], params: &BvhParams) -> BuildTree {
     let builder = Builder {
         params,
         blocks: Mutex::new(Vec::new()),
     };
     if !prims.is_empty() {
         let extent = Extent::of(prims);
-        builder.block(prims, extent, offset, depth);
+        builder.block(prims, extent, 0, 0);
     }
     BuildTree {
         blocks: builder

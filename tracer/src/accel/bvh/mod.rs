@@ -21,7 +21,7 @@ use super::packed::{
 };
 use super::visits::{Step, VisitLog};
 use super::{Hit, Nearest};
-use build::{BuildPrim, build_node};
+use build::{BuildPrim, build_tree};
 use node::{EMPTY, Node4, WideRay, flatten};
 
 /// Build parameters, as a documented struct with named presets.
@@ -89,7 +89,7 @@ impl Bvh {
                 Some(BuildPrim { bounds, id })
             })
             .collect();
-        let root = build_node(&mut prims, 0, 0, params);
+        let root = build_tree(&mut prims, params);
         let mut nodes = flatten(&root, prims.len());
         let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
         let prims = pack_leaves(&mut nodes, &ids, shapes);
