@@ -809,3 +809,38 @@ fn the_panels_paint_no_background_of_their_own() {
         "panel backgrounds painted: {backgrounds:?}"
     );
 }
+
+/// Under a finished image the viewport's grey would be painted only to be
+/// covered, a view-sized rectangle of fragments a software rasterizer
+/// shades in every frame: it is painted around the image only.
+#[test]
+fn the_viewport_paints_its_background_around_a_finished_image_only() {
+    let mut harness = window();
+    wait_for_final_image(&mut harness);
+    let settings = render_settings(&harness);
+    let image = image_rect(&harness, settings.width, settings.height);
+    let view = harness.get_by_role_and_label(Role::Image, "Render").rect();
+    let grey: Vec<egui::Rect> = harness
+        .output()
+        .shapes
+        .iter()
+        .filter_map(|clipped| match &clipped.shape {
+            egui::Shape::Rect(rect) if rect.fill == egui::Color32::from_gray(24) => Some(rect.rect),
+            _ => None,
+        })
+        .collect();
+    let under: f32 = grey
+        .iter()
+        .map(|r| r.intersect(image).area().max(0.0))
+        .sum();
+    assert!(
+        under < 1.0,
+        "{under} points of grey under the image: {grey:?}"
+    );
+    let around: f32 = grey.iter().map(|r| r.intersect(view).area().max(0.0)).sum();
+    let margins = view.area() - image.intersect(view).area();
+    assert!(
+        (around - margins).abs() < 1.0,
+        "grey {around} around the image, margins {margins}"
+    );
+}

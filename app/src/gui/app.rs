@@ -797,7 +797,10 @@ impl WorkbenchApp {
                     );
                 };
                 let b_layers = compare.b_layers(ui.ctx(), (size[0] as u32, size[1] as u32));
-                let b: Vec<&egui::TextureHandle> = b_layers.iter().collect();
+                let b = viewport::Layers {
+                    textures: b_layers.iter().collect(),
+                    opaque: compare.b_is_opaque(),
+                };
                 match compare.view {
                     CompareView::SideBySide => {
                         let half =
@@ -825,7 +828,7 @@ impl WorkbenchApp {
                         .inner
                     }
                     CompareView::Split => {
-                        let split = b.last().map(|&texture| viewport::SplitWith {
+                        let split = b.textures.last().map(|&texture| viewport::SplitWith {
                             texture,
                             at: &mut compare.split,
                         });
@@ -837,8 +840,12 @@ impl WorkbenchApp {
                         viewport::show(ui, &mut self.view, &layers, None, size, full)
                     }
                     CompareView::Difference => {
-                        let difference = compare.difference();
-                        viewport::show(ui, &mut self.view, difference.as_slice(), None, size, full)
+                        // A heat map of every pixel: opaque.
+                        let difference = viewport::Layers {
+                            textures: compare.difference().into_iter().collect(),
+                            opaque: compare.difference().is_some(),
+                        };
+                        viewport::show(ui, &mut self.view, &difference, None, size, full)
                     }
                 }
             })

@@ -160,8 +160,15 @@ impl Compare {
     pub fn b_layers(&mut self, ctx: &egui::Context, size: (u32, u32)) -> Vec<TextureHandle> {
         match &mut self.reference {
             Some(reference) => vec![reference.texture(ctx, size)],
-            None => self.image.layers().into_iter().cloned().collect(),
+            None => self.image.layers().textures.into_iter().cloned().collect(),
         }
+    }
+
+    /// Whether B's textures cover its image with opaque pixels: a finished
+    /// first pass (or backdrop) of its render; a reference image may have
+    /// transparent pixels of its own.
+    pub fn b_is_opaque(&self) -> bool {
+        self.reference.is_none() && self.image.layers().opaque
     }
 
     /// "Compare with image..." and, once B is an image, its fit and the way

@@ -9,6 +9,7 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use tracer::render::{Encoding, JobState, Snapshot, View, ViewHeatmap};
 
 use super::engine::{Activity, Engine, Version};
+use super::viewport::Layers;
 
 /// Slowest refresh while a render's first pass has not covered the view.
 const FIRST_PASS_INTERVAL: Duration = Duration::from_millis(200);
@@ -21,6 +22,8 @@ pub struct LiveImage {
     /// one until the current one has a sample in every pixel, so a restart
     /// never shows an empty view.
     backdrop: Option<TextureHandle>,
+    /// Whether the backdrop has a sample in every pixel.
+    backdrop_covered: bool,
     shown: Option<Snapshot>,
     version: Version,
     encoding: Encoding,
@@ -37,6 +40,7 @@ impl LiveImage {
             name,
             texture: None,
             backdrop: None,
+            backdrop_covered: false,
             shown: None,
             version: (0, 0),
             encoding: Encoding::Linear,
@@ -127,13 +131,18 @@ impl LiveImage {
         if complete || self.backdrop.is_none() {
             // The old backdrop's texture is reused for the new render.
             std::mem::swap(&mut self.texture, &mut self.backdrop);
+            self.backdrop_covered = complete;
         }
     }
 
     /// The textures to draw, bottom first: the backdrop while the render
-    /// has holes, then the render.
-    pub fn layers(&self) -> Vec<&TextureHandle> {
-        self.backdrop.iter().chain(&self.texture).collect()
+    /// has holes, then the render; opaque when either has no hole.
+    pub fn layers(&self) -> Layers<'_> {
+        let backdrop_covers = self.backdrop.is_some() && self.backdrop_covered;
+        Layers {
+            textures: self.backdrop.iter().chain(&self.texture).collect(),
+            opaque: backdrop_covers || self.shown.as_ref().is_some_and(is_covered),
+        }
     }
 
     /// The render's own texture (without the backdrop).
