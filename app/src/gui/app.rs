@@ -34,6 +34,8 @@ use super::{accel_banner, controls, scene_picker, stats_panel};
 const MOVE_SETTLE: Duration = Duration::from_millis(250);
 /// How long a notice stays on screen.
 const NOTICE_TIME: Duration = Duration::from_secs(5);
+/// Longest wait for the first render before the scene list's counts start.
+const CATALOG_DELAY: Duration = Duration::from_secs(3);
 
 /// What a save writes: the shown render (PNG) or the linear film (EXR).
 enum SaveImage {
@@ -108,7 +110,7 @@ impl WorkbenchApp {
             .unwrap_or_default();
         let (wake_ctx, wake_now_ctx) = (ctx.clone(), ctx.clone());
         let progress_pace = ProgressPace::default();
-        let (pace, catalog_pace) = (progress_pace.clone(), progress_pace.clone());
+        let pace = progress_pace.clone();
         let mut app = Self {
             engine: Engine::with_wakes(
                 Arc::new(move || wake_ctx.request_repaint_after(pace.get())),
@@ -129,12 +131,8 @@ impl WorkbenchApp {
             notice: None,
             help_open: false,
             disk_scenes: scene_picker::scene_files(Path::new("scenes")),
-            catalog: {
-                // At the progress pace: the counts must not add frames to
-                // the first render's.
-                let ctx = ctx.clone();
-                scene_picker::Catalog::spawn(move || ctx.request_repaint_after(catalog_pace.get()))
-            },
+            // Started by `start_catalog_when_due`.
+            catalog: scene_picker::Catalog::default(),
             hovered_pixel: None,
             frame_meter: FrameMeter::default(),
             title: String::new(),
@@ -228,6 +226,37 @@ impl WorkbenchApp {
     /// Samples per pixel of the image on screen, once there is one.
     pub fn shown_passes(&self) -> Option<u32> {
         self.image.shown().map(|s| s.stats.passes_done)
+    }
+
+    /// Starts counting the bundled scenes for the scene list once the
+    /// first render no longer needs the machine (or there is no scene), or
+    /// [`CATALOG_DELAY`] after opening at the latest: parsing them took
+    /// 30-100 ms of CPU during balls_medium's 0.4 s first render on two
+    /// cores, its thread's lowest priority notwithstanding. The counts
+    /// redraw the window at the progress pace.
+    fn start_catalog_when_due(&mut self, ctx: &egui::Context) {
+        if self.catalog.is_started() {
+            return;
+        }
+        // A scene just loaded renders later in this frame.
+        let busy = match self.engine.activity() {
+            Activity::Loading { .. } | Activity::Job(JobState::Building | JobState::Rendering) => {
+                true
+            }
+            Activity::Idle => self.engine.scene().is_some(),
+            Activity::Job(_) => false,
+        };
+        if busy && self.opened_at.elapsed() < CATALOG_DELAY {
+            return;
+        }
+        let (ctx, pace) = (ctx.clone(), self.progress_pace.clone());
+        self.catalog
+            .start(move || ctx.request_repaint_after(pace.get()));
+    }
+
+    /// Whether the scene list's counting has started.
+    pub fn is_catalog_started(&self) -> bool {
+        self.catalog.is_started()
     }
 
     /// Whether the scene list has the object count of every bundled scene.
@@ -1020,6 +1049,7 @@ impl eframe::App for WorkbenchApp {
         // Before anything is drawn, so the numbers and the image of a
         // frame describe the same render.
         self.refresh_texture(&ctx);
+        self.start_catalog_when_due(&ctx);
         self.take_dropped_files(&ctx);
         let mut commands = Command::pressed(&ctx);
 

@@ -17,22 +17,26 @@ use super::controls::command_button;
 
 /// Object counts of the bundled scenes, parsed once on a background thread
 /// so the list opens at once even with a 262k-triangle mesh among them.
-#[derive(Clone, Default)]
+#[derive(Default)]
 pub struct Catalog {
     /// A size summary per scene name; `None` for a scene that does not parse.
     summaries: Arc<Mutex<HashMap<&'static str, Option<String>>>>,
+    started: bool,
 }
 
 impl Catalog {
-    /// Starts counting; `wake` asks the window to redraw as counts arrive.
-    pub fn spawn(wake: impl Fn() + Send + 'static) -> Self {
-        let catalog = Catalog::default();
-        let summaries = catalog.summaries.clone();
+    /// Starts counting, once; `wake` asks the window to redraw as counts
+    /// arrive. Until then the list shows no counts.
+    pub fn start(&mut self, wake: impl Fn() + Send + 'static) {
+        if std::mem::replace(&mut self.started, true) {
+            return;
+        }
+        let summaries = self.summaries.clone();
         // Without the thread the list simply shows no counts.
         let _ = std::thread::Builder::new()
             .name("scene-catalog".into())
             .spawn(move || {
-                // Counting can wait: the first render must not.
+                // Counting can wait: a render must not.
                 let _ = thread_priority::set_current_thread_priority(
                     thread_priority::ThreadPriority::Min,
                 );
@@ -45,7 +49,11 @@ impl Catalog {
                     wake();
                 }
             });
-        catalog
+    }
+
+    /// Whether [`Catalog::start`] was called.
+    pub fn is_started(&self) -> bool {
+        self.started
     }
 
     /// How big the bundled scene `name` is, once counted.
