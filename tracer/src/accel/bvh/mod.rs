@@ -55,6 +55,10 @@ impl Default for BvhParams {
     }
 }
 
+/// The id marking a shape without bounds while the build's primitives are
+/// gathered.
+const UNBOUNDED: u32 = u32::MAX;
+
 /// Deepest tree allowed: traversal's fixed stack holds this many nodes.
 /// Deepest binary tree the build makes; the 4-wide tree is no deeper.
 const MAX_DEPTH: usize = 64;
@@ -82,13 +86,19 @@ struct Deferred {
 impl Bvh {
     /// Builds a hierarchy over the bounded shapes `ids` of `shapes`.
     pub fn build(shapes: &[Shape], ids: &[u32], params: &BvhParams) -> Bvh {
+        // An indexed collect writes each thread's part in place; shapes
+        // without bounds (callers pass none) are marked, then dropped.
         let mut prims: Vec<BuildPrim> = ids
             .par_iter()
-            .filter_map(|&id| {
-                let bounds = shapes[id as usize].bounds()?;
-                Some(BuildPrim { bounds, id })
+            .map(|&id| match shapes[id as usize].bounds() {
+                Some(bounds) => BuildPrim { bounds, id },
+                None => BuildPrim {
+                    bounds: Aabb::empty(),
+                    id: UNBOUNDED,
+                },
             })
             .collect();
+        prims.retain(|p| p.id != UNBOUNDED);
         let root = build_tree(&mut prims, params);
         let mut nodes = flatten(&root, prims.len());
         let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
@@ -301,7 +311,13 @@ fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<Packed
         .par_iter()
         .map(|leaf| leaf_len(shapes, ids_of(leaf)))
         .collect();
-    let mut prims = vec![PackedShape::BLANK; lens.iter().map(|l| l.0).sum()];
+    // Filled in parallel: the first touch of each page (page faults) is
+    // most of the cost of a large buffer.
+    let mut prims = Vec::new();
+    (0..lens.iter().map(|l| l.0).sum())
+        .into_par_iter()
+        .map(|_| PackedShape::BLANK)
+        .collect_into_vec(&mut prims);
     let mut rest = prims.as_mut_slice();
     let mut outs = Vec::with_capacity(leaves.len());
     for &(len, _) in &lens {
@@ -442,5 +458,46 @@ impl Bvh {
             }
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::visits::NoLog;
+    use crate::geometry::{Plane, Sphere};
+
+    /// A shape without bounds among the ids is left out of the tree, not
+    /// given a box: a plane's rays find the spheres only.
+    #[test]
+    fn shapes_without_bounds_stay_out_of_the_tree() {
+        let shapes = [
+            Shape::Sphere(Sphere::new(Vec3A::new(0.0, 0.0, 5.0), 1.0)),
+            Shape::Plane(Plane::from_points([Vec3A::ZERO, Vec3A::X, Vec3A::Y]).unwrap()),
+            Shape::Sphere(Sphere::new(Vec3A::new(3.0, 0.0, 5.0), 1.0)),
+        ];
+        let bvh = Bvh::build(&shapes, &[0, 1, 2], &BvhParams::default());
+        assert_eq!(bvh.validate(), Ok(()));
+        let down = Ray::new(Vec3A::new(3.0, 0.0, 10.0), -Vec3A::Z);
+        let mut counters = Counters::default();
+        let hit = bvh.closest_hit(
+            &shapes,
+            &down,
+            0.0,
+            f32::INFINITY,
+            &mut counters,
+            &mut NoLog,
+        );
+        assert_eq!(hit.map(|h| h.shape), Some(2));
+        let past = Ray::new(Vec3A::new(9.0, 0.0, 10.0), -Vec3A::Z);
+        let miss = bvh.closest_hit(
+            &shapes,
+            &past,
+            0.0,
+            f32::INFINITY,
+            &mut counters,
+            &mut NoLog,
+        );
+        assert_eq!(miss, None, "the plane is not in the tree");
     }
 }
