@@ -69,7 +69,7 @@ impl Node4 {
     /// the axis and by its `max` plane when it goes down ([`WideRay`] picks
     /// them once per ray): the entry distance only raises `near`, the exit
     /// distance only lowers `far`, six operations a slab instead of the twelve
-    /// of sorting the two planes and clamping each (5-8% of a frame on six
+    /// of sorting the two planes and clamping each (frames 1-8% shorter on six
     /// scenes). It is the arithmetic of [`Aabb::intersect`] rearranged:
     /// there `min(max(t0, t_min), max(t1, t_min))` is `max(min(t0, t1),
     /// t_min)`, and `min(t0, t1)` is the entry plane's distance. A ray
