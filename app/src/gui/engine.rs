@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
-use tracer::accel::{AccelInfo, SceneIndex};
+use tracer::accel::{AccelInfo, AccelKind, SceneIndex};
 use tracer::render::{
     Encoding, JobOptions, JobState, RenderJob, RenderSettings, Snapshot, View, ViewHeatmap,
 };
@@ -89,6 +89,9 @@ pub struct Engine {
     views: bool,
     /// `views` changed since the current job started.
     views_changed: bool,
+    /// New settings wait for the current job's structure to be built (see
+    /// [`Engine::render`]): its first report then wakes the window at once.
+    restart_waiting: Arc<AtomicBool>,
 }
 
 impl Engine {
@@ -118,6 +121,7 @@ impl Engine {
             jobs_started: 0,
             views: false,
             views_changed: false,
+            restart_waiting: Arc::new(AtomicBool::new(false)),
         }
     }
 
@@ -205,12 +209,37 @@ impl Engine {
     }
 
     /// Renders the current scene with `settings`, restarting the job only
-    /// when they differ from the running job's.
+    /// when they differ from the running job's, and not before the running
+    /// job has built the acceleration structure they need too: restarting
+    /// during the build would start a second build beside it (a camera drag
+    /// right after opening a 262k-triangle mesh started one per frame, and
+    /// the memory grew by gigabytes). Call again once the build reports;
+    /// the window does on every frame.
     pub fn render(&mut self, settings: &RenderSettings) -> Result<(), String> {
         if self.settings.as_ref() == Some(settings) && self.job.is_some() && !self.views_changed {
+            self.restart_waiting.store(false, Ordering::Relaxed);
+            return Ok(());
+        }
+        if self.is_building_for(settings) {
+            self.restart_waiting.store(true, Ordering::Relaxed);
             return Ok(());
         }
         self.restart(settings)
+    }
+
+    /// Whether the current job is still building the structure `settings`
+    /// would use.
+    fn is_building_for(&self, settings: &RenderSettings) -> bool {
+        let (Some(job), Some(current)) = (&self.job, &self.settings) else {
+            return false;
+        };
+        let structure = |s: &RenderSettings| {
+            (
+                s.accel,
+                (s.accel == AccelKind::Grid).then_some(s.grid_multiplier),
+            )
+        };
+        job.state() == JobState::Building && structure(current) == structure(settings)
     }
 
     /// Starts a new job with `settings` whatever runs now.
@@ -227,6 +256,8 @@ impl Engine {
         let (wake, wake_now) = (self.wake.clone(), self.wake_now.clone());
         let complete = Arc::new(AtomicBool::new(false));
         let (last_pass_in, done) = (complete.clone(), complete.clone());
+        self.restart_waiting.store(false, Ordering::Relaxed);
+        let waiting = self.restart_waiting.clone();
         let last_pass = (!settings.keep_refining).then(|| settings.samples_per_pixel());
         let job = RenderJob::start(
             world,
@@ -236,7 +267,7 @@ impl Engine {
                 threads: self.threads,
                 on_progress: Some(Box::new(move || {
                     count_render_thread_cpu();
-                    if done.load(Ordering::Relaxed) {
+                    if done.load(Ordering::Relaxed) || waiting.load(Ordering::Relaxed) {
                         wake_now();
                     } else {
                         wake();
@@ -527,5 +558,55 @@ mod tests {
             e.snapshot(Encoding::Linear).unwrap().stats.passes_done > 5
         });
         assert!(!engine.is_complete());
+    }
+
+    #[test]
+    fn new_settings_wait_for_the_structure_being_built_instead_of_building_another() {
+        let at_once = Arc::new(AtomicU32::new(0));
+        let a = at_once.clone();
+        let mut engine = Engine::with_wakes(
+            Arc::new(|| {}),
+            Arc::new(move || {
+                a.fetch_add(1, Ordering::Relaxed);
+            }),
+        );
+        // 262k triangles: its BVH takes tens of milliseconds to build.
+        engine.load(SceneSource::Bundled("mesh_large".into()));
+        wait_until(&mut engine, |e| e.poll_load().is_some());
+        // Refining for ever: the last pass never wakes the window at once.
+        let settings = RenderSettings {
+            width: 24,
+            height: 24,
+            keep_refining: true,
+            ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+        };
+        let moved = RenderSettings {
+            ambient: settings.ambient + 0.1,
+            ..settings.clone()
+        };
+        engine.render(&settings).unwrap();
+        assert_eq!(engine.activity(), Activity::Job(JobState::Building));
+        engine.render(&moved).unwrap();
+        assert_eq!(engine.version().0, 1, "no second job, no second build");
+        assert_eq!(engine.activity(), Activity::Job(JobState::Building));
+        // The window calls again every frame; the build's report wakes it.
+        wait_until(&mut engine, |e| {
+            e.render(&moved).unwrap();
+            e.version().0 == 2
+        });
+        assert!(at_once.load(Ordering::Relaxed) > 0, "woken at once");
+        assert_ne!(
+            engine.activity(),
+            Activity::Job(JobState::Building),
+            "the new job has the structure already"
+        );
+        assert_eq!(engine.settings(), Some(&moved));
+        // A change of structure does not wait.
+        let grid = RenderSettings {
+            accel: AccelKind::Grid,
+            ..moved.clone()
+        };
+        engine.render(&grid).unwrap();
+        assert_eq!(engine.version().0, 3);
     }
 }
