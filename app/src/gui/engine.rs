@@ -516,21 +516,26 @@ mod tests {
         assert_eq!(engine.scene().unwrap().world.counts.triangles, 149_999);
     }
 
-    #[test]
-    fn the_last_pass_wakes_the_window_at_once() {
+    /// An engine on the bundled scene `name`, counting its paced and its
+    /// immediate wakes.
+    fn counting_engine(name: &str) -> (Arc<AtomicU32>, Arc<AtomicU32>, Engine) {
         let paced = Arc::new(AtomicU32::new(0));
         let at_once = Arc::new(AtomicU32::new(0));
-        let (p, a) = (paced.clone(), at_once.clone());
-        let mut engine = Engine::with_wakes(
+        let counting = |count: &Arc<AtomicU32>| -> Wake {
+            let count = count.clone();
             Arc::new(move || {
-                p.fetch_add(1, Ordering::Relaxed);
-            }),
-            Arc::new(move || {
-                a.fetch_add(1, Ordering::Relaxed);
-            }),
-        );
-        engine.load(SceneSource::Bundled("balls_low".into()));
+                count.fetch_add(1, Ordering::Relaxed);
+            })
+        };
+        let mut engine = Engine::with_wakes(counting(&paced), counting(&at_once));
+        engine.load(SceneSource::Bundled(name.into()));
         wait_until(&mut engine, |e| e.poll_load().is_some());
+        (paced, at_once, engine)
+    }
+
+    #[test]
+    fn the_last_pass_wakes_the_window_at_once() {
+        let (paced, at_once, mut engine) = counting_engine("balls_low");
         let settings = RenderSettings {
             width: 32,
             height: 32,
@@ -562,17 +567,8 @@ mod tests {
 
     #[test]
     fn new_settings_wait_for_the_structure_being_built_instead_of_building_another() {
-        let at_once = Arc::new(AtomicU32::new(0));
-        let a = at_once.clone();
-        let mut engine = Engine::with_wakes(
-            Arc::new(|| {}),
-            Arc::new(move || {
-                a.fetch_add(1, Ordering::Relaxed);
-            }),
-        );
         // 262k triangles: its BVH takes tens of milliseconds to build.
-        engine.load(SceneSource::Bundled("mesh_large".into()));
-        wait_until(&mut engine, |e| e.poll_load().is_some());
+        let (_, at_once, mut engine) = counting_engine("mesh_large");
         // Refining for ever: the last pass never wakes the window at once.
         let settings = RenderSettings {
             width: 24,
