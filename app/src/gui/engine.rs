@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
-use tracer::accel::{AccelInfo, AccelKind, SceneIndex};
+use tracer::accel::{AccelInfo, SceneIndex};
 use tracer::render::{
     Encoding, JobOptions, JobState, RenderJob, RenderSettings, Snapshot, View, ViewHeatmap,
 };
@@ -233,12 +233,7 @@ impl Engine {
         let (Some(job), Some(current)) = (&self.job, &self.settings) else {
             return false;
         };
-        let structure = |s: &RenderSettings| {
-            (
-                s.accel,
-                (s.accel == AccelKind::Grid).then_some(s.grid_multiplier),
-            )
-        };
+        let structure = |s: &RenderSettings| s.accel.structure_key(s.grid_multiplier);
         job.state() == JobState::Building && structure(current) == structure(settings)
     }
 
@@ -435,6 +430,8 @@ impl Engine {
 #[cfg(test)]
 mod tests {
     use std::sync::atomic::{AtomicU32, Ordering};
+
+    use tracer::accel::AccelKind;
 
     use super::*;
 

@@ -44,6 +44,13 @@ impl AccelKind {
             AccelKind::Bvh => "bvh",
         }
     }
+
+    /// What tells structures of this kind over the same shapes apart: the
+    /// multiplier for a grid, nothing for the others (they ignore it).
+    /// Settings with equal keys can share one structure.
+    pub fn structure_key(self, grid_multiplier: f32) -> (AccelKind, Option<f32>) {
+        (self, (self == AccelKind::Grid).then_some(grid_multiplier))
+    }
 }
 
 /// The closest surface a ray meets.
@@ -226,7 +233,7 @@ impl SceneIndex {
         SceneIndex {
             info: AccelInfo {
                 kind,
-                grid_multiplier: (kind == AccelKind::Grid).then_some(grid_multiplier),
+                grid_multiplier: kind.structure_key(grid_multiplier).1,
                 build_time: start.elapsed(),
                 memory_bytes: memory_bytes + unbounded.len() * 4,
                 bvh_nodes,
@@ -255,8 +262,7 @@ impl SceneIndex {
     /// Whether this index is what `kind` with `grid_multiplier` would build,
     /// so a render with those settings can reuse it.
     pub fn matches(&self, kind: AccelKind, grid_multiplier: f32) -> bool {
-        self.info.kind == kind
-            && (kind != AccelKind::Grid || self.info.grid_multiplier == Some(grid_multiplier))
+        (self.info.kind, self.info.grid_multiplier) == kind.structure_key(grid_multiplier)
     }
 
     /// The nearest hit with `t` in `(t_min, t_max)`.
