@@ -870,9 +870,10 @@ impl WorkbenchApp {
                     }
                     CompareView::Difference => {
                         // A heat map of every pixel: opaque.
+                        let textures: Vec<_> = compare.difference().into_iter().collect();
                         let difference = viewport::Layers {
-                            textures: compare.difference().into_iter().collect(),
-                            opaque: compare.difference().is_some(),
+                            opaque: !textures.is_empty(),
+                            textures,
                         };
                         viewport::show(ui, &mut self.view, &difference, None, size, full)
                     }

@@ -168,7 +168,7 @@ impl Compare {
     /// first pass (or backdrop) of its render; a reference image may have
     /// transparent pixels of its own.
     pub fn b_is_opaque(&self) -> bool {
-        self.reference.is_none() && self.image.layers().opaque
+        self.reference.is_none() && self.image.is_opaque()
     }
 
     /// "Compare with image..." and, once B is an image, its fit and the way

@@ -136,13 +136,19 @@ impl LiveImage {
     }
 
     /// The textures to draw, bottom first: the backdrop while the render
-    /// has holes, then the render; opaque when either has no hole.
+    /// has holes, then the render.
     pub fn layers(&self) -> Layers<'_> {
-        let backdrop_covers = self.backdrop.is_some() && self.backdrop_covered;
         Layers {
             textures: self.backdrop.iter().chain(&self.texture).collect(),
-            opaque: backdrop_covers || self.shown.as_ref().is_some_and(is_covered),
+            opaque: self.is_opaque(),
         }
+    }
+
+    /// Whether the layers have no hole: the render or its backdrop has a
+    /// sample in every pixel.
+    pub fn is_opaque(&self) -> bool {
+        let backdrop_covers = self.backdrop.is_some() && self.backdrop_covered;
+        backdrop_covers || self.shown.as_ref().is_some_and(is_covered)
     }
 
     /// The render's own texture (without the backdrop).
