@@ -226,17 +226,13 @@ fn a_cost_view_in_compare_mode_compares_values_not_colours() {
         .click();
     wait_for(&mut harness, "the values' difference", |app| {
         // The views' summaries are refitted at most every REFIT_INTERVAL:
-        // wait for the fit over both finished images, not a partial one.
-        let whole = |side: usize, pixels: usize| {
-            app.views()
-                .summary(side)
-                .is_some_and(|s| s.pixels == pixels)
-        };
+        // wait for the fit over both finished images, not an earlier pass
+        // (a first pass already has a count in every pixel).
         done(app)
             && app.comparison().is_some_and(|c| {
                 c.difference().is_some()
-                    && c.value_difference()
-                        .is_some_and(|(_, d)| whole(0, d.stats.pixels) && whole(1, d.stats.pixels))
+                    && c.value_difference().is_some()
+                    && app.views().is_fitted_to(app.engine(), Some(&c.engine))
             })
     });
     // The numbers as they were when the condition held: later frames may

@@ -106,6 +106,13 @@ impl ViewChoice {
         self.heat
     }
 
+    /// Whether the heat map and the summaries were fitted over the images
+    /// the engines hold now (`b` in compare mode).
+    pub fn is_fitted_to(&self, a: &Engine, b: Option<&Engine>) -> bool {
+        self.fitted_to
+            .is_some_and(|(va, vb, ..)| va == a.version() && vb == b.map(Engine::version))
+    }
+
     /// The view's summary of side A (0) or B (1), once measured.
     pub fn summary(&self, side: usize) -> Option<&ViewSummary> {
         self.summaries.get(side)?.as_ref()
