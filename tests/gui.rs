@@ -17,14 +17,12 @@ use workbench::gui::{Activity, Compare, CompareView, WorkbenchApp};
 use workbench::load::SceneSource;
 
 mod support;
-use support::{DroppedPath, PATIENCE, broken_scene, small_window, wait_for};
+use support::{DroppedPath, PATIENCE, broken_scene, small_window, wait_for, wait_for_scene};
 
 /// The window on the bundled `balls_low`, rendered small so tests are quick.
 fn window() -> Harness<'static, WorkbenchApp> {
     let mut harness = small_window(Harness::builder());
-    wait_for(&mut harness, "the scene to load", |app| {
-        app.engine().settings().is_some()
-    });
+    wait_for_scene(&mut harness);
     harness
 }
 

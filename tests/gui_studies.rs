@@ -9,7 +9,7 @@ use tracer::accel::AccelKind;
 use workbench::gui::WorkbenchApp;
 
 mod support;
-use support::{small_window_sized, wait_for};
+use support::{small_window_sized, wait_for, wait_for_scene};
 
 type Window = Harness<'static, WorkbenchApp>;
 
@@ -17,9 +17,7 @@ type Window = Harness<'static, WorkbenchApp>;
 /// the Studies window open.
 fn studies_window() -> Window {
     let mut harness = small_window_sized(Harness::builder(), [1280.0, 900.0]);
-    wait_for(&mut harness, "the scene", |app| {
-        app.engine().settings().is_some()
-    });
+    wait_for_scene(&mut harness);
     harness.key_press(egui::Key::P);
     harness.run_steps(3);
     assert!(harness.state().studies().open);

@@ -9,14 +9,12 @@ use tracer::render::{JobState, View};
 use workbench::gui::{Activity, WorkbenchApp};
 
 mod support;
-use support::{small_window_sized, wait_for};
+use support::{small_window_sized, wait_for, wait_for_scene};
 
 /// The window on balls_low, tall enough for the whole side panel.
 fn window() -> Harness<'static, WorkbenchApp> {
     let mut harness = small_window_sized(Harness::builder(), [1280.0, 1400.0]);
-    wait_for(&mut harness, "the scene to load", |app| {
-        app.engine().settings().is_some()
-    });
+    wait_for_scene(&mut harness);
     harness
 }
 

@@ -58,6 +58,17 @@ pub fn wait_for(
     }
 }
 
+/// Steps the window until its scene is loaded and rendering with its
+/// acceleration structure built: until then the engine holds new settings
+/// back (a restart would build the structure a second time), so a test
+/// that changes a setting and reads the engine's a few frames later starts
+/// from here, as a user acts on a window that shows its scene.
+pub fn wait_for_scene(harness: &mut Harness<'static, WorkbenchApp>) {
+    wait_for(harness, "the scene and its structure", |app| {
+        app.engine().settings().is_some() && app.engine().index().is_some()
+    });
+}
+
 /// Writes a scene whose line 5, column 7 is wrong, in a folder of its own
 /// named after `test`: the folder (keep it while the scene is used) and
 /// the scene's path.
