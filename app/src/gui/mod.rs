@@ -13,6 +13,7 @@ mod frame_meter;
 mod inspector;
 mod live_image;
 mod overlay;
+mod paint_priority;
 mod reference;
 mod scene_picker;
 mod screenshot;
@@ -65,6 +66,9 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
         "Whitted Workbench",
         options,
         Box::new(move |cc| {
+            // The graphics device exists now, and with it the threads of a
+            // software rasterizer if there is no GPU.
+            paint_priority::lower_software_rasterizer();
             let app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
             Ok(Box::new(match plan {
                 Some(plan) => app.with_screenshot(plan, app_outcome),
