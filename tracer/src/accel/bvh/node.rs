@@ -2,7 +2,7 @@
 //! (structure of arrays), so one ray meets all four in a handful of SIMD
 //! instructions, and a binary build collapses into half as many levels.
 
-use glam::{BVec4A, Vec3A, Vec4};
+use glam::{Vec3A, Vec4};
 
 use crate::geometry::{Aabb, Ray};
 
@@ -28,8 +28,18 @@ pub(super) struct Node4 {
 }
 
 impl Node4 {
+    /// Unused slots hold an inverted box (`min` +inf, `max` -inf): every
+    /// ray enters it at +inf and leaves it at -inf on every axis, so it is
+    /// never met and the node test needs no mask of used slots.
     const BLANK: Node4 = Node4 {
-        planes: [Vec4::ZERO; 6],
+        planes: [
+            Vec4::INFINITY,
+            Vec4::INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::NEG_INFINITY,
+        ],
         first: [0; 4],
         count: [EMPTY; 4],
     };
@@ -63,7 +73,7 @@ impl Node4 {
     }
 
     /// The entry distance of each slot's box, and which boxes the ray
-    /// meets in `(t_min, t_max)` (unused slots never).
+    /// meets in `(t_min, t_max)` (unused slots never: see [`Node4::BLANK`]).
     ///
     /// Per axis, the ray enters a slab by its `min` plane when it goes up
     /// the axis and by its `max` plane when it goes down ([`WideRay`] picks
@@ -93,13 +103,7 @@ impl Node4 {
             near = t_entry.max(near);
             far = t_exit.min(far);
         }
-        let used = BVec4A::new(
-            self.count[0] != EMPTY,
-            self.count[1] != EMPTY,
-            self.count[2] != EMPTY,
-            self.count[3] != EMPTY,
-        );
-        (near, (near.cmple(far) & used).bitmask())
+        (near, near.cmple(far).bitmask())
     }
 }
 
