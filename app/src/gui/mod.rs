@@ -98,3 +98,44 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
         ),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::fs;
+    use std::path::Path;
+
+    /// The window paints with the patched egui-wgpu of `vendor/` (see its
+    /// README): on a software rasterizer its frames cost a third of the
+    /// crates.io one's. Fails when the patch stops applying (Cargo ignores a
+    /// `[patch]` whose version no longer matches, with a mere warning) or a
+    /// new copy of the crate lacks the change.
+    #[test]
+    fn the_window_paints_with_the_patched_egui_wgpu() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
+        let lock = fs::read_to_string(root.join("Cargo.lock")).unwrap();
+        let entry = lock
+            .split("[[package]]")
+            .find(|p| p.contains("\nname = \"egui-wgpu\"\n"))
+            .expect("egui-wgpu in Cargo.lock");
+        assert!(
+            !entry.contains("source ="),
+            "egui-wgpu comes from a registry, not vendor/: {entry}"
+        );
+        let shader = fs::read_to_string(root.join("vendor/egui-wgpu/src/egui.wgsl")).unwrap();
+        let renderer = fs::read_to_string(root.join("vendor/egui-wgpu/src/renderer.rs")).unwrap();
+        for (uniform, constant) in [
+            ("dithering", "DITHERING"),
+            (
+                "predictable_texture_filtering",
+                "PREDICTABLE_TEXTURE_FILTERING",
+            ),
+        ] {
+            assert!(
+                !shader.contains(&format!("r_locals.{uniform}")),
+                "the fragment shader reads {uniform} from a uniform again"
+            );
+            assert!(shader.contains(&format!("override {constant}: bool")));
+            assert!(renderer.contains(&format!("\"{constant}\"")));
+        }
+    }
+}
