@@ -186,9 +186,18 @@ impl FrameMeter {
     }
 
     /// The CPU the render threads got over the last two seconds, in cores
-    /// (less than the machine's when other programs run too).
+    /// (less than the machine's when other programs run too), counted from
+    /// the first frame after which they worked: a render started after an
+    /// idle spell read 0.06 cores over the whole span, which paced its
+    /// progress at 2 s, and with no redraw the estimate never caught up
+    /// (a 1.5 s render showed its first pass until it was done).
     fn render_cores(&self) -> Option<f32> {
-        let (&(start, first), &(end, last)) = (self.cpu_marks.front()?, self.cpu_marks.back()?);
+        let marks = &self.cpu_marks;
+        let active = marks
+            .iter()
+            .zip(marks.iter().skip(1))
+            .position(|((_, a), (_, b))| b.render > a.render)?;
+        let (&(start, first), &(end, last)) = (marks.get(active)?, marks.back()?);
         let wall = end.duration_since(start).as_secs_f32();
         let render = last.render.saturating_sub(first.render).as_secs_f32();
         (wall > 0.0).then(|| render / wall)
@@ -355,6 +364,34 @@ mod tests {
         let meter = run(20..30, 900 * MS, 900 * MS);
         assert_eq!(meter.cpu_per_frame(), Some(Duration::ZERO));
         assert_eq!(meter.progress_interval(), MIN_PROGRESS_INTERVAL);
+    }
+
+    #[test]
+    fn a_render_after_an_idle_spell_is_paced_by_the_cores_it_gets() {
+        let mut meter = FrameMeter::default();
+        let t0 = Instant::now();
+        let mut cpu = CpuTimes::default();
+        let mut frame = |at: Duration, cpu: CpuTimes| {
+            meter.begin(t0 + at, Some(0.010), Some(cpu));
+            meter.end(t0 + at + 5 * MS);
+        };
+        // An idle window: a frame now and then, 20 ms of CPU each.
+        for i in 0..4 {
+            frame(500 * MS * i, cpu);
+            cpu.process += 20 * MS;
+        }
+        // Then a render on two cores, a frame every 100 ms.
+        for i in 0..3 {
+            frame(2000 * MS + 100 * MS * i, cpu);
+            cpu.process += 220 * MS;
+            cpu.render += 200 * MS;
+        }
+        frame(2300 * MS, cpu);
+        assert_eq!(meter.cpu_per_frame(), Some(20 * MS));
+        // 20 ms * 10 / 2 cores, not the 20 ms * 10 / 0.26 cores of the whole
+        // span (a 770 ms wait).
+        let interval = meter.progress_interval().as_secs_f32();
+        assert!((interval - 0.100).abs() < 2e-3, "{interval}");
     }
 
     #[test]
