@@ -38,6 +38,7 @@ fn lower_threads_named(matches: impl Fn(&str) -> bool) -> usize {
     let Some(process_nice) = nice_of(0) else {
         return 0;
     };
+    let target = (process_nice + NICENESS).min(19);
     let mut lowered = 0;
     for task in tasks.flatten() {
         let Some(tid) = task.file_name().to_str().and_then(|t| t.parse().ok()) else {
@@ -47,7 +48,6 @@ fn lower_threads_named(matches: impl Fn(&str) -> bool) -> usize {
         if !matches(name.trim_end()) {
             continue;
         }
-        let target = (process_nice + NICENESS).min(19);
         if nice_of(tid).is_some_and(|nice| nice < target) && set_nice(tid, target) {
             lowered += 1;
         }
