@@ -31,7 +31,7 @@ const SPHERES: u32 = 3;
 const TRIANGLES: u32 = 4;
 
 /// Primitives tested at once: the lanes of a `Vec4`.
-const LANES: usize = 4;
+pub(super) const LANES: usize = 4;
 
 /// One primitive: a sphere is `a = (centre, radius)`; a triangle is
 /// `a = (v0, parallel_eps)`, `b = e1`, `c = e2`; `b.w` is the kind and
@@ -306,6 +306,10 @@ fn group_id(group: &[PackedShape], lane: u32) -> u32 {
 fn group_size(group: &[PackedShape]) -> u64 {
     group[0].b.x.to_bits() as u64
 }
+
+/// The fewest triangles a leaf tests in groups (the BVH build's cost
+/// model needs it).
+pub(super) const MIN_GROUPED_TRIANGLES: usize = Triangles::MIN;
 
 /// How many of a leaf's spheres and of its triangles go into groups: all
 /// of a kind when the leaf has at least [`Group::MIN`] of them, else none.
