@@ -116,8 +116,8 @@ impl BuildTree {
 }
 
 /// What the SAH needs of a set of primitives: the box around them, the
-/// box around their centroids and how many are triangles. Gathered by the partition that makes the
-/// set, so a child costs no pass of its own.
+/// box around their centroids and how many are triangles. Gathered by the
+/// partition that makes the set, so a child costs no pass of its own.
 #[derive(Clone, Copy)]
 struct Extent {
     bounds: Aabb,
@@ -303,7 +303,7 @@ impl Bins {
     /// a centroid `c` is `(c - origin) * scale`, clamped to `last_bin`.
     /// Triangles are counted apart only when `TRIANGLES` (a node mixing
     /// triangles and other shapes; in the others they are all or none).
-    /// In place: a node's bins are 3.4 KB, too much to move by value.
+    /// In place: a node's bins are 3.8 KB, too much to move by value.
     #[inline]
     fn add<const TRIANGLES: bool>(
         &mut self,
