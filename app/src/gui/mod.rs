@@ -69,6 +69,9 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
             // The graphics device exists now, and with it the threads of a
             // software rasterizer if there is no GPU.
             paint_priority::lower_software_rasterizer();
+            if let Some(render_state) = &cc.wgpu_render_state {
+                settle_animations(&cc.egui_ctx, render_state.adapter.get_info().device_type);
+            }
             let app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
             Ok(Box::new(match plan {
                 Some(plan) => app.with_screenshot(plan, app_outcome),
@@ -96,6 +99,18 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
             "the window closed before the screenshot {} was taken",
             plan.path.display()
         ),
+    }
+}
+
+/// On a software rasterizer (a CPU "device": no GPU) egui animates
+/// nothing: each frame there costs the render ~25 ms of CPU, and the
+/// scroll bars fading in as the panels fill drew 10 frames during
+/// mount_very_high's 0.3 s first render where the progress pace asked for
+/// four (window/headless rays/s 0.70 -> 0.81). Transitions are instant
+/// instead. With a GPU, frames are cheap and animations stay.
+fn settle_animations(ctx: &egui::Context, device: eframe::wgpu::DeviceType) {
+    if device == eframe::wgpu::DeviceType::Cpu {
+        ctx.all_styles_mut(|style| style.animation_time = 0.0);
     }
 }
 
@@ -136,6 +151,32 @@ mod tests {
             );
             assert!(shader.contains(&format!("override {constant}: bool")));
             assert!(renderer.contains(&format!("\"{constant}\"")));
+        }
+    }
+
+    /// Software rasterizers get instant transitions (dark and light
+    /// themes alike), GPUs keep egui's.
+    #[test]
+    fn animations_settle_on_a_software_rasterizer_only() {
+        use super::settle_animations;
+        use eframe::wgpu::DeviceType;
+        use egui::Theme;
+        let animation_times = |device: Option<DeviceType>| {
+            let ctx = egui::Context::default();
+            if let Some(device) = device {
+                settle_animations(&ctx, device);
+            }
+            [Theme::Dark, Theme::Light].map(|theme| ctx.style_of(theme).animation_time)
+        };
+        let usual = animation_times(None);
+        assert!(usual.iter().all(|&t| t > 0.0));
+        assert_eq!(animation_times(Some(DeviceType::Cpu)), [0.0; 2]);
+        for gpu in [
+            DeviceType::DiscreteGpu,
+            DeviceType::IntegratedGpu,
+            DeviceType::VirtualGpu,
+        ] {
+            assert_eq!(animation_times(Some(gpu)), usual, "{gpu:?}");
         }
     }
 }
