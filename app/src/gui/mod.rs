@@ -106,7 +106,7 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
 /// nothing: each frame there costs the render ~25 ms of CPU, and the
 /// scroll bars fading in as the panels fill drew 10 frames during
 /// mount_very_high's 0.3 s first render where the progress pace asked for
-/// four (window/headless rays/s 0.70 -> 0.81). Transitions are instant
+/// four (window/headless rays/s 0.70 -> 0.84). Transitions are instant
 /// instead. With a GPU, frames are cheap and animations stay.
 fn settle_animations(ctx: &egui::Context, device: eframe::wgpu::DeviceType) {
     if device == eframe::wgpu::DeviceType::Cpu {
