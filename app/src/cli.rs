@@ -121,9 +121,9 @@ pub struct SweepArgs {
     #[arg(long)]
     pub generator: Option<String>,
     /// Structures to measure (default: grid for grid-m, all three for
-    /// level, else the scene's).
-    #[arg(long, value_enum, value_delimiter = ',')]
-    pub structures: Option<Vec<AccelArg>>,
+    /// level, else the scene's or --accel's).
+    #[arg(long, value_parser = accel_kind, value_delimiter = ',')]
+    pub structures: Option<Vec<AccelKind>>,
     /// Frames per point; the median and min..max are reported.
     #[arg(long, default_value_t = 3)]
     pub runs: usize,
@@ -139,6 +139,8 @@ pub struct SweepArgs {
     pub reference_spp: Option<u32>,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
@@ -158,15 +160,15 @@ pub struct GenArgs {
     /// level 2 is 91 spheres).
     #[arg(long)]
     pub level: Option<u32>,
-    /// Seed of the generator's randomness.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// Seed of the generator's randomness (default 0).
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Output file (default: standard output); a folder for `sky`.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Side of each sky face in pixels.
-    #[arg(long, default_value_t = 512)]
-    pub size: u32,
+    /// Side of each sky face in pixels (default 512), for `sky`.
+    #[arg(long)]
+    pub size: Option<u32>,
 }
 
 #[derive(Args, Debug)]
@@ -187,9 +189,9 @@ pub struct BenchArgs {
     /// deviation are reported.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
-    /// Structures to measure (default: none, grid, bvh).
-    #[arg(long, value_enum, value_delimiter = ',')]
-    pub structures: Option<Vec<AccelArg>>,
+    /// Structures to measure (default: --accel's, or none, grid and bvh).
+    #[arg(long, value_parser = accel_kind, value_delimiter = ',')]
+    pub structures: Option<Vec<AccelKind>>,
     /// Measure the seed's matrix: structure x soft shadows x {one sample,
     /// AA, AA with depth of field}.
     #[arg(long)]
@@ -205,6 +207,8 @@ pub struct BenchArgs {
     pub thumbnail: Option<u32>,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
@@ -296,6 +300,8 @@ pub struct CompareArgs {
     pub view: ViewArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
@@ -333,6 +339,8 @@ pub struct RenderArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
@@ -356,6 +364,12 @@ pub struct RenderArgs {
     /// Which of the --pixel's samples (the pass that traces it, from 0).
     #[arg(long, default_value_t = 0, value_name = "K", requires = "pixel")]
     pub sample: u32,
+}
+
+/// `--accel NAME` and each of `--structures A,B`.
+fn accel_kind(text: &str) -> Result<AccelKind, String> {
+    text.parse()
+        .map_err(|e: tracer::accel::UnknownAccel| e.to_string())
 }
 
 fn parse_overlay(text: &str) -> Result<StructureLayer, String> {
@@ -438,23 +452,6 @@ pub enum StatsFormat {
     Json,
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum AccelArg {
-    None,
-    Grid,
-    Bvh,
-}
-
-impl From<AccelArg> for AccelKind {
-    fn from(a: AccelArg) -> Self {
-        match a {
-            AccelArg::None => AccelKind::None,
-            AccelArg::Grid => AccelKind::Grid,
-            AccelArg::Bvh => AccelKind::Bvh,
-        }
-    }
-}
-
 /// Overrides of the scene's own settings; anything left out keeps the
 /// scene's value (or the tracer's default).
 #[derive(Args, Debug, Default, Clone)]
@@ -495,18 +492,35 @@ pub struct SettingsArgs {
     /// Ambient light intensity (default 0.1).
     #[arg(long)]
     pub ambient: Option<f32>,
-    /// Acceleration structure.
-    #[arg(long, value_enum)]
-    pub accel: Option<AccelArg>,
+    /// Acceleration structure: none, grid (the course's uniform grid) or
+    /// bvh.
+    #[arg(long, value_parser = accel_kind)]
+    pub accel: Option<AccelKind>,
     /// Uniform grid cell multiplier m.
     #[arg(long, value_name = "M")]
     pub grid_m: Option<f32>,
     /// Seed of the random numbers.
     #[arg(long)]
     pub seed: Option<u64>,
+}
+
+/// How images are written: what the commands that write images take
+/// beside the settings (`inspect` writes none).
+#[derive(Args, Debug, Default, Clone)]
+pub struct EncodingArgs {
     /// Encode the output with the sRGB curve instead of writing linear values.
     #[arg(long)]
     pub srgb: bool,
+}
+
+impl EncodingArgs {
+    pub fn encoding(&self) -> Encoding {
+        if self.srgb {
+            Encoding::Srgb
+        } else {
+            Encoding::Linear
+        }
+    }
 }
 
 /// The settings flags alone, to read `compare --a "..."` strings with the
@@ -516,16 +530,18 @@ pub struct SettingsArgs {
 struct SettingsLine {
     #[command(flatten)]
     settings: SettingsArgs,
+    #[command(flatten)]
+    encoding: EncodingArgs,
 }
 
 impl SettingsArgs {
-    /// Reads settings flags from one string, as `workbench render` takes
-    /// them ("--accel grid --grid-m 4 --aa"). Values never hold spaces, so
+    /// Reads settings flags (and `--srgb`) from one string, as `workbench
+    /// render` takes them ("--accel grid --grid-m 4 --aa"). Values never hold spaces, so
     /// whitespace separates the words. The error names the bad flag or
     /// value, e.g. "unexpected argument '--fast' found".
-    pub fn parse_str(text: &str) -> Result<SettingsArgs, String> {
+    pub fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
         SettingsLine::try_parse_from(text.split_whitespace())
-            .map(|line| line.settings)
+            .map(|line| (line.settings, line.encoding))
             .map_err(|e| {
                 let message = e.render().to_string();
                 let first = message.lines().next().unwrap_or_default();
@@ -573,21 +589,13 @@ impl SettingsArgs {
             s.ambient = a;
         }
         if let Some(a) = self.accel {
-            s.accel = a.into();
+            s.accel = a;
         }
         if let Some(m) = self.grid_m {
             s.grid_multiplier = m;
         }
         if let Some(seed) = self.seed {
             s.seed = seed;
-        }
-    }
-
-    pub fn encoding(&self) -> Encoding {
-        if self.srgb {
-            Encoding::Srgb
-        } else {
-            Encoding::Linear
         }
     }
 }
@@ -612,7 +620,9 @@ mod tests {
 
     #[test]
     fn settings_parse_from_a_string() {
-        let args = SettingsArgs::parse_str("--accel grid  --grid-m 4 --aa --spp 4").unwrap();
+        let (args, encoding) =
+            SettingsArgs::parse_str("--accel grid  --grid-m 4 --aa --spp 4 --srgb").unwrap();
+        assert_eq!(encoding.encoding(), Encoding::Srgb);
         let mut s = RenderSettings::default();
         args.apply(&mut s);
         assert_eq!(s.accel, AccelKind::Grid);

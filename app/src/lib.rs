@@ -10,11 +10,6 @@ pub mod measure;
 pub mod output;
 pub mod report;
 
-/// Scratch folders for unit tests, shared with `tests/` (one file).
-#[cfg(test)]
-#[path = "../../tests/common/scratch.rs"]
-mod scratch;
-
 use clap::Parser;
 
 /// Parses the command line and runs what it asks for: a subcommand, or the

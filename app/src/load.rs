@@ -231,7 +231,7 @@ mod tests {
     /// flat background, and a warning that says so.
     #[test]
     fn a_missing_sky_folder_falls_back_to_the_bundled_sky() {
-        let dir = crate::scratch::Scratch::new("load-sky");
+        let dir = tracer::scratch::Scratch::new("load-sky");
         let path = dir.join("scene.p3f");
         std::fs::write(&path, "env nowhere\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n").unwrap();
         let (_, world) = load_source(&SceneSource::File(path)).unwrap();
@@ -248,7 +248,7 @@ mod tests {
     /// A bare mesh opens as a framed scene: camera, lights, ground, mesh.
     #[test]
     fn a_bare_obj_opens_framed() {
-        let dir = crate::scratch::Scratch::new("load-obj");
+        let dir = tracer::scratch::Scratch::new("load-obj");
         let path = dir.join("tri.obj");
         std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
         let source = SceneSource::File(path);

@@ -66,7 +66,7 @@ mod tests {
     /// The film's float values, HDR ones included, come back exactly.
     #[test]
     fn exr_round_trips_linear_values() {
-        let dir = crate::scratch::Scratch::new("output-exr");
+        let dir = tracer::scratch::Scratch::new("output-exr");
         let path = dir.join("film.EXR");
         assert!(is_exr(&path) && !is_exr(&dir.join("film.png")));
         let values = [[0.0, 0.5, 1.0], [4.25, 0.001, 1e-6], [1234.5, 0.25, 2.0]];

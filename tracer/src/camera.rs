@@ -26,6 +26,7 @@ pub enum CameraError {
 /// Where the camera stands and looks: what a viewer changes when the user
 /// orbits, pans or dollies. The field of view and lens stay the scene's.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CameraPose {
     pub from: Vec3,
     pub at: Vec3,

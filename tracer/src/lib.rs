@@ -17,7 +17,5 @@ pub mod skybox;
 pub mod stats;
 pub mod world;
 
-/// Scratch folders for unit tests, shared with `tests/` (one file).
-#[cfg(test)]
-#[path = "../../tests/common/scratch.rs"]
-mod scratch;
+#[cfg(any(test, feature = "test-util"))]
+pub mod scratch;

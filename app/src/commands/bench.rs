@@ -3,7 +3,7 @@
 
 use std::sync::atomic::AtomicBool;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
 use tracer::render::RenderSettings;
 
@@ -21,10 +21,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     settings.antialiasing = false;
     settings.depth_of_field = false;
     args.settings.apply(&mut settings);
-    let encoding = args.settings.encoding();
-    let accels: Vec<AccelKind> = match &args.structures {
-        Some(list) => list.iter().map(|&a| a.into()).collect(),
-        None => vec![AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
+    let encoding = args.encoding.encoding();
+    let accels: Vec<AccelKind> = match (&args.structures, args.settings.accel) {
+        (Some(list), None) => list.clone(),
+        (None, Some(accel)) => vec![accel],
+        (None, None) => AccelKind::ALL.to_vec(),
+        (Some(_), Some(_)) => {
+            bail!("--accel and --structures both choose what to time: give one of them")
+        }
     };
     let (cases, layout) = if args.matrix {
         if args.settings.spp.is_none() {

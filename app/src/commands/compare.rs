@@ -19,15 +19,15 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let loaded = load_scene(&args.scene)?;
     let base = RenderSettings::from_scene(&loaded.scene);
     let side = |name: &str, flags: &str| -> Result<Case> {
-        let own =
+        let (own, own_encoding) =
             SettingsArgs::parse_str(flags).map_err(|e| anyhow!("--{name} \"{flags}\": {e}"))?;
         let mut settings = base.clone();
         args.settings.apply(&mut settings);
         own.apply(&mut settings);
-        let encoding = if own.srgb {
-            own.encoding()
+        let encoding = if own_encoding.srgb {
+            own_encoding.encoding()
         } else {
-            args.settings.encoding()
+            args.encoding.encoding()
         };
         Ok(Case {
             label: name.to_uppercase(),

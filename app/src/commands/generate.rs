@@ -13,23 +13,42 @@ use crate::output::save_png;
 
 pub fn run(args: &GenArgs) -> Result<()> {
     if args.name.eq_ignore_ascii_case("sky") {
+        for (given, flag) in [
+            (args.level.is_some(), "--level"),
+            (args.seed.is_some(), "--seed"),
+        ] {
+            if given {
+                bail!("{flag} does not apply to the sky: it has one look (--size sets its faces)");
+            }
+        }
         return paint_sky(args);
+    }
+    if let Some(size) = args.size {
+        bail!(
+            "--size {size} does not apply to {}: it sets the sky's faces",
+            args.name
+        );
     }
     let name: GeneratorName = args.name.parse().with_context(|| {
         let names: Vec<&str> = GeneratorName::ALL.iter().map(|g| g.name()).collect();
         format!("choose one of: {}, sky", names.join(", "))
     })?;
+    if args.seed.is_some() && !generate::uses_seed(name) {
+        bail!(
+            "--seed does not apply to {name}: it draws nothing at random (mount, tree and gears do)"
+        );
+    }
     let level = args.level.unwrap_or_else(|| generate::default_level(name));
     let scene = generate::generate(
         name,
         &GenerateOptions {
             level,
-            seed: args.seed,
+            seed: args.seed.unwrap_or(0),
         },
     )?;
     let text = format!(
         "# {}\n{}",
-        describe(name, level, args.seed),
+        describe(name, level, args.seed.unwrap_or(0)),
         write_p3f(&scene)
     );
     match &args.output {
@@ -43,12 +62,15 @@ pub fn run(args: &GenArgs) -> Result<()> {
     Ok(())
 }
 
+/// Side of each sky face in pixels unless `--size` says otherwise.
+const DEFAULT_SKY_SIZE: u32 = 512;
+
 fn paint_sky(args: &GenArgs) -> Result<()> {
     let Some(dir) = &args.output else {
         bail!("`workbench gen sky` needs -o FOLDER for the six faces");
     };
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let size = args.size.clamp(8, 4096);
+    let size = args.size.unwrap_or(DEFAULT_SKY_SIZE).clamp(8, 4096);
     for (image, face) in sky::paint_sky(size).iter().zip(FACE_NAMES) {
         save_png(image, &dir.join(format!("{face}.png")))?;
     }

@@ -20,7 +20,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let loaded = load_scene(&args.scene)?;
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);
-    let encoding = args.settings.encoding();
+    let encoding = args.encoding.encoding();
     super::warn_brute_force(&settings, &loaded.world.counts);
 
     let on_pass = match &args.progressive_out {

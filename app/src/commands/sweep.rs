@@ -57,7 +57,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     let values =
         values::parse(&values_text).with_context(|| format!("--values `{values_text}`"))?;
     let structures: Vec<AccelKind> = match &args.structures {
-        Some(list) => list.iter().map(|&a| a.into()).collect(),
+        Some(list) => list.clone(),
         None => args.param.default_structures(base.accel),
     };
     let study = Study {
@@ -68,7 +68,7 @@ pub fn run(args: &SweepArgs) -> Result<()> {
             runs: args.runs.max(1),
             threads: args.threads,
         },
-        encoding: args.settings.encoding(),
+        encoding: args.encoding.encoding(),
         reference_samples: args.reference_spp,
     };
     study.check(&subject)?;

@@ -146,9 +146,18 @@ impl WorkbenchApp {
             state,
         };
         let restoring = initial.is_none() && app.state.last_scene.is_some();
-        let source = initial
-            .or_else(|| app.state.last_scene.clone())
-            .or_else(default_scene);
+        let last_scene = match app.state.last_scene.clone() {
+            Some(SceneSource::File(path)) if restoring && !path.exists() => {
+                app.notify(format!(
+                    "{} is gone: the last scene of the previous session was moved or deleted",
+                    path.display()
+                ));
+                None
+            }
+            last => last,
+        };
+        let restoring = restoring && last_scene.is_some();
+        let source = initial.or(last_scene).or_else(default_scene);
         if let Some(source) = source {
             app.adopt_next_scene = !restoring;
             app.engine.load(source);
@@ -277,7 +286,7 @@ impl WorkbenchApp {
     }
 
     /// Writes the displayed render, at its full resolution, to `path`.
-    pub fn save_to(&self, path: &Path) -> anyhow::Result<()> {
+    pub fn save_png_to(&self, path: &Path) -> anyhow::Result<()> {
         let snapshot = self
             .image
             .shown()
@@ -286,6 +295,29 @@ impl WorkbenchApp {
             .to_image()
             .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))?;
         save_png(&image, path)
+    }
+
+    /// Writes the linear film of the render on screen to `path` (OpenEXR).
+    pub fn save_exr_to(&self, path: &Path) -> anyhow::Result<()> {
+        let film = self
+            .engine
+            .linear_image()
+            .ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))?;
+        save_exr(&film, path)
+    }
+
+    /// Side B shows the image at `path` (PNG, JPEG or EXR), as "Compare
+    /// with image..." does with the file picked; an unreadable file is
+    /// reported in the window.
+    pub fn compare_with_image(&mut self, path: &Path) {
+        if let Some(compare) = &mut self.compare {
+            compare.open_reference(path, self.state.controls.encoding());
+        }
+    }
+
+    /// Files opened recently, newest first.
+    pub fn recent_files(&self) -> &[PathBuf] {
+        &self.state.recent
     }
 
     fn is_camera_moving(&self) -> bool {

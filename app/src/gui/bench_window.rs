@@ -95,11 +95,7 @@ impl BenchWindow {
             samples: benchmark::MATRIX_SAMPLES,
             ..base.clone()
         };
-        self.cases = benchmark::matrix(
-            &base,
-            &[AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
-            Encoding::Srgb,
-        );
+        self.cases = benchmark::matrix(&base, &AccelKind::ALL, Encoding::Srgb);
         self.rows.clear();
         self.message = None;
         let cases = self.cases.clone();

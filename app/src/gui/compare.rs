@@ -133,6 +133,18 @@ impl Compare {
         self.forget_results();
     }
 
+    /// Makes the image at `path` side B; why it cannot be read shows under
+    /// the reference controls.
+    pub fn open_reference(&mut self, path: &std::path::Path, encoding: tracer::render::Encoding) {
+        match ReferenceImage::open(path, encoding) {
+            Ok(reference) => {
+                self.picking_error = None;
+                self.set_reference(Some(reference));
+            }
+            Err(message) => self.picking_error = Some(message),
+        }
+    }
+
     /// Whether the reference image is resized to A's size.
     pub fn set_fit(&mut self, fit: bool) {
         if let Some(reference) = &mut self.reference {

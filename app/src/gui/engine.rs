@@ -481,7 +481,7 @@ mod tests {
     #[test]
     fn a_large_mesh_reports_how_much_is_read_while_it_loads() {
         // About 10 MB of OBJ: progress comes every 4 MB.
-        let dir = crate::scratch::Scratch::new("engine-mesh");
+        let dir = tracer::scratch::Scratch::new("engine-mesh");
         let path = dir.join("big.obj");
         let mut text = String::new();
         for i in 0..150_000 {

@@ -32,7 +32,6 @@ use super::state::Controls;
 const THUMBNAIL: u32 = 96;
 /// How close (screen points) the pointer must be to a point to pick it.
 const PICK_RADIUS: f32 = 14.0;
-const STRUCTURES: [AccelKind; 3] = [AccelKind::None, AccelKind::Grid, AccelKind::Bvh];
 
 /// What the study thread tells the window.
 enum Update {
@@ -366,14 +365,14 @@ impl StudiesWindow {
         });
         ui.horizontal(|ui| {
             ui.label("structures");
-            for accel in STRUCTURES {
+            for accel in AccelKind::ALL {
                 let mut on = self.structures.contains(&accel);
                 if ui.checkbox(&mut on, accel.name()).changed() {
                     self.structures.retain(|&a| a != accel);
                     if on {
                         self.structures.push(accel);
                         self.structures
-                            .sort_by_key(|a| STRUCTURES.iter().position(|s| s == a));
+                            .sort_by_key(|a| AccelKind::ALL.iter().position(|s| s == a));
                     }
                 }
             }
@@ -747,7 +746,7 @@ mod tests {
             after_frame: &never,
         };
         let outcome = study::run(&study, &subject, stop, &mut |_| {}).unwrap();
-        let dir = crate::scratch::Scratch::new("study-export");
+        let dir = tracer::scratch::Scratch::new("study-export");
         let written = write_export(&dir, Param::Depth, &outcome.points, "tiny.p3f").unwrap();
         assert_eq!(written, dir.join("study-depth-tiny"));
         let csv = std::fs::read_to_string(written.join("table.csv")).unwrap();

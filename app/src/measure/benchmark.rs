@@ -448,12 +448,10 @@ fn run_cases(
 mod tests {
     use super::*;
 
-    const ALL: [AccelKind; 3] = [AccelKind::None, AccelKind::Grid, AccelKind::Bvh];
-
     #[test]
     fn the_matrix_has_the_seed_reports_shape() {
         let base = RenderSettings::default();
-        let cases = matrix(&base, &ALL, Encoding::Linear);
+        let cases = matrix(&base, &AccelKind::ALL, Encoding::Linear);
         assert_eq!(cases.len(), 18);
         // The seed's order: structure, then shadows, then sampling.
         let first: Vec<String> = cases[..6].iter().map(Case::file_stem).collect();
@@ -478,7 +476,9 @@ mod tests {
             ..base
         };
         assert_eq!(
-            matrix(&lens, &ALL, Encoding::Linear)[2].settings.aperture,
+            matrix(&lens, &AccelKind::ALL, Encoding::Linear)[2]
+                .settings
+                .aperture,
             3.0
         );
         assert_eq!(matrix(&lens, &[AccelKind::Grid], Encoding::Linear).len(), 6);

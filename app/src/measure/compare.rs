@@ -295,7 +295,7 @@ mod tests {
     /// every channel 10 levels off gives MSE 100 and PSNR 10 log10(255^2/100).
     #[test]
     fn a_reference_image_measures_against_a_known_image() {
-        let dir = crate::scratch::Scratch::new("compare-ref");
+        let dir = tracer::scratch::Scratch::new("compare-ref");
         let render = RgbImage::from_pixel(8, 6, Rgb([100, 150, 200]));
         let png = dir.join("ref.png");
         RgbImage::from_pixel(8, 6, Rgb([110, 140, 210]))

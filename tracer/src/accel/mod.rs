@@ -25,17 +25,39 @@ pub use visits::{Traversal, Visit};
 
 /// Which structure to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum AccelKind {
-    /// Test every primitive: the seed's baseline.
+    /// Test every primitive: the course's baseline.
     None,
-    /// The seed's uniform grid.
+    /// The course's uniform grid (Amanatides-Woo traversal, multiplier m).
     Grid,
     /// A bounding volume hierarchy.
     #[default]
     Bvh,
 }
 
+/// A structure's name that is none of `none`, `grid`, `bvh`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("no structure '{0}'; structures: none, grid, bvh")]
+pub struct UnknownAccel(pub String);
+
+impl std::str::FromStr for AccelKind {
+    type Err = UnknownAccel;
+
+    /// Reads the names [`AccelKind::name`] gives, as the command line and
+    /// reports spell them.
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        AccelKind::ALL
+            .into_iter()
+            .find(|kind| kind.name() == name)
+            .ok_or_else(|| UnknownAccel(name.to_string()))
+    }
+}
+
 impl AccelKind {
+    /// Every structure, slowest first.
+    pub const ALL: [AccelKind; 3] = [AccelKind::None, AccelKind::Grid, AccelKind::Bvh];
+
     /// The name the command line and reports use: `none`, `grid`, `bvh`.
     pub fn name(self) -> &'static str {
         match self {

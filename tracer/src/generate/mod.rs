@@ -159,8 +159,17 @@ pub fn default_level(name: GeneratorName) -> u32 {
     }
 }
 
+/// Whether `name` draws anything at random, so that a seed changes it:
+/// the others build the same scene whatever the seed.
+pub fn uses_seed(name: GeneratorName) -> bool {
+    matches!(
+        name,
+        GeneratorName::Mount | GeneratorName::Tree | GeneratorName::Gears
+    )
+}
+
 /// Generates the scene `name` at `options.level`, with randomness drawn
-/// from `options.seed` (only mount, tree and gears use it).
+/// from `options.seed` (only where [`uses_seed`]).
 pub fn generate(name: GeneratorName, options: &GenerateOptions) -> Result<Scene, GenerateError> {
     let level = options.level;
     let range = level_range(name);

@@ -8,6 +8,11 @@ use crate::scene::Scene;
 
 /// What to render and how.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default)
+)]
 pub struct RenderSettings {
     pub width: u32,
     pub height: u32,

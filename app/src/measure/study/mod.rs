@@ -166,7 +166,7 @@ impl Param {
     pub fn default_structures(self, current: AccelKind) -> Vec<AccelKind> {
         match self {
             Param::GridM => vec![AccelKind::Grid],
-            Param::Level => vec![AccelKind::None, AccelKind::Grid, AccelKind::Bvh],
+            Param::Level => AccelKind::ALL.to_vec(),
             _ => vec![current],
         }
     }

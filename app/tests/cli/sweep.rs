@@ -2,34 +2,15 @@
 //! chart, the level study on small levels, the spp study's error columns,
 //! bad input, and Ctrl-C keeping what was measured.
 
-mod common;
-
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use common::{scratch, workbench, workbench_fails, workbench_ok, write};
-
-/// Two spheres on a floor under a point light.
-const SCENE: &str = "\
-v
-from 0 -7 2.5
-at 0 0 0.8
-up 0 0 1
-angle 40
-hither 0.01
-resolution 48 32
-l 4 -3 6 1 1 1
-f 0.7 0.7 0.7 1 1 1 1 0.1 10 0 1
-p 4
--6 -6 0  6 -6 0  6 6 0  -6 6 0
-f 0.9 0.2 0.1 0.8 1 1 1 0.3 40 0.5 1
-s -1 1 1 1
-s 1.2 -1 0.8 0.8
-";
+use crate::support::scenes::spheres_on_a_floor;
+use crate::support::{scratch, workbench, workbench_fails, workbench_ok, write};
 
 fn scene(dir: &Path) -> PathBuf {
-    write(dir, "scene.p3f", SCENE)
+    write(dir, "scene.p3f", &spheres_on_a_floor(48, 32, "", ""))
 }
 
 #[test]

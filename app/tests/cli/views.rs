@@ -1,38 +1,16 @@
 //! End-to-end tests of the views: `render --view` and `compare --view`.
 
-mod common;
-
-use common::{scratch, workbench, write};
+use crate::support::scenes::RED_SPHERE_ON_A_BOX;
+use crate::support::{scratch, workbench, workbench_ok, write};
 use tracer::render::{HEAT_PALETTE, NO_VALUE};
-
-/// A red sphere on a grey slab (a box) under one light.
-const SMALL_SCENE: &str = "\
-bclr 0.1 0.2 0.4
-v from 0 -6 2 at 0 0 0.5 up 0 0 1 angle 40 hither 0.01 resolution 48 32
-l 3 -3 6 1 1 1
-f 0.6 0.6 0.6 1 1 1 1 0 10 0 1
-box -5 -5 -0.2 5 5 0
-f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
-s 0 0 1 1
-";
-
-fn run_ok(args: &[&str]) -> String {
-    let run = workbench(args);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    String::from_utf8_lossy(&run.stdout).into_owned()
-}
 
 #[test]
 fn render_view_writes_a_heat_map_with_its_legend_and_numbers() {
     let dir = scratch("view-tests");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let out = dir.join("tests.png");
     let (scene, out_str) = (scene.to_str().unwrap(), out.to_str().unwrap());
-    let stdout = run_ok(&[
+    let stdout = workbench_ok(&[
         "render", scene, "-o", out_str, "--view", "tests", "--accel", "none", "--stats", "json",
     ]);
     let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
@@ -66,13 +44,13 @@ fn render_view_writes_a_heat_map_with_its_legend_and_numbers() {
 #[test]
 fn render_views_scale_log_and_colour_views() {
     let dir = scratch("view-kinds");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let scene = scene.to_str().unwrap();
     let out = dir.join("v.png");
     let out_str = out.to_str().unwrap();
 
     // No structure: no steps anywhere.
-    let stdout = run_ok(&[
+    let stdout = workbench_ok(&[
         "render", scene, "-o", out_str, "--view", "steps", "--accel", "none",
     ]);
     assert!(
@@ -81,7 +59,7 @@ fn render_views_scale_log_and_colour_views() {
     );
 
     // A fixed scale tops out: everything above it is the palette's end.
-    run_ok(&[
+    workbench_ok(&[
         "render",
         scene,
         "-o",
@@ -95,7 +73,7 @@ fn render_views_scale_log_and_colour_views() {
     assert_eq!(img.get_pixel(0, 0), &HEAT_PALETTE.colour(1.0));
 
     // Distance: the sky has no value.
-    let stdout = run_ok(&[
+    let stdout = workbench_ok(&[
         "render", scene, "-o", out_str, "--view", "distance", "--log",
     ]);
     assert!(stdout.contains("(log)"), "{stdout}");
@@ -103,7 +81,7 @@ fn render_views_scale_log_and_colour_views() {
     assert_eq!(img.get_pixel(0, 0).0, NO_VALUE[..3]);
 
     // Objects: a colour image without a legend, the sky black.
-    let stdout = run_ok(&["render", scene, "-o", out_str, "--view", "objects"]);
+    let stdout = workbench_ok(&["render", scene, "-o", out_str, "--view", "objects"]);
     assert!(stdout.contains("view objects: colours"), "{stdout}");
     let img = image::open(&out).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (48, 32));
@@ -130,7 +108,7 @@ fn compare_views_share_one_scale() {
     let dir = scratch("view-compare");
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/balls_low.p3f");
     let out = dir.join("cmp.png");
-    let stdout = run_ok(&[
+    let stdout = workbench_ok(&[
         "compare",
         scene,
         "-o",
@@ -178,11 +156,11 @@ fn compare_views_share_one_scale() {
 #[test]
 fn inspect_prints_the_ray_tree_as_json_and_as_text() {
     let dir = scratch("inspect");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let scene = scene.to_str().unwrap();
     // Above the centre the eye ray meets the red sphere: object 1, after
     // the slab.
-    let stdout = run_ok(&["inspect", scene, "--pixel", "24", "11", "--format", "json"]);
+    let stdout = workbench_ok(&["inspect", scene, "--pixel", "24", "11", "--format", "json"]);
     let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(json["pixel"], serde_json::json!([24, 11]));
     let nodes = json["nodes"].as_array().unwrap();
@@ -211,7 +189,7 @@ fn inspect_prints_the_ray_tree_as_json_and_as_text() {
     }
 
     // The floor behind the sphere is in its shadow: blocked by the sphere.
-    let stdout = run_ok(&["inspect", scene, "--pixel", "20", "19"]);
+    let stdout = workbench_ok(&["inspect", scene, "--pixel", "20", "19"]);
     assert!(
         stdout.starts_with("pixel (20, 19), sample 0: colour"),
         "{stdout}"
@@ -235,7 +213,7 @@ fn inspect_prints_the_ray_tree_as_json_and_as_text() {
 #[test]
 fn render_overlay_draws_the_structure_over_the_image() {
     let dir = scratch("overlay");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let scene = scene.to_str().unwrap();
     let out = dir.join("o.png");
     let out_str = out.to_str().unwrap();
@@ -243,19 +221,19 @@ fn render_overlay_draws_the_structure_over_the_image() {
         let img = image::open(path).unwrap().to_rgb8();
         img.pixels().filter(|p| p.0 == [80, 255, 120]).count()
     };
-    run_ok(&["render", scene, "-o", out_str]);
+    workbench_ok(&["render", scene, "-o", out_str]);
     assert_eq!(wire(&out), 0);
-    run_ok(&["render", scene, "-o", out_str, "--overlay", "bvh:0"]);
+    workbench_ok(&["render", scene, "-o", out_str, "--overlay", "bvh:0"]);
     let root = wire(&out);
     assert!(root > 50, "{root}");
-    run_ok(&["render", scene, "-o", out_str, "--overlay", "grid"]);
+    workbench_ok(&["render", scene, "-o", out_str, "--overlay", "grid"]);
     let grid = wire(&out);
     assert!(
         grid > root,
         "the lattice draws more than one box: {grid} vs {root}"
     );
     // Over a view too, with the legend kept below.
-    run_ok(&[
+    workbench_ok(&[
         "render",
         scene,
         "-o",
@@ -289,10 +267,10 @@ fn walked_cells(json: &serde_json::Value) -> Vec<[i64; 3]> {
 #[test]
 fn inspect_lists_the_cells_and_nodes_the_eye_ray_visited() {
     let dir = scratch("inspect-visits");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let scene = scene.to_str().unwrap();
     let inspect = |accel: &str| {
-        let stdout = run_ok(&[
+        let stdout = workbench_ok(&[
             "inspect", scene, "--pixel", "24", "11", "--accel", accel, "--format", "json",
         ]);
         serde_json::from_str::<serde_json::Value>(&stdout).unwrap()
@@ -318,7 +296,7 @@ fn inspect_lists_the_cells_and_nodes_the_eye_ray_visited() {
     );
     assert!(inspect("none")["eye_visits"].as_array().unwrap().is_empty());
 
-    let text = run_ok(&["inspect", scene, "--pixel", "24", "11", "--accel", "grid"]);
+    let text = workbench_ok(&["inspect", scene, "--pixel", "24", "11", "--accel", "grid"]);
     let heading = format!("eye ray walked {} grid cells:", cells.len());
     assert!(text.contains(&heading), "{text}");
     let [x, y, z] = cells[0];
@@ -331,13 +309,13 @@ fn inspect_lists_the_cells_and_nodes_the_eye_ray_visited() {
 #[test]
 fn render_overlay_highlights_the_pixels_eye_ray_walk() {
     let dir = scratch("overlay-pixel");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let scene = scene.to_str().unwrap();
     let (plain, walk) = (dir.join("plain.png"), dir.join("walk.png"));
     let render = |out: &std::path::Path, extra: &[&str]| {
         let mut args = vec!["render", scene, "-o", out.to_str().unwrap()];
         args.extend_from_slice(extra);
-        run_ok(&args);
+        workbench_ok(&args);
         image::open(out).unwrap().to_rgb8()
     };
     for layer in ["grid", "bvh:1"] {

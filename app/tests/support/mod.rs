@@ -1,6 +1,6 @@
-//! Helpers shared by the end-to-end tests: run the real binary (killed if
-//! it hangs), make a scratch folder, write a scene into it.
-// Each test crate includes this module and uses only part of it.
+//! What both test binaries share: run the real binary (killed if it hangs,
+//! its pipes drained), make a scratch folder, write a scene into it.
+// Each test binary includes this module and uses only part of it.
 #![allow(dead_code)]
 
 use std::io::Read;
@@ -9,8 +9,9 @@ use std::process::{Command, Output, Stdio};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-mod scratch;
-pub use scratch::Scratch;
+pub mod scenes;
+
+pub use tracer::scratch::Scratch;
 
 /// Longest one `workbench` run of an end-to-end test may take before it is
 /// killed and the test fails: the slowest (a study, a large mesh on a

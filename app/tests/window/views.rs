@@ -2,31 +2,20 @@
 //! selector and its key, the scale shared by both sides of a comparison.
 
 use egui::accesskit::Role;
-use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::accel::Visit;
-use tracer::render::{JobState, View};
-use workbench::gui::{Activity, WorkbenchApp};
+use tracer::render::View;
 
-mod support;
-use support::{small_window_sized, wait_for, wait_for_scene};
+use crate::harness::{is_done, ready_window, wait_for};
 
 /// The window on balls_low, tall enough for the whole side panel.
-fn window() -> Harness<'static, WorkbenchApp> {
-    let mut harness = small_window_sized(Harness::builder(), [1280.0, 1400.0]);
-    wait_for_scene(&mut harness);
-    harness
-}
-
-fn done(app: &WorkbenchApp) -> bool {
-    let finished = |e: &workbench::gui::Engine| e.activity() == Activity::Job(JobState::Done);
-    finished(app.engine()) && app.comparison().is_none_or(|c| finished(&c.engine))
-}
+/// Tall enough for the view section's legend and numbers.
+const TALL: [f32; 2] = [1280.0, 1400.0];
 
 #[test]
 fn the_view_selector_makes_the_render_measure_the_chosen_view() {
-    let mut harness = window();
-    wait_for(&mut harness, "the shaded render", done);
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the shaded render", is_done);
     // The plain render measures nothing.
     assert_eq!(
         harness.state().engine().view_value(View::Tests, 10, 10),
@@ -37,7 +26,7 @@ fn the_view_selector_makes_the_render_measure_the_chosen_view() {
     harness.run_steps(3);
     assert_eq!(harness.state().views().view, View::Tests);
     wait_for(&mut harness, "the render with views", |app| {
-        done(app) && app.engine().view_value(View::Tests, 10, 10).is_some()
+        is_done(app) && app.engine().view_value(View::Tests, 10, 10).is_some()
     });
     wait_for(&mut harness, "the summary", |app| {
         app.views().summary(0).is_some()
@@ -68,13 +57,13 @@ fn the_view_selector_makes_the_render_measure_the_chosen_view() {
 
 #[test]
 fn both_sides_of_a_comparison_read_on_one_scale() {
-    let mut harness = window();
+    let mut harness = ready_window(TALL);
     harness.key_press(egui::Key::B);
     harness.run_steps(3);
     harness.key_press(egui::Key::G);
     harness.get_by_role_and_label(Role::Button, "tests").click();
     wait_for(&mut harness, "both sides' views", |app| {
-        done(app) && app.views().summary(0).is_some() && app.views().summary(1).is_some()
+        is_done(app) && app.views().summary(0).is_some() && app.views().summary(1).is_some()
     });
     harness.run_steps(2);
     let app = harness.state();
@@ -98,8 +87,8 @@ fn shadow_rays(tree: &tracer::render::RayTree) -> usize {
 
 #[test]
 fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
-    let mut harness = window();
-    wait_for(&mut harness, "the render", done);
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the render", is_done);
     // A click on the image pins the pixel under it (the centre here).
     harness.get_by_role_and_label(Role::Image, "Render").click();
     wait_for(&mut harness, "the tree", |app| {
@@ -146,8 +135,8 @@ fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
 
 #[test]
 fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
-    let mut harness = window();
-    wait_for(&mut harness, "the render", done);
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the render", is_done);
     assert_eq!(harness.state().overlay().segments(), 0);
     harness
         .get_by_role_and_label(Role::CheckBox, "Structure overlay")
@@ -164,7 +153,7 @@ fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
     // The grid: its box and lattice, once its structure is built.
     harness.key_press(egui::Key::G);
     wait_for(&mut harness, "the grid's lattice", |app| {
-        done(app) && app.overlay().segments() > 24
+        is_done(app) && app.overlay().segments() > 24
     });
     harness
         .get_by_role_and_label(Role::CheckBox, "Structure overlay")
@@ -175,8 +164,8 @@ fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
 
 #[test]
 fn an_inspected_pixel_draws_the_cells_its_eye_ray_walked() {
-    let mut harness = window();
-    wait_for(&mut harness, "the render", done);
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the render", is_done);
     let settings = harness.state().engine().settings().unwrap().clone();
     // The centre of balls_low: the eye ray meets the balls.
     harness
@@ -195,7 +184,7 @@ fn an_inspected_pixel_draws_the_cells_its_eye_ray_walked() {
     // The grid: its walk, once the grid is built and the tree recorded.
     harness.key_press(egui::Key::G);
     wait_for(&mut harness, "the grid walk", |app| {
-        done(app)
+        is_done(app)
             && matches!(
                 app.inspector().eye_visits().first(),
                 Some(Visit::Cell { .. })
@@ -213,7 +202,7 @@ fn an_inspected_pixel_draws_the_cells_its_eye_ray_walked() {
 
 #[test]
 fn a_cost_view_in_compare_mode_compares_values_not_colours() {
-    let mut harness = window();
+    let mut harness = ready_window(TALL);
     harness.key_press(egui::Key::B);
     harness.run_steps(3);
     // B traces the grid, A the BVH.
@@ -226,7 +215,7 @@ fn a_cost_view_in_compare_mode_compares_values_not_colours() {
         // The views' summaries are refitted at most every REFIT_INTERVAL:
         // wait for the fit over both finished images, not an earlier pass
         // (a first pass already has a count in every pixel).
-        done(app)
+        is_done(app)
             && app.comparison().is_some_and(|c| {
                 c.difference().is_some()
                     && c.value_difference().is_some()

@@ -2,36 +2,14 @@
 //! small scene (metrics zero for the same settings, positive otherwise)
 //! and `workbench bench` in every format, with and without `--matrix`.
 
-mod common;
-
 use std::path::Path;
 
-use common::{scratch, workbench, workbench_ok, write};
-
-/// A matte and a glass sphere on a floor under a point light: soft
-/// shadows, anti-aliasing and depth of field all change it.
-const SCENE: &str = "\
-bclr 0.2 0.3 0.5
-v
-from 0 -7 2.5
-at 0 0 0.8
-up 0 0 1
-angle 40
-hither 0.01
-resolution 48 48
-l 4 -3 6 1 1 1
-f 0.7 0.7 0.7 1 1 1 1 0.1 10 0 1
-p 4
--6 -6 0  6 -6 0  6 6 0  -6 6 0
-f 0.9 0.2 0.1 0.8 1 1 1 0.3 40 0 1
-s -1 1 1 1
-f 1 1 1 0.1 1 1 1 0.2 100 0.8 1.5
-s 1.2 -1 0.8 0.8
-";
+use crate::support::scenes::spheres_on_a_floor;
+use crate::support::{scratch, workbench, workbench_ok, write};
 
 /// `workbench compare` with `a` and `b` at 48x48, JSON metrics.
 fn compare(dir: &Path, a: &str, b: &str) -> serde_json::Value {
-    let scene = write(dir, "scene.p3f", SCENE);
+    let scene = write(dir, "scene.p3f", &spheres_on_a_floor(48, 48, "", ""));
     let out = dir.join("compare.png");
     let stdout = workbench_ok(&[
         "compare",
@@ -81,7 +59,7 @@ fn different_settings_measure_positive() {
 #[test]
 fn compare_prints_times_and_metrics_as_text() {
     let dir = scratch("compare-text");
-    let scene = write(&dir, "scene.p3f", SCENE);
+    let scene = write(&dir, "scene.p3f", &spheres_on_a_floor(48, 48, "", ""));
     let out = dir.join("c.png");
     let stdout = workbench_ok(&[
         "compare",
@@ -114,7 +92,7 @@ fn compare_prints_times_and_metrics_as_text() {
 #[test]
 fn a_bad_side_names_the_flag_and_writes_nothing() {
     let dir = scratch("compare-bad");
-    let scene = write(&dir, "scene.p3f", SCENE);
+    let scene = write(&dir, "scene.p3f", &spheres_on_a_floor(48, 48, "", ""));
     let out = dir.join("c.png");
     let run = workbench(&[
         "compare",
@@ -143,7 +121,7 @@ fn a_bad_side_names_the_flag_and_writes_nothing() {
 
 /// `workbench bench` on the scene at 32x32, one run per row.
 fn bench(dir: &Path, extra: &[&str]) -> String {
-    let scene = write(dir, "scene.p3f", SCENE);
+    let scene = write(dir, "scene.p3f", &spheres_on_a_floor(48, 48, "", ""));
     let mut args = vec![
         "bench",
         scene.to_str().unwrap(),
@@ -323,7 +301,7 @@ fn the_plain_bench_keeps_one_row_per_structure_in_every_format() {
 #[test]
 fn images_can_be_thumbnails() {
     let dir = scratch("bench-thumbnails");
-    let scene = write(&dir, "scene.p3f", SCENE);
+    let scene = write(&dir, "scene.p3f", &spheres_on_a_floor(48, 48, "", ""));
     let images = dir.join("thumbs");
     workbench_ok(&[
         "bench",

@@ -21,8 +21,7 @@ use tracer::render::JobState;
 use workbench::gui::{Activity, Command, WorkbenchApp};
 use workbench::load::SceneSource;
 
-mod support;
-use support::{DroppedPath, broken_scene, small_window, wait_for};
+use crate::harness::{DroppedPath, broken_scene, small_window, wait_for};
 
 /// Events of the short version, run by `cargo test`.
 const SHORT_SOAK: usize = 300;

@@ -4,18 +4,16 @@
 //! limits that need huge files or odd settings are checked through the
 //! library or the command line's overrides instead.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::Duration;
 
-use common::{output_within, scratch};
+use crate::support::{output_within, scratch};
 
 use tracer::scene::{Limits, ParseErrorKind, parse_scene, parse_scene_file};
 
 fn corpus() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/bad_scenes")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenes")
 }
 
 /// Longest a single `workbench render` of a small scene may run before it

@@ -8,8 +8,7 @@ use egui_kittest::kittest::Queryable;
 use tracer::accel::AccelKind;
 use workbench::gui::WorkbenchApp;
 
-mod support;
-use support::{small_window_sized, wait_for, wait_for_scene};
+use crate::harness::{small_window_sized, wait_for, wait_for_scene};
 
 type Window = Harness<'static, WorkbenchApp>;
 

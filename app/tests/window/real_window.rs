@@ -3,13 +3,11 @@
 //! --ignored`). Without a display they are skipped, as `cargo test` alone
 //! cannot open a window.
 
-mod common;
-
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
+use std::time::Duration;
 
-use common::Scratch;
+use crate::support::{Scratch, output_within};
 use image::RgbImage;
 
 /// The viewport's background where no image is drawn (see `gui::viewport`).
@@ -20,25 +18,13 @@ const PATIENCE: Duration = Duration::from_secs(300);
 /// The scene both the window and the headless render show.
 const SCENE: &str = "../scenes/balls_low.p3f";
 
-/// Runs `command`, killing it if it outlives [`PATIENCE`].
-fn run_bounded(command: &mut Command) -> Output {
-    let mut child = command
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the workbench binary runs");
-    let start = Instant::now();
-    while child.try_wait().expect("the child's status").is_none() {
-        if start.elapsed() > PATIENCE {
-            child.kill().ok();
-            panic!("{command:?} still runs after {PATIENCE:?}");
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    let output = child.wait_with_output().expect("the child's output");
+/// Runs `command` (killed if it outlives [`PATIENCE`]), which must succeed.
+fn run_bounded(command: Command) -> Output {
+    let shown = format!("{command:?}");
+    let output = output_within(command, PATIENCE).unwrap_or_else(|e| panic!("{shown}: {e}"));
     assert!(
         output.status.success(),
-        "{command:?} failed: {}",
+        "{shown} failed: {}",
         String::from_utf8_lossy(&output.stderr)
     );
     output
@@ -141,16 +127,12 @@ fn the_window_shows_the_final_render_of_the_requested_scene() {
     let dir = Scratch::new("window");
     let shot = dir.join("window.png");
     let reference = dir.join("reference.png");
-    run_bounded(
-        workbench(&dir)
-            .args(["--scene", SCENE, "--screenshot"])
-            .arg(&shot),
-    );
-    run_bounded(
-        workbench(&dir)
-            .args(["render", SCENE, "-o"])
-            .arg(&reference),
-    );
+    let mut window = workbench(&dir);
+    window.args(["--scene", SCENE, "--screenshot"]).arg(&shot);
+    run_bounded(window);
+    let mut render = workbench(&dir);
+    render.args(["render", SCENE, "-o"]).arg(&reference);
+    run_bounded(render);
 
     let shot_image = image::open(&shot).expect("the screenshot").to_rgb8();
     let reference_image = image::open(&reference).expect("the reference").to_rgb8();
@@ -163,4 +145,28 @@ fn the_window_shows_the_final_render_of_the_requested_scene() {
         "{wrong} of {total} pixels of the viewport differ from `workbench render` ({})",
         shot.display()
     );
+}
+
+/// `--screenshot-after`: the photograph waits for the delay, not for the
+/// render, and the window closes with the line saying what it shows.
+#[test]
+#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
+fn a_screenshot_after_a_delay_waits_for_the_delay() {
+    let dir = Scratch::new("window-delay");
+    let shot = dir.join("window.png");
+    let mut window = workbench(&dir);
+    window
+        .args(["--scene", SCENE, "--screenshot"])
+        .arg(&shot)
+        .args(["--screenshot-after", "2"]);
+    let start = std::time::Instant::now();
+    let output = run_bounded(window);
+    assert!(
+        start.elapsed() >= Duration::from_secs(2),
+        "taken before the delay"
+    );
+    let said = String::from_utf8_lossy(&output.stdout);
+    assert!(said.contains("saved screenshot"), "{said}");
+    let shot_image = image::open(&shot).expect("the screenshot").to_rgb8();
+    assert!(shot_image.width() >= 640, "the whole window");
 }

@@ -1,28 +1,28 @@
 //! What the window's kittest suites share: waiting on the window, and the
 //! broken scene a user drops on it.
-// Each suite compiles this module on its own and uses a part of it.
-#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
 use egui_kittest::{Harness, HarnessBuilder};
-use workbench::gui::WorkbenchApp;
+use tracer::render::JobState;
+use workbench::gui::{Activity, WorkbenchApp};
 use workbench::load::SceneSource;
 
-#[path = "../common/scratch.rs"]
-mod scratch;
-pub use scratch::Scratch;
+use crate::support::Scratch;
 
 /// Long enough for any render in these tests on a slow CI machine; only a
 /// guard against hanging, never a measure of speed.
 pub const PATIENCE: Duration = Duration::from_secs(180);
 
-/// The window (1280 x 820) on the bundled `balls_low` at 1/8 of its
+/// The window's usual size in these tests.
+pub const WINDOW: [f32; 2] = [1280.0, 820.0];
+
+/// The window ([`WINDOW`]) on the bundled `balls_low` at 1/8 of its
 /// resolution, 64 x 64, so renders are quick.
 pub fn small_window(builder: HarnessBuilder<WorkbenchApp>) -> Harness<'static, WorkbenchApp> {
-    small_window_sized(builder, [1280.0, 820.0])
+    small_window_sized(builder, WINDOW)
 }
 
 /// [`small_window`] at another window size (a taller side panel, say).
@@ -39,6 +39,20 @@ pub fn small_window_sized(
     });
     harness.state_mut().state_mut().controls.resolution_scale = 0.125;
     harness
+}
+
+/// [`small_window`] at `size`, once its scene shows and its structure is
+/// built ([`wait_for_scene`]): where most tests start.
+pub fn ready_window(size: [f32; 2]) -> Harness<'static, WorkbenchApp> {
+    let mut harness = small_window_sized(Harness::builder(), size);
+    wait_for_scene(&mut harness);
+    harness
+}
+
+/// Whether side A's render, and B's in compare mode, are done.
+pub fn is_done(app: &WorkbenchApp) -> bool {
+    let finished = |e: &workbench::gui::Engine| e.activity() == Activity::Job(JobState::Done);
+    finished(app.engine()) && app.comparison().is_none_or(|c| finished(&c.engine))
 }
 
 /// Steps the window until `done` holds (the render runs on other threads).

@@ -2,9 +2,7 @@
 //! rendered framed, the linear film as OpenEXR, and a reference image as
 //! side B of `workbench compare`.
 
-mod common;
-
-use common::{scratch, workbench, write};
+use crate::support::{scratch, workbench, write};
 
 /// A unit cube of quads, with a red MTL material beside it.
 const CUBE_OBJ: &str = "mtllib cube.mtl\nusemtl red\n\

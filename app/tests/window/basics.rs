@@ -16,16 +16,11 @@ use tracer::render::{Encoding, JobState, RenderSettings, Snapshot};
 use workbench::gui::{Activity, Compare, CompareView, WorkbenchApp};
 use workbench::load::SceneSource;
 
-mod support;
-use support::{DroppedPath, PATIENCE, broken_scene, small_window, wait_for, wait_for_scene};
+use crate::harness::{
+    DroppedPath, PATIENCE, WINDOW, broken_scene, is_done, ready_window, small_window, wait_for,
+};
 
 /// The window on the bundled `balls_low`, rendered small so tests are quick.
-fn window() -> Harness<'static, WorkbenchApp> {
-    let mut harness = small_window(Harness::builder());
-    wait_for_scene(&mut harness);
-    harness
-}
-
 /// Waits until the render is done and its last image is drawn (uploads
 /// are throttled).
 fn wait_for_final_image(harness: &mut Harness<'static, WorkbenchApp>) {
@@ -45,10 +40,6 @@ fn render_settings(harness: &Harness<'static, WorkbenchApp>) -> RenderSettings {
         .expect("a render job")
 }
 
-fn is_done(app: &WorkbenchApp) -> bool {
-    app.engine().activity() == Activity::Job(JobState::Done)
-}
-
 /// Runs enough frames for a command to reach the engine.
 fn settle(harness: &mut Harness<'static, WorkbenchApp>) {
     harness.run_steps(3);
@@ -56,7 +47,7 @@ fn settle(harness: &mut Harness<'static, WorkbenchApp>) {
 
 #[test]
 fn the_window_opens_the_requested_scene_and_renders_it() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     wait_for(&mut harness, "the render to finish", is_done);
     // The engine renders the scene asked for (the default is the showcase),
     // at its resolution (512 x 512) times the scale of 1/8.
@@ -76,7 +67,7 @@ fn each_toggle_changes_the_renderer_by_its_label_and_by_its_key() {
         ("Depth of field", egui::Key::D, |s| s.depth_of_field),
         ("Uniform grid", egui::Key::G, |s| s.accel == AccelKind::Grid),
     ];
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     for (label, key, flag) in toggles {
         let before = flag(&render_settings(&harness));
         harness
@@ -96,7 +87,7 @@ fn each_toggle_changes_the_renderer_by_its_label_and_by_its_key() {
 
 #[test]
 fn the_acceleration_choice_reaches_the_renderer() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     for (choice, kind) in [
         ("None", AccelKind::None),
         ("Uniform grid", AccelKind::Grid),
@@ -112,7 +103,7 @@ fn the_acceleration_choice_reaches_the_renderer() {
 
 #[test]
 fn sliders_change_the_render_settings() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     let before = render_settings(&harness);
     for label in ["Samples N", "Max depth", "Grid multiplier m"] {
         harness.get_by_role_and_label(Role::Slider, label).focus();
@@ -128,7 +119,7 @@ fn sliders_change_the_render_settings() {
 
 #[test]
 fn picking_a_scene_in_the_list_renders_it() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     harness.get_by_label("balls_medium").click();
     wait_for(&mut harness, "balls_medium to load", |app| {
         app.engine()
@@ -142,7 +133,7 @@ fn picking_a_scene_in_the_list_renders_it() {
 fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
     let (_folder, broken) = broken_scene("drop");
 
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     wait_for(&mut harness, "the first render", is_done);
     harness
         .input_mut()
@@ -166,7 +157,7 @@ fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
 
 #[test]
 fn the_statistics_panel_shows_the_work_done() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     wait_for_final_image(&mut harness);
     for name in ["Rays", "  eye", "  shadow", "Intersection tests"] {
         let value = statistic(&harness, name);
@@ -192,7 +183,7 @@ fn statistic(harness: &Harness<'static, WorkbenchApp>, name: &str) -> String {
 
 /// Where the window snapshots live; `UPDATE_SNAPSHOTS=1 cargo test --test
 /// gui` rewrites them on purpose (look at them before committing).
-const SNAPSHOTS: &str = "../tests/snapshots";
+const SNAPSHOTS: &str = "tests/snapshots";
 
 /// The window drawn by wgpu (Mesa's software Vulkan or GL on CI).
 fn drawn_window() -> Harness<'static, WorkbenchApp> {
@@ -379,7 +370,7 @@ fn snapshot_while_rendering() {
 fn snapshot_with_an_error_shown() {
     // A relative path from the test's working directory (app/), so the
     // message, and how it wraps, is the same on every machine.
-    let broken = PathBuf::from("../tests/bad_scenes/camera_angle_180.p3f");
+    let broken = PathBuf::from("tests/bad_scenes/camera_angle_180.p3f");
     let mut harness = drawn_window();
     wait_for(&mut harness, "the render to finish", is_done);
     harness.state_mut().open(SceneSource::File(broken.clone()));
@@ -405,7 +396,7 @@ fn both_done_and_measured(app: &WorkbenchApp) -> bool {
 
 #[test]
 fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     harness.key_press(egui::Key::B);
     settle(&mut harness);
     // B starts as a copy of A; the keys now edit B.
@@ -483,7 +474,7 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
 
 #[test]
 fn the_benchmark_matrix_fills_every_row_with_consistent_images() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     harness.key_press(egui::Key::M);
     settle(&mut harness);
     let runs = harness.get_by_role_and_label(Role::Slider, "runs each");
@@ -787,7 +778,7 @@ fn a_camera_move_never_shows_an_empty_view() {
 /// colour) instead of painting a panel-sized rectangle in every frame.
 #[test]
 fn the_panels_paint_no_background_of_their_own() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     harness.run_steps(2);
     let visuals = harness.ctx.global_style().visuals.clone();
     let clear = harness.state().clear_color(&visuals);
@@ -813,7 +804,7 @@ fn the_panels_paint_no_background_of_their_own() {
 /// shades in every frame: it is painted around the image only.
 #[test]
 fn the_viewport_paints_its_background_around_a_finished_image_only() {
-    let mut harness = window();
+    let mut harness = ready_window(WINDOW);
     wait_for_final_image(&mut harness);
     let settings = render_settings(&harness);
     let image = image_rect(&harness, settings.width, settings.height);

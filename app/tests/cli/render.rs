@@ -1,31 +1,12 @@
 //! End-to-end tests: the real `workbench` binary on scene files.
 
-mod common;
-
-use common::{scratch, workbench_fails, workbench_ok, write};
-
-/// A red sphere on a grey floor under one light, seen from above the floor.
-const SMALL_SCENE: &str = "\
-bclr 0.1 0.2 0.4
-v
-from 0 -6 2
-at 0 0 0.5
-up 0 0 1
-angle 40
-hither 0.01
-resolution 48 32
-l 3 -3 6 1 1 1
-f 0.6 0.6 0.6 1 1 1 1 0 10 0 1
-p 4
--5 -5 0  5 -5 0  5 5 0  -5 5 0
-f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
-s 0 0 1 1
-";
+use crate::support::scenes::RED_SPHERE_ON_A_BOX;
+use crate::support::{scratch, workbench_fails, workbench_ok, write};
 
 #[test]
 fn render_writes_the_scene_as_a_png() {
     let dir = scratch("render");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let out = dir.join("small.png");
     let stdout = workbench_ok(&[
         "render",
@@ -53,7 +34,7 @@ fn render_writes_the_scene_as_a_png() {
 #[test]
 fn overrides_change_the_size_and_stats_come_as_json() {
     let dir = scratch("json");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let out = dir.join("small.png");
     let stdout = workbench_ok(&[
         "render",
@@ -100,7 +81,7 @@ fn a_missing_scene_and_an_unwritable_output_are_errors() {
     assert!(stderr.contains("/nonexistent/scene.p3f"), "{stderr}");
 
     let dir = scratch("unwritable");
-    let scene = write(&dir, "small.p3f", SMALL_SCENE);
+    let scene = write(&dir, "small.p3f", RED_SPHERE_ON_A_BOX);
     let stderr = workbench_fails(&[
         "render",
         scene.to_str().unwrap(),

@@ -1,10 +1,10 @@
 //! Golden images: every scene in `scenes/` rendered small and compared with
-//! its reference in `tests/golden/`, plus a few variants that turn on what
+//! its reference in `app/tests/golden/`, plus a few variants that turn on what
 //! the scenes' own settings leave off (the grid, soft shadows, a wide
 //! lens with many samples, many anti-aliasing samples, sRGB output). See
-//! `tests/golden/README.md`.
+//! `app/tests/golden/README.md`.
 //!
-//! `WORKBENCH_BLESS=1 cargo test --test golden` rewrites the references on
+//! `WORKBENCH_BLESS=1 cargo test --test cli golden` rewrites the references on
 //! purpose; otherwise a missing reference is a failure. On a failure the new
 //! render and a difference heat map are written to `target/golden-diff/`.
 
@@ -236,7 +236,7 @@ fn every_scene_and_variant_matches_its_golden_image() {
         return;
     }
     let bless = std::env::var_os("WORKBENCH_BLESS").is_some_and(|v| v != "0");
-    let golden = root().join("tests/golden");
+    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
     let diffs = tmp.parent().unwrap_or(tmp).join("golden-diff");
     let mut failures = Vec::new();
@@ -260,7 +260,7 @@ fn every_scene_and_variant_matches_its_golden_image() {
             Ok(r) => r.to_rgb8(),
             Err(e) => {
                 failures.push(format!(
-                    "{name}: no reference {} ({e}); run WORKBENCH_BLESS=1 cargo test --test golden",
+                    "{name}: no reference {} ({e}); run WORKBENCH_BLESS=1 cargo test --test cli golden",
                     reference_path.display()
                 ));
                 continue;

@@ -2,9 +2,8 @@
 //! the test passes and stays, with its path printed, when the test fails,
 //! so daily test runs do not fill the disk and a failure can be inspected.
 //!
-//! One file for the whole workspace: `tests/common` uses it, and the unit
-//! tests of `tracer` and `workbench` include it by path (`#[path]`), as a
-//! crate's unit tests cannot reach `tests/`.
+//! One type for the whole workspace: `tracer`'s own unit tests use it, and
+//! `workbench`'s tests through the `test-util` feature.
 
 use std::ops::Deref;
 use std::path::{Path, PathBuf};

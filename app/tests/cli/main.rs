@@ -1,0 +1,15 @@
+//! The command line end to end: the real `workbench` binary run on scene
+//! files, one module per area. `cargo test --test cli`.
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod bad_scenes;
+mod compare;
+mod determinism;
+mod flags;
+mod golden;
+mod meshes_and_images;
+mod render;
+mod sweep;
+mod views;
