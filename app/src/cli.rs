@@ -64,7 +64,7 @@ pub enum Command {
     /// material, its shadow rays and what it added to the pixel.
     Inspect(InspectArgs),
     /// Time frames of a scene with each acceleration structure, or the
-    /// seed's whole timing matrix (--matrix).
+    /// course report's whole timing matrix (--matrix).
     Bench(BenchArgs),
     /// Render a scene with two settings (A and B) and compare them: times,
     /// rays, MSE, PSNR, FLIP and an A | B | difference image.
@@ -177,9 +177,9 @@ By default one row per structure, one sample per pixel and hard shadows
 unless the options ask for more: build time, memory, frame time, rays/s and
 work per ray.
 
---matrix reproduces the seed report's timing table (Figure 5.1): for each
+--matrix reproduces the course report's timing table (Figure 5.1): for each
 structure, hard and soft shadows, each with one sample, anti-aliasing (N x N
-with the seed's N = 4, or --spp N) and anti-aliasing with depth of field
+with the report's N = 4, or --spp N) and anti-aliasing with depth of field
 (the scene's aperture, or 8 pixels when it has none): 18 rows for none, grid
 and bvh. Other options (size, light size, focal, ...) apply to every row.")]
 pub struct BenchArgs {
@@ -192,7 +192,7 @@ pub struct BenchArgs {
     /// Structures to measure (default: --accel's, or none, grid and bvh).
     #[arg(long, value_parser = accel_kind, value_delimiter = ',')]
     pub structures: Option<Vec<AccelKind>>,
-    /// Measure the seed's matrix: structure x soft shadows x {one sample,
+    /// Measure the course report's matrix: structure x soft shadows x {one sample,
     /// AA, AA with depth of field}.
     #[arg(long)]
     pub matrix: bool,

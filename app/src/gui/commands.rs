@@ -125,7 +125,7 @@ impl Command {
             Command::SwapSides => "Exchange the two sides, images included",
             Command::CopyAToB => "Give B the settings of A",
             Command::ToggleBenchmark => {
-                "Time every structure x shadows x sampling on this scene, as the seed's table"
+                "Time every structure x shadows x sampling on this scene, as the course report's table"
             }
             Command::ToggleStudies => {
                 "Sweep one parameter (grid m, N, depth, ...) or a generated scene's size and chart the times"

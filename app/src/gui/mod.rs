@@ -1,42 +1,33 @@
 //! The window: an egui/eframe app (wgpu renderer) around the progressive
-//! renderer. `engine` is the only part that talks to the tracer.
+//! renderer. Its parts, one folder each: `sides` (A and B: an engine, the
+//! image on screen, the controls; the interface to the renderer), `app`
+//! (the frame: arrivals, commands, saving), `panels` (drawing, over
+//! narrow views of the state), `image` (the viewport and what is drawn
+//! over it), `comparison` (compare mode's layout and measures),
+//! `windows` (ray tree, benchmark, studies, help) and `platform` (frame
+//! pacing, CPU clocks, the software rasterizer, screenshots).
 
-mod accel_banner;
 mod app;
-mod background;
-mod bench_window;
 mod commands;
-mod compare;
-mod controls;
-mod engine;
-mod frame_meter;
-mod inspector;
-mod live_image;
-mod overlay;
-mod paint_priority;
-mod reference;
-mod scene_picker;
-mod screenshot;
-mod state;
-mod stats_panel;
-mod studies;
-mod view_select;
-mod viewport;
+mod comparison;
+mod image;
+mod panels;
+mod platform;
+mod sides;
+mod windows;
 
 use std::path::PathBuf;
 
 pub use app::WorkbenchApp;
-pub use bench_window::BenchWindow;
 pub use commands::Command;
-pub use compare::{Compare, CompareView};
-pub use engine::{Activity, Engine};
-pub use inspector::Inspector;
-pub use overlay::StructureOverlay;
-pub use reference::ReferenceImage;
-pub use screenshot::{ScreenshotOutcome, ScreenshotPlan};
-pub use state::{AccelChoice, Controls, Persisted};
-pub use studies::{Applied, StudiesWindow};
-pub use view_select::ViewChoice;
+pub use comparison::{Comparison, Layout, ReferenceImage};
+pub use image::pixel_views::PixelViews;
+pub use image::structure_overlay::StructureOverlay;
+pub use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
+pub use sides::{Activity, Controls, Engine, Side, SideId};
+pub use windows::benchmark::BenchWindow;
+pub use windows::ray_tree::Inspector;
+pub use windows::studies::{Applied, StudiesWindow};
 
 use crate::load::SceneSource;
 
@@ -68,7 +59,7 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
         Box::new(move |cc| {
             // The graphics device exists now, and with it the threads of a
             // software rasterizer if there is no GPU.
-            paint_priority::lower_software_rasterizer();
+            platform::paint_priority::lower_software_rasterizer();
             if let Some(render_state) = &cc.wgpu_render_state {
                 settle_animations(&cc.egui_ctx, render_state.adapter.get_info().device_type);
             }

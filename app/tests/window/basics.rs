@@ -13,7 +13,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::AccelKind;
 use tracer::render::{Encoding, JobState, RenderSettings, Snapshot};
-use workbench::gui::{Activity, Compare, CompareView, WorkbenchApp};
+use workbench::gui::{Activity, Layout, Side, WorkbenchApp};
 use workbench::load::SceneSource;
 
 use crate::harness::{
@@ -197,7 +197,7 @@ fn drawn_window() -> Harness<'static, WorkbenchApp> {
                 Some(SceneSource::Bundled("balls_low".into())),
             )
         });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.5;
+    harness.state_mut().controls_mut().resolution_scale = 0.5;
     harness
 }
 
@@ -302,16 +302,16 @@ fn snapshot_while_rendering() {
             .is_some_and(|s| s.source == SceneSource::Bundled("balls_high".into()))
     });
     {
-        let controls = &mut harness.state_mut().state_mut().controls;
-        controls.antialiasing = true;
-        controls.samples = 16;
-        controls.keep_refining = true;
+        let controls = harness.state_mut().controls_mut();
+        controls.render.antialiasing = true;
+        controls.render.samples = 16;
+        controls.render.keep_refining = true;
         // 1024 x 1024.
         controls.resolution_scale = 2.0;
     }
     // How far the render got changes every count in the statistics; the
     // finished-render snapshot covers that panel.
-    harness.state_mut().state_mut().show_stats = false;
+    harness.state_mut().set_statistics_shown(false);
     wait_for(&mut harness, "the scene list", |app| {
         app.is_catalog_complete() && app.engine().settings().is_some()
     });
@@ -382,16 +382,12 @@ fn snapshot_with_an_error_shown() {
     snapshot(&mut harness, "window_error");
 }
 
-fn comparison<'a>(harness: &'a Harness<'static, WorkbenchApp>) -> &'a Compare {
-    harness.state().comparison().expect("compare mode is on")
+fn side_b<'a>(harness: &'a Harness<'static, WorkbenchApp>) -> &'a Side {
+    harness.state().side_b().expect("compare mode is on")
 }
 
 fn both_done_and_measured(app: &WorkbenchApp) -> bool {
-    app.comparison().is_some_and(|c| {
-        c.engine.activity() == Activity::Job(JobState::Done)
-            && c.metrics().is_some()
-            && is_done(app)
-    })
+    app.comparison().is_some_and(|c| c.metrics().is_some()) && is_done(app)
 }
 
 #[test]
@@ -400,14 +396,11 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
     harness.key_press(egui::Key::B);
     settle(&mut harness);
     // B starts as a copy of A; the keys now edit B.
-    assert_eq!(
-        comparison(&harness).controls,
-        harness.state().state().controls
-    );
+    assert_eq!(&side_b(&harness).controls, harness.state().controls());
     harness.key_press(egui::Key::G);
     settle(&mut harness);
     assert_eq!(
-        comparison(&harness).engine.settings().unwrap().accel,
+        side_b(&harness).engine.settings().unwrap().accel,
         AccelKind::Grid
     );
     assert_eq!(render_settings(&harness).accel, AccelKind::Bvh, "A stays");
@@ -418,7 +411,14 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
         "both sides and their metrics",
         both_done_and_measured,
     );
-    let same = comparison(&harness).metrics().unwrap().clone().unwrap();
+    let same = harness
+        .state()
+        .comparison()
+        .unwrap()
+        .metrics()
+        .unwrap()
+        .clone()
+        .unwrap();
     assert_eq!(same.mse, 0.0);
     assert_eq!(same.flip, 0.0);
     assert!(
@@ -437,19 +437,26 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
     wait_for(&mut harness, "B with soft shadows", |app| {
         both_done_and_measured(app)
             && app
-                .comparison()
-                .is_some_and(|c| c.engine.settings().is_some_and(|s| s.soft_shadows))
+                .side_b()
+                .is_some_and(|b| b.engine.settings().is_some_and(|s| s.soft_shadows))
     });
-    let differ = comparison(&harness).metrics().unwrap().clone().unwrap();
+    let differ = harness
+        .state()
+        .comparison()
+        .unwrap()
+        .metrics()
+        .unwrap()
+        .clone()
+        .unwrap();
     assert!(differ.mse > 0.0 && differ.flip > 0.0, "{differ:?}");
     assert!(differ.psnr.is_finite());
 
-    for view in CompareView::ALL {
+    for layout in Layout::ALL {
         harness
-            .get_by_role_and_label(Role::Button, view.label())
+            .get_by_role_and_label(Role::Button, layout.label())
             .click();
         settle(&mut harness);
-        assert_eq!(comparison(&harness).view, view);
+        assert_eq!(harness.state().comparison().unwrap().layout, layout);
     }
     wait_for(&mut harness, "the difference map", |app| {
         app.comparison().is_some_and(|c| c.difference().is_some())
@@ -462,12 +469,12 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
     settle(&mut harness);
     let a = render_settings(&harness);
     assert!(a.soft_shadows && a.accel == AccelKind::Grid);
-    assert!(!comparison(&harness).engine.settings().unwrap().soft_shadows);
+    assert!(!side_b(&harness).engine.settings().unwrap().soft_shadows);
     // Copy A to B makes them equal again.
     harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::B);
     settle(&mut harness);
     assert_eq!(
-        comparison(&harness).engine.settings(),
+        side_b(&harness).engine.settings(),
         harness.state().engine().settings()
     );
 }
@@ -613,10 +620,10 @@ impl RepaintRequests {
 /// (four passes).
 fn small_drawn_window() -> Harness<'static, WorkbenchApp> {
     let mut harness = drawn_window();
-    let controls = &mut harness.state_mut().state_mut().controls;
+    let controls = harness.state_mut().controls_mut();
     controls.resolution_scale = 0.5;
-    controls.antialiasing = true;
-    controls.samples = 2;
+    controls.render.antialiasing = true;
+    controls.render.samples = 2;
     harness
 }
 
@@ -726,7 +733,7 @@ fn empty_share(harness: &mut Harness<'static, WorkbenchApp>, rect: egui::Rect) -
 #[test]
 fn a_camera_move_never_shows_an_empty_view() {
     let mut harness = drawn_window();
-    harness.state_mut().state_mut().controls.resolution_scale = 0.25;
+    harness.state_mut().controls_mut().resolution_scale = 0.25;
     wait_for_final_image(&mut harness);
     let settings = render_settings(&harness);
     let rect = image_rect(&harness, settings.width, settings.height);

@@ -37,7 +37,7 @@ pub fn small_window_sized(
             Some(SceneSource::Bundled("balls_low".into())),
         )
     });
-    harness.state_mut().state_mut().controls.resolution_scale = 0.125;
+    harness.state_mut().controls_mut().resolution_scale = 0.125;
     harness
 }
 
@@ -52,7 +52,7 @@ pub fn ready_window(size: [f32; 2]) -> Harness<'static, WorkbenchApp> {
 /// Whether side A's render, and B's in compare mode, are done.
 pub fn is_done(app: &WorkbenchApp) -> bool {
     let finished = |e: &workbench::gui::Engine| e.activity() == Activity::Job(JobState::Done);
-    finished(app.engine()) && app.comparison().is_none_or(|c| finished(&c.engine))
+    finished(app.engine()) && app.side_b().is_none_or(|b| finished(&b.engine))
 }
 
 /// Steps the window until `done` holds (the render runs on other threads).

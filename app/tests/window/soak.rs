@@ -325,10 +325,10 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
         }
         // Keep the renders small, as a user on a slow machine would: a
         // finer grid over mesh_large alone takes gigabytes, by design.
-        let controls = &mut harness.state_mut().state_mut().controls;
+        let controls = harness.state_mut().controls_mut();
         controls.resolution_scale = controls.resolution_scale.min(0.25);
-        controls.samples = controls.samples.min(3);
-        controls.grid_multiplier = controls.grid_multiplier.min(2.0);
+        controls.render.samples = controls.render.samples.min(3);
+        controls.render.grid_multiplier = controls.render.grid_multiplier.min(2.0);
     }
 
     if events >= SHORT_SOAK {
@@ -341,7 +341,7 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
 
     // Settle: no refining forever, not paused, nothing loading; then the
     // image on screen must be the final render of the final settings.
-    harness.state_mut().state_mut().controls.keep_refining = false;
+    harness.state_mut().controls_mut().render.keep_refining = false;
     // A drag may have put the keyboard focus in a text field (the Studies
     // window's values), which then takes the keys as text.
     harness.ctx.memory_mut(|m| m.stop_text_input());
@@ -382,7 +382,7 @@ fn a_random_session_ends_with_the_right_image_and_bounded_memory() {
         (settings.width, settings.height)
     );
     assert!(
-        shown.rgba == film.to_rgba8(app.state().controls.encoding()),
+        shown.rgba == film.to_rgba8(app.controls().encoding()),
         "the window shows another image than a headless render of {settings:?}"
     );
 

@@ -219,7 +219,9 @@ fn a_cost_view_in_compare_mode_compares_values_not_colours() {
             && app.comparison().is_some_and(|c| {
                 c.difference().is_some()
                     && c.value_difference().is_some()
-                    && app.views().is_fitted_to(app.engine(), Some(&c.engine))
+                    && app
+                        .views()
+                        .is_fitted_to(app.engine(), app.side_b().map(|b| &b.engine))
             })
     });
     // The numbers as they were when the condition held: later frames may

@@ -79,7 +79,7 @@ pub struct JobOptions {
     /// Let an interactive viewer's threads run first whenever they wake
     /// (batch scheduling on Linux, the lowest priority elsewhere), while
     /// render threads keep the share of the cores a headless render gets.
-    pub low_priority: bool,
+    pub yield_to_viewer: bool,
     /// Also measure the views (cost and what each pixel saw) into a
     /// [`ViewFilm`]; off, the render pays nothing for them.
     pub views: bool,
@@ -161,12 +161,12 @@ impl RenderJob {
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
         Frame::camera(&world, &settings)?;
-        let low_priority = options.low_priority;
+        let yield_to_viewer = options.yield_to_viewer;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads.unwrap_or(0))
             .thread_name(|i| format!("render-{i}"))
             .start_handler(move |_| {
-                if low_priority {
+                if yield_to_viewer {
                     yield_to_interactive_threads();
                 }
             })

@@ -77,29 +77,35 @@ impl Default for RenderSettings {
 
 impl RenderSettings {
     /// The settings a scene file asks for: its resolution, `spp`, `accel`,
-    /// `aperture` and `focal`; everything else at its default. The light
-    /// size defaults to a tenth of the camera's distance to `at`, so the
-    /// penumbra scales with the scene.
+    /// `aperture` and `focal`; everything else at its default.
     pub fn from_scene(scene: &Scene) -> Self {
+        let mut settings = Self::default();
+        settings.adopt_scene(scene);
+        settings
+    }
+
+    /// Takes what `scene` asks for (its resolution, `spp`, `accel`,
+    /// `aperture` and `focal`, and a light size that suits its scale) and
+    /// keeps every other field: how a viewer keeps its user's choices when
+    /// another scene opens. The light size is a tenth of the camera's
+    /// distance to `at`, so the penumbra scales with the scene.
+    pub fn adopt_scene(&mut self, scene: &Scene) {
         let view = &scene.view;
         let spp = scene.spp.unwrap_or(0);
-        Self {
-            width: view.width,
-            height: view.height,
-            antialiasing: spp > 0,
-            samples: if spp > 0 { spp } else { 4 },
-            depth_of_field: view.aperture > 0.0,
-            aperture: view.aperture,
-            focal: view.focal,
-            accel: match scene.accel {
-                Some(0) => AccelKind::None,
-                Some(1) => AccelKind::Grid,
-                _ => AccelKind::Bvh,
-            },
-            // Finite even for absurd (huge but finite) camera coordinates.
-            light_size: (0.1 * (view.at - view.from).length()).min(f32::MAX),
-            ..Self::default()
-        }
+        self.width = view.width;
+        self.height = view.height;
+        self.antialiasing = spp > 0;
+        self.samples = if spp > 0 { spp } else { 4 };
+        self.depth_of_field = view.aperture > 0.0;
+        self.aperture = view.aperture;
+        self.focal = view.focal;
+        self.accel = match scene.accel {
+            Some(0) => AccelKind::None,
+            Some(1) => AccelKind::Grid,
+            _ => AccelKind::Bvh,
+        };
+        // Finite even for absurd (huge but finite) camera coordinates.
+        self.light_size = (0.1 * (view.at - view.from).length()).min(f32::MAX);
     }
 
     /// Samples per pixel to reach the target: N x N when anti-aliasing or

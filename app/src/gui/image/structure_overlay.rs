@@ -9,7 +9,7 @@ use glam::Vec3A;
 use tracer::accel::{AccelKind, StructureLayer, Visit};
 use tracer::render::Frame;
 
-use super::engine::Engine;
+use crate::gui::sides::Engine;
 use crate::measure::overlay_image;
 
 /// The overlay's controls and the segments of the structure it draws.

@@ -2,13 +2,23 @@
 //! with tooltips, and the render actions.
 
 use egui::{Slider, Ui};
+use tracer::accel::AccelKind;
 use tracer::render::{MAX_DEPTH, MAX_GRID_MULTIPLIER};
 
-use super::commands::Command;
-use super::state::{AccelChoice, Controls};
+use crate::gui::commands::Command;
+use crate::gui::sides::Controls;
 
 /// Largest N offered by the slider (N x N samples per pixel).
 const SLIDER_MAX_SAMPLES: u32 = 16;
+
+/// A structure's name in the window.
+fn accel_label(kind: AccelKind) -> &'static str {
+    match kind {
+        AccelKind::None => "None",
+        AccelKind::Grid => "Uniform grid",
+        AccelKind::Bvh => "BVH",
+    }
+}
 
 /// A toggle bound to a command: clicking it records the command, so the
 /// key and the checkbox do exactly the same thing.
@@ -42,36 +52,36 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
     ui.heading("Rendering");
     command_toggle(
         ui,
-        controls.antialiasing,
+        controls.render.antialiasing,
         Command::ToggleAntialiasing,
         commands,
     );
     command_toggle(
         ui,
-        controls.soft_shadows,
+        controls.render.soft_shadows,
         Command::ToggleSoftShadows,
         commands,
     );
     command_toggle(
         ui,
-        controls.depth_of_field,
+        controls.render.depth_of_field,
         Command::ToggleDepthOfField,
         commands,
     );
     command_toggle(
         ui,
-        controls.accel == AccelChoice::Grid,
+        controls.render.accel == AccelKind::Grid,
         Command::ToggleGrid,
         commands,
     );
     ui.horizontal(|ui| {
         ui.label("Acceleration");
         egui::ComboBox::from_id_salt("accel")
-            .selected_text(controls.accel.label())
+            .selected_text(accel_label(controls.render.accel))
             .show_ui(ui, |ui| {
-                for choice in AccelChoice::ALL {
+                for choice in AccelKind::ALL {
                     if ui
-                        .selectable_label(controls.accel == choice, choice.label())
+                        .selectable_label(controls.render.accel == choice, accel_label(choice))
                         .clicked()
                     {
                         controls.set_accel(choice);
@@ -80,33 +90,37 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
             })
             .response
             .on_hover_text(
-                "None tests every object; the grid is the seed's; the BVH is the fastest",
+                "None tests every object; the uniform grid is the course's (a 3D-DDA walk, \
+                 Amanatides-Woo, cells set by m); the BVH is the fastest",
             );
     });
 
     ui.separator();
-    ui.add(Slider::new(&mut controls.samples, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
+    ui.add(Slider::new(&mut controls.render.samples, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
         .on_hover_text("N x N samples per pixel (and strata of the lens and of soft shadows)");
-    ui.add(Slider::new(&mut controls.aperture, 0.0..=64.0).text("Aperture (px)"))
+    ui.add(Slider::new(&mut controls.render.aperture, 0.0..=64.0).text("Aperture (px)"))
         .on_hover_text("Lens diameter in pixels; depth of field must be on");
     ui.add(
-        Slider::new(&mut controls.focal, 0.1..=4.0)
+        Slider::new(&mut controls.render.focal, 0.1..=4.0)
             .logarithmic(true)
             .text("Focal ratio"),
     )
     .on_hover_text("Distance of the sharp plane as a multiple of the view distance |at - from|");
     ui.add(
-        Slider::new(&mut controls.grid_multiplier, 0.1..=MAX_GRID_MULTIPLIER)
-            .logarithmic(true)
-            .text("Grid multiplier m"),
+        Slider::new(
+            &mut controls.render.grid_multiplier,
+            0.1..=MAX_GRID_MULTIPLIER,
+        )
+        .logarithmic(true)
+        .text("Grid multiplier m"),
     )
     .on_hover_text(
         "Cells per axis = trunc(m * dim * cbrt(objects / volume)) + 1; rebuilds the grid",
     );
-    ui.add(Slider::new(&mut controls.max_depth, 0..=MAX_DEPTH.min(16)).text("Max depth"))
+    ui.add(Slider::new(&mut controls.render.max_depth, 0..=MAX_DEPTH.min(16)).text("Max depth"))
         .on_hover_text("Bounces after the eye ray (reflection and refraction)");
     ui.add(
-        Slider::new(&mut controls.light_size, 0.0..=4.0)
+        Slider::new(&mut controls.render.light_size, 0.0..=4.0)
             .logarithmic(true)
             .text("Light size"),
     )
@@ -117,7 +131,7 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
             .text("Resolution scale"),
     )
     .on_hover_text("Image size relative to the scene's resolution");
-    ui.add(Slider::new(&mut controls.ambient, 0.0..=1.0).text("Ambient"))
+    ui.add(Slider::new(&mut controls.render.ambient, 0.0..=1.0).text("Ambient"))
         .on_hover_text("Ambient light times each surface's diffuse colour");
     ui.checkbox(&mut controls.srgb, "sRGB output")
         .on_hover_text(
@@ -139,7 +153,7 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
     });
     command_toggle(
         ui,
-        controls.keep_refining,
+        controls.render.keep_refining,
         Command::ToggleKeepRefining,
         commands,
     );

@@ -8,12 +8,12 @@ use std::time::{Duration, Instant};
 use egui::{Color32, Ui};
 use tracer::render::{HEAT_PALETTE, HeatScale, View, ViewHeatmap, ViewSummary};
 
-use super::engine::{Engine, Version};
+use crate::gui::sides::{Engine, Version};
 use crate::measure::view_image::format_number;
 
 /// What the user chose, and the scale fitted to what the engines measured.
 #[derive(Debug, Clone, Default)]
-pub struct ViewChoice {
+pub struct PixelViews {
     pub view: View,
     pub scale: HeatScale,
     pub log: bool,
@@ -46,7 +46,7 @@ impl From<HeatScale> for ScaleKey {
     }
 }
 
-impl ViewChoice {
+impl PixelViews {
     /// Whether renders must measure views: any view but the shaded image.
     pub fn measures(&self) -> bool {
         self.view != View::Shaded
@@ -195,7 +195,7 @@ fn legend(ui: &mut Ui, heat: &ViewHeatmap, view: View) {
 
 /// A horizontal bar `width` wide of `colour(t)` for `t` from 0 to 1, in
 /// `steps` cells: the legends of the views and of compare's difference.
-pub(super) fn colour_bar(ui: &mut Ui, width: f32, steps: u32, colour: impl Fn(f32) -> [u8; 3]) {
+pub(crate) fn colour_bar(ui: &mut Ui, width: f32, steps: u32, colour: impl Fn(f32) -> [u8; 3]) {
     let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 12.0), egui::Sense::hover());
     for i in 0..steps {
         let [r, g, b] = colour(i as f32 / (steps - 1) as f32);

@@ -5,15 +5,14 @@
 //! drawing never starves the render.
 //!
 //! What a frame costs is measured as the process's CPU time minus the render
-//! threads': a software rasterizer (llvmpipe) paints on threads of its own,
-//! after the UI thread has handed the frame over, so the UI thread's clock
-//! alone saw a tenth of it and let redraws take half the machine.
+//! threads' ([`super::cpu_clock`]).
 
-use std::cell::Cell;
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
+
+pub use super::cpu_clock::CpuTimes;
 
 /// The span over which frames are counted.
 const WINDOW: Duration = Duration::from_secs(1);
@@ -27,6 +26,28 @@ const PAINT_SHARE: u32 = 10;
 /// The span over which the CPU cost of frames is averaged: a software
 /// rasterizer finishes a frame well after the UI thread handed it over.
 const CPU_SPAN: Duration = Duration::from_secs(2);
+
+/// The frame meter and the progress pace it sets, frame by frame.
+#[derive(Default)]
+pub struct Pacing {
+    pub frame_meter: FrameMeter,
+    /// How often render progress may redraw the window.
+    pub progress_pace: ProgressPace,
+}
+
+impl Pacing {
+    /// A frame starts; `cpu_usage` is eframe's measure of the previous one.
+    pub fn begin(&mut self, cpu_usage: Option<f32>) {
+        self.frame_meter
+            .begin(Instant::now(), cpu_usage, CpuTimes::now());
+    }
+
+    /// The frame is drawn: the pace follows what frames cost.
+    pub fn end(&mut self) {
+        self.frame_meter.end(Instant::now());
+        self.progress_pace.set(self.frame_meter.progress_interval());
+    }
+}
 
 #[derive(Debug, Default, Clone)]
 pub struct FrameMeter {
@@ -43,67 +64,6 @@ pub struct FrameMeter {
     /// CPU times at the starts of the frames of the last [`CPU_SPAN`] (and
     /// one before it), where the OS tells them.
     cpu_marks: VecDeque<(Instant, CpuTimes)>,
-}
-
-/// CPU time used so far by the whole process and by its render threads.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct CpuTimes {
-    pub process: Duration,
-    pub render: Duration,
-}
-
-impl CpuTimes {
-    /// The times now; `None` where the OS has no per-process CPU clock.
-    pub fn now() -> Option<CpuTimes> {
-        Some(CpuTimes {
-            process: cpu_clock(CpuClock::Process)?,
-            render: Duration::from_nanos(RENDER_CPU_NANOS.load(Ordering::Relaxed)),
-        })
-    }
-}
-
-/// CPU time of every render thread so far, nanoseconds.
-static RENDER_CPU_NANOS: AtomicU64 = AtomicU64::new(0);
-
-/// Counts the CPU time the calling render thread used since its previous
-/// call as render time. Render threads call it with every progress report,
-/// so the window can tell its own cost from the render's.
-pub fn count_render_thread_cpu() {
-    thread_local! {
-        static COUNTED: Cell<Duration> = const { Cell::new(Duration::ZERO) };
-    }
-    let Some(now) = cpu_clock(CpuClock::Thread) else {
-        return;
-    };
-    let new = COUNTED.with(|counted| now.saturating_sub(counted.replace(now)));
-    RENDER_CPU_NANOS.fetch_add(new.as_nanos() as u64, Ordering::Relaxed);
-}
-
-enum CpuClock {
-    Process,
-    Thread,
-}
-
-/// CPU time used by the process or the calling thread.
-#[cfg(unix)]
-fn cpu_clock(clock: CpuClock) -> Option<Duration> {
-    let id = match clock {
-        CpuClock::Process => libc::CLOCK_PROCESS_CPUTIME_ID,
-        CpuClock::Thread => libc::CLOCK_THREAD_CPUTIME_ID,
-    };
-    let mut time = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime only writes the timespec it is given, which
-    // lives on this stack frame for the whole call.
-    let read = unsafe { libc::clock_gettime(id, &mut time) } == 0;
-    read.then(|| Duration::new(time.tv_sec as u64, time.tv_nsec as u32))
-}
-
-#[cfg(not(unix))]
-fn cpu_clock(_clock: CpuClock) -> Option<Duration> {
-    None
 }
 
 /// Cores the render and the window share.
@@ -392,23 +352,5 @@ mod tests {
         // span (a 770 ms wait).
         let interval = meter.progress_interval().as_secs_f32();
         assert!((interval - 0.100).abs() < 2e-3, "{interval}");
-    }
-
-    #[test]
-    fn render_threads_count_their_own_cpu_time() {
-        let before = CpuTimes::now().expect("CPU clocks on this OS");
-        std::thread::spawn(|| {
-            let mut x = 0u64;
-            while cpu_clock(CpuClock::Thread).unwrap() < 20 * MS {
-                x = std::hint::black_box(x.wrapping_mul(31).wrapping_add(1));
-            }
-            count_render_thread_cpu();
-        })
-        .join()
-        .unwrap();
-        let after = CpuTimes::now().unwrap();
-        let render = after.render - before.render;
-        assert!(render >= 20 * MS, "{render:?}");
-        assert!(after.process - before.process >= render);
     }
 }

@@ -9,7 +9,7 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use tracer::render::{Encoding, JobState, Snapshot, View, ViewHeatmap};
 
 use super::engine::{Activity, Engine, Version};
-use super::viewport::Layers;
+use crate::gui::image::viewport::Layers;
 
 /// Slowest refresh while a render's first pass has not covered the view.
 const FIRST_PASS_INTERVAL: Duration = Duration::from_millis(200);

@@ -8,7 +8,9 @@ use tracer::stats::{RenderStats, SceneCounts};
 
 use crate::report::si;
 
-use super::frame_meter::FrameMeter;
+use crate::gui::comparison::Comparison;
+use crate::gui::platform::frame_meter::FrameMeter;
+use crate::gui::sides::Sides;
 
 /// Everything the panel shows.
 pub struct StatsView<'a> {
@@ -18,6 +20,36 @@ pub struct StatsView<'a> {
     pub load_time: std::time::Duration,
     /// The window's own frame rate and work per frame.
     pub frame_meter: &'a FrameMeter,
+}
+
+/// The statistics panel: compare mode's numbers of both sides, then side
+/// A's statistics.
+pub fn panel(ui: &mut Ui, sides: &Sides, comparison: &Comparison, frame_meter: &FrameMeter) {
+    if let Some(b) = &sides.b {
+        ui.heading("Comparison");
+        super::comparison::numbers(ui, comparison, &sides.a, b);
+        ui.separator();
+    }
+    let a = &sides.a;
+    match (a.image.shown(), a.engine.scene()) {
+        (Some(shown), Some(scene)) => {
+            let accel = a.engine.accel_info();
+            show(
+                ui,
+                &StatsView {
+                    stats: &shown.stats,
+                    counts: &scene.world.counts,
+                    accel: accel.as_ref(),
+                    load_time: scene.load_time,
+                    frame_meter,
+                },
+            );
+        }
+        _ => {
+            ui.heading("Statistics");
+            ui.label("Nothing rendered yet.");
+        }
+    }
 }
 
 fn row(ui: &mut Ui, name: &str, value: String) -> egui::Response {

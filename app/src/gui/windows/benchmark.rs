@@ -168,7 +168,7 @@ impl BenchWindow {
 
     fn contents(&mut self, ui: &mut Ui, scene_name: &str, start: &mut bool) {
         ui.label(format!(
-            "The seed's timing table on {scene_name}: none / grid / BVH x hard / soft \
+            "The course report's timing table (its Figure 5.1) on {scene_name}: none / grid / BVH x hard / soft \
              shadows x one sample / AA 4x4 / AA 4x4 with depth of field, at the current \
              camera and size."
         ));

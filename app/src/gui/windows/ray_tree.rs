@@ -3,12 +3,11 @@
 //! toggles soft shadows or the grid and watches the tree change. In compare
 //! mode the same pixel is inspected on A and B.
 
-use egui::{Color32, Rect, Stroke, Ui, pos2};
-use glam::Vec3A;
+use egui::Ui;
 use tracer::accel::Visit;
-use tracer::render::{Frame, Outcome, RayKind, RayNode, RayTree, RenderSettings};
+use tracer::render::{RayTree, RenderSettings};
 
-use super::engine::Engine;
+use crate::gui::sides::Engine;
 use crate::measure::ray_tree_report::{
     self, describe_node, describe_visit, headline, triple, visits_heading,
 };
@@ -119,69 +118,6 @@ impl Inspector {
         if !open {
             self.pinned = None;
         }
-    }
-}
-
-impl Inspector {
-    /// Draws side A's tree over the image in `image_rect`: every ray from
-    /// its origin to its hit projected through the camera, coloured by
-    /// kind; shadow rays to their light sample, dashed when blocked; rays
-    /// that leave the scene as a short stub. Returns the segments drawn.
-    pub fn paint_paths(&self, ui: &Ui, engine: &Engine, image_rect: Rect) -> usize {
-        let (Some(Ok(tree)), Some(settings), Some(scene)) =
-            (self.tree(0), engine.settings(), engine.scene())
-        else {
-            return 0;
-        };
-        let Ok(camera) = Frame::camera(&scene.world, settings) else {
-            return 0;
-        };
-        let size = egui::vec2(settings.width as f32, settings.height as f32);
-        let to_screen = |p: Vec3A| {
-            let p = camera.project(p)?;
-            let s = image_rect.min + egui::vec2(p.x, p.y) / size * image_rect.size();
-            s.is_finite().then(|| pos2(s.x, s.y))
-        };
-        let stub = scene.world.bounds.extent().length().max(1.0) * 0.25;
-        let painter = ui
-            .painter()
-            .with_clip_rect(image_rect.intersect(ui.clip_rect()));
-        let mut drawn = 0;
-        for node in &tree.nodes {
-            let (end, blocked) = path_end(node, stub);
-            let (Some(a), Some(b)) = (to_screen(node.origin), to_screen(end)) else {
-                continue;
-            };
-            let stroke = Stroke::new(2.0, kind_colour(node.kind));
-            if blocked {
-                painter.extend(egui::Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
-            } else {
-                painter.line_segment([a, b], stroke);
-            }
-            drawn += 1;
-        }
-        drawn
-    }
-}
-
-/// Where a ray's drawn path ends, and whether it was blocked.
-fn path_end(node: &RayNode, stub: f32) -> (Vec3A, bool) {
-    match &node.outcome {
-        Outcome::Surface(s) => (s.point, false),
-        Outcome::Background => (node.origin + node.dir * stub, false),
-        Outcome::Light {
-            distance, occluder, ..
-        } => (node.origin + node.dir * *distance, occluder.is_some()),
-    }
-}
-
-/// The colour of each kind of ray, in the paths and nowhere else.
-fn kind_colour(kind: RayKind) -> Color32 {
-    match kind {
-        RayKind::Eye => Color32::from_rgb(255, 255, 255),
-        RayKind::Reflection => Color32::from_rgb(90, 200, 255),
-        RayKind::Refraction => Color32::from_rgb(255, 120, 220),
-        RayKind::Shadow => Color32::from_rgb(255, 220, 60),
     }
 }
 

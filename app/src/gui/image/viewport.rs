@@ -27,13 +27,13 @@ pub enum Gesture {
 
 /// Zoom and pan of the view; never restarts the render.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ViewState {
+pub struct Placement {
     pub zoom: Zoom,
     /// Offset of the image centre from the view centre, in points.
     pub offset: Vec2,
 }
 
-impl Default for ViewState {
+impl Default for Placement {
     fn default() -> Self {
         Self {
             zoom: Zoom::Fit,
@@ -89,7 +89,7 @@ pub struct SplitWith<'a> {
 /// right of its divider.
 pub fn show(
     ui: &mut egui::Ui,
-    view: &mut ViewState,
+    view: &mut Placement,
     layers: &Layers<'_>,
     split: Option<SplitWith<'_>>,
     image_size: [usize; 2],

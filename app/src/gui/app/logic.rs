@@ -1,0 +1,213 @@
+//! A frame's work that draws nothing: taking what arrived before drawing
+//! (a loaded scene, dialog replies, dropped files, the sides' new images),
+//! and after the commands ran, planning each side's settings and keeping
+//! the engines rendering them.
+
+use tracer::render::JobState;
+
+use crate::load::SceneSource;
+
+use super::WorkbenchApp;
+use super::saving::Reply;
+use crate::gui::panels::scene_list;
+use crate::gui::sides::Activity;
+
+impl WorkbenchApp {
+    /// Takes finished loads, dialogs, saves and dropped files, uploads the
+    /// sides' images and refreshes what the comparison measures of them.
+    pub(super) fn take_arrivals(&mut self, ctx: &egui::Context) {
+        for side in self.sides.each_mut() {
+            side.engine.collect_retired();
+        }
+        self.take_loaded_scene();
+        for reply in self.dialogs.take() {
+            match reply {
+                Reply::Open(path) => self.open(SceneSource::File(path)),
+                Reply::Notice(text) => self.messages.notify(text),
+                Reply::Error(text) => self.messages.error = Some(text),
+                Reply::Screenshot(result) => {
+                    if let Some(request) = &self.screenshot
+                        && let Ok(mut slot) = request.outcome.lock()
+                    {
+                        *slot = Some(result);
+                    }
+                    ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+                }
+            }
+        }
+        self.take_dropped_files(ctx);
+        self.comparison.receive_picked();
+        self.refresh_images(ctx);
+        self.count_scenes_when_due(ctx);
+        self.update_title(ctx);
+    }
+
+    /// A scene A finished loading: both sides show it, A's controls adopt
+    /// its settings unless the last session is being restored.
+    fn take_loaded_scene(&mut self) {
+        let Some(result) = self.sides.a.engine.poll_load() else {
+            return;
+        };
+        let loaded = match result {
+            Ok(loaded) => loaded.clone(),
+            Err(message) => {
+                self.messages.error = Some(message);
+                return;
+            }
+        };
+        if self.sides.adopt_loaded_scene {
+            self.sides.a.controls.adopt_scene(&loaded.scene);
+        }
+        self.sides.adopt_loaded_scene = true;
+        self.sides.follow_scene(&loaded);
+        self.comparison.forget_results();
+        self.sides.a.image.forget();
+        self.navigation.reset();
+        self.messages.error = None;
+        if let SceneSource::File(path) = &loaded.source {
+            self.session.remember(path.clone());
+        }
+        self.session.last_scene = Some(loaded.source.clone());
+        if !loaded.world.warnings.is_empty() {
+            self.messages.notify(loaded.world.warnings.join("; "));
+        }
+    }
+
+    /// Opens scene files dropped on the window.
+    fn take_dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped = ctx.input(|i| i.raw.dropped_files.clone());
+        for file in dropped {
+            let path = file.path();
+            if scene_list::is_scene_file(path) {
+                self.open(SceneSource::File(path.to_path_buf()));
+                return;
+            }
+            self.messages.notify(format!(
+                "{} is not a scene or mesh file (.p3f, .nff, .obj, .ply)",
+                path.display()
+            ));
+        }
+    }
+
+    /// Uploads each side's image at the progress pace (as the chosen view,
+    /// on one scale for both sides), then what the comparison measures.
+    fn refresh_images(&mut self, ctx: &egui::Context) {
+        let b = self.sides.b.as_ref().map(|b| &b.engine);
+        let shown = self.tools.views.fit(ctx, &self.sides.a.engine, b);
+        let interval = self.pacing.progress_pace.get();
+        for side in self.sides.each_mut() {
+            side.refresh(ctx, interval, shown);
+        }
+        if let Some(b) = &self.sides.b {
+            let view = shown.map(|(view, _)| view);
+            self.comparison.refresh(ctx, &self.sides.a, b, view);
+        }
+    }
+
+    /// Starts counting the bundled scenes for the list once A's first
+    /// render no longer needs the machine.
+    fn count_scenes_when_due(&mut self, ctx: &egui::Context) {
+        let a = &self.sides.a.engine;
+        // A scene just loaded renders later in this frame.
+        let busy = match a.activity() {
+            Activity::Loading { .. } | Activity::Job(JobState::Building | JobState::Rendering) => {
+                true
+            }
+            Activity::Idle => a.scene().is_some(),
+            Activity::Job(_) => false,
+        };
+        let (ctx, pace) = (ctx.clone(), self.pacing.progress_pace.clone());
+        self.scene_list
+            .count_when_due(busy, move || ctx.request_repaint_after(pace.get()));
+    }
+
+    fn update_title(&mut self, ctx: &egui::Context) {
+        let title = match self.sides.a.engine.scene() {
+            Some(s) => format!("Whitted Workbench — {}", s.source.label()),
+            None => "Whitted Workbench".into(),
+        };
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
+    }
+
+    /// Plans each side's settings for this frame (after the commands ran)
+    /// and keeps its engine rendering them; B renders nothing while it is
+    /// an image.
+    pub(super) fn keep_rendering(&mut self, ctx: &egui::Context) {
+        let (camera, moving) = (self.navigation.camera, self.navigation.is_camera_moving());
+        let views = self.tools.views.measures();
+        let b_is_image = self.comparison.reference().is_some();
+        for side in self.sides.each_mut() {
+            side.plan(camera, moving);
+            if side.id == crate::gui::sides::SideId::B && b_is_image {
+                continue;
+            }
+            if let Err(e) = side.render(views) {
+                self.messages.error = Some(e);
+            }
+        }
+        if let Some(failure) = self.sides.a.engine.take_failure() {
+            self.messages.error = Some(format!(
+                "the render failed: {failure}. The image so far stays; change a setting or \
+                 press R to render again"
+            ));
+        }
+        self.navigation.wake_when_settled(ctx);
+        if let Some(request) = &mut self.screenshot {
+            let error = self.messages.error.is_some();
+            request.take_when_due(ctx, &self.sides.a, error, &self.dialogs);
+        }
+    }
+
+    /// The benchmark matrix window, started on the current scene, camera
+    /// and size.
+    pub(super) fn benchmark_window(&mut self, ctx: &egui::Context) {
+        let bench = &mut self.tools.bench;
+        bench.receive(ctx);
+        if !bench.open {
+            return;
+        }
+        let a = &self.sides.a;
+        let name = a
+            .engine
+            .scene()
+            .map_or_else(|| "no scene".into(), |s| s.source.label());
+        let mut start = false;
+        bench.show(ctx, &name, &mut start);
+        if start && let (Some(scene), Some(base)) = (a.engine.scene(), a.settings()) {
+            let wake = ctx.clone();
+            bench.start(scene.world.clone(), base, move || wake.request_repaint());
+        }
+    }
+
+    /// The Studies window, started on the current scene, camera and size;
+    /// a point the user picks is shown in the main view.
+    pub(super) fn studies_window(&mut self, ctx: &egui::Context) {
+        let studies = &mut self.tools.studies;
+        studies.receive(ctx);
+        if !studies.open {
+            return;
+        }
+        let a = &self.sides.a;
+        let base = a.settings().cloned().unwrap_or_default();
+        let mut start = false;
+        let applied = studies.show(ctx, &base, &mut start);
+        if start {
+            let wake = ctx.clone();
+            let scene = a.engine.scene();
+            let name = scene.map_or_else(String::new, |s| s.source.label());
+            studies.start(
+                scene.map(|s| s.world.clone()),
+                &base,
+                &a.controls,
+                &name,
+                move || wake.request_repaint(),
+            );
+        }
+        if let Some(applied) = applied {
+            self.apply_study_point(&applied);
+        }
+    }
+}

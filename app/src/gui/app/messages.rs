@@ -1,0 +1,39 @@
+//! What the window tells the user: the error shown above the image until
+//! dismissed or replaced, and short notices that fade after a few seconds.
+
+use std::time::{Duration, Instant};
+
+/// How long a notice stays on screen.
+const NOTICE_TIME: Duration = Duration::from_secs(5);
+
+#[derive(Default)]
+pub struct Messages {
+    /// Shown above the image until dismissed.
+    pub error: Option<String>,
+    notice: Option<(String, Instant)>,
+}
+
+impl Messages {
+    /// Shows `text` for a few seconds.
+    pub fn notify(&mut self, text: impl Into<String>) {
+        self.notice = Some((text.into(), Instant::now()));
+    }
+
+    /// Draws the notice while it lasts, at the top of the window.
+    pub fn show_notice(&mut self, ctx: &egui::Context) {
+        let Some((text, since)) = &self.notice else {
+            return;
+        };
+        if since.elapsed() >= NOTICE_TIME {
+            self.notice = None;
+            return;
+        }
+        let text = text.clone();
+        egui::Area::new(egui::Id::unique("notice"))
+            .anchor(egui::Align2::CENTER_TOP, [0.0, 12.0])
+            .show(ctx, |ui| {
+                egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(text));
+            });
+        ctx.request_repaint_after(NOTICE_TIME - since.elapsed());
+    }
+}

@@ -1,0 +1,239 @@
+//! The workbench window: the two sides and what surrounds them. A frame
+//! takes what arrived (loads, dialogs, images: [`logic`]), draws the
+//! panels and windows, which record what the user asked as [`Command`]s,
+//! runs those ([`command_handling`]), then plans each side's settings and
+//! keeps the engines rendering them.
+
+mod command_handling;
+mod logic;
+mod messages;
+mod navigation;
+mod persisted;
+mod saving;
+mod testing;
+
+use crate::bundled;
+use crate::load::SceneSource;
+
+use super::commands::Command;
+use super::comparison::Comparison;
+use super::panels::scene_list::SceneList;
+use super::panels::side_panel::{self, SidePanelView};
+use super::panels::{central, stats, unfilled};
+use super::platform::frame_meter::Pacing;
+use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
+use super::sides::{SideId, Sides, Wakes};
+use super::windows::{Tools, help};
+use messages::Messages;
+use navigation::Navigation;
+use persisted::Session;
+use saving::{Dialogs, ScreenshotRequest};
+
+/// The window's state: the sides and everything around them.
+pub struct WorkbenchApp {
+    sides: Sides,
+    comparison: Comparison,
+    navigation: Navigation,
+    tools: Tools,
+    session: Session,
+    scene_list: SceneList,
+    messages: Messages,
+    dialogs: Dialogs,
+    pacing: Pacing,
+    /// The title last given to the window, to send it only when it changes
+    /// (every viewport command asks for one more frame).
+    title: String,
+    screenshot: Option<ScreenshotRequest>,
+}
+
+impl WorkbenchApp {
+    /// Creates the app, restoring the saved state when `storage` has one,
+    /// and starts loading `initial` (or the last scene, or the bundled
+    /// default).
+    pub fn new(
+        ctx: &egui::Context,
+        storage: Option<&dyn eframe::Storage>,
+        initial: Option<SceneSource>,
+    ) -> Self {
+        let (controls, session) = persisted::restore(storage);
+        let pacing = Pacing::default();
+        let mut app = Self {
+            sides: Sides::new(controls, Wakes::of(ctx, &pacing.progress_pace)),
+            comparison: Comparison::default(),
+            navigation: Navigation::default(),
+            tools: Tools::default(),
+            session,
+            scene_list: SceneList::default(),
+            messages: Messages::default(),
+            dialogs: Dialogs::default(),
+            pacing,
+            title: String::new(),
+            screenshot: None,
+        };
+        let last_scene = match app.session.last_scene.clone() {
+            Some(SceneSource::File(path)) if initial.is_none() && !path.exists() => {
+                app.messages.notify(format!(
+                    "{} is gone: the last scene of the previous session was moved or deleted",
+                    path.display()
+                ));
+                None
+            }
+            last => last,
+        };
+        // Restoring the last session keeps the saved controls.
+        let restoring = initial.is_none() && last_scene.is_some();
+        if let Some(source) = initial.or(last_scene).or_else(default_scene) {
+            app.sides.adopt_loaded_scene = !restoring;
+            app.sides.a.engine.load(source);
+        }
+        app
+    }
+
+    /// Takes a screenshot as `plan` says, reports it in `outcome` and closes
+    /// the window.
+    pub fn with_screenshot(mut self, plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
+        self.screenshot = Some(ScreenshotRequest::new(plan, outcome));
+        self
+    }
+
+    /// Starts loading a scene as the user would open it.
+    pub fn open(&mut self, source: SceneSource) {
+        self.sides.adopt_loaded_scene = true;
+        self.sides.a.engine.load(source);
+    }
+
+    /// The side panel: scene, settings of the side being edited, views.
+    fn side_panel(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
+        let Sides { a, b, editing, .. } = &mut self.sides;
+        let current = a.engine.scene().map(|s| s.source.clone());
+        let counts = a.engine.scene().map(|s| s.world.counts.clone());
+        let paused = a.engine.is_paused();
+        let comparing = b.is_some();
+        let controls = match (b, *editing) {
+            (Some(b), SideId::B) => &mut b.controls,
+            _ => &mut a.controls,
+        };
+        let view = SidePanelView {
+            scene_list: &self.scene_list,
+            current: current.as_ref(),
+            recent: &self.session.recent,
+            counts: counts.as_ref(),
+            editing: comparing.then_some(editing),
+            controls,
+            paused,
+            views: &mut self.tools.views,
+            overlay: &mut self.tools.overlay,
+        };
+        let mut picked = None;
+        egui::Panel::left("controls")
+            .resizable(true)
+            .default_size(270.0)
+            .frame(unfilled(egui::Frame::side_top_panel(ui.style())))
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    picked = side_panel::show(ui, view, commands);
+                });
+            });
+        if let Some(source) = picked {
+            self.open(source);
+        }
+    }
+
+    fn statistics_panel(&mut self, ui: &mut egui::Ui) {
+        if !self.session.show_stats {
+            return;
+        }
+        egui::Panel::right("statistics")
+            .resizable(true)
+            .default_size(280.0)
+            .frame(unfilled(egui::Frame::side_top_panel(ui.style())))
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    stats::panel(ui, &self.sides, &self.comparison, &self.pacing.frame_meter);
+                });
+            });
+    }
+
+    fn central_panel(&mut self, ui: &mut egui::Ui) {
+        let moving = self.navigation.is_camera_moving();
+        let view = central::CentralView {
+            sides: &self.sides,
+            comparison: &mut self.comparison,
+            placement: &mut self.navigation.placement,
+            tools: &mut self.tools,
+            error: &mut self.messages.error,
+            moving,
+        };
+        let outcome = egui::CentralPanel::default()
+            .frame(unfilled(egui::Frame::central_panel(ui.style())))
+            .show(ui, |ui| central::show(ui, view))
+            .inner;
+        let scene = self.sides.a.engine.scene().map(|s| &s.scene);
+        self.navigation.take(&outcome.viewport, scene);
+        for id in outcome.switch_to_bvh {
+            if let Some(side) = self.sides.each_mut().find(|s| s.id == id) {
+                side.controls.set_accel(tracer::accel::AccelKind::Bvh);
+            }
+        }
+    }
+
+    /// The windows over the image: help, ray tree, benchmark, studies.
+    fn tool_windows(&mut self, ctx: &egui::Context) {
+        help::window(ctx, &mut self.tools.help_open);
+        let b = self.sides.b.as_ref().map(|b| &b.engine);
+        self.tools.inspector.update(&self.sides.a.engine, b);
+        self.tools.inspector.window(ctx, b.is_some());
+        self.benchmark_window(ctx);
+        self.studies_window(ctx);
+    }
+}
+
+/// The bundled showcase scene, or the first bundled scene.
+fn default_scene() -> Option<SceneSource> {
+    bundled::find(bundled::DEFAULT_SCENE)
+        .or(bundled::SCENES.first())
+        .map(|s| SceneSource::Bundled(s.name.to_string()))
+}
+
+impl eframe::App for WorkbenchApp {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.pacing.begin(frame.info().cpu_usage);
+        // Before anything is drawn, so the numbers and the image of a
+        // frame describe the same render.
+        self.take_arrivals(&ctx);
+        let mut commands = Command::pressed(&ctx);
+        self.side_panel(ui, &mut commands);
+        self.statistics_panel(ui);
+        self.central_panel(ui);
+        self.messages.show_notice(&ctx);
+        self.tool_windows(&ctx);
+        for command in commands {
+            self.run_command(command);
+        }
+        self.keep_rendering(&ctx);
+        self.pacing.end();
+    }
+
+    /// The panels' colour: the panels leave their fill to the clear.
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        visuals.panel_fill.to_normalized_gamma_f32()
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        persisted::save(storage, &self.sides.a.controls, &self.session);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_scene_is_bundled() {
+        assert_eq!(
+            default_scene(),
+            Some(SceneSource::Bundled(bundled::DEFAULT_SCENE.into()))
+        );
+    }
+}

@@ -1,0 +1,174 @@
+//! What the window remembers across restarts (eframe's storage): side A's
+//! controls and the session (last scene, recent files, panels). Every
+//! field has a default, so an old or partial saved state still loads.
+
+use std::path::PathBuf;
+
+use serde::de::IgnoredAny;
+use serde::{Deserialize, Serialize};
+use tracer::render::RenderSettings;
+
+use crate::gui::sides::Controls;
+use crate::load::SceneSource;
+
+/// How many recent files to remember.
+const MAX_RECENT: usize = 8;
+
+/// What the window keeps of a session beside the controls.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Session {
+    pub last_scene: Option<SceneSource>,
+    /// Files opened recently, newest first.
+    pub recent: Vec<PathBuf>,
+    pub show_stats: bool,
+}
+
+impl Default for Session {
+    fn default() -> Self {
+        Self {
+            last_scene: None,
+            recent: Vec::new(),
+            show_stats: true,
+        }
+    }
+}
+
+impl Session {
+    /// Puts `path` first in the recent files.
+    pub fn remember(&mut self, path: PathBuf) {
+        self.recent.retain(|p| p != &path);
+        self.recent.insert(0, path);
+        self.recent.truncate(MAX_RECENT);
+    }
+}
+
+/// The saved form: side A's controls beside the session's fields, as
+/// earlier versions wrote them.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(default)]
+struct Saved {
+    controls: Controls,
+    last_scene: Option<SceneSource>,
+    recent: Vec<PathBuf>,
+    show_stats: bool,
+}
+
+impl Default for Saved {
+    fn default() -> Self {
+        let session = Session::default();
+        Self {
+            controls: Controls::default(),
+            last_scene: session.last_scene,
+            recent: session.recent,
+            show_stats: session.show_stats,
+        }
+    }
+}
+
+/// The controls and session `storage` holds, or the defaults.
+pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session) {
+    let saved = storage
+        .and_then(|s| s.get_string(eframe::APP_KEY))
+        .and_then(|text| read(&text));
+    match saved {
+        Some(saved) => (
+            saved.controls,
+            Session {
+                last_scene: saved.last_scene,
+                recent: saved.recent,
+                show_stats: saved.show_stats,
+            },
+        ),
+        None => (Controls::default(), Session::default()),
+    }
+}
+
+/// Writes `controls` and `session` into `storage`.
+pub fn save(storage: &mut dyn eframe::Storage, controls: &Controls, session: &Session) {
+    let saved = Saved {
+        controls: controls.clone(),
+        last_scene: session.last_scene.clone(),
+        recent: session.recent.clone(),
+        show_stats: session.show_stats,
+    };
+    eframe::set_value(storage, eframe::APP_KEY, &saved);
+}
+
+/// Reads a saved state. Before the controls held the render settings as
+/// one value (`render`) they were saved flat, the settings' fields beside
+/// the window's own; such a state gives its settings too.
+fn read(text: &str) -> Option<Saved> {
+    let mut saved: Saved = ron::from_str(text).ok()?;
+    #[derive(Deserialize, Default)]
+    #[serde(default)]
+    struct Probe {
+        controls: ProbeControls,
+    }
+    #[derive(Deserialize, Default)]
+    #[serde(default)]
+    struct ProbeControls {
+        #[serde(deserialize_with = "present")]
+        render: bool,
+    }
+    fn present<'de, D: serde::Deserializer<'de>>(field: D) -> Result<bool, D::Error> {
+        IgnoredAny::deserialize(field).map(|_| true)
+    }
+    #[derive(Deserialize, Default)]
+    #[serde(default)]
+    struct Flat {
+        controls: RenderSettings,
+    }
+    let probe: Probe = ron::from_str(text).ok()?;
+    if !probe.controls.render {
+        saved.controls.render = ron::from_str::<Flat>(text).ok()?.controls;
+    }
+    Some(saved)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_saved_state_reads_back_as_it_was() {
+        let mut controls = Controls::default();
+        controls.render.samples = 7;
+        controls.resolution_scale = 0.5;
+        let mut session = Session::default();
+        session.remember("/a.p3f".into());
+        let saved = Saved {
+            controls: controls.clone(),
+            last_scene: Some(SceneSource::Bundled("glass".into())),
+            recent: session.recent.clone(),
+            show_stats: false,
+        };
+        let back = read(&ron::to_string(&saved).unwrap()).unwrap();
+        assert_eq!(back.controls, controls);
+        assert_eq!(back.last_scene, saved.last_scene);
+        assert_eq!((back.recent, back.show_stats), (session.recent, false));
+    }
+
+    #[test]
+    fn a_flat_state_of_an_earlier_version_gives_its_settings() {
+        let text = "(controls:(samples:3,accel:Grid,resolution_scale:0.25,srgb:true))";
+        let saved = read(text).unwrap();
+        assert_eq!(saved.controls.render.samples, 3);
+        assert_eq!(saved.controls.render.accel, tracer::accel::AccelKind::Grid);
+        assert_eq!(saved.controls.resolution_scale, 0.25);
+        assert!(saved.controls.srgb);
+        assert!(read("not ron").is_none());
+    }
+
+    #[test]
+    fn recent_files_are_unique_newest_first_and_bounded() {
+        let mut session = Session::default();
+        for i in 0..10 {
+            session.remember(format!("/{i}.p3f").into());
+        }
+        session.remember("/5.p3f".into());
+        assert_eq!(session.recent.len(), MAX_RECENT);
+        assert_eq!(session.recent[0], PathBuf::from("/5.p3f"));
+        assert_eq!(session.recent[1], PathBuf::from("/9.p3f"));
+    }
+}

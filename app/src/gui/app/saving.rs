@@ -1,0 +1,186 @@
+//! Files in and out: the native open and save dialogs on threads of their
+//! own (the UI keeps drawing), the PNG and EXR writes, and `--screenshot`.
+//! Their results come back to the UI thread as [`Reply`]s.
+
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::time::Instant;
+
+use tracer::render::{JobState, Snapshot};
+
+use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
+use crate::gui::sides::{Activity, Side};
+use crate::output::{save_exr, save_png};
+
+/// Results of background dialogs and saves, delivered to the UI thread.
+pub enum Reply {
+    Open(PathBuf),
+    Notice(String),
+    Error(String),
+    /// The line to print once the screenshot is saved, or why it was not.
+    Screenshot(Result<String, String>),
+}
+
+/// What a save writes: the shown render (PNG) or the linear film (EXR).
+pub enum SaveImage {
+    Shown(Snapshot),
+    Linear(image::Rgb32FImage),
+}
+
+impl SaveImage {
+    /// Side `side`'s render on screen, as PNG or (`exr`) its linear film.
+    pub fn of(side: &Side, exr: bool) -> anyhow::Result<Self> {
+        let image = if exr {
+            side.engine.linear_image().map(SaveImage::Linear)
+        } else {
+            side.image.shown().cloned().map(SaveImage::Shown)
+        };
+        image.ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))
+    }
+
+    /// Writes the image at its full resolution to `path`.
+    pub fn write(&self, path: &Path) -> anyhow::Result<()> {
+        match self {
+            SaveImage::Linear(film) => save_exr(film, path),
+            SaveImage::Shown(snapshot) => snapshot
+                .to_image()
+                .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
+                .and_then(|img| save_png(&img, path)),
+        }
+    }
+}
+
+/// The channel the dialog threads answer on.
+pub struct Dialogs {
+    sender: Sender<Reply>,
+    replies: Receiver<Reply>,
+}
+
+impl Default for Dialogs {
+    fn default() -> Self {
+        let (sender, replies) = channel();
+        Self { sender, replies }
+    }
+}
+
+impl Dialogs {
+    /// The replies that came in since the last frame.
+    pub fn take(&self) -> Vec<Reply> {
+        self.replies.try_iter().collect()
+    }
+
+    /// The native open dialog; false when no thread could be started.
+    pub fn open(&self) -> bool {
+        let reply = self.sender.clone();
+        std::thread::Builder::new()
+            .name("open-dialog".into())
+            .spawn(move || {
+                let picked = rfd::FileDialog::new()
+                    .add_filter("Scenes and meshes", &["p3f", "nff", "obj", "ply"])
+                    .set_directory("scenes")
+                    .pick_file();
+                let _ = reply.send(match picked {
+                    Some(path) => Reply::Open(path),
+                    None => Reply::Notice(
+                        "nothing opened (cancelled, or no file dialog on this desktop: \
+                         drop a file on the window instead)"
+                            .into(),
+                    ),
+                });
+            })
+            .is_ok()
+    }
+
+    /// The native save dialog for `image`, named after `scene`, and the
+    /// write; false when no thread could be started.
+    pub fn save(&self, image: SaveImage, scene: &str) -> bool {
+        let stem = Path::new(scene)
+            .file_stem()
+            .map_or_else(|| "render".into(), |s| s.to_string_lossy().into_owned());
+        let (filter, extension) = match image {
+            SaveImage::Linear(_) => ("OpenEXR image", "exr"),
+            SaveImage::Shown(_) => ("PNG image", "png"),
+        };
+        let reply = self.sender.clone();
+        std::thread::Builder::new()
+            .name("save-dialog".into())
+            .spawn(move || {
+                let Some(path) = rfd::FileDialog::new()
+                    .add_filter(filter, &[extension])
+                    .set_file_name(format!("{stem}.{extension}"))
+                    .save_file()
+                else {
+                    let _ = reply.send(Reply::Notice(
+                        "not saved (cancelled, or no file dialog on this desktop)".into(),
+                    ));
+                    return;
+                };
+                let _ = reply.send(match image.write(&path) {
+                    Ok(()) => Reply::Notice(format!("saved {}", path.display())),
+                    Err(e) => Reply::Error(format!("{e:#}")),
+                });
+            })
+            .is_ok()
+    }
+}
+
+/// `--screenshot`: where and when, and whether it was asked for already.
+pub struct ScreenshotRequest {
+    plan: ScreenshotPlan,
+    pub outcome: ScreenshotOutcome,
+    opened_at: Instant,
+    requested: bool,
+}
+
+impl ScreenshotRequest {
+    pub fn new(plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
+        Self {
+            plan,
+            outcome,
+            opened_at: Instant::now(),
+            requested: false,
+        }
+    }
+
+    /// Asks egui for the screenshot once it is due: after the plan's delay,
+    /// or once `a`'s render is done and on screen (or `error` shows). The
+    /// result comes back through `dialogs`.
+    pub fn take_when_due(&mut self, ctx: &egui::Context, a: &Side, error: bool, dialogs: &Dialogs) {
+        if self.requested {
+            return;
+        }
+        let due = match self.plan.after {
+            Some(delay) => {
+                let elapsed = self.opened_at.elapsed();
+                if elapsed < delay {
+                    ctx.request_repaint_after(delay - elapsed);
+                }
+                elapsed >= delay
+            }
+            None => {
+                !a.engine.is_loading()
+                    && (error
+                        || (a.engine.activity() == Activity::Job(JobState::Done)
+                            && a.image.is_current(&a.engine)))
+            }
+        };
+        if !due {
+            return;
+        }
+        self.requested = true;
+        let path = self.plan.path.clone();
+        let shown = a.image.shown().map(screenshot::describe);
+        let reply = dialogs.sender.clone();
+        let wake = ctx.clone();
+        ctx.request_screenshot(move |image| {
+            let result = screenshot::save(&image, &path)
+                .map(|()| match shown {
+                    Some(shown) => format!("saved screenshot {} of {shown}", path.display()),
+                    None => format!("saved screenshot {}", path.display()),
+                })
+                .map_err(|e| format!("{e:#}"));
+            let _ = reply.send(Reply::Screenshot(result));
+            wake.request_repaint();
+        });
+    }
+}

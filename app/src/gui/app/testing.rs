@@ -1,0 +1,129 @@
+//! What tests read and set beyond what a user sees or clicks, in one
+//! place: the window's own code never calls these.
+
+use std::path::{Path, PathBuf};
+
+use tracer::render::Snapshot;
+
+use super::WorkbenchApp;
+use super::saving::SaveImage;
+use crate::gui::comparison::Comparison;
+use crate::gui::image::pixel_views::PixelViews;
+use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::sides::{Controls, Engine, Side};
+use crate::gui::windows::benchmark::BenchWindow;
+use crate::gui::windows::ray_tree::Inspector;
+use crate::gui::windows::studies::StudiesWindow;
+
+impl WorkbenchApp {
+    /// Side A's engine: what the renderer was asked.
+    pub fn engine(&self) -> &Engine {
+        &self.sides.a.engine
+    }
+
+    /// Side B, while comparing.
+    pub fn side_b(&self) -> Option<&Side> {
+        self.sides.b.as_ref()
+    }
+
+    /// Side A's controls.
+    pub fn controls(&self) -> &Controls {
+        &self.sides.a.controls
+    }
+
+    /// Side A's controls, as the side panel edits them.
+    pub fn controls_mut(&mut self) -> &mut Controls {
+        &mut self.sides.a.controls
+    }
+
+    /// The comparison, while comparing.
+    pub fn comparison(&self) -> Option<&Comparison> {
+        self.sides.b.as_ref().map(|_| &self.comparison)
+    }
+
+    /// The per-pixel view the images show.
+    pub fn views(&self) -> &PixelViews {
+        &self.tools.views
+    }
+
+    /// The ray-tree inspector.
+    pub fn inspector(&self) -> &Inspector {
+        &self.tools.inspector
+    }
+
+    /// Pins `pixel` in the inspector, as a click on it does.
+    pub fn inspect(&mut self, pixel: (u32, u32)) {
+        self.tools.inspector.pin(pixel);
+    }
+
+    /// The structure overlay.
+    pub fn overlay(&self) -> &StructureOverlay {
+        &self.tools.overlay
+    }
+
+    /// The benchmark matrix window.
+    pub fn benchmark(&self) -> &BenchWindow {
+        &self.tools.bench
+    }
+
+    /// The Studies window.
+    pub fn studies(&self) -> &StudiesWindow {
+        &self.tools.studies
+    }
+
+    /// The error shown in the window, if any.
+    pub fn error(&self) -> Option<&str> {
+        self.messages.error.as_deref()
+    }
+
+    /// Side A's render on screen, once there is one.
+    pub fn shown(&self) -> Option<&Snapshot> {
+        self.sides.a.image.shown()
+    }
+
+    /// Whether the screen shows side A's latest image (uploads are
+    /// throttled, so it may lag a little behind).
+    pub fn is_display_current(&self) -> bool {
+        self.sides.a.image.is_current(&self.sides.a.engine)
+    }
+
+    /// Whether the scene list's counting has started.
+    pub fn is_catalog_started(&self) -> bool {
+        self.scene_list.catalog.is_started()
+    }
+
+    /// Whether the scene list has the object count of every bundled scene.
+    pub fn is_catalog_complete(&self) -> bool {
+        self.scene_list.catalog.is_complete()
+    }
+
+    /// Files opened recently, newest first.
+    pub fn recent_files(&self) -> &[PathBuf] {
+        &self.session.recent
+    }
+
+    /// Shows or hides the statistics panel, as Tab does.
+    pub fn set_statistics_shown(&mut self, shown: bool) {
+        self.session.show_stats = shown;
+    }
+
+    /// Writes side A's render on screen, at full resolution, to `path`, as
+    /// Save PNG does with the file picked.
+    pub fn save_png_to(&self, path: &Path) -> anyhow::Result<()> {
+        SaveImage::of(&self.sides.a, false)?.write(path)
+    }
+
+    /// Writes side A's linear film to `path` (OpenEXR), as Save as EXR does.
+    pub fn save_exr_to(&self, path: &Path) -> anyhow::Result<()> {
+        SaveImage::of(&self.sides.a, true)?.write(path)
+    }
+
+    /// Side B shows the image at `path`, as "Compare with image..." does
+    /// with the file picked; an unreadable file is reported in the window.
+    pub fn compare_with_image(&mut self, path: &Path) {
+        if self.sides.b.is_some() {
+            let encoding = self.sides.a.controls.encoding();
+            self.comparison.open_reference(path, encoding);
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! Banners above the image: the error until dismissed, and the slow
+//! brute-force warning when a side renders without a structure over a
+//! scene large enough to look like a hang (course files carry `accel 0`),
+//! with the one-click switch to a BVH. The file's choice is respected until
+//! the user clicks.
+
+use egui::{Color32, RichText, Ui};
+use tracer::render::RenderSettings;
+use tracer::stats::SceneCounts;
+
+use crate::measure::cost::BruteForceCost;
+
+/// The error, wrapped to the panel's width, with its Dismiss button.
+pub fn error(ui: &mut Ui, error: &mut Option<String>) {
+    let Some(message) = error.clone() else {
+        return;
+    };
+    egui::Frame::new()
+        .fill(Color32::from_rgb(90, 20, 20))
+        .inner_margin(6.0)
+        .show(ui, |ui| {
+            // Long messages (paths, parser context) wrap inside the panel
+            // instead of widening it.
+            ui.set_width(ui.available_width());
+            ui.horizontal(|ui| {
+                ui.label(RichText::new("Error").strong().color(Color32::WHITE));
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    if ui.small_button("Dismiss").clicked() {
+                        *error = None;
+                    }
+                });
+            });
+            ui.add(egui::Label::new(RichText::new(&message).color(Color32::WHITE)).wrap());
+        });
+}
+
+/// Shows the banner when `settings` would be slow on a scene of `counts`
+/// (`side` prefixes its text: "B: "); true when the user asked to switch to
+/// the BVH.
+pub fn brute_force(
+    ui: &mut Ui,
+    side: &str,
+    settings: &RenderSettings,
+    counts: &SceneCounts,
+) -> bool {
+    let Some(cost) = BruteForceCost::of(settings, counts) else {
+        return false;
+    };
+    let mut switch = false;
+    egui::Frame::new()
+        .fill(Color32::from_rgb(90, 70, 10))
+        .inner_margin(6.0)
+        .show(ui, |ui| {
+            ui.set_width(ui.available_width());
+            ui.horizontal_wrapped(|ui| {
+                ui.label(RichText::new("Slow").strong().color(Color32::WHITE));
+                ui.label(
+                    RichText::new(format!("{side}{}.", cost.describe())).color(Color32::WHITE),
+                );
+                switch = ui
+                    .button("Switch to BVH")
+                    .on_hover_text("Render with a bounding volume hierarchy: seconds instead")
+                    .clicked();
+            });
+        });
+    switch
+}

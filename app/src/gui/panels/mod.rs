@@ -1,0 +1,21 @@
+//! The panels around the image, each a function of a narrow view of the
+//! window's state that records what the user asked as commands (or
+//! returns it): the side panel (scene, settings, views), the statistics
+//! panel, the image area in the middle, compare mode's header and numbers.
+
+pub mod banners;
+pub mod central;
+pub mod comparison;
+pub mod scene_list;
+pub mod settings;
+pub mod side_panel;
+pub mod stats;
+
+use egui::Color32;
+
+/// `frame` without its fill: the window's clear paints the panels' colour
+/// at almost no cost, where a filled panel is a rectangle of fragments that a
+/// software rasterizer shades one by one in every frame.
+pub fn unfilled(frame: egui::Frame) -> egui::Frame {
+    frame.fill(Color32::TRANSPARENT)
+}

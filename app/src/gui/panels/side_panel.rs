@@ -1,0 +1,67 @@
+//! The side panel: the scene list, compare mode and which side is edited,
+//! the edited side's settings, the per-pixel view and the structure
+//! overlay.
+
+use std::path::PathBuf;
+
+use egui::Ui;
+use tracer::stats::SceneCounts;
+
+use super::scene_list::{self, SceneList};
+use super::settings::{self, command_button, command_toggle};
+use crate::gui::commands::Command;
+use crate::gui::image::pixel_views::PixelViews;
+use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::sides::{Controls, SideId};
+use crate::load::SceneSource;
+
+/// What the side panel shows and edits.
+pub struct SidePanelView<'a> {
+    pub scene_list: &'a SceneList,
+    pub current: Option<&'a SceneSource>,
+    pub recent: &'a [PathBuf],
+    pub counts: Option<&'a SceneCounts>,
+    /// `Some` in compare mode: the side being edited.
+    pub editing: Option<&'a mut SideId>,
+    /// The edited side's controls.
+    pub controls: &'a mut Controls,
+    pub paused: bool,
+    pub views: &'a mut PixelViews,
+    pub overlay: &'a mut StructureOverlay,
+}
+
+/// Draws the panel's contents; returns the scene the user picked.
+pub fn show(
+    ui: &mut Ui,
+    view: SidePanelView<'_>,
+    commands: &mut Vec<Command>,
+) -> Option<SceneSource> {
+    let picked = scene_list::show(ui, view.scene_list, view.current, view.recent, commands);
+    if let Some(counts) = view.counts {
+        ui.small(format!(
+            "{} objects, {} lights",
+            counts.objects(),
+            counts.lights
+        ));
+    }
+    ui.separator();
+    let comparing = view.editing.is_some();
+    command_toggle(ui, comparing, Command::ToggleCompare, commands);
+    if let Some(editing) = view.editing {
+        ui.horizontal(|ui| {
+            ui.label("Editing");
+            for side in [SideId::A, SideId::B] {
+                ui.selectable_value(editing, side, side.name());
+            }
+            command_button(ui, Command::SwapSides, commands);
+            command_button(ui, Command::CopyAToB, commands);
+        });
+    }
+    settings::show(ui, view.controls, view.paused, commands);
+    ui.separator();
+    view.views.ui(ui, comparing);
+    view.overlay.ui(ui);
+    ui.separator();
+    command_button(ui, Command::ToggleHelp, commands);
+    picked
+}

@@ -1,0 +1,225 @@
+//! The two sides of the window: A always, B in compare mode. Both are the
+//! same [`Side`] (an engine, the image on screen, the controls and this
+//! frame's settings), so everything two-sided is written once over
+//! [`Sides::each_mut`]. This is the window's interface to the renderer:
+//! settings go into an engine, frames and statistics come out.
+
+mod controls;
+mod engine;
+mod live_image;
+
+use std::sync::Arc;
+
+use tracer::camera::CameraPose;
+use tracer::render::{RenderSettings, View, ViewHeatmap};
+
+pub use controls::Controls;
+pub use engine::{Activity, Engine, LoadedScene, Version, Wake};
+pub use live_image::LiveImage;
+
+use super::platform::frame_meter::ProgressPace;
+
+/// Which side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SideId {
+    A,
+    B,
+}
+
+impl SideId {
+    pub fn name(self) -> &'static str {
+        match self {
+            SideId::A => "A",
+            SideId::B => "B",
+        }
+    }
+}
+
+/// How render threads wake the window: at the progress pace, or at once
+/// for a render's last pass.
+#[derive(Clone)]
+pub struct Wakes {
+    paced: Wake,
+    now: Wake,
+}
+
+impl Wakes {
+    /// Wakes that redraw `ctx` at `pace` (and at once for last passes).
+    pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
+        let (paced_ctx, now_ctx, pace) = (ctx.clone(), ctx.clone(), pace.clone());
+        Self {
+            paced: Arc::new(move || paced_ctx.request_repaint_after(pace.get())),
+            now: Arc::new(move || now_ctx.request_repaint()),
+        }
+    }
+}
+
+/// One side: what it renders with and what it shows.
+pub struct Side {
+    pub id: SideId,
+    pub engine: Engine,
+    pub image: LiveImage,
+    pub controls: Controls,
+    /// This frame's settings, made once per frame by [`Side::plan`].
+    plan: Option<Plan>,
+}
+
+/// A side's render settings for one frame.
+struct Plan {
+    /// At full resolution: what the side is set to render.
+    target: RenderSettings,
+    /// What the engine renders now: the target, or its preview while the
+    /// camera moves.
+    rendered: RenderSettings,
+}
+
+impl Side {
+    fn new(id: SideId, controls: Controls, wakes: &Wakes) -> Self {
+        Self {
+            id,
+            engine: Engine::with_wakes(wakes.paced.clone(), wakes.now.clone()),
+            image: LiveImage::new(match id {
+                SideId::A => "render A",
+                SideId::B => "render B",
+            }),
+            controls,
+            plan: None,
+        }
+    }
+
+    /// Makes this frame's settings from the controls, the scene and the
+    /// shared `camera`, previews while the camera is `moving`.
+    pub fn plan(&mut self, camera: Option<CameraPose>, moving: bool) {
+        self.plan = self.engine.scene().map(|scene| Plan {
+            target: self.controls.render_settings(&scene.scene, camera, false),
+            rendered: self.controls.render_settings(&scene.scene, camera, moving),
+        });
+    }
+
+    /// The full-resolution settings of this frame, once there is a scene:
+    /// what the labels, the benchmark matrix and the studies use.
+    pub fn settings(&self) -> Option<&RenderSettings> {
+        self.plan.as_ref().map(|p| &p.target)
+    }
+
+    /// Keeps the engine rendering this frame's settings (a new job only
+    /// when they changed), measuring views when `views` is on.
+    pub fn render(&mut self, views: bool) -> Result<(), String> {
+        self.engine.set_views(views);
+        match &self.plan {
+            Some(plan) => self.engine.render(&plan.rendered),
+            None => Ok(()),
+        }
+    }
+
+    /// Throws the samples away and renders this frame's settings again.
+    pub fn restart(&mut self) -> Result<(), String> {
+        match &self.plan {
+            Some(plan) => self.engine.restart(&plan.rendered),
+            None => Ok(()),
+        }
+    }
+
+    /// Uploads the engine's image at most every `interval`, as the shaded
+    /// image or as `view`.
+    pub fn refresh(
+        &mut self,
+        ctx: &egui::Context,
+        interval: std::time::Duration,
+        view: Option<(View, ViewHeatmap)>,
+    ) {
+        self.image.set_view(view);
+        self.image
+            .refresh(ctx, &self.engine, self.controls.encoding(), interval);
+    }
+}
+
+/// Side A, side B while comparing, and which one the panel edits.
+pub struct Sides {
+    pub a: Side,
+    pub b: Option<Side>,
+    /// The side the panel and the feature keys change (B only while it
+    /// exists).
+    pub editing: SideId,
+    /// Opening a scene adopts its settings; restoring the last session
+    /// keeps the saved ones.
+    pub adopt_loaded_scene: bool,
+    wakes: Wakes,
+}
+
+impl Sides {
+    /// Side A alone, with `controls`.
+    pub fn new(controls: Controls, wakes: Wakes) -> Self {
+        Self {
+            a: Side::new(SideId::A, controls, &wakes),
+            b: None,
+            editing: SideId::A,
+            adopt_loaded_scene: true,
+            wakes,
+        }
+    }
+
+    /// A, then B while comparing.
+    pub fn each(&self) -> impl Iterator<Item = &Side> {
+        std::iter::once(&self.a).chain(&self.b)
+    }
+
+    /// A, then B while comparing.
+    pub fn each_mut(&mut self) -> impl Iterator<Item = &mut Side> {
+        std::iter::once(&mut self.a).chain(&mut self.b)
+    }
+
+    /// The side the panel edits.
+    pub fn active_mut(&mut self) -> &mut Side {
+        match (&mut self.b, self.editing) {
+            (Some(b), SideId::B) => b,
+            _ => &mut self.a,
+        }
+    }
+
+    /// Turns compare mode on (B starts as a copy of A's controls on A's
+    /// scene, and is the side edited) or off.
+    pub fn toggle_b(&mut self) {
+        if self.b.take().is_some() {
+            self.editing = SideId::A;
+            return;
+        }
+        let mut b = Side::new(SideId::B, self.a.controls.clone(), &self.wakes);
+        if let Some(scene) = self.a.engine.scene() {
+            b.engine.show(scene.clone());
+        }
+        b.engine.set_paused(self.a.engine.is_paused());
+        self.b = Some(b);
+        self.editing = SideId::B;
+    }
+
+    /// Exchanges A and B, renders and all, so nothing renders again; false
+    /// without B.
+    pub fn swap(&mut self) -> bool {
+        let Some(b) = &mut self.b else {
+            return false;
+        };
+        std::mem::swap(&mut self.a, b);
+        (self.a.id, b.id) = (SideId::A, SideId::B);
+        true
+    }
+
+    /// Gives B the controls of A; false without B.
+    pub fn copy_a_to_b(&mut self) -> bool {
+        match &mut self.b {
+            Some(b) => {
+                b.controls = self.a.controls.clone();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// A opened `scene`: B shows it too.
+    pub fn follow_scene(&mut self, scene: &LoadedScene) {
+        if let Some(b) = &mut self.b {
+            b.engine.show(scene.clone());
+            b.image.forget();
+        }
+    }
+}

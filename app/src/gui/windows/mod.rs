@@ -1,0 +1,30 @@
+//! The windows over the image: the ray tree of a pinned pixel, the
+//! benchmark matrix, the studies, the help; and what the two measuring
+//! windows share ([`background`]).
+
+pub mod background;
+pub mod benchmark;
+pub mod help;
+pub mod ray_tree;
+pub mod studies;
+
+use benchmark::BenchWindow;
+use ray_tree::Inspector;
+use studies::StudiesWindow;
+
+use super::image::pixel_views::PixelViews;
+use super::image::structure_overlay::StructureOverlay;
+
+/// The tools a user opens beside the render, and what they draw over it.
+#[derive(Default)]
+pub struct Tools {
+    pub bench: BenchWindow,
+    pub studies: StudiesWindow,
+    /// The pinned pixel's ray tree.
+    pub inspector: Inspector,
+    /// The acceleration structure drawn over the image.
+    pub overlay: StructureOverlay,
+    /// Which per-pixel view the images show.
+    pub views: PixelViews,
+    pub help_open: bool,
+}

@@ -1,0 +1,391 @@
+//! The Studies window: a parameter study (see [`crate::measure::study`])
+//! on the current scene and camera, or on a generated scene for the level
+//! study, run on a thread of its own. The chart fills in point by point
+//! with the best point ringed; hovering a point shows its numbers and
+//! image, clicking it (or its row's Apply) shows its settings in the main
+//! view. Exports the table (Markdown, CSV) and the chart (PNG).
+
+use std::sync::Arc;
+
+use egui::{TextureHandle, Ui};
+use tracer::accel::AccelKind;
+use tracer::generate::GeneratorName;
+use tracer::render::{Encoding, RenderSettings};
+use tracer::world::World;
+
+use crate::measure::benchmark::RunOptions;
+use crate::measure::study::{Param, Point, Study, Subject, report, values};
+
+use crate::gui::sides::Controls;
+use crate::gui::windows::background::{self, Background};
+
+/// Side of the thumbnails, in pixels.
+const THUMBNAIL: u32 = 96;
+
+/// What the study thread tells the window.
+enum Update {
+    Preparing(String, f32),
+    Rendering {
+        point: usize,
+        run: usize,
+        fraction: f32,
+    },
+    Measured(Box<Point>),
+    Finished(Result<bool, String>),
+}
+
+/// A measured point and its thumbnail.
+struct Row {
+    point: Point,
+    thumbnail: TextureHandle,
+}
+
+/// The window's state.
+pub struct StudiesWindow {
+    pub open: bool,
+    param: Param,
+    values: String,
+    generator: GeneratorName,
+    structures: Vec<AccelKind>,
+    runs: usize,
+    /// The study running or last run.
+    study: Option<Study>,
+    subject: String,
+    rows: Vec<Row>,
+    progress: Option<Update>,
+    task: Option<Background<Update>>,
+    message: Option<String>,
+    exported: background::Export,
+    /// Show error against time instead of time against the value.
+    error_view: bool,
+}
+
+impl Default for StudiesWindow {
+    fn default() -> Self {
+        let param = Param::GridM;
+        Self {
+            open: false,
+            param,
+            values: param.default_values(&RenderSettings::default()),
+            generator: GeneratorName::Balls,
+            structures: param.default_structures(AccelKind::Bvh),
+            runs: 3,
+            study: None,
+            subject: String::new(),
+            rows: Vec::new(),
+            progress: None,
+            task: None,
+            message: None,
+            exported: background::Export::default(),
+            error_view: false,
+        }
+    }
+}
+
+impl StudiesWindow {
+    pub fn is_running(&self) -> bool {
+        self.task.is_some()
+    }
+
+    /// The points measured so far, in measuring order.
+    pub fn points(&self) -> impl Iterator<Item = &Point> {
+        self.rows.iter().map(|r| &r.point)
+    }
+
+    /// The message under the buttons (a count, an error), if any.
+    pub fn message(&self) -> Option<&str> {
+        self.message.as_deref()
+    }
+
+    /// Starts the study the window is set to: on `world` from `base` (the
+    /// current scene, camera and size; without one only the level study
+    /// can run), or for the level study on the
+    /// generator's scenes with `controls` applied to each. `wake` asks the
+    /// window to redraw.
+    pub fn start(
+        &mut self,
+        world: Option<Arc<World>>,
+        base: &RenderSettings,
+        controls: &Controls,
+        scene_name: &str,
+        wake: impl Fn() + Send + 'static,
+    ) {
+        self.stop();
+        self.message = None;
+        let values = match values::parse(&self.values) {
+            Ok(values) => values,
+            Err(e) => {
+                self.message = Some(format!("values: {e}"));
+                return;
+            }
+        };
+        let study = Study {
+            param: self.param,
+            values,
+            structures: self.structures.clone(),
+            options: RunOptions {
+                runs: self.runs,
+                threads: None,
+            },
+            encoding: Encoding::Srgb,
+            reference_samples: None,
+        };
+        let (subject, name) = if self.param == Param::Level {
+            let controls = controls.clone();
+            let subject = Subject::Generated {
+                generator: self.generator,
+                seed: 0,
+                settings: Box::new(move |scene| controls.render_settings(scene, None, false)),
+            };
+            (subject, self.generator.to_string())
+        } else {
+            let Some(world) = world else {
+                self.message = Some("open a scene first: this study renders it".into());
+                return;
+            };
+            let base = base.clone();
+            (Subject::Scene { world, base }, scene_name.to_string())
+        };
+        if let Err(e) = study.check(&subject) {
+            self.message = Some(format!("{e:#}"));
+            return;
+        }
+        self.rows.clear();
+        self.subject = name;
+        let thread_study = study.clone();
+        let spawned = Background::spawn("study", move |cancel, tx| {
+            task::run(&thread_study, &subject, cancel, tx, &wake)
+        });
+        match spawned {
+            Ok(task) => {
+                self.study = Some(study);
+                self.task = Some(task);
+            }
+            Err(e) => self.message = Some(format!("cannot start the study: {e}")),
+        }
+    }
+
+    /// Cancels a running study; the measured points stay.
+    pub fn stop(&mut self) {
+        if let Some(task) = &self.task {
+            task.cancel();
+        }
+    }
+
+    /// Takes the thread's updates; call once per frame.
+    pub fn receive(&mut self, ctx: &egui::Context) {
+        while let Some(update) = self.task.as_ref().and_then(Background::try_recv) {
+            match update {
+                Update::Measured(point) => {
+                    let thumbnail = background::thumbnail(
+                        ctx,
+                        &point.measurement.image,
+                        THUMBNAIL,
+                        format!("study point {}", self.rows.len()),
+                    );
+                    self.rows.push(Row {
+                        point: *point,
+                        thumbnail,
+                    });
+                }
+                Update::Finished(result) => {
+                    let total = self.study.as_ref().map_or(0, Study::len);
+                    self.message = Some(match result {
+                        Ok(false) => format!("{} points measured", self.rows.len()),
+                        Ok(true) => {
+                            format!("cancelled after {} of {total} points", self.rows.len())
+                        }
+                        Err(e) => e,
+                    });
+                    self.task = None;
+                    self.progress = None;
+                }
+                progress => self.progress = Some(progress),
+            }
+        }
+        if let Some(message) = self.exported.finished() {
+            self.message = Some(message);
+        }
+    }
+
+    /// Draws the window. `start` is set when the user asks for a run; the
+    /// point the user picked, if any, is returned for the main view.
+    pub fn show(
+        &mut self,
+        ctx: &egui::Context,
+        base: &RenderSettings,
+        start: &mut bool,
+    ) -> Option<Applied> {
+        let mut open = self.open;
+        let mut applied = None;
+        egui::Window::new("Studies")
+            .open(&mut open)
+            .default_size([720.0, 760.0])
+            .show(ctx, |ui| applied = self.contents(ui, base, start));
+        self.open = open;
+        applied
+    }
+
+    fn contents(
+        &mut self,
+        ui: &mut Ui,
+        base: &RenderSettings,
+        start: &mut bool,
+    ) -> Option<Applied> {
+        let idle = !self.is_running();
+        ui.add_enabled_ui(idle, |ui| self.settings(ui, base));
+        ui.horizontal(|ui| {
+            if self.is_running() {
+                if ui.button("Cancel").clicked() {
+                    self.stop();
+                }
+            } else if ui.button("Run").clicked() {
+                *start = true;
+            }
+            if !self.rows.is_empty() && idle && ui.button("Export...").clicked() {
+                self.export();
+            }
+        });
+        self.progress_bar(ui);
+        if let Some(message) = &self.message {
+            ui.label(message);
+        }
+        let param = self.study.as_ref()?.param;
+        if self.rows.is_empty() {
+            return None;
+        }
+        let points: Vec<Point> = self.points().cloned().collect();
+        for line in report::summary(param, &points) {
+            ui.label(line);
+        }
+        let has_error = points.iter().any(|p| p.error.is_some());
+        if has_error {
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut self.error_view, false, "time vs N");
+                ui.selectable_value(&mut self.error_view, true, "error vs time");
+            });
+        }
+        let picked = self.chart(ui, param, &points, has_error && self.error_view);
+        let from_table = self.table(ui, param, &points);
+        picked
+            .or(from_table)
+            .map(|i| self.applied(param, &self.rows[i].point))
+    }
+
+    /// The parameter, values, generator, structures and runs.
+    fn settings(&mut self, ui: &mut Ui, base: &RenderSettings) {
+        ui.horizontal(|ui| {
+            let before = self.param;
+            egui::ComboBox::from_label("parameter")
+                .selected_text(self.param.name())
+                .show_ui(ui, |ui| {
+                    for param in Param::ALL {
+                        ui.selectable_value(&mut self.param, param, param.name());
+                    }
+                });
+            if self.param != before {
+                self.values = self.param.default_values(base);
+                self.structures = self.param.default_structures(base.accel);
+            }
+            if self.param == Param::Level {
+                egui::ComboBox::from_label("generator")
+                    .selected_text(self.generator.name())
+                    .show_ui(ui, |ui| {
+                        for generator in GeneratorName::ALL {
+                            ui.selectable_value(&mut self.generator, generator, generator.name());
+                        }
+                    });
+            }
+        });
+        ui.horizontal(|ui| {
+            let label = ui.label("values");
+            ui.add(egui::TextEdit::singleline(&mut self.values).desired_width(220.0))
+                .labelled_by(label.id)
+                .on_hover_text(values::SYNTAX);
+            ui.add(egui::Slider::new(&mut self.runs, 1..=9).text("runs each"))
+                .on_hover_text("Frames per point: the chart shows their median");
+        });
+        ui.horizontal(|ui| {
+            ui.label("structures");
+            for accel in AccelKind::ALL {
+                let mut on = self.structures.contains(&accel);
+                if ui.checkbox(&mut on, accel.name()).changed() {
+                    self.structures.retain(|&a| a != accel);
+                    if on {
+                        self.structures.push(accel);
+                        self.structures
+                            .sort_by_key(|a| AccelKind::ALL.iter().position(|s| s == a));
+                    }
+                }
+            }
+        });
+    }
+
+    /// How far the running study is (0..=1) and what it is doing.
+    pub fn progress(&self) -> Option<(f32, String)> {
+        let study = self.study.as_ref()?;
+        let plan = study.plan();
+        let runs = study.options.runs.max(1);
+        match &self.progress {
+            Some(Update::Preparing(what, fraction)) => Some((*fraction, what.clone())),
+            Some(Update::Rendering {
+                point,
+                run,
+                fraction,
+            }) => {
+                let done = (*point as f32 + (*run as f32 + fraction) / runs as f32)
+                    / plan.len().max(1) as f32;
+                let (accel, value) = *plan.get(*point)?;
+                let what = format!(
+                    "{} {} = {} ({}/{}), run {}/{runs}",
+                    accel.name(),
+                    study.param,
+                    values::format(value),
+                    point + 1,
+                    plan.len(),
+                    run + 1
+                );
+                Some((done, what))
+            }
+            _ => None,
+        }
+    }
+
+    fn progress_bar(&self, ui: &mut Ui) {
+        if let Some((done, what)) = self.progress() {
+            ui.add(egui::ProgressBar::new(done).text(what));
+        }
+    }
+
+    fn applied(&self, param: Param, point: &Point) -> Applied {
+        Applied {
+            param,
+            value: point.value,
+            accel: point.accel(),
+            generator: (param == Param::Level).then_some(self.generator),
+        }
+    }
+
+    /// Writes the table and chart into a folder the user picks, off the
+    /// UI thread.
+    fn export(&mut self) {
+        let Some(study) = &self.study else {
+            return;
+        };
+        let param = study.param;
+        let points: Vec<Point> = self.points().cloned().collect();
+        let subject = self.subject.clone();
+        self.exported.start("Export the study to", move |dir| {
+            write_export(dir, param, &points, &subject)
+        });
+    }
+}
+
+mod applied;
+mod results;
+mod task;
+#[cfg(test)]
+mod tests;
+
+pub use applied::Applied;
+pub use task::write_export;
