@@ -7,8 +7,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::{AccelKind, StructureLayer};
 use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
 
+use crate::measure::ab::Heatmap;
 use crate::measure::bench_report::Format;
-use crate::measure::compare::Heatmap;
 use crate::measure::study::Param;
 
 #[derive(Parser, Debug)]
@@ -22,7 +22,7 @@ use crate::measure::study::Param;
 )]
 pub struct Cli {
     #[command(subcommand)]
-    pub command: Option<Command>,
+    pub command: Option<Headless>,
     /// A scene file to open in the window (default: the bundled showcase).
     #[arg(long, global = false)]
     pub scene: Option<PathBuf>,
@@ -56,8 +56,9 @@ impl Cli {
     }
 }
 
+/// The subcommands: the engine run without the window.
 #[derive(Subcommand, Debug)]
-pub enum Command {
+pub enum Headless {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
     /// Show every ray one sample of one pixel spawned: what each hit, its

@@ -3,8 +3,8 @@
 
 pub mod bundled;
 pub mod cli;
-pub mod commands;
 pub mod gui;
+pub mod headless;
 pub mod load;
 pub mod measure;
 pub mod output;
@@ -17,12 +17,12 @@ use clap::Parser;
 pub fn run() -> std::process::ExitCode {
     let cli = cli::Cli::parse();
     let result = match cli.command {
-        Some(cli::Command::Render(args)) => commands::render::run(&args),
-        Some(cli::Command::Inspect(args)) => commands::inspect::run(&args),
-        Some(cli::Command::Bench(args)) => commands::bench::run(&args),
-        Some(cli::Command::Compare(args)) => commands::compare::run(&args),
-        Some(cli::Command::Gen(args)) => commands::generate::run(&args),
-        Some(cli::Command::Sweep(args)) => commands::sweep::run(&args),
+        Some(cli::Headless::Render(args)) => headless::render::run(&args),
+        Some(cli::Headless::Inspect(args)) => headless::inspect::run(&args),
+        Some(cli::Headless::Bench(args)) => headless::bench::run(&args),
+        Some(cli::Headless::Compare(args)) => headless::compare::run(&args),
+        Some(cli::Headless::Gen(args)) => headless::generate::run(&args),
+        Some(cli::Headless::Sweep(args)) => headless::sweep::run(&args),
         None => cli
             .screenshot_plan()
             .and_then(|plan| gui::run(cli.scene, plan)),

@@ -6,7 +6,7 @@
 use glam::{Quat, Vec2, Vec3, Vec3A};
 
 use crate::geometry::Ray;
-use crate::scene::View;
+use crate::scene::Viewpoint;
 
 /// Why a camera cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -39,7 +39,7 @@ const POLE_MARGIN: f32 = 0.02;
 
 impl CameraPose {
     /// The pose of a scene's view.
-    pub fn of(view: &View) -> Self {
+    pub fn of(view: &Viewpoint) -> Self {
         Self {
             from: view.from,
             at: view.at,
@@ -48,7 +48,7 @@ impl CameraPose {
     }
 
     /// Puts this pose into `view`.
-    pub fn apply(&self, view: &mut View) {
+    pub fn apply(&self, view: &mut Viewpoint) {
         view.from = self.from;
         view.at = self.at;
         view.up = self.up;
@@ -128,7 +128,7 @@ impl Camera {
     /// A camera for `view` rendering `width` x `height` pixels with the given
     /// lens (`aperture` in pixels, `focal` as a ratio of the view distance).
     pub fn new(
-        view: &View,
+        view: &Viewpoint,
         width: u32,
         height: u32,
         aperture: f32,
@@ -237,8 +237,8 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
-    fn view(width: u32, height: u32) -> View {
-        View {
+    fn view(width: u32, height: u32) -> Viewpoint {
+        Viewpoint {
             from: Vec3::new(1.0, 2.0, 3.0),
             at: Vec3::new(-2.0, 0.5, -1.0),
             up: Vec3::new(0.2, 1.0, 0.1),
@@ -295,11 +295,11 @@ mod tests {
 
     #[test]
     fn right_is_view_cross_up() {
-        let v = View {
+        let v = Viewpoint {
             from: Vec3::new(0.0, 0.0, 5.0),
             at: Vec3::ZERO,
             up: Vec3::Y,
-            ..View::default()
+            ..Viewpoint::default()
         };
         let cam = Camera::new(&v, 11, 11, 0.0, 1.0).unwrap();
         // Looking down -z with y up, image right is +x.

@@ -5,7 +5,7 @@
 use glam::Vec3A;
 
 use crate::geometry::{AaBox, Aabb, Cone, Plane, Shape, Sphere, Triangle, triangulate_polygon};
-use crate::scene::{LightSpec, Material, Primitive, Scene, View};
+use crate::scene::{LightSpec, Material, Primitive, Scene, Viewpoint};
 use crate::skybox::{Skybox, SkyboxError};
 use crate::stats::SceneCounts;
 
@@ -48,7 +48,7 @@ pub struct Light {
 /// Everything the tracer needs about a scene, independent of render settings.
 #[derive(Debug, Clone)]
 pub struct World {
-    pub view: View,
+    pub view: Viewpoint,
     pub shapes: Vec<Shape>,
     /// Index into `surfaces` for each shape.
     pub shape_surface: Vec<u32>,

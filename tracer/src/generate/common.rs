@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 
-use crate::scene::{LightSpec, Material, Object, Primitive, Scene, View};
+use crate::scene::{LightSpec, Material, Object, Primitive, Scene, Viewpoint};
 
 /// The SPD background colour, used by every SPD scene.
 pub(super) const SPD_BACKGROUND: Vec3 = Vec3::new(0.078, 0.361, 0.753);
@@ -68,8 +68,8 @@ pub(super) fn material(
 }
 
 /// The SPD camera conventions: 45 degrees, 512 x 512, z up, pinhole.
-pub(super) fn spd_view(from: Vec3, at: Vec3) -> View {
-    View {
+pub(super) fn spd_view(from: Vec3, at: Vec3) -> Viewpoint {
+    Viewpoint {
         from,
         at,
         up: Vec3::Z,
@@ -92,7 +92,7 @@ pub(super) struct SceneBuilder {
 impl SceneBuilder {
     /// A scene suggesting the BVH (generated scenes are large) and 2 x 2
     /// anti-aliasing, as the course's `balls_medium.p3f` does.
-    pub(super) fn new(view: View, background: Vec3) -> Self {
+    pub(super) fn new(view: Viewpoint, background: Vec3) -> Self {
         Self {
             scene: Scene {
                 view,

@@ -6,7 +6,7 @@
 use glam::Vec3;
 
 use super::MeshFile;
-use crate::scene::{LightSpec, Material, Object, Primitive, Scene, View};
+use crate::scene::{LightSpec, Material, Object, Primitive, Scene, Viewpoint};
 
 /// What [`frame`] added, for a status line.
 pub const FRAMING_NOTE: &str = "framed bare mesh: camera, two lights, ground plane added";
@@ -68,14 +68,14 @@ pub fn frame(mesh: MeshFile) -> Scene {
     // still gets a usable distance.
     let radius = ((max - min).length() * 0.5).max(1e-3 * centre.length().max(1.0));
     let distance = radius / (FIELD_OF_VIEW.to_radians() * 0.5).sin() * 1.1;
-    let view = View {
+    let view = Viewpoint {
         from: centre + direction(AZIMUTH, ELEVATION) * distance,
         at: centre,
         up: Vec3::Y,
         angle: FIELD_OF_VIEW,
         width: 640,
         height: 480,
-        ..View::default()
+        ..Viewpoint::default()
     };
     let key = centre + direction(AZIMUTH - 60.0, 50.0) * distance * 1.5;
     let fill = centre + direction(AZIMUTH + 70.0, 15.0) * distance * 1.5;

@@ -20,9 +20,10 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 
-/// The camera exactly as the `v` command states it.
+/// The camera block exactly as the `v` command states it (NFF calls it
+/// the viewpoint): where the camera stands, looks and how wide it sees.
 #[derive(Debug, Clone, PartialEq)]
-pub struct View {
+pub struct Viewpoint {
     pub from: Vec3,
     pub at: Vec3,
     pub up: Vec3,
@@ -39,7 +40,7 @@ pub struct View {
     pub focal: f32,
 }
 
-impl Default for View {
+impl Default for Viewpoint {
     fn default() -> Self {
         Self {
             from: Vec3::new(0.0, 0.0, 5.0),
@@ -172,7 +173,7 @@ impl ObjectPositions {
 /// document keeps what they declare, not their order (except objects).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
-    pub view: View,
+    pub view: Viewpoint,
     pub background: Vec3,
     /// `env NAME`: a skybox folder, resolved relative to `base_dir`.
     pub env: Option<String>,
@@ -196,7 +197,7 @@ pub struct Scene {
 impl Default for Scene {
     fn default() -> Self {
         Self {
-            view: View::default(),
+            view: Viewpoint::default(),
             background: Vec3::ZERO,
             env: None,
             lights: Vec::new(),

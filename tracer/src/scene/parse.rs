@@ -5,7 +5,7 @@ mod appearance;
 mod cursor;
 mod mesh_file;
 mod shapes;
-mod view;
+mod viewpoint;
 
 use std::io::Read;
 use std::path::Path;

@@ -9,7 +9,7 @@ use image::RgbImage;
 use tracer::metrics;
 use tracer::render::{JobState, Snapshot, View};
 
-use crate::measure::compare::{Heatmap, Metrics, measure};
+use crate::measure::ab::{Heatmap, Metrics, measure};
 use crate::measure::value_difference::ValueDifference;
 
 use super::{Comparison, Layout, ValuesKey};

@@ -13,7 +13,7 @@ use std::sync::mpsc::Receiver;
 use egui::TextureHandle;
 use tracer::render::{Encoding, View};
 
-use crate::measure::compare::Metrics;
+use crate::measure::ab::Metrics;
 use crate::measure::value_difference::ValueDifference;
 
 use reference::PendingReference;

@@ -10,7 +10,7 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use image::RgbImage;
 use tracer::render::Encoding;
 
-use crate::measure::compare::{Reference, fit_reference, read_reference};
+use crate::measure::ab::{Reference, fit_reference, read_reference};
 
 /// The image side B shows.
 pub struct ReferenceImage {

@@ -9,7 +9,7 @@ use egui::{Color32, Ui};
 use tracer::render::{HEAT_PALETTE, HeatScale, View, ViewHeatmap, ViewSummary};
 
 use crate::gui::sides::{Engine, Version};
-use crate::measure::view_image::format_number;
+use crate::measure::heatmap_image::format_number;
 
 /// What the user chose, and the scale fitted to what the engines measured.
 #[derive(Debug, Clone, Default)]

@@ -11,8 +11,8 @@ use crate::gui::comparison::{Comparison, Layout};
 use crate::gui::image::pixel_views::colour_bar;
 use crate::gui::sides::Side;
 use crate::measure::describe::{describe, side_labels};
+use crate::measure::heatmap_image::format_number;
 use crate::measure::value_difference::{ValueStats, diverging_colour};
-use crate::measure::view_image::format_number;
 
 /// "A: grid off", "B: grid on, m = 4": what differs between the sides
 /// (or what A is, beside B's image).

@@ -23,8 +23,8 @@ use tracer::render::{Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSet
 use tracer::scene::Scene;
 use tracer::world::World;
 
+use crate::measure::ab::{self, Heatmap, Metrics};
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
-use crate::measure::compare::{self, Heatmap, Metrics};
 
 /// The setting a study sweeps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -438,7 +438,7 @@ impl Forward<'_> {
             Event::Measured { case, measurement } => {
                 let value = self.values[case];
                 let error = self.reference.and_then(|reference| {
-                    compare::measure(&measurement.image, reference, Heatmap::Flip)
+                    ab::measure(&measurement.image, reference, Heatmap::Flip)
                         .ok()
                         .map(|(metrics, _)| metrics)
                 });

@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use super::parse_ok;
-use crate::scene::{LightSpec, Material, Object, Primitive, View};
+use crate::scene::{LightSpec, Material, Object, Primitive, Viewpoint};
 
 #[test]
 fn view_fields_come_in_any_order_and_spill_over_lines() {
@@ -12,7 +12,7 @@ fn view_fields_come_in_any_order_and_spill_over_lines() {
     );
     assert_eq!(
         scene.view,
-        View {
+        Viewpoint {
             from: Vec3::new(4.0, 5.0, 6.0),
             at: Vec3::new(1.0, 2.0, 3.0),
             up: Vec3::Z,

@@ -6,7 +6,7 @@ use glam::{DVec3, Vec3};
 use super::cursor::looks_numeric;
 use super::{COMMANDS, Parser};
 use crate::scene::lexer::Pos;
-use crate::scene::{ParseError, ParseErrorKind, View};
+use crate::scene::{ParseError, ParseErrorKind, Viewpoint};
 
 /// Largest sine of the angle between `up` and the view direction that still
 /// counts as parallel.
@@ -15,10 +15,10 @@ const PARALLEL_SINE: f64 = 1e-6;
 impl Parser<'_, '_> {
     /// `v` then `from at up angle hither resolution aperture focal` in any
     /// order, until a token that is not one of these labels. A missing field
-    /// keeps its [`View::default`] value (aperture 0, focal 1); a repeated
+    /// keeps its [`Viewpoint::default`] value (aperture 0, focal 1); a repeated
     /// one keeps the last value.
     pub(super) fn view(&mut self, v_pos: Pos) -> Result<(), ParseError> {
-        let mut view = View::default();
+        let mut view = Viewpoint::default();
         let mut at_pos = None;
         let mut up_pos = None;
         while let Some(label) = self.cursor.peek() {
@@ -147,7 +147,7 @@ const TOO_FAR: &str = "`from` and `at` are too far apart (their distance overflo
 
 /// Whether the camera has a view direction and an `up` not parallel to it.
 /// Computed in f64 so extreme but finite coordinates cannot overflow.
-fn check_camera(view: &View) -> Result<(), &'static str> {
+fn check_camera(view: &Viewpoint) -> Result<(), &'static str> {
     let wide = |v: Vec3| v.as_dvec3();
     let direction: DVec3 = wide(view.at) - wide(view.from);
     // The renderer works in f32: a distance that underflows to 0 or

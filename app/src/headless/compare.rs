@@ -9,9 +9,9 @@ use tracer::render::{RenderSettings, View, ViewSummary};
 
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
 use crate::load::load_scene;
+use crate::measure::ab::{self, Comparison, Heatmap, ImageComparison, SideOptions};
 use crate::measure::benchmark::{Case, Measurement};
-use crate::measure::compare::{self, Comparison, Heatmap, ImageComparison, SideOptions};
-use crate::measure::view_image;
+use crate::measure::heatmap_image;
 use crate::output::save_png;
 use crate::report::si;
 
@@ -53,7 +53,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         threads: args.threads,
         views: args.view.view().is_some(),
     };
-    let comparison = compare::run(
+    let comparison = ab::run(
         &loaded.world,
         a,
         b,
@@ -68,7 +68,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         Some(view) => Some(compare_views(args, view, c)?),
         None => {
             save_png(
-                &compare::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
+                &ab::compose(&c.a.image, &c.b.image, &c.heatmap, heatmap.palette()),
                 &args.output,
             )?;
             None
@@ -110,12 +110,12 @@ fn against_image(
     path: &std::path::Path,
     heatmap: Heatmap,
 ) -> Result<()> {
-    let image = compare::read_reference(path, a.encoding)?;
+    let image = ab::read_reference(path, a.encoding)?;
     let size = (a.settings.width, a.settings.height);
-    let reference = compare::fit_reference(image, size, args.fit)
+    let reference = ab::fit_reference(image, size, args.fit)
         .with_context(|| format!("cannot compare with {}", path.display()))?;
     let mut progress = super::runner_progress(vec!["A".into()], 1);
-    let c = compare::run_against_image(
+    let c = ab::run_against_image(
         world,
         a,
         reference,
@@ -126,7 +126,7 @@ fn against_image(
     );
     let c = finished(c, args)?;
     save_png(
-        &compare::compose(
+        &ab::compose(
             &c.a.image,
             &c.reference.image,
             &c.heatmap,
@@ -220,10 +220,10 @@ fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewR
     };
     let (va, vb) = (fa.values(view), fb.values(view));
     let heat = args.view.heatmap(&[&va, &vb]);
-    let (image, difference) = view_image::compose_sides(fa, fb, view, &heat)?;
+    let (image, difference) = heatmap_image::compose_sides(fa, fb, view, &heat)?;
     save_png(&image, &args.output)?;
     let (sa, sb) = (ViewSummary::of(&va), ViewSummary::of(&vb));
-    let number = view_image::format_number;
+    let number = heatmap_image::format_number;
     let difference_line = difference.map_or_else(String::new, |d| {
         format!(
             "A - B: mean A / mean B {}, mean |A - B| {}, max |A - B| {} ({})\n",
@@ -236,12 +236,12 @@ fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewR
     Ok(ViewReport {
         text: format!(
             "A {}\nB {}\n{difference_line}",
-            view_image::describe(view, sa.as_ref(), &heat),
-            view_image::describe(view, sb.as_ref(), &heat)
+            heatmap_image::describe(view, sa.as_ref(), &heat),
+            heatmap_image::describe(view, sb.as_ref(), &heat)
         ),
         json: serde_json::json!({
-            "a": view_image::summary_json(view, sa.as_ref(), &heat),
-            "b": view_image::summary_json(view, sb.as_ref(), &heat),
+            "a": heatmap_image::summary_json(view, sa.as_ref(), &heat),
+            "b": heatmap_image::summary_json(view, sb.as_ref(), &heat),
             "difference": difference.map(|d| serde_json::json!({
                 "pixels": d.pixels,
                 "mean_a": d.mean_a,

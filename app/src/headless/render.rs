@@ -12,7 +12,7 @@ use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::load::load_scene;
-use crate::measure::{overlay_image, ray_tree_report, view_image};
+use crate::measure::{heatmap_image, overlay_image, ray_tree_report};
 use crate::output::{is_exr, save_exr, save_png};
 use crate::report;
 
@@ -87,7 +87,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     } else {
         let mut image = match &view {
             Some((v, film, _, heat)) => {
-                view_image::view_image(film, *v, heat).context("the view has no image")?
+                heatmap_image::view_image(film, *v, heat).context("the view has no image")?
             }
             None => film.to_image(encoding),
         };
@@ -103,7 +103,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
         match &view {
             Some((v, _, _, heat)) if v.is_scalar() => {
-                save_png(&view_image::with_legend(&image, heat), &args.output)?
+                save_png(&heatmap_image::with_legend(&image, heat), &args.output)?
             }
             _ => save_png(&image, &args.output)?,
         }
@@ -112,7 +112,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         Some(StatsFormat::Json) => {
             let mut json = report::json_value(&stats, &loaded.world.counts);
             if let Some((v, _, summary, heat)) = &view {
-                json["view"] = view_image::summary_json(*v, summary.as_ref(), heat);
+                json["view"] = heatmap_image::summary_json(*v, summary.as_ref(), heat);
             }
             println!(
                 "{}",
@@ -127,7 +127,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 report::summary(&stats, &loaded.world.counts)
             );
             if let Some((v, _, summary, heat)) = &view {
-                println!("{}", view_image::describe(*v, summary.as_ref(), heat));
+                println!("{}", heatmap_image::describe(*v, summary.as_ref(), heat));
             }
         }
     }
