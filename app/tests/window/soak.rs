@@ -7,7 +7,7 @@
 //! headless render of the final settings.
 //!
 //! `cargo test` runs a short version; `WORKBENCH_SOAK_EVENTS=5000 cargo test
-//! --test gui_soak` a long one (`WORKBENCH_SOAK_SEED` picks another sequence).
+//! --test window soak` a long one (`WORKBENCH_SOAK_SEED` picks another sequence).
 
 use std::sync::Arc;
 use std::thread::sleep;
