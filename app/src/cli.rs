@@ -351,6 +351,9 @@ pub struct RenderArgs {
     /// Print the statistics in this format instead of the summary.
     #[arg(long, value_name = "FORMAT")]
     pub stats: Option<StatsFormat>,
+    /// Write the scene, after its --set edits, to this P3F file.
+    #[arg(long, value_name = "P3F")]
+    pub save_scene: Option<PathBuf>,
     #[command(flatten)]
     pub view: ViewArgs,
     /// Draw the acceleration structure over the image: bvh:DEPTH (the
@@ -503,6 +506,12 @@ pub struct SettingsArgs {
     /// Seed of the random numbers.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Edit the scene before it is prepared, e.g. 'object 5 ior 1.33',
+    /// 'material 2 kd 0.5', 'light 0 position 1 2 3', 'camera aperture 8';
+    /// repeatable, applied in order. Objects count from 0 in the file's
+    /// order, as `inspect` numbers them.
+    #[arg(long = "set", value_name = "EDIT")]
+    pub set: Vec<String>,
 }
 
 /// How images are written: what the commands that write images take
@@ -537,11 +546,12 @@ struct SettingsLine {
 
 impl SettingsArgs {
     /// Reads settings flags (and `--srgb`) from one string, as `workbench
-    /// render` takes them ("--accel grid --grid-m 4 --aa"). Values never hold spaces, so
-    /// whitespace separates the words. The error names the bad flag or
-    /// value, e.g. "unexpected argument '--fast' found".
+    /// render` takes them ("--accel grid --grid-m 4 --aa"). Whitespace
+    /// separates the words, except inside quotes (`--set 'object 5 ior
+    /// 1.33'`). The error names the bad flag or value, e.g. "unexpected
+    /// argument '--fast' found".
     pub fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
-        SettingsLine::try_parse_from(text.split_whitespace())
+        SettingsLine::try_parse_from(split_words(text)?)
             .map(|line| (line.settings, line.encoding))
             .map_err(|e| {
                 let message = e.render().to_string();
@@ -601,6 +611,31 @@ impl SettingsArgs {
     }
 }
 
+/// `text` split into words as a shell splits them, at whitespace outside
+/// single or double quotes, the quotes removed.
+fn split_words(text: &str) -> Result<Vec<String>, String> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut quote = None;
+    for c in text.chars() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), c) => word.get_or_insert_default().push(c),
+            (None, '\'' | '"') => {
+                quote = Some(c);
+                word.get_or_insert_default();
+            }
+            (None, c) if c.is_whitespace() => words.extend(word.take()),
+            (None, c) => word.get_or_insert_default().push(c),
+        }
+    }
+    if let Some(q) = quote {
+        return Err(format!("a {q} quote is not closed in \"{text}\""));
+    }
+    words.extend(word);
+    Ok(words)
+}
+
 /// Most worker threads accepted: starting and stopping threads costs more
 /// than they render beyond this (20 000 threads took over a minute for an
 /// 8 x 8 image).
@@ -633,6 +668,18 @@ mod tests {
         );
         assert!(SettingsArgs::parse_str("").is_ok());
         assert!(SettingsArgs::parse_str("  ").is_ok());
+    }
+
+    #[test]
+    fn settings_strings_keep_quoted_edits_whole() {
+        let (args, _) =
+            SettingsArgs::parse_str("--aa --set 'object 5 ior 1.33' --set \"camera focal 2\"")
+                .unwrap();
+        assert_eq!(args.set, ["object 5 ior 1.33", "camera focal 2"]);
+        assert!(args.aa);
+        assert_eq!(split_words(" a  ''  'b c'd ").unwrap(), ["a", "", "b cd"]);
+        let open = SettingsArgs::parse_str("--set 'object 5").unwrap_err();
+        assert!(open.contains("quote is not closed"), "{open}");
     }
 
     #[test]

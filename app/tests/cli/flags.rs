@@ -343,6 +343,36 @@ const CHECKED: &[(&str, &str, &str)] = &[
         "srgb",
         "sweep_reference_spp_accel_and_encoding_apply",
     ),
+    (
+        "render",
+        "set",
+        "edits::set_gives_the_image_of_the_scene_edited_by_hand",
+    ),
+    (
+        "render",
+        "save-scene",
+        "edits::a_saved_scene_renders_as_the_edited_one",
+    ),
+    (
+        "compare",
+        "set",
+        "edits::compare_applies_edits_to_both_sides_and_per_side",
+    ),
+    (
+        "inspect",
+        "set",
+        "edits::inspect_bench_and_sweep_see_the_edits",
+    ),
+    (
+        "bench",
+        "set",
+        "edits::inspect_bench_and_sweep_see_the_edits",
+    ),
+    (
+        "sweep",
+        "set",
+        "edits::inspect_bench_and_sweep_see_the_edits",
+    ),
 ];
 
 /// The settings flags `render` shares with the other subcommands.
@@ -371,6 +401,7 @@ const SOURCES: &[&str] = &[
     include_str!("render.rs"),
     include_str!("views.rs"),
     include_str!("compare.rs"),
+    include_str!("edits.rs"),
     include_str!("meshes_and_images.rs"),
     include_str!("sweep.rs"),
     include_str!("../window/real_window.rs"),

@@ -7,6 +7,7 @@ mod support;
 mod bad_scenes;
 mod compare;
 mod determinism;
+mod edits;
 mod flags;
 mod golden;
 mod meshes_and_images;

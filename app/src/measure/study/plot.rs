@@ -145,6 +145,9 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         time.title = format!("{subject}: frame time vs scene size (log-log)");
     }
     let mut panels = vec![time];
+    if let (Param::Material { .. }, Some(&accel)) = (param, accels.first()) {
+        panels.push(rays_by_kind(param, points, accel));
+    }
     if points.iter().any(|p| p.error.is_some()) {
         let mse = |p: &Point| p.error.map_or(f64::NAN, |e| e.mse);
         let errors: Vec<f64> = points.iter().map(mse).collect();
@@ -176,6 +179,44 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         });
     }
     panels
+}
+
+/// Reflection and refraction rays a pixel against a material parameter
+/// (the same for every structure: `accel`'s): where glass loses its
+/// refraction rays to total internal reflection, the refraction curve
+/// falls.
+fn rays_by_kind(param: Param, points: &[Point], accel: AccelKind) -> Panel {
+    let series = analysis::series(points, accel);
+    let curve = |name: &str, colour: RGBColor, count: fn(&Point) -> u64| Curve {
+        name: name.into(),
+        colour,
+        points: series
+            .iter()
+            .map(|p| {
+                let s = &p.measurement.case.settings;
+                let pixels = f64::from(s.width) * f64::from(s.height);
+                (p.x, count(p) as f64 / pixels.max(1.0))
+            })
+            .collect(),
+        best: None,
+    };
+    Panel {
+        title: format!("rays by kind vs {param}"),
+        x_label: param.axis().to_string(),
+        y_label: "rays a pixel".into(),
+        log_x: false,
+        log_y: false,
+        integer_x: false,
+        legend: SeriesLabelPosition::UpperRight,
+        curves: vec![
+            curve("reflection", RGBColor(120, 120, 120), |p| {
+                p.measurement.stats.counters.reflection_rays
+            }),
+            curve("refraction", RGBColor(52, 120, 198), |p| {
+                p.measurement.stats.counters.refraction_rays
+            }),
+        ],
+    }
 }
 
 /// Whether the frame time chart has a log x and a log y axis: both for
