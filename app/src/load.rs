@@ -312,7 +312,7 @@ mod tests {
         std::fs::write(&path, "env nowhere\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n").unwrap();
         let (_, world) = load_source(&SceneSource::File(path)).unwrap();
         let bundled = embedded_skybox("sky").unwrap();
-        assert_eq!(world.skybox, Some(bundled));
+        assert_eq!(world.skybox, Some(Arc::new(bundled)));
         let warnings = world.warnings.join("; ");
         assert!(warnings.contains("nowhere"), "{warnings}");
         assert!(
