@@ -121,6 +121,7 @@ fn with_edits(labels: (String, String), edits: (&[String], &[String])) -> (Strin
         return labels;
     }
     let label = |settings: String, edits: &[String]| match (settings.as_str(), edits) {
+        ("same settings", []) => "the scene unedited".into(),
         (_, []) => settings,
         ("same settings", edits) => edits.join(", "),
         (_, edits) => format!("{settings}, {}", edits.join(", ")),
