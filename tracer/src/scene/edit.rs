@@ -3,7 +3,8 @@
 //! rules the parser follows ([`super::rules`]), changes nothing when it is
 //! refused, and returns its inverse: undo applies the inverse, redo applies
 //! what that returns. The command line's `--set` lines are the same edits
-//! as text ([`text`]), so the window can show any edit as its `--set` line.
+//! as text (module `text`), so the window can show any edit as its
+//! `--set` line.
 
 mod text;
 
@@ -290,7 +291,8 @@ pub fn apply_all(edits: &[Edit], scene: &mut Scene) -> Result<Vec<Edit>, (usize,
             Err(error) => {
                 for inverse in undo.iter().rev() {
                     // An inverse applies to the scene its edit left.
-                    let _ = inverse.apply(scene);
+                    let undone = inverse.apply(scene);
+                    debug_assert!(undone.is_ok(), "{inverse} refused: {undone:?}");
                 }
                 return Err((i, error));
             }
