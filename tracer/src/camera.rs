@@ -213,6 +213,35 @@ impl Camera {
         Ray::new(origin, focus - origin)
     }
 
+    /// Where the eye is: the pinhole, or the lens centre.
+    pub fn eye(&self) -> Vec3A {
+        self.eye
+    }
+
+    /// The image's right and up and the view direction, unit vectors: the
+    /// frame a figure draws the camera in.
+    pub fn basis(&self) -> [Vec3A; 3] {
+        [self.right, self.up, self.forward]
+    }
+
+    /// The lens radius in scene units (0: a pinhole).
+    pub fn lens_radius(&self) -> f32 {
+        self.lens_radius
+    }
+
+    /// How far the sharp plane is, as a multiple of the view-plane
+    /// distance: points at `eye + (view_plane_point - eye) * focal_ratio`
+    /// are in focus.
+    pub fn focal_ratio(&self) -> f32 {
+        self.focal_ratio
+    }
+
+    /// How far in front of the eye `point` is, along the view direction
+    /// (negative behind it): what clipping at the eye compares.
+    pub fn depth(&self, point: Vec3A) -> f32 {
+        (point - self.eye).dot(self.forward)
+    }
+
     /// The continuous image coordinates where the pinhole projection of
     /// `point` lands, or `None` behind the eye. The inverse of [`Camera::ray`]
     /// for a pinhole, used by tests and the GUI's picking.

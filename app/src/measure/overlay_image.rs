@@ -6,15 +6,18 @@ use image::{Rgb, RgbImage};
 use tracer::accel::Visit;
 use tracer::camera::Camera;
 
+use super::projection::Projector;
+
 /// The colour of the wireframe: visible on both the shaded image and the
 /// heat maps.
 pub const WIRE: Rgb<u8> = Rgb([80, 255, 120]);
 
-/// Draws each 3D segment of `segments` projected by `camera`; segments
-/// reaching behind the eye are left out.
+/// Draws each 3D segment of `segments` projected by `camera`, clipped at
+/// the eye.
 pub fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A; 2]]) {
-    for [a, b] in segments {
-        if let (Some(a), Some(b)) = (camera.project(*a), camera.project(*b)) {
+    let projector = Projector::new(camera);
+    for &[a, b] in segments {
+        if let Some([a, b]) = projector.segment(a, b) {
             draw_line(image, a, b, WIRE);
         }
     }
@@ -31,10 +34,11 @@ pub fn visit_colour(i: usize, n: usize) -> [u8; 3] {
 /// Draws the boxes of one ray's `visits` over `image`, coloured by their
 /// order ([`visit_colour`]).
 pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
+    let projector = Projector::new(camera);
     for (i, visit) in visits.iter().enumerate() {
         let colour = Rgb(visit_colour(i, visits.len()));
         for [a, b] in visit.edges() {
-            if let (Some(a), Some(b)) = (camera.project(a), camera.project(b)) {
+            if let Some([a, b]) = projector.segment(a, b) {
                 draw_line(image, a, b, colour);
             }
         }
@@ -44,7 +48,7 @@ pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
 /// A one-pixel line from `a` to `b` (image coordinates), clipped to the
 /// image first, so a segment reaching far off-screen costs no more than
 /// one across it.
-fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
+pub fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
     let size = Vec2::new(image.width() as f32, image.height() as f32);
     let Some((a, b)) = clip(a, b, size) else {
         return;
