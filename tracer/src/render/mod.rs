@@ -9,6 +9,10 @@ mod ray_tree;
 mod settings;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_aa;
+#[cfg(test)]
+mod tests_lens;
 mod trace;
 mod view;
 
