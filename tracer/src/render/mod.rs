@@ -13,6 +13,8 @@ mod tests;
 mod tests_aa;
 #[cfg(test)]
 mod tests_lens;
+#[cfg(test)]
+mod tests_shadows;
 mod trace;
 mod view;
 
