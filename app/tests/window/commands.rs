@@ -140,6 +140,12 @@ fn the_slow_brute_force_banner_switches_to_the_bvh() {
         AccelKind::None,
         "the file's choice"
     );
+    // The scene list's counts widen the side panel when they arrive, which
+    // moves the banner: click once they are in and drawn.
+    wait_for(&mut harness, "the scene list's counts", |app| {
+        app.is_catalog_complete()
+    });
+    harness.run_steps(2);
     harness.get_by_label("Switch to BVH").click();
     harness.run_steps(2);
     assert_eq!(settings(&harness).accel, AccelKind::Bvh);
