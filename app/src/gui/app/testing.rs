@@ -2,6 +2,7 @@
 //! place: the window's own code never calls these.
 
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use tracer::render::Snapshot;
 
@@ -95,6 +96,18 @@ impl WorkbenchApp {
     /// Whether the scene list has the object count of every bundled scene.
     pub fn is_catalog_complete(&self) -> bool {
         self.scene_list.catalog.is_complete()
+    }
+
+    /// How long after opening the scene list is counted even while the
+    /// first render runs (3 s unless a test says otherwise).
+    pub fn set_catalog_delay(&mut self, delay: Duration) {
+        self.scene_list.delay = delay;
+    }
+
+    /// Side A's next renders pause themselves once `tiles` tiles are in:
+    /// a first pass held half done, on any machine.
+    pub fn pause_renders_after_tiles(&mut self, tiles: Option<u64>) {
+        self.sides.a.engine.pause_after_tiles(tiles);
     }
 
     /// Files opened recently, newest first.
