@@ -187,9 +187,17 @@ pub struct BenchArgs {
     /// deviation are reported.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
-    /// Structures to measure (default: none, grid, bvh).
-    #[arg(long, value_enum, value_delimiter = ',')]
+    /// Structures to measure (default: none, grid, bvh; with --rays one,
+    /// default bvh). --structure is the same option.
+    #[arg(long, alias = "structure", value_enum, value_delimiter = ',')]
     pub structures: Option<Vec<AccelArg>>,
+    /// Time the structure alone on the ray set Embree is measured on: eye
+    /// rays through each pixel centre in 16 x 16 tiles (closest hit), then
+    /// shadow rays from their hits to each light the surface faces (any
+    /// hit), each kind on its own, --runs casts after a warm-up (text or
+    /// json).
+    #[arg(long, conflicts_with_all = ["matrix", "images"])]
+    pub rays: bool,
     /// Measure the seed's matrix: structure x soft shadows x {one sample,
     /// AA, AA with depth of field}.
     #[arg(long)]
