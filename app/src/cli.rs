@@ -71,7 +71,7 @@ pub enum Headless {
     /// rays, MSE, PSNR, FLIP and an A | B | difference image.
     Compare(CompareArgs),
     /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears,
-    /// shells, lattice, jacks, sombrero) as P3F, or the sky cube (`sky`) as
+    /// shells, lattice, jacks, sombrero, teapot) as P3F, or the sky cube (`sky`) as
     /// six PNG faces.
     Gen(GenArgs),
     /// Sweep one parameter (grid-m, spp, depth, light-size, aperture,
@@ -155,7 +155,7 @@ fn study_param(text: &str) -> Result<Param, String> {
 #[derive(Args, Debug)]
 pub struct GenArgs {
     /// balls, mount, tetra, rings, tree, gears, shells, lattice, jacks,
-    /// sombrero or sky.
+    /// sombrero, teapot or sky.
     pub name: String,
     /// Size of the scene (its meaning depends on the generator: for balls,
     /// level 2 is 91 spheres).
@@ -190,9 +190,17 @@ pub struct BenchArgs {
     /// deviation are reported.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
-    /// Structures to measure (default: --accel's, or none, grid and bvh).
-    #[arg(long, value_parser = accel_kind, value_delimiter = ',')]
+    /// Structures to measure (default: --accel's, or none, grid and bvh;
+    /// with --rays one, default bvh). --structure is the same option.
+    #[arg(long, alias = "structure", value_parser = accel_kind, value_delimiter = ',')]
     pub structures: Option<Vec<AccelKind>>,
+    /// Time the structure alone on the ray set Embree is measured on: eye
+    /// rays through each pixel centre in 16 x 16 tiles (closest hit), then
+    /// shadow rays from their hits to each light the surface faces (any
+    /// hit), each kind on its own, --runs casts after a warm-up (text or
+    /// json).
+    #[arg(long, conflicts_with_all = ["matrix", "images"])]
+    pub rays: bool,
     /// Measure the course report's matrix: structure x soft shadows x {one sample,
     /// AA, AA with depth of field}.
     #[arg(long)]

@@ -192,6 +192,11 @@ const CHECKED: &[(&str, &str, &str)] = &[
     ),
     ("bench", "thumbnail", "compare::images_can_be_thumbnails"),
     (
+        "bench",
+        "rays",
+        "bench_rays::json_counts_one_eye_ray_per_pixel_and_a_shadow_ray_per_faced_light",
+    ),
+    (
         "compare",
         "scene",
         "compare::different_settings_measure_positive",
@@ -373,6 +378,7 @@ const SOURCES: &[&str] = &[
     include_str!("compare.rs"),
     include_str!("meshes_and_images.rs"),
     include_str!("sweep.rs"),
+    include_str!("bench_rays.rs"),
     include_str!("../window/real_window.rs"),
 ];
 

@@ -5,6 +5,7 @@
 mod support;
 
 mod bad_scenes;
+mod bench_rays;
 mod compare;
 mod determinism;
 mod flags;

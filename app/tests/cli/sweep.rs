@@ -153,9 +153,9 @@ fn bad_input_gets_a_clear_error() {
     assert!(param.contains("grid-m"), "{param}");
     let level = workbench_fails(&["sweep", "--param", "level"]);
     assert!(level.contains("--generator"), "{level}");
-    let generator = workbench_fails(&["sweep", "--param", "level", "--generator", "teapot"]);
+    let generator = workbench_fails(&["sweep", "--param", "level", "--generator", "kettle"]);
     assert!(
-        generator.contains("unknown generator `teapot`"),
+        generator.contains("unknown generator `kettle`"),
         "{generator}"
     );
     let range = workbench_fails(&[
