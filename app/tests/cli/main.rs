@@ -11,6 +11,7 @@ mod determinism;
 mod flags;
 mod golden;
 mod meshes_and_images;
+mod observe;
 mod render;
 mod sweep;
 mod views;

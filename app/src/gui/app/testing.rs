@@ -11,6 +11,7 @@ use super::saving::SaveImage;
 use crate::gui::comparison::Comparison;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::observer::Observer;
 use crate::gui::sides::{Controls, Engine, Side};
 use crate::gui::windows::benchmark::BenchWindow;
 use crate::gui::windows::ray_tree::Inspector;
@@ -40,6 +41,17 @@ impl WorkbenchApp {
     /// The comparison, while comparing.
     pub fn comparison(&self) -> Option<&Comparison> {
         self.sides.b.as_ref().map(|_| &self.comparison)
+    }
+
+    /// The observer view.
+    pub fn observer(&self) -> &Observer {
+        &self.observer
+    }
+
+    /// The observer also draws the rays of row `y`'s pixels, as its
+    /// panel's "More pixels" does.
+    pub fn observer_pattern_row(&mut self, y: u32) {
+        self.observer.pattern = Some(crate::measure::observer::PixelPattern::Row(y));
     }
 
     /// The per-pixel view the images show.

@@ -285,6 +285,15 @@ impl Engine {
             .or_else(|| self.index.clone())
     }
 
+    /// Lends this engine the structure another engine built over the same
+    /// scene (the observer renders A's scene): its next job skips the
+    /// build when the structure fits its settings.
+    pub fn share_index(&mut self, index: Arc<SceneIndex>) {
+        if self.index.as_ref().is_none_or(|i| !Arc::ptr_eq(i, &index)) {
+            self.index = Some(index);
+        }
+    }
+
     /// Whether jobs measure the views; a change renders again.
     pub fn set_views(&mut self, on: bool) {
         self.views_changed |= on != self.views;
