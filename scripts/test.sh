@@ -29,7 +29,8 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
 fi
 
 echo "== cargo test"
-cargo test
+# --locked: the tests run on the versions Cargo.lock names, or fail.
+cargo test --locked
 
 echo "== the real window under Xvfb"
-xvfb-run -a -s "-screen 0 1400x900x24" cargo test --test window -- --ignored
+xvfb-run -a -s "-screen 0 1400x900x24" cargo test --locked --test window -- --ignored

@@ -64,6 +64,10 @@ pub enum Headless {
     /// Show every ray one sample of one pixel spawned: what each hit, its
     /// material, its shadow rays and what it added to the pixel.
     Inspect(InspectArgs),
+    /// Draw the scene seen from outside: the scene camera with its image
+    /// plane, the lights, and the rays of a pixel (or a row, column or grid
+    /// of pixels) flying through it, as a PNG figure or JSON segments.
+    Observe(ObserveArgs),
     /// Time frames of a scene with each acceleration structure, or the
     /// course report's whole timing matrix (--matrix).
     Bench(BenchArgs),
@@ -71,7 +75,7 @@ pub enum Headless {
     /// rays, MSE, PSNR, FLIP and an A | B | difference image.
     Compare(CompareArgs),
     /// Generate a procedural scene (balls, mount, tetra, rings, tree, gears,
-    /// shells, lattice, jacks, sombrero) as P3F, or the sky cube (`sky`) as
+    /// shells, lattice, jacks, sombrero, teapot) as P3F, or the sky cube (`sky`) as
     /// six PNG faces.
     Gen(GenArgs),
     /// Sweep one parameter (grid-m, spp, depth, light-size, aperture,
@@ -155,7 +159,7 @@ fn study_param(text: &str) -> Result<Param, String> {
 #[derive(Args, Debug)]
 pub struct GenArgs {
     /// balls, mount, tetra, rings, tree, gears, shells, lattice, jacks,
-    /// sombrero or sky.
+    /// sombrero, teapot or sky.
     pub name: String,
     /// Size of the scene (its meaning depends on the generator: for balls,
     /// level 2 is 91 spheres).
@@ -190,9 +194,17 @@ pub struct BenchArgs {
     /// deviation are reported.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
-    /// Structures to measure (default: --accel's, or none, grid and bvh).
-    #[arg(long, value_parser = accel_kind, value_delimiter = ',')]
+    /// Structures to measure (default: --accel's, or none, grid and bvh;
+    /// with --rays one, default bvh). --structure is the same option.
+    #[arg(long, alias = "structure", value_parser = accel_kind, value_delimiter = ',')]
     pub structures: Option<Vec<AccelKind>>,
+    /// Time the structure alone on the ray set Embree is measured on: eye
+    /// rays through each pixel centre in 16 x 16 tiles (closest hit), then
+    /// shadow rays from their hits to each light the surface faces (any
+    /// hit), each kind on its own, --runs casts after a warm-up (text or
+    /// json).
+    #[arg(long, conflicts_with_all = ["matrix", "images"])]
+    pub rays: bool,
     /// Measure the course report's matrix: structure x soft shadows x {one sample,
     /// AA, AA with depth of field}.
     #[arg(long)]
@@ -432,6 +444,67 @@ fn parse_heat_scale(text: &str) -> Result<HeatScale, String> {
             _ => Err(format!("'{text}' is not max, p99 or a positive number")),
         },
     }
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+The figure is the scene rendered from an observer camera (by default
+behind, above and to the side of the scene camera, framing the scene),
+with the scene camera's frustum, its image plane showing the render, the
+lens and the plane in focus with depth of field, the lights (and their
+areas with soft shadows), and every ray of the pixel's sample: eye white,
+reflection blue, refraction pink, shadow rays yellow (dashed and ending
+at the occluder when blocked), a green tick along each hit's normal.
+What a surface hides is drawn faint.
+
+  workbench observe scene.p3f --pixel 160 150 -o figure.png
+  workbench observe scene.p3f --pixel 160 150 --pixels row:150 --format json")]
+pub struct ObserveArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// The pixel whose rays are drawn, from the top-left corner.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
+    pub pixel: Vec<u32>,
+    /// Also draw these pixels' rays: row:Y, column:X (32 pixels along it)
+    /// or grid:STEP (one pixel every STEP).
+    #[arg(long, value_parser = pixel_pattern, value_name = "row:Y|column:X|grid:STEP")]
+    pub pixels: Option<crate::measure::observer::PixelPattern>,
+    /// Which of the pixels' samples (the pass that traces it, from 0).
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub sample: u32,
+    /// Where the observer stands (default: framed on the scene).
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], requires = "at", allow_negative_numbers = true)]
+    pub from: Option<Vec<f32>>,
+    /// What the observer looks at.
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], requires = "from", allow_negative_numbers = true)]
+    pub at: Option<Vec<f32>>,
+    /// The observer's up (default: the scene camera's).
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], allow_negative_numbers = true)]
+    pub up: Option<Vec<f32>>,
+    /// The figure's size in pixels.
+    #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [800, 600])]
+    pub size: Vec<u32>,
+    /// Draw the acceleration structure too: bvh:DEPTH, bvh:leaves or grid,
+    /// with the pixel's eye-ray walk through it.
+    #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
+    pub overlay: Option<StructureLayer>,
+    /// Where to write the figure.
+    #[arg(short, long, default_value = "observe.png")]
+    pub output: PathBuf,
+    /// A summary, or every drawn segment as JSON.
+    #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+    pub format: MetricsFormat,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = thread_count)]
+    pub threads: Option<usize>,
+}
+
+fn pixel_pattern(text: &str) -> Result<crate::measure::observer::PixelPattern, String> {
+    text.parse()
 }
 
 #[derive(Args, Debug)]

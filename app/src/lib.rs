@@ -19,6 +19,7 @@ pub fn run() -> std::process::ExitCode {
     let result = match cli.command {
         Some(cli::Headless::Render(args)) => headless::render::run(&args),
         Some(cli::Headless::Inspect(args)) => headless::inspect::run(&args),
+        Some(cli::Headless::Observe(args)) => headless::observe::run(&args),
         Some(cli::Headless::Bench(args)) => headless::bench::run(&args),
         Some(cli::Headless::Compare(args)) => headless::compare::run(&args),
         Some(cli::Headless::Gen(args)) => headless::generate::run(&args),

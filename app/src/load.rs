@@ -138,6 +138,8 @@ fn apply_edits_then(
 
 /// The world of a scene from disk: an `env` folder that cannot be loaded
 /// falls back to the bundled sky (not the flat background), with a warning.
+/// The bundled sky is painted y-up; it is stood upright on the camera's
+/// `up`, so a z-up course scene shows sky, not ground, above its horizon.
 fn build_with_sky(scene: &Scene) -> World {
     let problem = RefCell::new(None);
     let mut world = World::build_with_skybox(scene, |name| {
@@ -147,7 +149,7 @@ fn build_with_sky(scene: &Scene) -> World {
             .unwrap_or(Path::new("."))
             .join(name);
         Skybox::load(&dir).or_else(|e| {
-            let bundled = embedded_skybox(name);
+            let bundled = embedded_skybox(name).map(|sky| sky.upright(scene.view.up));
             if bundled.is_ok() {
                 *problem.borrow_mut() = Some(e);
                 bundled
@@ -319,6 +321,42 @@ mod tests {
             warnings.contains("using the bundled sky instead"),
             "{warnings}"
         );
+    }
+
+    /// The fallback sky stands upright on the scene camera's `up`: above
+    /// the horizon, in every direction around, the bundled sky's blue; below
+    /// it, its ground. For a z-up scene (the course's) and a y-up one.
+    #[test]
+    fn the_fallback_sky_stands_upright_for_the_camera() {
+        let dir = tracer::scratch::Scratch::new("load-sky-up");
+        let bundled = embedded_skybox("sky").unwrap();
+        for (name, view, up) in [
+            (
+                "z-up",
+                "v from 2.1 1.3 1.7 at 0 0 0 up 0 0 1",
+                glam::Vec3::Z,
+            ),
+            ("y-up", "v from 0 1 5 at 0 0 0 up 0 1 0", glam::Vec3::Y),
+        ] {
+            let path = dir.join(format!("{name}.p3f"));
+            std::fs::write(&path, format!("env skybox\n{view}\ns 0 0 0 1\n")).unwrap();
+            let (_, world) = load_source(&SceneSource::File(path)).unwrap();
+            let up = glam::Vec3A::from(up);
+            assert_eq!(
+                world.background(up),
+                bundled.sample(glam::Vec3A::Y),
+                "{name}"
+            );
+            let (side, other) = up.any_orthonormal_pair();
+            for k in 0..8 {
+                let around = glam::Vec2::from_angle(k as f32 * std::f32::consts::FRAC_PI_4);
+                let level = side * around.x + other * around.y;
+                let sky = world.background(level + up * 0.6);
+                let ground = world.background(level - up * 0.6);
+                assert!(sky.z > sky.x + 0.2, "{name}: above the horizon {sky}");
+                assert!(ground.z < ground.x, "{name}: below the horizon {ground}");
+            }
+        }
     }
 
     /// A bare mesh opens as a framed scene: camera, lights, ground, mesh.

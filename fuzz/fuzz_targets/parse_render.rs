@@ -2,6 +2,7 @@
 //! bounces, one thread, so each input takes milliseconds. The scene's own
 //! features (soft shadows come from `al` lights, DOF from `aperture`, the
 //! structure from `accel`) are kept, with soft shadows forced on too.
+//! Every value of the film must be finite.
 #![no_main]
 
 use std::sync::Arc;
@@ -46,9 +47,19 @@ fuzz_target!(|data: &[u8]| {
     ));
     // A refused camera or setting is an error value, which is fine; a panic
     // inside the render threads is reported as `RenderError::Panicked`.
-    if let Err(tracer::render::RenderError::Panicked(message)) =
-        render(world, index, settings, Some(1))
-    {
-        panic!("render panicked: {message}");
+    let film = match render(world, index, settings, Some(1)) {
+        Ok((film, _)) => film,
+        Err(tracer::render::RenderError::Panicked(message)) => {
+            panic!("render panicked: {message}")
+        }
+        Err(_) => return,
+    };
+    // A NaN or infinite value would be encoded as black or white and pass
+    // unseen: every film value must be a number.
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            let value = film.pixel(x, y).unwrap_or_default();
+            assert!(value.is_finite(), "pixel ({x}, {y}) is {value}");
+        }
     }
 });

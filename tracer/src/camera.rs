@@ -213,6 +213,35 @@ impl Camera {
         Ray::new(origin, focus - origin)
     }
 
+    /// Where the eye is: the pinhole, or the lens centre.
+    pub fn eye(&self) -> Vec3A {
+        self.eye
+    }
+
+    /// The image's right and up and the view direction, unit vectors: the
+    /// frame a figure draws the camera in.
+    pub fn basis(&self) -> [Vec3A; 3] {
+        [self.right, self.up, self.forward]
+    }
+
+    /// The lens radius in scene units (0: a pinhole).
+    pub fn lens_radius(&self) -> f32 {
+        self.lens_radius
+    }
+
+    /// How far the sharp plane is, as a multiple of the view-plane
+    /// distance: points at `eye + (view_plane_point - eye) * focal_ratio`
+    /// are in focus.
+    pub fn focal_ratio(&self) -> f32 {
+        self.focal_ratio
+    }
+
+    /// How far in front of the eye `point` is, along the view direction
+    /// (negative behind it): what clipping at the eye compares.
+    pub fn depth(&self, point: Vec3A) -> f32 {
+        (point - self.eye).dot(self.forward)
+    }
+
     /// The continuous image coordinates where the pinhole projection of
     /// `point` lands, or `None` behind the eye. The inverse of [`Camera::ray`]
     /// for a pinhole, used by tests and the GUI's picking.
@@ -339,6 +368,44 @@ mod tests {
             let t = (d - (ray.origin - cam.eye).dot(cam.forward)) / ray.dir.dot(cam.forward);
             let q = cam.project(ray.at(t)).unwrap();
             assert!((q - Vec2::new(20.5, 30.5)).length() > 0.5, "{q}");
+        }
+    }
+
+    /// The thin-lens model of the module doc, worked on paper: a lens point
+    /// `l` (in the unit disk) sits `l * A / 2` pixels off the axis, and its
+    /// ray meets the pinhole ray of the same image point on the focal plane
+    /// (depth `F d`). At depth `z` the two are apart by `l * A / 2 * (1 - z /
+    /// (F d))` pixels of the view plane scaled to that depth, so seen
+    /// through the pinhole the point lands `|l| * A / 2 * |d / z - 1 / F|`
+    /// pixels away: the circle of confusion has the diameter
+    /// `A * |1 / F - d / z|`.
+    #[test]
+    fn circle_of_confusion_matches_the_thin_lens_model() {
+        let v = view(96, 64);
+        let d = (v.at - v.from).length();
+        for (aperture, focal) in [(20.0f32, 1.5f32), (7.0, 0.6), (33.0, 1.0)] {
+            let cam = Camera::new(&v, v.width, v.height, aperture, focal).unwrap();
+            for z in [0.3 * d, 0.8 * d, 1.9 * d, 4.0 * d] {
+                let diameter = aperture * (1.0 / focal - d / z).abs();
+                for (x, y) in [(48.0, 32.0), (10.25, 55.5), (90.5, 3.75)] {
+                    for angle in [0.0f32, 1.0, 2.5, 4.0, 5.5] {
+                        for radius in [1.0f32, 0.5] {
+                            let lens = Vec2::from_angle(angle) * radius;
+                            let ray = cam.ray(x, y, lens);
+                            // Where the ray reaches depth z along the view.
+                            let t = (z - (ray.origin - cam.eye).dot(cam.forward))
+                                / ray.dir.dot(cam.forward);
+                            let seen = cam.project(ray.at(t)).unwrap();
+                            let spread = (seen - Vec2::new(x, y)).length();
+                            let expected = 0.5 * diameter * radius;
+                            assert!(
+                                (spread - expected).abs() < 1e-3,
+                                "A {aperture} F {focal} z {z}: {spread} px, expected {expected}"
+                            );
+                        }
+                    }
+                }
+            }
         }
     }
 

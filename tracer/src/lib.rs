@@ -41,6 +41,7 @@ pub mod geometry;
 pub mod mesh_io;
 pub mod metrics;
 pub mod optics;
+pub mod ray_set;
 pub mod render;
 pub mod sampling;
 pub mod scene;

@@ -1,6 +1,7 @@
 //! Random numbers as a pure function of (pixel, sample, dimension, seed), so
 //! an image never depends on thread count or scheduling, and the sample
-//! patterns built on them: jittered strata, lens disks, light areas.
+//! patterns built on them: jittered strata, multi-jittered light samples,
+//! lens disks.
 
 use glam::Vec2;
 
@@ -10,6 +11,10 @@ use glam::Vec2;
 #[derive(Debug, Clone, Copy)]
 pub struct SampleStream {
     key: u64,
+    /// The pixel's key under the seed, the same for all its samples: what
+    /// [`SampleStream::next_2d_across_samples`] spreads a pattern over.
+    pixel_key: u64,
+    sample: u32,
     dimension: u32,
 }
 
@@ -17,7 +22,40 @@ impl SampleStream {
     /// The stream for `sample` of pixel `pixel` under `seed`.
     pub fn new(seed: u64, pixel: u32, sample: u32) -> Self {
         let key = mix64(seed ^ mix64(((pixel as u64) << 32) | sample as u64));
-        Self { key, dimension: 0 }
+        let pixel_key = mix64(seed.rotate_left(32) ^ mix64(u64::from(pixel) | 1 << 63));
+        Self {
+            key,
+            pixel_key,
+            sample,
+            dimension: 0,
+        }
+    }
+
+    /// The next 32 random bits: picks a pattern for [`multi_jittered`].
+    #[inline]
+    pub fn next_u32(&mut self) -> u32 {
+        let bits = mix64(self.key.wrapping_add(self.dimension as u64));
+        self.dimension += 1;
+        (bits >> 32) as u32
+    }
+
+    /// This sample's point of one `n` x `n` multi-jittered pattern that all
+    /// the pixel's samples share: the pattern is chosen by the dimension
+    /// (and by the round of `n * n` samples), the point by the sample index,
+    /// through a permutation of the round so that it does not follow the
+    /// pixel strata that anti-aliasing visits in order. Over a round the
+    /// points fill each of the `n x n` cells once and each of the `n * n`
+    /// slabs along either axis once, so a straight edge along an axis is
+    /// met within one sample. Takes two dimensions, as [`Self::next_2d`].
+    pub fn next_2d_across_samples(&mut self, n: u32) -> Vec2 {
+        let n = n.clamp(1, MAX_N);
+        let count = n * n;
+        let round = self.sample / count;
+        let pattern =
+            mix64(self.pixel_key ^ ((u64::from(round) << 32) | u64::from(self.dimension)));
+        self.dimension += 2;
+        let index = permute(self.sample % count, count, (pattern >> 32) as u32);
+        multi_jittered(index, n, pattern as u32)
     }
 
     /// The next number in `[0, 1)`.
@@ -52,6 +90,57 @@ pub fn jittered(stratum: u32, n: u32, u: Vec2) -> Vec2 {
     let n = n.max(1);
     let cell = Vec2::new((stratum % n) as f32, (stratum / n) as f32);
     (cell + u) / n as f32
+}
+
+/// Largest N the multi-jittered patterns serve: the renderer's
+/// `MAX_SAMPLES`, for whose 4096 fine columns the jitter stays exact.
+const MAX_N: u32 = 64;
+
+/// Point `index` of the `n` x `n` multi-jittered pattern `pattern` (Chiu,
+/// Shirley and Wang's arrangement, with Kensler's correlated shuffles):
+/// `index` picks the cell (row-major), and within it the point sits in
+/// the sub-column and sub-row that permutations of the rows and of the
+/// columns give, so the `n * n` points fill every cell, every one of the
+/// `n * n` columns of width `1 / n^2` and every such row once each, then
+/// jitter inside that sub-cell. Computed alone, in O(1), for any index.
+pub fn multi_jittered(index: u32, n: u32, pattern: u32) -> Vec2 {
+    let n = n.clamp(1, MAX_N);
+    let (col, row) = (index % n, (index / n) % n);
+    let sub_col = permute(row, n, pattern ^ 0xa511_e9b3);
+    let sub_row = permute(col, n, pattern ^ 0x63d8_3595);
+    let bits = mix64((u64::from(pattern) << 32) | u64::from(index));
+    // Eleven bits of jitter, at the centres of 2048 bins: `k + j` stays
+    // exact in f32 for all 4096 columns of the largest N, and the rounded
+    // quotient stays more than an ulp inside its column.
+    let jitter = |shift: u32| (((bits >> shift) & 0x7ff) as f32 + 0.5) / 2048.0;
+    let fine = (n * n) as f32;
+    Vec2::new(
+        ((col * n + sub_col) as f32 + jitter(52)) / fine,
+        ((row * n + sub_row) as f32 + jitter(40)) / fine,
+    )
+}
+
+/// A permutation of `0..len` chosen by `key`: a bijection of the smallest
+/// power-of-two range holding `len` (xor, odd multiplies and xorshifts, each
+/// invertible), walked until it lands inside `0..len`.
+pub fn permute(i: u32, len: u32, key: u32) -> u32 {
+    if len <= 1 {
+        return 0;
+    }
+    let mask = u32::MAX >> (len - 1).leading_zeros();
+    let shift = (mask.count_ones() / 2).max(1);
+    let mut x = i & mask;
+    loop {
+        x ^= key & mask;
+        x = x.wrapping_mul(0x9e37_79b1) & mask;
+        x ^= x >> shift;
+        x = x.wrapping_add(key >> 16) & mask;
+        x = x.wrapping_mul(0x85eb_ca6b) & mask;
+        x ^= x >> shift;
+        if x < len {
+            return x;
+        }
+    }
 }
 
 /// Maps the unit square onto the unit disk preserving strata (Shirley and
@@ -137,6 +226,84 @@ mod tests {
             let p = jittered(s, n, Vec2::new(0.999, 0.0));
             assert_eq!((p.x * 4.0) as u32, s % 4);
             assert_eq!((p.y * 4.0) as u32, s / 4);
+        }
+    }
+
+    /// Cell, column and row of a point on the `n * n` fine grid.
+    fn fine_cells(p: Vec2, n: u32) -> (u32, u32, u32) {
+        let fine = f64::from(n * n);
+        let (x, y) = (f64::from(p.x) * fine, f64::from(p.y) * fine);
+        let (i, j) = (x.floor() as u32, y.floor() as u32);
+        ((j / n) * n + i / n, i, j)
+    }
+
+    /// Every cell once, every fine column and row once.
+    fn assert_multi_jittered(points: &[Vec2], n: u32, what: &str) {
+        let count = (n * n) as usize;
+        assert_eq!(points.len(), count);
+        let (mut cells, mut cols, mut rows) = (vec![0; count], vec![0; count], vec![0; count]);
+        for &p in points {
+            assert!(
+                (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y),
+                "{what}: {p}"
+            );
+            let (cell, col, row) = fine_cells(p, n);
+            cells[cell as usize] += 1;
+            cols[col as usize] += 1;
+            rows[row as usize] += 1;
+        }
+        for (name, hits) in [("cell", cells), ("column", cols), ("row", rows)] {
+            assert!(hits.iter().all(|&h| h == 1), "{what}: {name}s {hits:?}");
+        }
+    }
+
+    #[test]
+    fn multi_jittered_points_fill_cells_columns_and_rows_once() {
+        for n in [1, 2, 3, 4, 5, 7, 8, 16, 64] {
+            for pattern in [0, 1, 0xdead_beef, 77_777] {
+                let points: Vec<Vec2> = (0..n * n).map(|k| multi_jittered(k, n, pattern)).collect();
+                assert_multi_jittered(&points, n, &format!("N = {n}, pattern {pattern}"));
+            }
+        }
+        // Patterns differ.
+        assert_ne!(multi_jittered(3, 4, 1), multi_jittered(3, 4, 2));
+    }
+
+    #[test]
+    fn permute_is_a_permutation_that_depends_on_the_key() {
+        for len in [1, 2, 3, 5, 8, 9, 16, 17, 100, 4096] {
+            let mut seen: Vec<u32> = (0..len).map(|i| permute(i, len, 12345)).collect();
+            let order = seen.clone();
+            seen.sort_unstable();
+            assert_eq!(seen, (0..len).collect::<Vec<_>>(), "len {len}");
+            if len >= 5 {
+                let other: Vec<u32> = (0..len).map(|i| permute(i, len, 999)).collect();
+                assert_ne!(order, other, "len {len}");
+            }
+        }
+    }
+
+    #[test]
+    fn samples_of_a_pixel_share_one_multi_jittered_pattern_per_round() {
+        for n in [2, 3, 4, 6] {
+            let count = n * n;
+            for round in 0..2 {
+                // Draw a number first, as a path does before its light
+                // samples: the pattern belongs to the dimension.
+                let points: Vec<Vec2> = (round * count..(round + 1) * count)
+                    .map(|sample| {
+                        let mut stream = SampleStream::new(5, 42, sample);
+                        stream.next_1d();
+                        stream.next_2d_across_samples(n)
+                    })
+                    .collect();
+                assert_multi_jittered(&points, n, &format!("N = {n}, round {round}"));
+            }
+            let first = |pixel| {
+                let mut stream = SampleStream::new(5, pixel, 0);
+                stream.next_2d_across_samples(n)
+            };
+            assert_ne!(first(42), first(43), "another pixel, another pattern");
         }
     }
 

@@ -1,10 +1,12 @@
 //! The `env` skybox: six images on the faces of a cube around the scene,
 //! looked up by ray direction with the usual (OpenGL) cube-map convention:
 //! right = +x, left = -x, top = +y, bottom = -y, front = +z, back = -z.
+//! A sky painted for that convention stands upright in a y-up scene;
+//! [`Skybox::upright`] turns it for a scene whose up is another axis.
 
 use std::path::{Path, PathBuf};
 
-use glam::Vec3A;
+use glam::{Mat3A, Quat, Vec3, Vec3A};
 
 /// Face names in the order +x, -x, +y, -y, +z, -z.
 pub const FACE_NAMES: [&str; 6] = ["right", "left", "top", "bottom", "front", "back"];
@@ -33,6 +35,9 @@ struct Face {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Skybox {
     faces: Vec<Face>,
+    /// Turns a scene direction into the cube's, whose up is +y: the
+    /// identity unless [`Skybox::upright`] stood the sky on another axis.
+    to_cube: Mat3A,
 }
 
 /// Largest face accepted, so a hostile folder cannot exhaust memory.
@@ -58,7 +63,14 @@ impl Skybox {
                 load_face(&file)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Skybox { faces })
+        Ok(Skybox::of(faces))
+    }
+
+    fn of(faces: Vec<Face>) -> Skybox {
+        Skybox {
+            faces,
+            to_cube: Mat3A::IDENTITY,
+        }
     }
 
     /// Decodes six encoded images (PNG or JPEG bytes) in [`FACE_NAMES`]
@@ -75,7 +87,7 @@ impl Skybox {
                 Ok(face_from_image(img.to_rgb32f()))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Skybox { faces })
+        Ok(Skybox::of(faces))
     }
 
     /// Builds a skybox from six faces given as functions of the face's
@@ -95,12 +107,26 @@ impl Skybox {
                     .collect(),
             })
             .collect();
-        Skybox { faces }
+        Skybox::of(faces)
+    }
+
+    /// This sky stood upright for a scene whose up is `up`: the cube's +y
+    /// (its top face, the zenith of a sky painted for OpenGL's convention)
+    /// turns onto `up` by the shortest rotation. A sky that is not the
+    /// scene's own (a fallback) needs it: a z-up scene would otherwise see
+    /// the ground half of a y-up sky above its horizon. A zero or
+    /// non-finite `up` leaves the sky as it is.
+    pub fn upright(mut self, up: Vec3) -> Skybox {
+        let Some(up) = up.try_normalize() else {
+            return self;
+        };
+        self.to_cube = Mat3A::from_quat(Quat::from_rotation_arc(up, Vec3::Y));
+        self
     }
 
     /// The sky's colour in direction `dir` (nearest texel).
     pub fn sample(&self, dir: Vec3A) -> Vec3A {
-        let (face, s, t) = cube_face(dir);
+        let (face, s, t) = cube_face(self.to_cube * dir);
         let f = &self.faces[face];
         let x = ((s * f.width as f32) as u32).min(f.width - 1);
         let y = ((t * f.height as f32) as u32).min(f.height - 1);
@@ -165,7 +191,7 @@ fn face_from_image(img: image::Rgb32FImage) -> Face {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     #[test]
@@ -185,14 +211,179 @@ mod tests {
         }
     }
 
+    /// The OpenGL cube-map table (the specification's "Selection of cube
+    /// map images"), written out here rather than borrowed from
+    /// [`cube_face`]: for each face, the direction at `(s, t)`, where the
+    /// spec gives `s = (sc / |ma| + 1) / 2` and `t = (tc / |ma| + 1) / 2`
+    /// with, per major axis, +x: sc = -rz, tc = -ry; -x: sc = +rz,
+    /// tc = -ry; +y: sc = +rx, tc = +rz; -y: sc = +rx, tc = -rz; +z:
+    /// sc = +rx, tc = -ry; -z: sc = -rx, tc = -ry.
+    pub(crate) fn opengl_direction(face: usize, s: f32, t: f32) -> Vec3A {
+        let (sc, tc) = (2.0 * s - 1.0, 2.0 * t - 1.0);
+        let d = match face {
+            0 => Vec3A::new(1.0, -tc, -sc),
+            1 => Vec3A::new(-1.0, -tc, sc),
+            2 => Vec3A::new(sc, 1.0, tc),
+            3 => Vec3A::new(sc, -1.0, -tc),
+            4 => Vec3A::new(sc, -tc, 1.0),
+            5 => Vec3A::new(-sc, -tc, -1.0),
+            _ => unreachable!("six faces"),
+        };
+        d.normalize()
+    }
+
+    /// Texels that say where they are: red the face (in eighths), green s,
+    /// blue t of the texel centre.
+    pub(crate) fn labelled_sky(size: u32) -> Skybox {
+        Skybox::from_fn(size, |face, s, t| Vec3A::new(face as f32 / 8.0, s, t))
+    }
+
+    /// The face and texel centre a colour of [`labelled_sky`] names.
+    pub(crate) fn label(colour: Vec3A) -> (usize, f32, f32) {
+        ((colour.x * 8.0).round() as usize, colour.y, colour.z)
+    }
+
     #[test]
-    fn top_of_side_faces_points_up() {
-        // Looking along +z, up (+y) is at the top of the image (small t).
-        let (_, _, t) = cube_face(Vec3A::new(0.0, 0.5, 1.0));
-        assert!(t < 0.5);
-        // Looking along +x, +z is to the left (small s), as seen from inside.
-        let (_, s, _) = cube_face(Vec3A::new(1.0, 0.0, 0.5));
-        assert!(s < 0.5);
+    fn every_texel_is_seen_where_the_opengl_table_puts_it() {
+        let size = 8;
+        let sky = labelled_sky(size);
+        for face in 0..6 {
+            for j in 0..size {
+                for i in 0..size {
+                    let s = (i as f32 + 0.5) / size as f32;
+                    let t = (j as f32 + 0.5) / size as f32;
+                    // Any length: only the direction counts.
+                    let dir = opengl_direction(face, s, t) * (1.0 + (i * 7 + j) as f32);
+                    let (f, s2, t2) = label(sky.sample(dir));
+                    assert_eq!((f, s2, t2), (face, s, t), "{dir}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_sky_painter_uses_the_opengl_table() {
+        for face in 0..6 {
+            for (s, t) in [(0.1, 0.2), (0.5, 0.5), (0.9, 0.35), (0.3, 0.95)] {
+                let painted = crate::generate::sky::face_direction(face, s, t);
+                let expected = opengl_direction(face, s, t);
+                assert!(
+                    (painted - expected).length() < 1e-6,
+                    "face {face} ({s}, {t})"
+                );
+            }
+        }
+    }
+
+    /// A sky painted with a smooth function of the direction (through the
+    /// table, not the sampler) is smooth across every one of the cube's
+    /// twelve edges: a swapped or mirrored face breaks it at its edges.
+    #[test]
+    fn the_sky_is_continuous_across_all_twelve_cube_edges() {
+        let size = 64;
+        let colour = |d: Vec3A| d.normalize() * 0.5 + 0.5;
+        let sky = Skybox::from_fn(size, |face, s, t| colour(opengl_direction(face, s, t)));
+        // A texel spans about 2 / size radians at a face's edge.
+        let texel = 2.0 / size as f32;
+        let axes = [Vec3A::X, Vec3A::Y, Vec3A::Z];
+        let mut edges = 0;
+        for a in 0..3 {
+            for b in a + 1..3 {
+                let c = 3 - a - b;
+                for (sa, sb) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                    edges += 1;
+                    for k in 0..=20 {
+                        let w = -0.95 + 0.095 * k as f32;
+                        let on_edge = axes[a] * sa + axes[b] * sb + axes[c] * w;
+                        // Just inside each of the two faces.
+                        let into_a = sky.sample(on_edge + axes[a] * sa * 1e-3);
+                        let into_b = sky.sample(on_edge + axes[b] * sb * 1e-3);
+                        let truth = colour(on_edge);
+                        for seen in [into_a, into_b] {
+                            assert!(
+                                (seen - truth).abs().max_element() < texel,
+                                "edge {sa}{a} {sb}{b} at {on_edge}: {seen} vs {truth}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(edges, 12);
+    }
+
+    #[test]
+    fn upright_turns_the_top_face_onto_the_scene_up() {
+        let sky = labelled_sky(4);
+        // y up: nothing turns.
+        assert_eq!(sky.clone().upright(Vec3::Y), sky);
+        let z_up = sky.clone().upright(Vec3::new(0.0, 0.0, 2.0));
+        assert_eq!(label(z_up.sample(Vec3A::Z)).0, 2, "zenith on top");
+        assert_eq!(label(z_up.sample(Vec3A::NEG_Z)).0, 3, "ground below");
+        // The horizon of a z-up scene is the cube's side faces.
+        for dir in [Vec3A::X, Vec3A::NEG_X, Vec3A::Y, Vec3A::NEG_Y] {
+            let face = label(z_up.sample(dir)).0;
+            assert!(![2, 3].contains(&face), "{dir}: face {face}");
+        }
+        // A tilted up gets the zenith too, and a zero up changes nothing.
+        let up = Vec3::new(0.3, -0.2, 1.0);
+        let tilted = sky.clone().upright(up);
+        assert_eq!(label(tilted.sample(Vec3A::from(up))).0, 2);
+        assert_eq!(sky.clone().upright(Vec3::ZERO), sky);
+    }
+
+    /// Through a camera: each pixel shows the texel the table puts in the
+    /// direction of the pixel's eye ray, for cameras facing several faces.
+    #[test]
+    fn camera_pixels_see_the_texels_of_their_directions() {
+        use crate::accel::{AccelKind, SceneIndex};
+        use crate::render::{RenderSettings, render};
+        use crate::scene::{Limits, parse_scene};
+        use crate::world::World;
+        use std::sync::Arc;
+
+        let size = 64;
+        // Nearest-texel lookup: a direction is within half a texel
+        // diagonal, about 0.71 * 2 / size radians, of its texel's centre.
+        let texel = 1.5 / size as f32;
+        for (from, at, up) in [
+            ("0 0 0", "0 0 1", "0 1 0"),
+            ("0 0 0", "1 0 0", "0 1 0"),
+            ("1 2 3", "1 -5 3", "0 0 1"),
+            ("0 0 0", "-1 0.6 -0.8", "0.2 1 0"),
+        ] {
+            let text = format!(
+                "env sky
+v from {from} at {at} up {up} angle 70 hither 0 resolution 24 16
+"
+            );
+            let scene = parse_scene(&text, None, &Limits::default()).unwrap();
+            let world = Arc::new(World::build_with_skybox(&scene, |_| Ok(labelled_sky(size))));
+            let settings = RenderSettings {
+                width: 24,
+                height: 16,
+                ..RenderSettings::default()
+            };
+            let camera = crate::render::Frame::camera(&world, &settings).unwrap();
+            let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
+            let (film, _) = render(world, index, settings, Some(1)).unwrap();
+            for y in 0..16 {
+                for x in 0..24 {
+                    let dir = camera
+                        .ray(x as f32 + 0.5, y as f32 + 0.5, glam::Vec2::ZERO)
+                        .dir
+                        .normalize();
+                    let (face, s, t) = label(film.pixel(x, y).unwrap());
+                    let seen = opengl_direction(face, s, t);
+                    let angle = seen.dot(dir).clamp(-1.0, 1.0).acos();
+                    assert!(
+                        angle < texel,
+                        "camera at {from} to {at}, pixel ({x}, {y}): texel ({face}, {s}, {t}) \
+                         is {angle} rad off the ray {dir}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -28,6 +28,7 @@ pub enum Command {
     CopyAToB,
     ToggleBenchmark,
     ToggleStudies,
+    ToggleObserver,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -36,7 +37,7 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 22] = [
+    pub const ALL: [Command; 23] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -53,6 +54,7 @@ impl Command {
         Command::ZoomActualSize,
         Command::ToggleStats,
         Command::CycleView,
+        Command::ToggleObserver,
         Command::ToggleCompare,
         Command::SwapSides,
         Command::CopyAToB,
@@ -86,6 +88,7 @@ impl Command {
             Command::CopyAToB => "Copy A to B",
             Command::ToggleBenchmark => "Benchmark matrix",
             Command::ToggleStudies => "Studies",
+            Command::ToggleObserver => "Observer view",
         }
     }
 
@@ -130,6 +133,9 @@ impl Command {
             Command::ToggleStudies => {
                 "Sweep one parameter (grid m, N, depth, ...) or a generated scene's size and chart the times"
             }
+            Command::ToggleObserver => {
+                "See the scene from outside: the camera, its image plane, the lights and the pinned pixel's rays"
+            }
         }
     }
 
@@ -157,6 +163,7 @@ impl Command {
         const M: &[KeyboardShortcut] = &[key(Key::M)];
         const P: &[KeyboardShortcut] = &[key(Key::P)];
         const V: &[KeyboardShortcut] = &[key(Key::V)];
+        const O: &[KeyboardShortcut] = &[key(Key::O)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -181,6 +188,7 @@ impl Command {
             Command::CopyAToB => SHIFT_B,
             Command::ToggleBenchmark => M,
             Command::ToggleStudies => P,
+            Command::ToggleObserver => O,
         }
     }
 

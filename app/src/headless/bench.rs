@@ -5,12 +5,13 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
-use tracer::render::RenderSettings;
+use tracer::render::{Frame, RenderSettings};
 
-use crate::cli::BenchArgs;
-use crate::load::load_scene_edited;
+use crate::cli::{BenchArgs, TableFormat};
+use crate::load::{Loaded, load_scene_edited};
 use crate::measure::bench_report::{Format, Layout, table};
 use crate::measure::benchmark::{self, Measurement, RunOptions};
+use crate::measure::ray_cast::{self, RayBenchOptions};
 use crate::output::save_png;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
@@ -21,6 +22,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     settings.antialiasing = false;
     settings.depth_of_field = false;
     args.settings.apply(&mut settings);
+    if args.rays {
+        return rays(args, &loaded, &settings);
+    }
     let encoding = args.encoding.encoding();
     let accels: Vec<AccelKind> = match (&args.structures, args.settings.accel) {
         (Some(list), None) => list.clone(),
@@ -87,6 +91,32 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
     }
     print!("{}", table(&outcome.measurements, layout, format));
+    Ok(())
+}
+
+/// `bench --rays`: one structure's eye and shadow rays, as text or JSON.
+fn rays(args: &BenchArgs, loaded: &Loaded, settings: &RenderSettings) -> Result<()> {
+    let accel = match args.structures.as_deref() {
+        None => AccelKind::Bvh,
+        Some([one]) => *one,
+        Some(_) => bail!("--rays measures one structure: give one to --structure"),
+    };
+    let camera = Frame::camera(&loaded.world, settings)
+        .with_context(|| format!("cannot set up the camera of {}", args.scene.display()))?;
+    let options = RayBenchOptions {
+        accel,
+        grid_multiplier: settings.grid_multiplier,
+        runs: args.runs,
+        threads: args.threads,
+    };
+    let bench = ray_cast::run(&loaded.world, &camera, &options)
+        .with_context(|| format!("cannot cast the rays of {}", args.scene.display()))?;
+    let scene = args.scene.display().to_string();
+    match args.format {
+        TableFormat::Text => print!("{}", bench.text(&scene)),
+        TableFormat::Json => println!("{}", bench.json(&scene)),
+        TableFormat::Md | TableFormat::Csv => bail!("--rays prints text or json"),
+    }
     Ok(())
 }
 

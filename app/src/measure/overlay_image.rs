@@ -6,15 +6,18 @@ use image::{Rgb, RgbImage};
 use tracer::accel::Visit;
 use tracer::camera::Camera;
 
+use super::projection::Projector;
+
 /// The colour of the wireframe: visible on both the shaded image and the
 /// heat maps.
 pub const WIRE: Rgb<u8> = Rgb([80, 255, 120]);
 
-/// Draws each 3D segment of `segments` projected by `camera`; segments
-/// reaching behind the eye are left out.
+/// Draws each 3D segment of `segments` projected by `camera`, clipped at
+/// the eye.
 pub fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A; 2]]) {
-    for [a, b] in segments {
-        if let (Some(a), Some(b)) = (camera.project(*a), camera.project(*b)) {
+    let projector = Projector::new(camera);
+    for &[a, b] in segments {
+        if let Some([a, b]) = projector.segment(a, b) {
             draw_line(image, a, b, WIRE);
         }
     }
@@ -31,10 +34,11 @@ pub fn visit_colour(i: usize, n: usize) -> [u8; 3] {
 /// Draws the boxes of one ray's `visits` over `image`, coloured by their
 /// order ([`visit_colour`]).
 pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
+    let projector = Projector::new(camera);
     for (i, visit) in visits.iter().enumerate() {
         let colour = Rgb(visit_colour(i, visits.len()));
         for [a, b] in visit.edges() {
-            if let (Some(a), Some(b)) = (camera.project(a), camera.project(b)) {
+            if let Some([a, b]) = projector.segment(a, b) {
                 draw_line(image, a, b, colour);
             }
         }
@@ -44,18 +48,25 @@ pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
 /// A one-pixel line from `a` to `b` (image coordinates), clipped to the
 /// image first, so a segment reaching far off-screen costs no more than
 /// one across it.
-fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
-    let size = Vec2::new(image.width() as f32, image.height() as f32);
+pub fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
+    for (x, y) in line_pixels(a, b, image.width(), image.height()) {
+        image.put_pixel(x, y, colour);
+    }
+}
+
+/// The pixels of a one-pixel line from `a` to `b` inside a `width` x
+/// `height` image.
+pub fn line_pixels(a: Vec2, b: Vec2, width: u32, height: u32) -> Vec<(u32, u32)> {
+    let size = Vec2::new(width as f32, height as f32);
     let Some((a, b)) = clip(a, b, size) else {
-        return;
+        return Vec::new();
     };
     let steps = (b - a).abs().max_element().ceil().max(1.0);
-    for i in 0..=steps as u32 {
-        let p = a + (b - a) * (i as f32 / steps);
-        if p.x >= 0.0 && p.y >= 0.0 && p.x < size.x && p.y < size.y {
-            image.put_pixel(p.x as u32, p.y as u32, colour);
-        }
-    }
+    (0..=steps as u32)
+        .map(|i| a + (b - a) * (i as f32 / steps))
+        .filter(|p| p.x >= 0.0 && p.y >= 0.0 && p.x < size.x && p.y < size.y)
+        .map(|p| (p.x as u32, p.y as u32))
+        .collect()
 }
 
 /// The part of segment `a`-`b` inside `[0, size]` (Liang and Barsky);

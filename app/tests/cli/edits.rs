@@ -297,9 +297,9 @@ fn compare_applies_edits_to_both_sides_and_per_side() {
     assert!(!edited.is_empty());
 }
 
-/// `inspect`, `bench` and `sweep` trace the edited scene.
+/// `inspect`, `bench`, `sweep` and `observe` trace the edited scene.
 #[test]
-fn inspect_bench_and_sweep_see_the_edits() {
+fn inspect_bench_sweep_and_observe_see_the_edits() {
     let dir = scratch("edits-others");
     let scene = scene(&dir);
     let scene = scene.to_str().unwrap();
@@ -344,6 +344,25 @@ fn inspect_bench_and_sweep_see_the_edits() {
         json[0]["rays"].as_u64().unwrap()
     };
     assert!(sweep(&["--set", "material 2 t 0"]) < sweep(&[]));
+
+    let figure = dir.join("figure.png");
+    let observed = |flags: &[&str]| {
+        let mut args = vec![
+            "observe",
+            scene,
+            "-o",
+            figure.to_str().unwrap(),
+            "--pixel",
+            "30",
+            "20",
+            "--format",
+            "json",
+        ];
+        args.extend(flags);
+        let json: serde_json::Value = serde_json::from_str(&workbench_ok(&args)).unwrap();
+        json["pixels"][0]["rays"].as_u64().unwrap()
+    };
+    assert!(observed(&["--set", "material 2 t 0"]) < observed(&[]));
 }
 
 /// `sweep --param object:N:ior` prints a row per value, with the rays by

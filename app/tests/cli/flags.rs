@@ -192,6 +192,11 @@ const CHECKED: &[(&str, &str, &str)] = &[
     ),
     ("bench", "thumbnail", "compare::images_can_be_thumbnails"),
     (
+        "bench",
+        "rays",
+        "bench_rays::json_counts_one_eye_ray_per_pixel_and_a_shadow_ray_per_faced_light",
+    ),
+    (
         "compare",
         "scene",
         "compare::different_settings_measure_positive",
@@ -361,17 +366,82 @@ const CHECKED: &[(&str, &str, &str)] = &[
     (
         "inspect",
         "set",
-        "edits::inspect_bench_and_sweep_see_the_edits",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
     ),
     (
         "bench",
         "set",
-        "edits::inspect_bench_and_sweep_see_the_edits",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
     ),
     (
         "sweep",
         "set",
-        "edits::inspect_bench_and_sweep_see_the_edits",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
+    ),
+    (
+        "observe",
+        "set",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
+    ),
+    (
+        "observe",
+        "scene",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "pixel",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "pixels",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "sample",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "from",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "at",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "up",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "size",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "overlay",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "output",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "format",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "srgb",
+        "observe_sample_from_at_up_and_overlay_apply",
     ),
 ];
 
@@ -404,6 +474,8 @@ const SOURCES: &[&str] = &[
     include_str!("edits.rs"),
     include_str!("meshes_and_images.rs"),
     include_str!("sweep.rs"),
+    include_str!("bench_rays.rs"),
+    include_str!("observe.rs"),
     include_str!("../window/real_window.rs"),
 ];
 
@@ -897,4 +969,70 @@ fn screenshot_after_takes_a_delay_in_seconds() {
     }
     let stderr = workbench_fails(&["--screenshot-after", "2"]);
     assert!(stderr.contains("--screenshot"), "{stderr}");
+}
+
+#[test]
+fn observe_sample_from_at_up_and_overlay_apply() {
+    let dir = scratch("flags-observe");
+    let scene = scene(&dir);
+    let out = dir.join("figure.png");
+    let out = out.to_str().unwrap();
+    let observe = |flags: &[&str]| {
+        let mut args = vec![
+            "observe", &scene, "-o", out, "--size", "64", "48", "--format", "json",
+        ];
+        args.extend(flags);
+        let json: serde_json::Value = serde_json::from_str(&workbench_ok(&args)).unwrap();
+        (json, std::fs::read(out).unwrap())
+    };
+    let pixel = ["--pixel", "12", "8", "--aa"];
+    let (first, png) = observe(&pixel);
+    let (second, _) = observe(&[&pixel[..], &["--sample", "1"]].concat());
+    let eye = |json: &serde_json::Value| {
+        json["segments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["kind"] == "eye")
+            .unwrap()["to"]
+            .clone()
+    };
+    assert_ne!(eye(&first), eye(&second), "another sample's eye ray");
+    let placed = [
+        &pixel[..],
+        &["--from", "0", "-12", "6", "--at", "0", "0", "0.5"],
+    ]
+    .concat();
+    let (placed_json, placed_png) = observe(&placed);
+    assert_eq!(placed_json["observer"]["from"][1], -12.0);
+    assert_ne!(placed_png, png);
+    let upside = [&placed[..], &["--up", "0", "0", "-1"]].concat();
+    let (upside_json, upside_png) = observe(&upside);
+    assert_eq!(upside_json["observer"]["up"][2], -1.0);
+    assert_ne!(upside_png, placed_png);
+    let (_, srgb) = observe(&[&placed[..], &["--srgb"]].concat());
+    assert_ne!(srgb, placed_png);
+    let (grid, _) = observe(&[&placed[..], &["--accel", "grid", "--overlay", "grid"]].concat());
+    let parts = |json: &serde_json::Value, part: &str| {
+        json["segments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|s| s["part"] == part)
+            .count()
+    };
+    assert!(parts(&grid, "structure") > 12 && parts(&grid, "visit") > 0);
+    assert_eq!(parts(&placed_json, "structure"), 0);
+    let refused = workbench_fails(&[
+        "observe",
+        &scene,
+        "-o",
+        out,
+        "--pixel",
+        "1",
+        "1",
+        "--overlay",
+        "grid",
+    ]);
+    assert!(refused.contains("--accel grid"), "{refused}");
 }

@@ -1,7 +1,9 @@
 //! Golden images: every scene in `scenes/` rendered small and compared with
 //! its reference in `app/tests/golden/`, plus a few variants that turn on what
 //! the scenes' own settings leave off (the grid, soft shadows, a wide
-//! lens with many samples, many anti-aliasing samples, sRGB output). See
+//! lens with many samples, many anti-aliasing samples, sRGB output),
+//! magnified crops of the features those variants exist for, and linear
+//! EXR references of the cases with values above 1. See
 //! `app/tests/golden/README.md`.
 //!
 //! `WORKBENCH_BLESS=1 cargo test --test cli golden` rewrites the references on
@@ -26,6 +28,10 @@ const MIN_PSNR_DB: f64 = 40.0;
 /// A pixel is "off" when one of its channels differs by more than this
 /// many levels: more than rounding can explain.
 const OFF_LEVELS: u8 = 2;
+/// No channel of any pixel may be further off than this, in levels: one
+/// pixel wrong by 163 levels costs a 64 x 64 image only 45 dB and is one
+/// pixel of the nine [`MAX_OFF_FRACTION`] allows, so without a cap it passed.
+const MAX_LEVELS: u8 = 6;
 /// At most this fraction of the pixels may be off. A brighter ambient term
 /// (0.1 -> 0.115) keeps most scenes above 40 dB but puts 22 to 3 900
 /// pixels of a 64 x 64 golden off; a shifted shadow or a missing blur
@@ -39,9 +45,15 @@ const SIDE: u32 = 64;
 const MAX_SAMPLES: u32 = 2;
 /// Heat-map gain: a difference of 32 levels shows as full red.
 const DIFF_GAIN: f32 = 8.0;
+/// An EXR golden's tolerance per value: this many levels of the 8-bit
+/// scale, or this fraction of the value where it is larger (above 1).
+const HDR_LEVELS: f32 = 4.0;
+const HDR_RELATIVE: f32 = 0.01;
+/// And on average over all its values, at most this many levels.
+const HDR_MEAN_LEVELS: f64 = 0.5;
 
 /// A configuration the scenes' own settings do not reach, rendered from one
-/// scene into the reference `tests/golden/<scene>.<name>.png`.
+/// scene into the reference `app/tests/golden/<scene>.<name>.png`.
 struct Variant {
     scene: &'static str,
     name: &'static str,
@@ -53,6 +65,20 @@ struct Variant {
     /// The variant must give exactly the scene's own image (another
     /// structure finds the same hits); otherwise it must differ from it.
     same_as_scene: bool,
+    /// Magnified: rendered with this longest side, then only the
+    /// [`SIDE`] x [`SIDE`] window at this corner is compared.
+    crop: Option<Crop>,
+    /// Compared as linear floats with an EXR reference, values above 1 kept.
+    hdr: bool,
+}
+
+/// A window of a larger render: the feature a golden exists for, at three
+/// times the pixels per scene unit of the full-view golden.
+#[derive(Clone, Copy)]
+struct Crop {
+    side: u32,
+    x: u32,
+    y: u32,
 }
 
 impl Variant {
@@ -70,7 +96,52 @@ impl Variant {
             encoding: Encoding::Linear,
             apply,
             same_as_scene: false,
+            crop: None,
+            hdr: false,
         }
+    }
+
+    /// This variant as a magnified crop `<scene>.<name>` of a render with
+    /// longest side `side`, its window's top-left corner at `(x, y)`.
+    const fn cropped(self, name: &'static str, side: u32, x: u32, y: u32) -> Variant {
+        Variant {
+            name,
+            crop: Some(Crop { side, x, y }),
+            ..self
+        }
+    }
+}
+
+/// Soft shadows both ways the tracer samples them: N x N multi-jittered
+/// light samples per pixel without AA, one light sample per AA sample.
+fn soft(s: &mut RenderSettings) {
+    s.soft_shadows = true;
+    s.samples = 4;
+}
+
+fn soft_aa(s: &mut RenderSettings) {
+    s.soft_shadows = true;
+    s.antialiasing = true;
+    s.samples = 3;
+}
+
+/// The lens at 4 x 4 samples, so the blur is smooth enough to compare.
+fn lens(s: &mut RenderSettings) {
+    s.samples = 4;
+}
+
+/// Anti-aliasing at 4 x 4 on hard edges and reflections.
+fn aa(s: &mut RenderSettings) {
+    s.antialiasing = true;
+    s.samples = 4;
+}
+
+/// The scene's own settings, as linear floats.
+const fn hdr(scene: &'static str) -> Variant {
+    Variant {
+        hdr: true,
+        same_as_scene: true,
+        ..Variant::changes(scene, "hdr", SIDE, |_| {})
     }
 }
 
@@ -84,30 +155,45 @@ const VARIANTS: &[Variant] = &[
         same_as_scene: true,
         ..Variant::changes("mount_low", "grid", 48, |s| s.accel = AccelKind::Grid)
     },
-    // Soft shadows both ways the tracer samples them: N x N stratified
-    // light samples per pixel without AA, one light sample per AA sample.
-    Variant::changes("soft_shadows", "soft", 64, |s| {
-        s.soft_shadows = true;
-        s.samples = 4;
-    }),
-    Variant::changes("soft_shadows", "soft_aa", 48, |s| {
-        s.soft_shadows = true;
-        s.antialiasing = true;
-        s.samples = 3;
-    }),
-    // The lens at 4 x 4 samples, so the blur is smooth enough to compare.
-    Variant::changes("dof", "lens", 64, |s| s.samples = 4),
-    // Anti-aliasing at 4 x 4 on hard edges and reflections.
-    Variant::changes("mirrors", "aa", 48, |s| {
-        s.antialiasing = true;
-        s.samples = 4;
-    }),
+    Variant::changes("soft_shadows", "soft", 64, soft),
+    Variant::changes("soft_shadows", "soft_aa", 48, soft_aa),
+    Variant::changes("dof", "lens", 64, lens),
+    Variant::changes("mirrors", "aa", 48, aa),
     // The sRGB curve, on a scene with dark and bright regions.
     Variant {
         encoding: Encoding::Srgb,
         ..Variant::changes("showcase", "srgb", 48, |_| {})
     },
+    // The same features magnified three times: the penumbrae of the box,
+    // the post and the floating sphere; the blur of the lens's nearest
+    // and farthest objects; the mirrors' edges and inter-reflections.
+    Variant::changes("soft_shadows", "soft", 64, soft).cropped(
+        "soft_crop",
+        192,
+        CROP_SOFT.0,
+        CROP_SOFT.1,
+    ),
+    Variant::changes("soft_shadows", "soft_aa", 64, soft_aa).cropped(
+        "soft_aa_crop",
+        192,
+        CROP_SOFT.0,
+        CROP_SOFT.1,
+    ),
+    Variant::changes("dof", "lens", 64, lens).cropped("lens_crop", 192, CROP_LENS.0, CROP_LENS.1),
+    Variant::changes("mirrors", "aa", 64, aa).cropped("aa_crop", 192, CROP_AA.0, CROP_AA.1),
+    // Linear floats where values pass 1: the sky in the showcase's
+    // mirrors and glass, the mirrors' highlights.
+    hdr("showcase"),
+    hdr("mirrors"),
 ];
+
+/// Top-left corners of the crops, in pixels of the 192-pixel render: the
+/// floating sphere's wide penumbra (with the blue sphere's foot), the near
+/// red sphere's blur beside the orange one's edge, the mirror's nested
+/// reflections.
+const CROP_SOFT: (u32, u32) = (110, 100);
+const CROP_LENS: (u32, u32) = (16, 80);
+const CROP_AA: (u32, u32) = (24, 48);
 
 /// One golden comparison: what to render and the reference's name.
 struct Case {
@@ -117,6 +203,21 @@ struct Case {
     side: u32,
     encoding: Encoding,
     apply: fn(&mut RenderSettings),
+    crop: Option<Crop>,
+    /// The reference is `<name>.exr`, linear floats.
+    hdr: bool,
+}
+
+impl Case {
+    fn reference(&self) -> PathBuf {
+        let extension = if self.hdr { "exr" } else { "png" };
+        golden_dir().join(format!("{}.{extension}", self.name))
+    }
+}
+
+/// `app/tests/golden/`, where the references are.
+fn golden_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
 }
 
 fn root() -> PathBuf {
@@ -149,21 +250,51 @@ fn cases() -> Vec<Case> {
         side: SIDE,
         encoding: Encoding::Linear,
         apply: |_| {},
+        crop: None,
+        hdr: false,
     });
     let variants = VARIANTS.iter().map(|v| Case {
         name: format!("{}.{}", v.scene, v.name),
         scene: root().join("scenes").join(format!("{}.p3f", v.scene)),
-        side: v.side.min(SIDE),
+        side: v.crop.map_or(v.side.min(SIDE), |c| c.side),
         encoding: v.encoding,
         apply: v.apply,
+        crop: v.crop,
+        hdr: v.hdr,
     });
     own.chain(variants).collect()
+}
+
+/// The case's scene at golden size, as 8-bit pixels in its encoding.
+fn render_small(case: &Case) -> Result<image::RgbImage, String> {
+    let film = render_film(case)?;
+    Ok(crop(case, film.to_image(case.encoding)))
+}
+
+/// The case's scene at golden size, as linear floats.
+fn render_linear(case: &Case) -> Result<image::Rgb32FImage, String> {
+    let film = render_film(case)?;
+    Ok(crop(case, film.to_linear_image()))
+}
+
+/// The case's window of a render, or all of it.
+fn crop<P: image::Pixel + 'static>(
+    case: &Case,
+    image: image::ImageBuffer<P, Vec<P::Subpixel>>,
+) -> image::ImageBuffer<P, Vec<P::Subpixel>>
+where
+    P::Subpixel: 'static,
+{
+    match case.crop {
+        Some(c) => image::imageops::crop_imm(&image, c.x, c.y, SIDE, SIDE).to_image(),
+        None => image,
+    }
 }
 
 /// The case's scene at golden size: its own settings with the aspect ratio
 /// and lens kept, seed 0, at most `MAX_SAMPLES`, every core (renders do not
 /// depend on threads), then the case's changes.
-fn render_small(case: &Case) -> Result<image::RgbImage, String> {
+fn render_film(case: &Case) -> Result<tracer::render::Film, String> {
     let scene = parse_scene_file(&case.scene, &Limits::default()).map_err(|e| e.to_string())?;
     let mut settings = RenderSettings::from_scene(&scene);
     let (w, h) = (settings.width.max(1), settings.height.max(1));
@@ -185,7 +316,7 @@ fn render_small(case: &Case) -> Result<image::RgbImage, String> {
         settings.grid_multiplier,
     ));
     let (film, _) = render(world, index, settings, None).map_err(|e| e.to_string())?;
-    Ok(film.to_image(case.encoding))
+    Ok(film)
 }
 
 /// How far a render is from its reference.
@@ -195,6 +326,8 @@ struct Difference {
     off_pixels: usize,
     /// The most [`Difference::off_pixels`] allowed for this image size.
     max_off_pixels: usize,
+    /// The largest difference of any channel, in levels.
+    max_levels: u8,
 }
 
 impl Difference {
@@ -205,16 +338,25 @@ impl Difference {
             .zip(reference.pixels())
             .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > OFF_LEVELS))
             .count();
+        let max_levels = image
+            .pixels()
+            .zip(reference.pixels())
+            .flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c])))
+            .max()
+            .unwrap_or(0);
         let pixels = image.pixels().len() as f64;
         Some(Difference {
             psnr_db,
             off_pixels,
             max_off_pixels: (pixels * MAX_OFF_FRACTION).ceil() as usize,
+            max_levels,
         })
     }
 
     fn passes(&self) -> bool {
-        self.psnr_db >= MIN_PSNR_DB && self.off_pixels <= self.max_off_pixels
+        self.psnr_db >= MIN_PSNR_DB
+            && self.off_pixels <= self.max_off_pixels
+            && self.max_levels <= MAX_LEVELS
     }
 }
 
@@ -222,10 +364,103 @@ impl std::fmt::Display for Difference {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "PSNR {:.1} dB (at least {MIN_PSNR_DB}), {} pixels off by more than {OFF_LEVELS} levels (at most {})",
-            self.psnr_db, self.off_pixels, self.max_off_pixels
+            "PSNR {:.1} dB (at least {MIN_PSNR_DB}), {} pixels off by more than {OFF_LEVELS} levels (at most {}), \
+             at most {} levels off (cap {MAX_LEVELS})",
+            self.psnr_db, self.off_pixels, self.max_off_pixels, self.max_levels
         )
     }
+}
+
+/// How far a linear render is from its EXR reference.
+struct HdrDifference {
+    /// Values off by more than the tolerance, and the worst of them.
+    off_values: usize,
+    worst: (f32, f32),
+    /// Mean absolute difference, in levels of the 8-bit scale.
+    mean_levels: f64,
+    /// The reference's largest value: an HDR case must pass 1.
+    brightest: f32,
+}
+
+impl HdrDifference {
+    fn between(image: &image::Rgb32FImage, reference: &image::Rgb32FImage) -> Option<Self> {
+        if image.dimensions() != reference.dimensions() {
+            return None;
+        }
+        let pairs = || image.as_raw().iter().zip(reference.as_raw());
+        let allowed = |r: f32| (HDR_LEVELS / 255.0).max(HDR_RELATIVE * r.abs());
+        let off: Vec<(f32, f32)> = pairs()
+            // A NaN is off too.
+            .filter(|&(a, r)| (a - r).abs().is_nan() || (a - r).abs() > allowed(*r))
+            .map(|(a, r)| (*a, *r))
+            .collect();
+        let worst = off
+            .iter()
+            .copied()
+            .max_by(|x, y| (x.0 - x.1).abs().total_cmp(&(y.0 - y.1).abs()))
+            .unwrap_or((0.0, 0.0));
+        let total: f64 = pairs().map(|(a, r)| f64::from((a - r).abs())).sum();
+        Some(HdrDifference {
+            off_values: off.len(),
+            worst,
+            mean_levels: 255.0 * total / image.as_raw().len().max(1) as f64,
+            brightest: reference.as_raw().iter().copied().fold(0.0, f32::max),
+        })
+    }
+
+    fn passes(&self) -> bool {
+        self.off_values == 0 && self.mean_levels <= HDR_MEAN_LEVELS && self.brightest > 1.0
+    }
+}
+
+impl std::fmt::Display for HdrDifference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} values off by more than {HDR_LEVELS} levels or {}% (worst {} for {}), \
+             mean {:.3} levels (at most {HDR_MEAN_LEVELS}), brightest {} (must pass 1)",
+            self.off_values,
+            HDR_RELATIVE * 100.0,
+            self.worst.0,
+            self.worst.1,
+            self.mean_levels,
+            self.brightest
+        )
+    }
+}
+
+/// Compares an HDR case with its EXR reference (or blesses it): the
+/// failure, if any.
+fn check_hdr(case: &Case, bless: bool, diffs: &Path) -> Option<String> {
+    let name = &case.name;
+    let path = case.reference();
+    let image = match render_linear(case) {
+        Ok(image) => image,
+        Err(e) => return Some(format!("{name}: cannot render: {e}")),
+    };
+    if bless {
+        image.save(&path).unwrap();
+        println!("golden: blessed {}", path.display());
+        return None;
+    }
+    let reference = match image::open(&path) {
+        Ok(r) => r.to_rgb32f(),
+        Err(e) => return Some(format!("{name}: no reference {} ({e})", path.display())),
+    };
+    let Some(difference) = HdrDifference::between(&image, &reference) else {
+        return Some(format!("{name}: render and reference differ in size"));
+    };
+    println!("golden: {name}: {difference}");
+    if difference.passes() {
+        return None;
+    }
+    std::fs::create_dir_all(diffs).unwrap();
+    let new = diffs.join(format!("{name}.new.exr"));
+    image.save(&new).unwrap();
+    Some(format!(
+        "{name}: {difference} (new render {})",
+        new.display()
+    ))
 }
 
 #[test]
@@ -236,13 +471,17 @@ fn every_scene_and_variant_matches_its_golden_image() {
         return;
     }
     let bless = std::env::var_os("WORKBENCH_BLESS").is_some_and(|v| v != "0");
-    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
+    let golden = golden_dir();
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
     let diffs = tmp.parent().unwrap_or(tmp).join("golden-diff");
     let mut failures = Vec::new();
     for case in &cases {
         let name = &case.name;
-        let reference_path = golden.join(format!("{name}.png"));
+        if case.hdr {
+            failures.extend(check_hdr(case, bless, &diffs));
+            continue;
+        }
+        let reference_path = case.reference();
         let image = match render_small(case) {
             Ok(image) => image,
             Err(e) => {
@@ -307,6 +546,7 @@ fn every_variant_changes_its_scene_except_the_grid() {
         };
         let own = Case {
             side: changed.side,
+            crop: changed.crop,
             ..own
         };
         let (a, b) = (render_small(&own).unwrap(), render_small(&changed).unwrap());
@@ -355,4 +595,40 @@ fn the_check_tolerates_rounding_only() {
     assert!(!bias.passes(), "{bias}");
     let region = changed(|x, y, v| if x < 8 && y < 8 { v + 3 } else { v });
     assert!(!region.passes(), "{region}");
+    // One channel of one pixel 163 levels off: 45 dB and one pixel off,
+    // which only the per-pixel cap refuses; 7 levels is past the cap too.
+    let spike = changed(|x, y, v| if (x, y) == (5, 7) { v + 163 } else { v });
+    let small = changed(|x, y, v| if (x, y) == (5, 7) { v + 7 } else { v });
+    for one in [spike, small] {
+        assert!(one.psnr_db >= MIN_PSNR_DB && one.off_pixels == 1, "{one}");
+        assert!(!one.passes(), "{one}");
+    }
+}
+
+/// The EXR check: float rounding passes; a value 5 levels off, a bright
+/// value 2% off, a bias of 1 level and a reference that never passes 1
+/// (an HDR golden of nothing above 1) fail.
+#[test]
+fn the_hdr_check_tolerates_rounding_only() {
+    let reference = image::Rgb32FImage::from_fn(SIDE, SIDE, |x, y| {
+        image::Rgb([x as f32 / 16.0, y as f32 / 64.0, 0.5])
+    });
+    let changed = |change: &dyn Fn(u32, u32, f32) -> f32| {
+        let mut image = reference.clone();
+        for (x, y, pixel) in image.enumerate_pixels_mut() {
+            pixel.0 = pixel.0.map(|v| change(x, y, v));
+        }
+        HdrDifference::between(&image, &reference).unwrap()
+    };
+    let rounding = changed(&|_, _, v| v * (1.0 + 1e-6));
+    assert!(rounding.passes(), "{rounding}");
+    let spike = changed(&|x, y, v| if (x, y) == (3, 3) { v + 5.0 / 255.0 } else { v });
+    assert!(!spike.passes(), "{spike}");
+    let bright = changed(&|x, y, v| if (x, y) == (60, 3) { v * 1.02 } else { v });
+    assert!(!bright.passes(), "{bright}");
+    let bias = changed(&|_, _, v| v + 1.0 / 255.0);
+    assert!(!bias.passes(), "{bias}");
+    let dim = image::Rgb32FImage::from_pixel(SIDE, SIDE, image::Rgb([0.5; 3]));
+    let low = HdrDifference::between(&dim, &dim).unwrap();
+    assert!(!low.passes(), "{low}");
 }

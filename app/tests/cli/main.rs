@@ -5,12 +5,14 @@
 mod support;
 
 mod bad_scenes;
+mod bench_rays;
 mod compare;
 mod determinism;
 mod edits;
 mod flags;
 mod golden;
 mod meshes_and_images;
+mod observe;
 mod render;
 mod sweep;
 mod views;

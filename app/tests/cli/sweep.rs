@@ -153,9 +153,9 @@ fn bad_input_gets_a_clear_error() {
     assert!(param.contains("grid-m"), "{param}");
     let level = workbench_fails(&["sweep", "--param", "level"]);
     assert!(level.contains("--generator"), "{level}");
-    let generator = workbench_fails(&["sweep", "--param", "level", "--generator", "teapot"]);
+    let generator = workbench_fails(&["sweep", "--param", "level", "--generator", "kettle"]);
     assert!(
-        generator.contains("unknown generator `teapot`"),
+        generator.contains("unknown generator `kettle`"),
         "{generator}"
     );
     let range = workbench_fails(&[
@@ -172,10 +172,39 @@ fn bad_input_gets_a_clear_error() {
     assert!(no_scene.contains("scene file"), "{no_scene}");
 }
 
+/// Ctrl-C during a sweep finishes the frame under way, prints its point and
+/// fails. When the signal lands is decided by events, not by time or the
+/// machine's speed: the child's stdout is a socket this test has filled,
+/// so the child blocks writing its header, which it does right after
+/// setting its Ctrl-C handler and before any frame. The signal goes once
+/// the kernel shows the handler set; the socket is drained once the child
+/// has said it will stop after this frame. So exactly one point of one
+/// frame is measured, on a fast machine or a loaded one, with a tiny
+/// scene or a large one.
+#[cfg(target_os = "linux")]
 #[test]
 fn ctrl_c_stops_after_the_frame_and_prints_what_was_measured() {
+    use std::io::{ErrorKind, Write};
+    use std::os::fd::OwnedFd;
+    use std::os::unix::net::UnixStream;
+
     let dir = scratch("sweep-interrupt");
     let scene = scene(&dir);
+    let (mut ours, theirs) = UnixStream::pair().unwrap();
+    // Fill the child's stdout to the brim: whole pages, then single bytes,
+    // until the kernel takes no more.
+    theirs.set_nonblocking(true).unwrap();
+    let mut filler = 0;
+    for chunk in [&[b'#'; 4096][..], b"#"] {
+        loop {
+            match (&theirs).write(chunk) {
+                Ok(n) => filler += n,
+                Err(e) if e.kind() == ErrorKind::WouldBlock => break,
+                Err(e) => panic!("cannot fill the socket: {e}"),
+            }
+        }
+    }
+    theirs.set_nonblocking(false).unwrap();
     let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
         .args([
             "sweep",
@@ -186,49 +215,83 @@ fn ctrl_c_stops_after_the_frame_and_prints_what_was_measured() {
             "1..8",
             "--runs",
             "5",
-            "--width",
-            "480",
-            "--height",
-            "320",
             "--format",
-            "csv",
+            "md",
             "--threads",
             "1",
         ])
-        .stdout(Stdio::piped())
+        .stdout(Stdio::from(OwnedFd::from(theirs)))
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // The header comes once Ctrl-C is caught.
-    let mut stderr = BufReader::new(child.stderr.take().unwrap());
-    let mut header = String::new();
-    stderr.read_line(&mut header).unwrap();
-    assert!(header.contains("per point"), "{header}");
+    let pid = child.id();
+    wait_until("the sweep to catch SIGINT", || catches_sigint(pid));
     let interrupted = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args(["-INT", &pid.to_string()])
         .status()
         .unwrap();
     assert!(interrupted.success());
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut said = String::new();
+    while !said.contains("stopping after this frame") {
+        let mut line = String::new();
+        let read = stderr.read_line(&mut line).unwrap();
+        assert!(
+            read > 0,
+            "the sweep ended without a word about Ctrl-C: {said}"
+        );
+        said.push_str(&line);
+    }
+    // Only now may the child write its header and render.
+    let mut stdout = Vec::new();
+    ours.read_to_end(&mut stdout).unwrap();
     let mut rest = String::new();
     stderr.read_to_string(&mut rest).unwrap();
-    let mut csv = String::new();
-    child
-        .stdout
-        .take()
-        .unwrap()
-        .read_to_string(&mut csv)
-        .unwrap();
     let status = child.wait().unwrap();
     assert!(!status.success(), "an interrupted sweep must fail");
-    assert!(rest.contains("interrupted"), "{rest}");
-    let rows: Vec<&str> = csv.lines().skip(1).collect();
-    // The frame under way was finished and its point printed.
-    assert!(!rows.is_empty() && rows.len() < 8, "{csv}");
-    let last_runs: usize = rows[rows.len() - 1]
-        .split(',')
-        .nth(5)
-        .unwrap()
-        .parse()
-        .unwrap();
-    assert!((1..=5).contains(&last_runs));
+    assert!(
+        rest.contains("interrupted: 1 of 8 points measured"),
+        "{rest}"
+    );
+    let table = String::from_utf8(stdout.split_off(filler)).unwrap();
+    assert!(stdout.iter().all(|&b| b == b'#'), "the filler comes first");
+    let lines: Vec<&str> = table.lines().filter(|l| l.starts_with('|')).collect();
+    let cells =
+        |line: &str| -> Vec<String> { line.split('|').map(|c| c.trim().to_string()).collect() };
+    let header = cells(lines[0]);
+    let runs = header.iter().position(|c| c == "runs").unwrap();
+    // Header, separator, and the one point whose frame was under way.
+    assert_eq!(lines.len(), 3, "{table}");
+    let point = cells(lines[2]);
+    assert_eq!(
+        point[header.iter().position(|c| c == "depth").unwrap()],
+        "1"
+    );
+    assert_eq!(point[runs], "1", "{table}");
+}
+
+/// Whether process `pid` has a handler for SIGINT (the kernel's `SigCgt`
+/// mask in `/proc/PID/status`; SIGINT is signal 2, bit 1).
+#[cfg(target_os = "linux")]
+fn catches_sigint(pid: u32) -> bool {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+    status
+        .lines()
+        .find_map(|line| line.strip_prefix("SigCgt:"))
+        .and_then(|mask| u64::from_str_radix(mask.trim(), 16).ok())
+        .is_some_and(|mask| mask & (1 << 1) != 0)
+}
+
+/// Polls `condition`, failing (not hanging) after a minute: a condition
+/// that never comes is a bug to report.
+#[cfg(target_os = "linux")]
+fn wait_until(what: &str, condition: impl Fn() -> bool) {
+    let start = std::time::Instant::now();
+    while !condition() {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(60),
+            "gave up waiting for {what}"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(1));
+    }
 }

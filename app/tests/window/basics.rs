@@ -316,36 +316,15 @@ fn snapshot_while_rendering() {
         app.is_catalog_complete() && app.engine().settings().is_some()
     });
     // A fresh render (drawn over the last one, which the mask hides),
-    // held after its first tiles: progress redraws are paced, and how many
-    // come during a fast first pass depends on the machine.
-    // On a loaded machine the pause may land after the first pass: then
-    // resume and render again (a few attempts).
-    let mut attempts = 0;
-    let shown = loop {
-        attempts += 1;
-        harness.key_press(egui::Key::R);
-        let restarted = harness.state().engine().version().0 + 1;
-        wait_for(&mut harness, "the first tiles", |app| {
-            let engine = app.engine();
-            engine.version().0 >= restarted
-                && engine
-                    .snapshot(Encoding::Linear)
-                    .is_some_and(|s| coverage(&s) > 0.0)
-        });
-        harness.key_press(egui::Key::Space);
-        wait_for(&mut harness, "the first tiles on screen", |app| {
-            app.engine().is_paused()
-                && app
-                    .shown()
-                    .is_some_and(|s| s.stats.passes_done >= 1 || coverage(s) > 0.0)
-        });
-        let shown = harness.state().shown().unwrap().clone();
-        if shown.stats.passes_done == 0 || attempts == 5 {
-            break shown;
-        }
-        harness.key_press(egui::Key::Space);
-        harness.step();
-    };
+    // which pauses itself after its first tiles whatever the machine.
+    harness.state_mut().pause_renders_after_tiles(Some(8));
+    harness.key_press(egui::Key::R);
+    let restarted = harness.state().engine().version().0 + 1;
+    wait_for(&mut harness, "the first tiles, held, on screen", |app| {
+        let engine = app.engine();
+        engine.version().0 >= restarted && engine.is_paused() && app.is_display_current()
+    });
+    let shown = harness.state().shown().unwrap().clone();
     let covered = coverage(&shown);
     assert!(
         shown.stats.passes_done == 0 && covered > 0.0 && covered < 1.0,
@@ -847,6 +826,8 @@ fn the_viewport_paints_its_background_around_a_finished_image_only() {
 #[test]
 fn the_scene_list_is_counted_after_the_first_render() {
     let mut harness = small_window(Harness::builder());
+    // No deadline: only the end of the first render lets counting start.
+    harness.state_mut().set_catalog_delay(Duration::MAX);
     // Held from its start, the first render is surely under way when the
     // test looks (a 64 x 64 render could end before the scene's first
     // frame on a busy machine, leaving nothing to look at).
@@ -872,5 +853,17 @@ fn the_scene_list_is_counted_after_the_first_render() {
     }
     wait_for(&mut harness, "the scene list's counts", |app| {
         app.is_catalog_complete()
+    });
+}
+
+#[test]
+fn the_scene_list_is_counted_by_its_deadline_even_during_a_render() {
+    let mut harness = small_window(Harness::builder());
+    harness.state_mut().set_catalog_delay(Duration::ZERO);
+    harness.key_press(egui::Key::Space);
+    wait_for(&mut harness, "the counts during a held render", |app| {
+        app.is_catalog_started()
+            && app.engine().is_paused()
+            && app.engine().activity() == Activity::Job(JobState::Rendering)
     });
 }

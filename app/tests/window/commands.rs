@@ -49,7 +49,14 @@ fn f5_reads_the_file_again_and_keeps_the_users_settings() {
 
 #[test]
 fn c_puts_the_camera_back_where_the_file_has_it() {
-    let mut harness = window_on(SceneSource::Bundled("balls_low".into()));
+    let mut harness = small_window_sized(Harness::builder(), WINDOW);
+    let finished = |harness: &mut Harness<'static, WorkbenchApp>| {
+        wait_for(harness, "the render on screen", |app| {
+            is_done(app) && app.is_display_current()
+        });
+        harness.state().shown().unwrap().rgba.clone()
+    };
+    let before = finished(&mut harness);
     let view = harness.get_by_role_and_label(Role::Image, "Render").rect();
     let mut at = view.center();
     harness.drag_at(at);
@@ -61,9 +68,14 @@ fn c_puts_the_camera_back_where_the_file_has_it() {
     harness.drop_at(at);
     harness.run_steps(2);
     assert!(settings(&harness).camera.is_some(), "the drag orbited");
+    assert!(
+        finished(&mut harness) != before,
+        "the orbit moves the image"
+    );
     harness.key_press(egui::Key::C);
     harness.run_steps(2);
     assert_eq!(settings(&harness).camera, None);
+    assert!(finished(&mut harness) == before, "back to the file's view");
 }
 
 #[test]
@@ -128,6 +140,12 @@ fn the_slow_brute_force_banner_switches_to_the_bvh() {
         AccelKind::None,
         "the file's choice"
     );
+    // The scene list's counts widen the side panel when they arrive, which
+    // moves the banner: click once they are in and drawn.
+    wait_for(&mut harness, "the scene list's counts", |app| {
+        app.is_catalog_complete()
+    });
+    harness.run_steps(2);
     harness.get_by_label("Switch to BVH").click();
     harness.run_steps(2);
     assert_eq!(settings(&harness).accel, AccelKind::Bvh);

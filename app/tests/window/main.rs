@@ -8,6 +8,7 @@ mod support;
 mod basics;
 mod commands;
 mod harness;
+mod observer;
 mod persistence;
 mod real_window;
 mod soak;

@@ -15,6 +15,7 @@ mod rings;
 mod shells;
 pub mod sky;
 mod sombrero;
+mod teapot;
 mod tetra;
 mod tree;
 
@@ -37,11 +38,12 @@ pub enum GeneratorName {
     Lattice,
     Jacks,
     Sombrero,
+    Teapot,
 }
 
 impl GeneratorName {
     /// Every generator, for listings and exhaustive tests.
-    pub const ALL: [GeneratorName; 10] = [
+    pub const ALL: [GeneratorName; 11] = [
         GeneratorName::Balls,
         GeneratorName::Mount,
         GeneratorName::Tetra,
@@ -52,6 +54,7 @@ impl GeneratorName {
         GeneratorName::Lattice,
         GeneratorName::Jacks,
         GeneratorName::Sombrero,
+        GeneratorName::Teapot,
     ];
 
     /// The name used on the command line (`workbench gen balls`).
@@ -67,6 +70,7 @@ impl GeneratorName {
             GeneratorName::Lattice => "lattice",
             GeneratorName::Jacks => "jacks",
             GeneratorName::Sombrero => "sombrero",
+            GeneratorName::Teapot => "teapot",
         }
     }
 }
@@ -101,7 +105,7 @@ pub struct GenerateOptions {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum GenerateError {
     #[error(
-        "unknown generator `{0}` (expected one of balls, mount, tetra, rings, tree, gears, shells, lattice, jacks, sombrero)"
+        "unknown generator `{0}` (expected one of balls, mount, tetra, rings, tree, gears, shells, lattice, jacks, sombrero, teapot)"
     )]
     UnknownGenerator(String),
     #[error("{name} level {level} is outside the valid range {}..={}", range.start(), range.end())]
@@ -126,7 +130,9 @@ pub enum GenerateError {
 /// - lattice 1..=24: (level + 1)^3 balls joined by cylinders;
 /// - jacks 1..=7: `level` generations of recursive jacks, 1 + 6 (5^(level-1)
 ///   - 1) / 4 jacks of 3 cylinders and 6 balls;
-/// - sombrero 2..=10: a height field of 2 * 4^level triangles.
+/// - sombrero 2..=10: a height field of 2 * 4^level triangles;
+/// - teapot 2..=64: 64 level^2 - 8 level triangles (32 patches of
+///   level x level cells) on level^2 checkerboard squares.
 pub fn level_range(name: GeneratorName) -> RangeInclusive<u32> {
     match name {
         GeneratorName::Balls => balls::LEVELS,
@@ -139,6 +145,7 @@ pub fn level_range(name: GeneratorName) -> RangeInclusive<u32> {
         GeneratorName::Lattice => lattice::LEVELS,
         GeneratorName::Jacks => jacks::LEVELS,
         GeneratorName::Sombrero => sombrero::LEVELS,
+        GeneratorName::Teapot => teapot::LEVELS,
     }
 }
 
@@ -156,6 +163,7 @@ pub fn default_level(name: GeneratorName) -> u32 {
         GeneratorName::Lattice => 11,
         GeneratorName::Jacks => 5,
         GeneratorName::Sombrero => 7,
+        GeneratorName::Teapot => 12,
     }
 }
 
@@ -188,6 +196,7 @@ pub fn generate(name: GeneratorName, options: &GenerateOptions) -> Result<Scene,
         GeneratorName::Lattice => lattice::generate(level),
         GeneratorName::Jacks => jacks::generate(level),
         GeneratorName::Sombrero => sombrero::generate(level),
+        GeneratorName::Teapot => teapot::generate(level),
     })
 }
 
@@ -208,6 +217,7 @@ pub fn describe(name: GeneratorName, level: u32, seed: u64) -> String {
             GeneratorName::Lattice => lattice::describe(level),
             GeneratorName::Jacks => jacks::describe(level),
             GeneratorName::Sombrero => sombrero::describe(level),
+            GeneratorName::Teapot => teapot::describe(level),
         }
     } else {
         format!("invalid level (valid: {}..={})", range.start(), range.end())

@@ -16,8 +16,8 @@ fn names_parse_back() {
         assert_eq!(g.to_string().to_uppercase().parse::<GeneratorName>(), Ok(g));
     }
     assert_eq!(
-        "teapot".parse::<GeneratorName>(),
-        Err(GenerateError::UnknownGenerator("teapot".into()))
+        "kettle".parse::<GeneratorName>(),
+        Err(GenerateError::UnknownGenerator("kettle".into()))
     );
 }
 

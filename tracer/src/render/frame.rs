@@ -38,18 +38,7 @@ impl Frame {
         index: Arc<SceneIndex>,
         settings: RenderSettings,
     ) -> Result<Self, CameraError> {
-        let (aperture, focal) = if settings.depth_of_field {
-            (settings.aperture, settings.focal)
-        } else {
-            (0.0, 1.0)
-        };
-        let camera = Camera::new(
-            &world.view,
-            settings.width,
-            settings.height,
-            aperture,
-            focal,
-        )?;
+        let camera = Self::camera(&world, &settings)?;
         let spp = settings.samples_per_pixel();
         let n = (spp as f32).sqrt() as u32;
         Ok(Self {
@@ -155,5 +144,61 @@ impl Frame {
             .camera
             .ray(x as f32 + offset.x, y as f32 + offset.y, lens_point);
         tracer.trace_eye_recorded(&ray, self.camera.hither(), &mut rng, counters, recorder)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::accel::AccelKind;
+    use crate::camera::CameraPose;
+    use crate::scene::{Limits, parse_scene};
+
+    fn scene(from: &str) -> String {
+        format!(
+            "v from {from} at 0 0 0.5 up 0 0 1 angle 45 hither 0.01 resolution 24 18\n\
+             l 3 -3 5\nf 0.8 0.8 0.8 1 1 1 1 0.2 20 0 1\n\
+             p 4 -4 -4 0 4 -4 0 4 4 0 -4 4 0\nf 0.9 0.2 0.1 0.7 1 1 1 0.3 30 0 1\n\
+             s -1 0 0.7 0.7\ns 1 -0.5 0.6 0.6\n"
+        )
+    }
+
+    fn film(text: &str, camera: Option<CameraPose>) -> Vec<Vec3A> {
+        let scene = parse_scene(text, None, &Limits::default()).unwrap();
+        let world = Arc::new(World::build(&scene));
+        let index = Arc::new(crate::accel::SceneIndex::build(
+            &world.shapes,
+            AccelKind::Bvh,
+            2.0,
+        ));
+        let settings = RenderSettings {
+            camera,
+            ..RenderSettings::from_scene(&scene)
+        };
+        let frame = Frame::new(world, index, settings).unwrap();
+        let mut counters = Counters::default();
+        frame
+            .tiles
+            .iter()
+            .flat_map(|tile| frame.render_tile(0, tile, &mut counters))
+            .collect()
+    }
+
+    /// A moved camera renders what a scene file standing there renders,
+    /// bit for bit: the window's orbit moves the image, not only its
+    /// overlays.
+    #[test]
+    fn the_settings_camera_is_the_one_that_renders() {
+        let moved = CameraPose {
+            from: Vec3::new(3.0, -4.0, 2.5),
+            at: Vec3::new(0.0, 0.0, 0.5),
+            up: Vec3::Z,
+        };
+        let from_file = film(&scene("3 -4 2.5"), None);
+        let posed = film(&scene("0 -5 2"), Some(moved));
+        assert_eq!(posed, from_file);
+        assert_ne!(film(&scene("0 -5 2"), None), from_file);
     }
 }

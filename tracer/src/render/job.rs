@@ -83,6 +83,13 @@ pub struct JobOptions {
     /// Also measure the views (cost and what each pixel saw) into a
     /// [`ViewFilm`]; off, the render pays nothing for them.
     pub views: bool,
+    /// Start paused (as [`RenderJob::set_paused`] right away, but before the
+    /// job builds or renders anything).
+    pub paused: bool,
+    /// Pause the job once this many tiles are in (tiles already under way
+    /// finish too): a first pass held half done whatever the machine's
+    /// speed, for a viewer stepping through it and for tests.
+    pub pause_after_tiles: Option<u64>,
 }
 
 /// See [`JobOptions::on_pass`].
@@ -105,6 +112,8 @@ struct Shared {
     on_progress: Option<Box<dyn Fn() + Send + Sync>>,
     on_pass: Option<PassObserver>,
     views: bool,
+    pause_after_tiles: Option<u64>,
+    tiles_done: AtomicU64,
 }
 
 /// Locks a mutex, ignoring poisoning: render panics are caught and
@@ -175,7 +184,7 @@ impl RenderJob {
         let index = index.filter(|i| i.matches(settings.accel, settings.grid_multiplier));
         let shared = Arc::new(Shared {
             cancel: AtomicBool::new(false),
-            paused: Mutex::new(false),
+            paused: Mutex::new(options.paused),
             resumed: Condvar::new(),
             progress: Mutex::new(Progress {
                 film: Film::new(settings.width, settings.height),
@@ -200,6 +209,8 @@ impl RenderJob {
             on_progress: options.on_progress,
             on_pass: options.on_pass,
             views: options.views,
+            pause_after_tiles: options.pause_after_tiles,
+            tiles_done: AtomicU64::new(0),
         });
         let worker_shared = shared.clone();
         let worker = std::thread::Builder::new()
@@ -207,6 +218,11 @@ impl RenderJob {
             .spawn(move || {
                 let shared = worker_shared;
                 let outcome = catch_unwind(AssertUnwindSafe(|| {
+                    // A job paused from its start builds nothing either.
+                    shared.wait_while_paused();
+                    if shared.cancelled() {
+                        return Ok(());
+                    }
                     let index = index.unwrap_or_else(|| {
                         let built = Arc::new(SceneIndex::build(
                             &world.shapes,
@@ -400,6 +416,10 @@ fn run_passes(frame: &Frame, shared: &Shared) {
                 }
                 p.stats.counters += counters;
                 p.stats.render_time = rendered + start.elapsed();
+            }
+            let tiles = shared.tiles_done.fetch_add(1, Ordering::Relaxed) + 1;
+            if shared.pause_after_tiles == Some(tiles) {
+                *lock(&shared.paused) = true;
             }
             shared.notify();
         });

@@ -12,12 +12,12 @@ use crate::scene::{Limits, parse_scene};
 use crate::stats::Counters;
 use crate::world::World;
 
-fn world(text: &str) -> Arc<World> {
+pub(super) fn world(text: &str) -> Arc<World> {
     let scene = parse_scene(text, None, &Limits::default()).expect("test scene parses");
     Arc::new(World::build(&scene))
 }
 
-fn index(world: &World, kind: AccelKind) -> Arc<SceneIndex> {
+pub(super) fn index(world: &World, kind: AccelKind) -> Arc<SceneIndex> {
     Arc::new(SceneIndex::build(&world.shapes, kind, 2.0))
 }
 
@@ -218,6 +218,11 @@ fn jittered_samples_converge_to_the_covered_fraction() {
             };
             let (film, _) = render(w.clone(), index(&w, AccelKind::Bvh), s, Some(1)).unwrap();
             errors.push((film.pixel(0, 0).unwrap().x - fraction).abs());
+        }
+        // A straight edge crosses one column of the N x N strata, and each
+        // of its N cells is off by at most one sample's 1 / N^2.
+        for (n, error) in [2, 4, 8, 16].into_iter().zip(&errors) {
+            assert!(*error <= 1.0 / n as f32, "edge {edge}, N = {n}: {errors:?}");
         }
         assert!(errors[3] < 0.01, "edge {edge}: {errors:?}");
         assert!(errors[3] <= errors[0] + 1e-6, "edge {edge}: {errors:?}");

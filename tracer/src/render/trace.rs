@@ -9,7 +9,7 @@ use glam::Vec3A;
 use crate::accel::{Hit, SceneIndex};
 use crate::geometry::Ray;
 use crate::optics::{blinn_phong, fresnel, reflect, refract};
-use crate::sampling::{SampleStream, jittered};
+use crate::sampling::{SampleStream, multi_jittered};
 use crate::stats::Counters;
 use crate::world::{Light, Surface, World, perpendicular_basis};
 
@@ -96,12 +96,18 @@ impl TraceRecorder for NoRecord {}
 enum ShadowMode {
     /// One ray to the light's position (an area light's centre).
     Hard,
-    /// N x N stratified rays over the light's area, each weighted 1/N^2: the
-    /// seed's soft shadows without anti-aliasing, where a pixel takes one sample.
+    /// N x N multi-jittered rays over the light's area, each weighted 1/N^2:
+    /// the seed's soft shadows without anti-aliasing, where a pixel takes
+    /// one sample. Multi-jittered rather than only stratified, so an
+    /// occluder's edge along the light's side is met within one sample
+    /// (jittered strata miss it by up to N samples).
     Stratified(u32),
-    /// One ray to a random point of the area per pixel sample: the seed's soft
-    /// shadows with anti-aliasing, where the pixel's samples average them.
-    OnePerSample,
+    /// One ray per pixel sample: the seed's soft shadows with anti-aliasing,
+    /// where the pixel's samples average them. The pixel's N x N samples
+    /// take the points of one multi-jittered pattern, so they too see the
+    /// light's visible fraction within one sample (independent random points
+    /// were off by about 1/(2N)).
+    OnePerSample(u32),
 }
 
 /// Relative offset that lifts secondary ray origins off the surface, scaled
@@ -135,7 +141,7 @@ impl<'a> Tracer<'a> {
         let shadow_mode = match (settings.soft_shadows, settings.samples_per_pixel()) {
             (false, _) => ShadowMode::Hard,
             (true, 1) => ShadowMode::Stratified(settings.samples.max(1)),
-            (true, _) => ShadowMode::OnePerSample,
+            (true, _) => ShadowMode::OnePerSample(settings.samples.max(1)),
         };
         let size = if world.bounds.is_empty() {
             1.0
@@ -373,8 +379,9 @@ impl<'a> Tracer<'a> {
                 ShadowMode::Stratified(n) => {
                     let (u, v) = self.light_area(light, origin);
                     let weight = 1.0 / (n * n) as f32;
-                    for stratum in 0..n * n {
-                        let s = jittered(stratum, n, rng.next_2d()) - 0.5;
+                    let pattern = rng.next_u32();
+                    for k in 0..n * n {
+                        let s = multi_jittered(k, n, pattern) - 0.5;
                         add_sample(
                             light.position + u * s.x + v * s.y,
                             weight,
@@ -383,9 +390,9 @@ impl<'a> Tracer<'a> {
                         );
                     }
                 }
-                ShadowMode::OnePerSample => {
+                ShadowMode::OnePerSample(n) => {
                     let (u, v) = self.light_area(light, origin);
-                    let s = rng.next_2d() - 0.5;
+                    let s = rng.next_2d_across_samples(n) - 0.5;
                     add_sample(light.position + u * s.x + v * s.y, 1.0, counters, recorder);
                 }
             }

@@ -39,6 +39,7 @@ impl WorkbenchApp {
             }
             Command::ToggleBenchmark => self.tools.bench.open ^= true,
             Command::ToggleStudies => self.tools.studies.open ^= true,
+            Command::ToggleObserver => self.observer.on ^= true,
             Command::SwapSides => {
                 if !self.sides.swap() {
                     self.messages.notify("swap: turn compare mode on first (B)");

@@ -102,6 +102,7 @@ impl WorkbenchApp {
             let view = shown.map(|(view, _)| view);
             self.comparison.refresh(ctx, &self.sides.a, b, view);
         }
+        self.observer.refresh(ctx, &self.sides.a, interval);
     }
 
     /// Starts counting the bundled scenes for the list once A's first
@@ -148,6 +149,7 @@ impl WorkbenchApp {
                 self.messages.error = Some(e);
             }
         }
+        self.keep_observing(ctx);
         if let Some(failure) = self.sides.a.engine.take_failure() {
             self.messages.error = Some(format!(
                 "the render failed: {failure}. The image so far stays; change a setting or \
@@ -158,6 +160,32 @@ impl WorkbenchApp {
         if let Some(request) = &mut self.screenshot {
             let error = self.messages.error.is_some();
             request.take_when_due(ctx, &self.sides.a, error, &self.dialogs);
+        }
+    }
+
+    /// Keeps the observer rendering A's scene from its camera, its trees
+    /// those of the pinned pixel (and pattern) on each side, its animation
+    /// moving.
+    fn keep_observing(&mut self, ctx: &egui::Context) {
+        let sides: Vec<&crate::gui::sides::Side> = self
+            .sides
+            .each()
+            .filter(|s| {
+                s.id == crate::gui::sides::SideId::A || self.comparison.reference().is_none()
+            })
+            .collect();
+        let inspector = &self.tools.inspector;
+        self.observer
+            .record(&sides, inspector.pinned, inspector.sample);
+        if let Err(e) = self.observer.sync(&self.sides.a) {
+            self.messages.error = Some(format!("the observer view: {e}"));
+        }
+        if self
+            .observer
+            .animation
+            .advance(std::time::Instant::now(), self.observer.phases())
+        {
+            ctx.request_repaint();
         }
     }
 

@@ -17,6 +17,7 @@ use crate::load::SceneSource;
 
 use super::commands::Command;
 use super::comparison::Comparison;
+use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
 use super::panels::{central, stats, unfilled};
@@ -40,6 +41,8 @@ pub struct WorkbenchApp {
     messages: Messages,
     dialogs: Dialogs,
     pacing: Pacing,
+    /// The scene seen from outside.
+    observer: Observer,
     /// The title last given to the window, to send it only when it changes
     /// (every viewport command asks for one more frame).
     title: String,
@@ -57,8 +60,10 @@ impl WorkbenchApp {
     ) -> Self {
         let (controls, session) = persisted::restore(storage);
         let pacing = Pacing::default();
+        let wakes = Wakes::of(ctx, &pacing.progress_pace);
         let mut app = Self {
-            sides: Sides::new(controls, Wakes::of(ctx, &pacing.progress_pace)),
+            observer: Observer::new(&wakes),
+            sides: Sides::new(controls, wakes),
             comparison: Comparison::default(),
             navigation: Navigation::default(),
             tools: Tools::default(),
@@ -123,6 +128,7 @@ impl WorkbenchApp {
             paused,
             views: &mut self.tools.views,
             overlay: &mut self.tools.overlay,
+            observer: &mut self.observer,
         };
         let mut picked = None;
         egui::Panel::left("controls")
@@ -163,6 +169,7 @@ impl WorkbenchApp {
             tools: &mut self.tools,
             error: &mut self.messages.error,
             moving,
+            observer: &mut self.observer,
         };
         let outcome = egui::CentralPanel::default()
             .frame(unfilled(egui::Frame::central_panel(ui.style())))
@@ -177,12 +184,9 @@ impl WorkbenchApp {
         }
     }
 
-    /// The windows over the image: help, ray tree, benchmark, studies.
+    /// The windows over the image: help, benchmark, studies.
     fn tool_windows(&mut self, ctx: &egui::Context) {
         help::window(ctx, &mut self.tools.help_open);
-        let b = self.sides.b.as_ref().map(|b| &b.engine);
-        self.tools.inspector.update(&self.sides.a.engine, b);
-        self.tools.inspector.window(ctx, b.is_some());
         self.benchmark_window(ctx);
         self.studies_window(ctx);
     }
@@ -205,6 +209,9 @@ impl eframe::App for WorkbenchApp {
         let mut commands = Command::pressed(&ctx);
         self.side_panel(ui, &mut commands);
         self.statistics_panel(ui);
+        let b = self.sides.b.as_ref().map(|b| &b.engine);
+        self.tools.inspector.update(&self.sides.a.engine, b);
+        self.tools.inspector.panel(ui, b.is_some());
         self.central_panel(ui);
         self.messages.show_notice(&ctx);
         self.tool_windows(&ctx);

@@ -2,6 +2,7 @@
 //! place: the window's own code never calls these.
 
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use tracer::render::Snapshot;
 
@@ -10,6 +11,7 @@ use super::saving::SaveImage;
 use crate::gui::comparison::Comparison;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::observer::Observer;
 use crate::gui::sides::{Controls, Engine, Side};
 use crate::gui::windows::benchmark::BenchWindow;
 use crate::gui::windows::ray_tree::Inspector;
@@ -39,6 +41,17 @@ impl WorkbenchApp {
     /// The comparison, while comparing.
     pub fn comparison(&self) -> Option<&Comparison> {
         self.sides.b.as_ref().map(|_| &self.comparison)
+    }
+
+    /// The observer view.
+    pub fn observer(&self) -> &Observer {
+        &self.observer
+    }
+
+    /// The observer also draws the rays of row `y`'s pixels, as its
+    /// panel's "More pixels" does.
+    pub fn observer_pattern_row(&mut self, y: u32) {
+        self.observer.pattern = Some(crate::measure::observer::PixelPattern::Row(y));
     }
 
     /// The per-pixel view the images show.
@@ -95,6 +108,18 @@ impl WorkbenchApp {
     /// Whether the scene list has the object count of every bundled scene.
     pub fn is_catalog_complete(&self) -> bool {
         self.scene_list.catalog.is_complete()
+    }
+
+    /// How long after opening the scene list is counted even while the
+    /// first render runs (3 s unless a test says otherwise).
+    pub fn set_catalog_delay(&mut self, delay: Duration) {
+        self.scene_list.delay = delay;
+    }
+
+    /// Side A's next renders pause themselves once `tiles` tiles are in:
+    /// a first pass held half done, on any machine.
+    pub fn pause_renders_after_tiles(&mut self, tiles: Option<u64>) {
+        self.sides.a.engine.pause_after_tiles(tiles);
     }
 
     /// Files opened recently, newest first.

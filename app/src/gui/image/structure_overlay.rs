@@ -11,6 +11,7 @@ use tracer::render::Frame;
 
 use crate::gui::sides::Engine;
 use crate::measure::overlay_image;
+use crate::measure::projection::Projector;
 
 /// The overlay's controls and the segments of the structure it draws.
 #[derive(Default)]
@@ -47,7 +48,7 @@ impl StructureOverlay {
     }
 
     /// The layer for the structure `engine` renders with, if it has one.
-    fn layer(&self, kind: AccelKind) -> Option<StructureLayer> {
+    pub fn layer(&self, kind: AccelKind) -> Option<StructureLayer> {
         match kind {
             AccelKind::Bvh if self.leaves => Some(StructureLayer::BvhLeaves),
             AccelKind::Bvh => Some(StructureLayer::BvhDepth(self.depth)),
@@ -95,12 +96,11 @@ impl StructureOverlay {
         let painter = ui
             .painter()
             .with_clip_rect(image_rect.intersect(ui.clip_rect()));
+        let projector = Projector::new(&camera);
         let line = |[a, b]: [Vec3A; 2], stroke: Stroke| {
-            if let (Some(a), Some(b)) = (camera.project(a), camera.project(b)) {
+            if let Some([a, b]) = projector.segment(a, b) {
                 let (a, b) = (to_screen(a), to_screen(b));
-                if a.is_finite() && b.is_finite() {
-                    painter.line_segment([pos2(a.x, a.y), pos2(b.x, b.y)], stroke);
-                }
+                painter.line_segment([pos2(a.x, a.y), pos2(b.x, b.y)], stroke);
             }
         };
         let stroke = Stroke::new(1.0, Color32::from_rgb(80, 255, 120));

@@ -25,6 +25,9 @@ pub struct SceneList {
     /// Files in `scenes/` when the window opened.
     disk_scenes: Vec<PathBuf>,
     opened_at: Instant,
+    /// Counting starts this long after opening even if the first render
+    /// still runs.
+    pub delay: Duration,
 }
 
 impl Default for SceneList {
@@ -33,18 +36,19 @@ impl Default for SceneList {
             catalog: Catalog::default(),
             disk_scenes: scene_files(Path::new("scenes")),
             opened_at: Instant::now(),
+            delay: CATALOG_DELAY,
         }
     }
 }
 
 impl SceneList {
     /// Starts counting the bundled scenes once the first render no longer
-    /// needs the machine (`busy` false), or [`CATALOG_DELAY`] after opening
+    /// needs the machine (`busy` false), or `delay` ([`CATALOG_DELAY`]) after opening
     /// at the latest: parsing them took 30-100 ms of CPU during
     /// balls_medium's 0.4 s first render on two cores, its thread's lowest
     /// priority notwithstanding. `wake` redraws as counts arrive.
     pub fn count_when_due(&mut self, busy: bool, wake: impl Fn() + Send + 'static) {
-        if self.catalog.is_started() || (busy && self.opened_at.elapsed() < CATALOG_DELAY) {
+        if self.catalog.is_started() || (busy && self.opened_at.elapsed() < self.delay) {
             return;
         }
         self.catalog.start(wake);

@@ -90,6 +90,10 @@ mod tests {
         let after = CpuTimes::now().unwrap();
         let render = after.render - before.render;
         assert!(render >= 20 * MS, "{render:?}");
-        assert!(after.process - before.process >= render);
+        // Render threads of other tests count into the same total (time
+        // they spent before `before` among it), so only this thread's part
+        // is sure to be in the process's clock.
+        let process = after.process - before.process;
+        assert!(process >= 20 * MS, "{process:?}");
     }
 }

@@ -44,6 +44,11 @@ pub struct Wakes {
 }
 
 impl Wakes {
+    /// An engine that wakes the window so.
+    pub fn engine(&self) -> Engine {
+        Engine::with_wakes(self.paced.clone(), self.now.clone())
+    }
+
     /// Wakes that redraw `ctx` at `pace` (and at once for last passes).
     pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
         let (paced_ctx, now_ctx, pace) = (ctx.clone(), ctx.clone(), pace.clone());
@@ -77,7 +82,7 @@ impl Side {
     fn new(id: SideId, controls: Controls, wakes: &Wakes) -> Self {
         Self {
             id,
-            engine: Engine::with_wakes(wakes.paced.clone(), wakes.now.clone()),
+            engine: wakes.engine(),
             image: LiveImage::new(match id {
                 SideId::A => "render A",
                 SideId::B => "render B",

@@ -54,6 +54,8 @@ pub struct Engine {
     /// The current job rendered its last pass (set by a render thread).
     complete: Arc<AtomicBool>,
     paused: bool,
+    /// Jobs pause themselves once this many tiles are in.
+    pause_after_tiles: Option<u64>,
     /// Whether the current job's failure was handed out already.
     failure_taken: bool,
     /// Jobs started so far: part of [`Engine::version`], as every job
@@ -89,6 +91,7 @@ impl Engine {
             wake_now,
             complete: Arc::new(AtomicBool::new(false)),
             paused: false,
+            pause_after_tiles: None,
             failure_taken: false,
             jobs_started: 0,
             views: false,
@@ -201,11 +204,12 @@ impl Engine {
                 })),
                 yield_to_viewer: true,
                 views: self.views,
+                paused: self.paused,
+                pause_after_tiles: self.pause_after_tiles,
             },
         )
         .map_err(|e| e.to_string())?;
         self.views_changed = false;
-        job.set_paused(self.paused);
         self.job = Some(job);
         self.complete = complete;
         self.failure_taken = false;
@@ -226,6 +230,8 @@ impl Engine {
         self.retired.retain(|job| !job.is_finished());
     }
 
+    /// Holds the render between tiles (and before building a structure),
+    /// or lets it go on; jobs started later start so.
     pub fn set_paused(&mut self, paused: bool) {
         self.paused = paused;
         if let Some(job) = &self.job {
@@ -233,8 +239,16 @@ impl Engine {
         }
     }
 
+    /// Whether renders are held (the job, or the next one, paused). A job
+    /// pauses itself after [`Engine::pause_after_tiles`]: then too.
     pub fn is_paused(&self) -> bool {
-        self.paused
+        self.job.as_ref().map_or(self.paused, RenderJob::is_paused)
+    }
+
+    /// The next jobs pause themselves once `tiles` tiles are in (`None`:
+    /// they run on): a first pass held half done, whatever the machine.
+    pub fn pause_after_tiles(&mut self, tiles: Option<u64>) {
+        self.pause_after_tiles = tiles;
     }
 
     /// Whether the current job rendered its last pass: its image is final
@@ -269,6 +283,15 @@ impl Engine {
             .as_ref()
             .and_then(RenderJob::index)
             .or_else(|| self.index.clone())
+    }
+
+    /// Lends this engine the structure another engine built over the same
+    /// scene (the observer renders A's scene): its next job skips the
+    /// build when the structure fits its settings.
+    pub fn share_index(&mut self, index: Arc<SceneIndex>) {
+        if self.index.as_ref().is_none_or(|i| !Arc::ptr_eq(i, &index)) {
+            self.index = Some(index);
+        }
     }
 
     /// Whether jobs measure the views; a change renders again.

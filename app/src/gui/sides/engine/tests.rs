@@ -137,8 +137,10 @@ fn the_last_pass_wakes_the_window_at_once() {
 
 #[test]
 fn new_settings_wait_for_the_structure_being_built_instead_of_building_another() {
-    // 262k triangles: its BVH takes tens of milliseconds to build.
     let (_, at_once, mut engine) = counting_engine("mesh_large");
+    // Held before its build, the first job is surely still building when
+    // new settings come, however fast the machine.
+    engine.set_paused(true);
     // Refining for ever: the last pass never wakes the window at once.
     let settings = RenderSettings {
         width: 24,
@@ -155,6 +157,7 @@ fn new_settings_wait_for_the_structure_being_built_instead_of_building_another()
     engine.render(&moved).unwrap();
     assert_eq!(engine.version().0, 1, "no second job, no second build");
     assert_eq!(engine.activity(), Activity::Job(JobState::Building));
+    engine.set_paused(false);
     // The window calls again every frame; the build's report wakes it.
     wait_until(&mut engine, |e| {
         e.render(&moved).unwrap();
