@@ -257,15 +257,18 @@ fn circle(centre: Vec3A, u: Vec3A, v: Vec3A, radius: f32, part: Part) -> Vec<Seg
 
 /// Where the observer starts: behind, above and to the side of the scene
 /// camera, far enough that the scene's bounds and the camera both fit in a
-/// view `angle` degrees high (lights far away may fall outside).
-pub fn framing(world: &World, camera: &Camera, angle: f32) -> CameraPose {
+/// view `angle` degrees high and `aspect` (height over width) as tall as
+/// wide (lights far away may fall outside).
+pub fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> CameraPose {
     let eye = camera.eye();
     let bounds = world.bounds.grow(eye);
     let centre = bounds.centre();
     let radius = (bounds.extent().length() * 0.5).max(1e-3);
     let [right, up, forward] = camera.basis();
     let direction = (-forward * 1.0 + up * 0.6 + right * 0.5).normalize();
-    let half = (angle.clamp(10.0, 170.0) * 0.5).to_radians();
+    let vertical = (angle.clamp(10.0, 170.0) * 0.5).to_radians();
+    let horizontal = (vertical.tan() / aspect.max(1e-3)).atan();
+    let half = vertical.min(horizontal);
     let distance = radius / half.sin() * 1.05;
     CameraPose {
         from: (centre + direction * distance).into(),
