@@ -12,9 +12,7 @@ use glam::{Vec3, Vec3A};
 use serde::Serialize;
 use tracer::accel::{SceneIndex, StructureLayer, Visit};
 use tracer::camera::{Camera, CameraPose};
-use tracer::render::{
-    Film, JobOptions, JobState, Outcome, RayKind, RayTree, RenderJob, RenderSettings, View,
-};
+use tracer::render::{Film, Outcome, RayKind, RayTree, RenderSettings, View, render_with_views};
 use tracer::world::World;
 
 use super::projection::DepthMap;
@@ -386,23 +384,9 @@ pub fn render_with_depth(
     threads: Option<usize>,
 ) -> Result<(Film, DepthMap)> {
     let (width, height) = (settings.width, settings.height);
-    let job = RenderJob::start(
-        world,
-        Some(index),
-        settings,
-        JobOptions {
-            threads,
-            views: true,
-            ..JobOptions::default()
-        },
-    )?;
-    let (film, views, _, state) = job.wait_with_views();
-    if let JobState::Failed(message) = state {
-        return Err(anyhow!("the observer's render failed: {message}"));
-    }
-    let distances = views
-        .map(|v| v.values(View::Distance))
-        .ok_or_else(|| anyhow!("the observer's render measured no distances"))?;
+    let (film, views, _) = render_with_views(world, index, settings, threads)
+        .map_err(|e| anyhow!("the observer's render failed: {e}"))?;
+    let distances = views.values(View::Distance);
     let depth = DepthMap::new(width, height, distances)
         .ok_or_else(|| anyhow!("the observer's distances do not fit its image"))?;
     Ok((film, depth))
