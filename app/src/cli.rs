@@ -30,6 +30,9 @@ pub struct Cli {
     /// done (or an error is shown), then close.
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
+    /// Open the window with the observer view on (the scene from outside).
+    #[arg(long)]
+    pub observer: bool,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]
     pub screenshot_after: Option<f64>,

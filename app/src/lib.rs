@@ -26,7 +26,7 @@ pub fn run() -> std::process::ExitCode {
         Some(cli::Headless::Sweep(args)) => headless::sweep::run(&args),
         None => cli
             .screenshot_plan()
-            .and_then(|plan| gui::run(cli.scene, plan)),
+            .and_then(|plan| gui::run(cli.scene, plan, cli.observer)),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

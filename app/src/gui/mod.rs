@@ -33,10 +33,14 @@ pub use windows::studies::{Applied, StudiesWindow};
 
 use crate::load::SceneSource;
 
-/// Opens the window on `scene` (or the last scene, or the bundled default)
-/// and runs until it is closed, or until the screenshot of `screenshot` is
-/// taken.
-pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow::Result<()> {
+/// Opens the window on `scene` (or the last scene, or the bundled default),
+/// with the observer view on when `observer`, and runs until it is closed,
+/// or until the screenshot of `screenshot` is taken.
+pub fn run(
+    scene: Option<PathBuf>,
+    screenshot: Option<ScreenshotPlan>,
+    observer: bool,
+) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("Whitted Workbench")
@@ -65,7 +69,8 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
             if let Some(render_state) = &cc.wgpu_render_state {
                 settle_animations(&cc.egui_ctx, render_state.adapter.get_info().device_type);
             }
-            let app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
+            let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
+            app.show_observer(observer);
             Ok(Box::new(match plan {
                 Some(plan) => app.with_screenshot(plan, app_outcome),
                 None => app,

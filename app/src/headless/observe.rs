@@ -132,6 +132,7 @@ fn observer_pose(
     world: &tracer::world::World,
     settings: &RenderSettings,
 ) -> Result<CameraPose> {
+    let aspect = args.size[1] as f32 / args.size[0].max(1) as f32;
     let scene_camera = Frame::camera(world, settings)?;
     let vector = |v: &Option<Vec<f32>>| v.as_ref().map(|v| Vec3::new(v[0], v[1], v[2]));
     let up = vector(&args.up).unwrap_or_else(|| scene_camera.basis()[1].into());
@@ -158,7 +159,7 @@ fn observer_pose(
         }
         _ => CameraPose {
             up,
-            ..observer::framing(world, &scene_camera, world.view.angle)
+            ..observer::framing(world, &scene_camera, world.view.angle, aspect)
         },
     };
     Ok(pose)

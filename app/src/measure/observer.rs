@@ -12,9 +12,7 @@ use glam::{Vec3, Vec3A};
 use serde::Serialize;
 use tracer::accel::{SceneIndex, StructureLayer, Visit};
 use tracer::camera::{Camera, CameraPose};
-use tracer::render::{
-    Film, JobOptions, JobState, Outcome, RayKind, RayTree, RenderJob, RenderSettings, View,
-};
+use tracer::render::{Film, Outcome, RayKind, RayTree, RenderSettings, View, render_with_views};
 use tracer::world::World;
 
 use super::projection::DepthMap;
@@ -257,15 +255,18 @@ fn circle(centre: Vec3A, u: Vec3A, v: Vec3A, radius: f32, part: Part) -> Vec<Seg
 
 /// Where the observer starts: behind, above and to the side of the scene
 /// camera, far enough that the scene's bounds and the camera both fit in a
-/// view `angle` degrees high (lights far away may fall outside).
-pub fn framing(world: &World, camera: &Camera, angle: f32) -> CameraPose {
+/// view `angle` degrees high and `aspect` (height over width) as tall as
+/// wide (lights far away may fall outside).
+pub fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> CameraPose {
     let eye = camera.eye();
     let bounds = world.bounds.grow(eye);
     let centre = bounds.centre();
     let radius = (bounds.extent().length() * 0.5).max(1e-3);
     let [right, up, forward] = camera.basis();
     let direction = (-forward * 1.0 + up * 0.6 + right * 0.5).normalize();
-    let half = (angle.clamp(10.0, 170.0) * 0.5).to_radians();
+    let vertical = (angle.clamp(10.0, 170.0) * 0.5).to_radians();
+    let horizontal = (vertical.tan() / aspect.max(1e-3)).atan();
+    let half = vertical.min(horizontal);
     let distance = radius / half.sin() * 1.05;
     CameraPose {
         from: (centre + direction * distance).into(),
@@ -383,23 +384,9 @@ pub fn render_with_depth(
     threads: Option<usize>,
 ) -> Result<(Film, DepthMap)> {
     let (width, height) = (settings.width, settings.height);
-    let job = RenderJob::start(
-        world,
-        Some(index),
-        settings,
-        JobOptions {
-            threads,
-            views: true,
-            ..JobOptions::default()
-        },
-    )?;
-    let (film, views, _, state) = job.wait_with_views();
-    if let JobState::Failed(message) = state {
-        return Err(anyhow!("the observer's render failed: {message}"));
-    }
-    let distances = views
-        .map(|v| v.values(View::Distance))
-        .ok_or_else(|| anyhow!("the observer's render measured no distances"))?;
+    let (film, views, _) = render_with_views(world, index, settings, threads)
+        .map_err(|e| anyhow!("the observer's render failed: {e}"))?;
+    let distances = views.values(View::Distance);
     let depth = DepthMap::new(width, height, distances)
         .ok_or_else(|| anyhow!("the observer's distances do not fit its image"))?;
     Ok((film, depth))

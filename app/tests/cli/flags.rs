@@ -443,6 +443,11 @@ const CHECKED: &[(&str, &str, &str)] = &[
         "srgb",
         "observe_sample_from_at_up_and_overlay_apply",
     ),
+    (
+        "",
+        "observer",
+        "real_window::the_window_opens_with_the_observer_on_when_asked",
+    ),
 ];
 
 /// The settings flags `render` shares with the other subcommands.
@@ -522,6 +527,12 @@ fn every_flag_has_a_test_that_sees_its_effect() {
 fn scene(dir: &Scratch) -> String {
     let path = write(dir, "scene.p3f", &spheres_on_a_floor(24, 16, "", ""));
     path.to_str().unwrap().to_string()
+}
+
+/// [`scene`] and where a run writes `name` beside it.
+fn scene_and_output(dir: &Scratch, name: &str) -> (String, String) {
+    let out = dir.join(name);
+    (scene(dir), out.to_str().unwrap().to_string())
 }
 
 /// What a `render` run produced: the PNG's bytes, and the statistics that
@@ -703,9 +714,8 @@ fn progressive_out_writes_every_pass() {
 #[test]
 fn every_subcommand_applies_the_settings_flags() {
     let dir = scratch("flags-shared");
-    let scene = scene(&dir);
-    let out = dir.join("out.png");
-    let out = out.to_str().unwrap();
+    let (scene, out) = scene_and_output(&dir, "out.png");
+    let out = out.as_str();
     let size = ["--width", "17", "--height", "9"];
     let runs: [Vec<&str>; 5] = [
         vec!["render", &scene, "-o", out],
@@ -777,23 +787,12 @@ fn bench_runs_structures_and_encoding_apply() {
     assert_eq!(frames, Some(2), "{json}");
 
     let (linear, srgb) = (dir.join("linear"), dir.join("srgb"));
-    bench(&[
-        "--runs",
-        "1",
-        "--structures",
-        "bvh",
-        "--images",
-        linear.to_str().unwrap(),
-    ]);
-    bench(&[
-        "--runs",
-        "1",
-        "--structures",
-        "bvh",
-        "--images",
-        srgb.to_str().unwrap(),
-        "--srgb",
-    ]);
+    for (folder, encoding) in [(&linear, None), (&srgb, Some("--srgb"))] {
+        let mut flags = vec!["--runs", "1", "--structures", "bvh", "--images"];
+        flags.push(folder.to_str().unwrap());
+        flags.extend(encoding);
+        bench(&flags);
+    }
     let image = |dir: &Path| std::fs::read(dir.join("bvh.png")).unwrap();
     assert_ne!(image(&linear), image(&srgb));
 }
@@ -974,9 +973,8 @@ fn screenshot_after_takes_a_delay_in_seconds() {
 #[test]
 fn observe_sample_from_at_up_and_overlay_apply() {
     let dir = scratch("flags-observe");
-    let scene = scene(&dir);
-    let out = dir.join("figure.png");
-    let out = out.to_str().unwrap();
+    let (scene, out) = scene_and_output(&dir, "figure.png");
+    let out = out.as_str();
     let observe = |flags: &[&str]| {
         let mut args = vec![
             "observe", &scene, "-o", out, "--size", "64", "48", "--format", "json",

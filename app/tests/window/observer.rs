@@ -3,13 +3,12 @@
 //! pixel's rays fly through it generation by generation, compare mode
 //! shows both sides' trees.
 
-use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::render::JobState;
 use workbench::gui::{Activity, WorkbenchApp};
 
-use crate::harness::{is_done, ready_window, wait_for};
+use crate::harness::{drag, is_done, ready_window, wait_for};
 
 fn observer_done(app: &WorkbenchApp) -> bool {
     let observer = app.observer();
@@ -27,19 +26,6 @@ fn observing() -> Harness<'static, WorkbenchApp> {
     harness.key_press(egui::Key::O);
     wait_for(&mut harness, "the observer's render", observer_done);
     harness
-}
-
-fn drag(harness: &mut Harness<'static, WorkbenchApp>, label: &str) {
-    let view = harness.get_by_role_and_label(Role::Image, label).rect();
-    let mut at = view.center();
-    harness.drag_at(at);
-    for _ in 0..4 {
-        at += egui::vec2(15.0, 5.0);
-        harness.hover_at(at);
-        harness.step();
-    }
-    harness.drop_at(at);
-    harness.step();
 }
 
 #[test]

@@ -101,6 +101,11 @@ impl WorkbenchApp {
         self
     }
 
+    /// Turns the observer view on or off, as O does.
+    pub fn show_observer(&mut self, on: bool) {
+        self.observer.on = on;
+    }
+
     /// Starts loading a scene as the user would open it.
     pub fn open(&mut self, source: SceneSource) {
         self.sides.adopt_loaded_scene = true;

@@ -71,15 +71,19 @@ type TreesKey = (Vec<RenderSettings>, Vec<(u32, u32)>, u32);
 
 impl Observer {
     pub fn new(wakes: &Wakes) -> Self {
+        let mut engine = wakes.engine();
+        // The observer renders in the time the sides leave: it never slows
+        // the render it explains.
+        engine.set_idle_priority(true);
         Self {
             on: false,
             layout: ObserverLayout::Beside,
-            resolution: 320,
+            resolution: 400,
             pattern: None,
             animation: Animation::default(),
             placement: Placement::default(),
             pose: None,
-            engine: wakes.engine(),
+            engine,
             image: LiveImage::new("observer"),
             aspect: 0.75,
             dragging: false,
@@ -135,6 +139,7 @@ impl Observer {
                 &scene.world,
                 &camera,
                 scene.world.view.angle,
+                self.aspect,
             ));
         }
         if let Some(index) = a.engine.index() {
@@ -157,9 +162,30 @@ impl Observer {
             ..target.clone()
         };
         self.engine.set_views(true);
-        let result = self.engine.render(&settings);
+        let moved = self.engine.settings().map(|s| s.camera) != Some(settings.camera);
+        let result = if moved || self.may_render_beside(a) {
+            self.engine.render(&settings)
+        } else {
+            Ok(())
+        };
         self.settings = Some(settings);
         result
+    }
+
+    /// Whether the observer may render now beside side A's render: once A
+    /// is done, or, while the observer shows nothing yet, once A's first
+    /// pass is in. A move of the observer renders at once (the user asked
+    /// for it); otherwise it waits, so it never slows the render it shows.
+    fn may_render_beside(&self, a: &Side) -> bool {
+        let engine = &a.engine;
+        let rendering = matches!(
+            engine.activity(),
+            Activity::Job(JobState::Building | JobState::Rendering)
+        ) && !engine.is_complete();
+        if !rendering {
+            return true;
+        }
+        self.image.shown().is_none() && a.image.shown().is_some_and(|s| s.stats.passes_done >= 1)
     }
 
     /// Uploads the observer's image at the progress pace, and keeps the

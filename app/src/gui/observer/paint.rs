@@ -82,7 +82,7 @@ pub fn paint(
                 };
                 let centre = at((u0 + u1) * 0.5, (v0 + v1) * 0.5);
                 let hidden = depth.is_some_and(|d| d.hides(&projector, centre));
-                let alpha = if hidden { 50 } else { 180 };
+                let alpha = if hidden { 40 } else { 130 };
                 let tint = Color32::from_white_alpha(alpha);
                 let base = mesh.vertices.len() as u32;
                 for (p, &(u, v)) in projected.iter().zip(&points) {

@@ -107,7 +107,9 @@ impl Inspector {
                 let sides = if comparing { 2 } else { 1 };
                 ui.columns(sides, |columns| {
                     for (side, ui) in columns.iter_mut().enumerate() {
-                        egui::ScrollArea::vertical()
+                        // Both ways: a long line scrolls inside its column
+                        // instead of running over the other side's.
+                        egui::ScrollArea::both()
                             .id_salt(("ray_tree", side))
                             .show(ui, |ui| {
                                 if comparing {

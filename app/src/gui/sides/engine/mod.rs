@@ -56,6 +56,8 @@ pub struct Engine {
     paused: bool,
     /// Jobs pause themselves once this many tiles are in.
     pause_after_tiles: Option<u64>,
+    /// Jobs render only in the time the other engines leave.
+    idle_priority: bool,
     /// Whether the current job's failure was handed out already.
     failure_taken: bool,
     /// Jobs started so far: part of [`Engine::version`], as every job
@@ -92,6 +94,7 @@ impl Engine {
             complete: Arc::new(AtomicBool::new(false)),
             paused: false,
             pause_after_tiles: None,
+            idle_priority: false,
             failure_taken: false,
             jobs_started: 0,
             views: false,
@@ -203,6 +206,7 @@ impl Engine {
                     }
                 })),
                 yield_to_viewer: true,
+                idle_priority: self.idle_priority,
                 views: self.views,
                 paused: self.paused,
                 pause_after_tiles: self.pause_after_tiles,
@@ -243,6 +247,12 @@ impl Engine {
     /// pauses itself after [`Engine::pause_after_tiles`]: then too.
     pub fn is_paused(&self) -> bool {
         self.job.as_ref().map_or(self.paused, RenderJob::is_paused)
+    }
+
+    /// The next jobs render only in the time the other engines' renders
+    /// leave (the observer's, beside the sides').
+    pub fn set_idle_priority(&mut self, idle: bool) {
+        self.idle_priority = idle;
     }
 
     /// The next jobs pause themselves once `tiles` tiles are in (`None`:
