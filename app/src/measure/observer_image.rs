@@ -8,7 +8,7 @@ use image::{Rgb, RgbImage};
 use tracer::camera::Camera;
 use tracer::world::World;
 
-use super::observer::{Segment, style};
+use super::observer::{Part, Segment, style};
 use super::overlay_image::line_pixels;
 use super::projection::{DepthMap, Projector};
 
@@ -86,6 +86,7 @@ pub fn draw_segments(
             continue;
         };
         let (colour, dashed) = style(segment, world);
+        let thick = matches!(segment.part, Part::Ray { .. } | Part::BlockedShadow);
         for (ends, hidden) in depth.split(projector, ends, PIECES) {
             pieces.push(Piece {
                 segment: index,
@@ -97,6 +98,11 @@ pub fn draw_segments(
             };
             let alpha = if hidden { HIDDEN_ALPHA } else { 1.0 };
             line(figure, a, b, colour, alpha, dashed);
+            if thick {
+                // Rays two pixels wide, so they read on a busy render.
+                let across = (b - a).perp().normalize_or_zero();
+                line(figure, a + across, b + across, colour, alpha, dashed);
+            }
         }
     }
     pieces

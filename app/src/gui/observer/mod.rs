@@ -65,9 +65,9 @@ pub struct Observer {
     pub segments_drawn: usize,
 }
 
-/// What the trees were recorded for: each side's settings, the pixels and
-/// the sample.
-type TreesKey = (Vec<RenderSettings>, Vec<(u32, u32)>, u32);
+/// What the trees were recorded for: each side's settings and world (its
+/// address: an edit makes another), the pixels and the sample.
+type TreesKey = (Vec<(RenderSettings, usize)>, Vec<(u32, u32)>, u32);
 
 impl Observer {
     pub fn new(wakes: &Wakes) -> Self {
@@ -125,10 +125,17 @@ impl Observer {
             .scene()
             .is_some_and(|s| Arc::ptr_eq(&s.world, &scene.world));
         if !same_scene {
+            // An edit of the same file keeps where the observer stands.
+            let same_file = self
+                .engine
+                .scene()
+                .is_some_and(|s| s.source == scene.source);
             self.engine.show(scene.clone());
-            self.image.forget();
             self.depth = None;
-            self.pose = None;
+            if !same_file {
+                self.image.forget();
+                self.pose = None;
+            }
         }
         let Some(target) = a.settings() else {
             return Ok(());
@@ -246,12 +253,15 @@ impl Observer {
         if !self.on {
             return;
         }
-        let settings: Vec<RenderSettings> = sides
+        let settings: Vec<(RenderSettings, usize)> = sides
             .iter()
-            .filter_map(|s| s.engine.settings().cloned())
+            .filter_map(|s| {
+                let world = Arc::as_ptr(&s.engine.scene()?.world) as usize;
+                Some((s.engine.settings()?.clone(), world))
+            })
             .collect();
         let mut pixels: Vec<(u32, u32)> = pinned.into_iter().collect();
-        if let (Some(pattern), Some(first)) = (self.pattern, settings.first())
+        if let (Some(pattern), Some((first, _))) = (self.pattern, settings.first())
             && let Ok(more) = pattern.pixels(first.width, first.height)
         {
             let step = more.len().div_ceil(MAX_PATTERN_PIXELS).max(1);

@@ -25,7 +25,9 @@ pub struct Inspector {
 
 /// A tree and what it was recorded for.
 struct Inspected {
-    of: (RenderSettings, (u32, u32), u32),
+    /// The settings, the world (its address: an edit makes another), the
+    /// pixel and the sample.
+    of: (RenderSettings, usize, (u32, u32), u32),
     tree: Result<RayTree, String>,
 }
 
@@ -67,7 +69,8 @@ impl Inspector {
                 *slot = None;
                 continue;
             };
-            let of = (settings.clone(), pixel, self.sample);
+            let world = std::sync::Arc::as_ptr(&scene.world) as usize;
+            let of = (settings.clone(), world, pixel, self.sample);
             if slot.as_ref().is_some_and(|s| s.of == of) {
                 continue;
             }

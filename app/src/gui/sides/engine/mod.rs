@@ -132,6 +132,18 @@ impl Engine {
         self.scene = Some(scene);
     }
 
+    /// Makes `scene`, an edit of the current one, the current scene, and
+    /// renders again; `keep_structure` when the edit left the shapes as
+    /// they were (a material, a light, the camera), so the structure built
+    /// over them serves the next job as it is.
+    pub fn edit_scene(&mut self, scene: LoadedScene, keep_structure: bool) {
+        let index = self.index();
+        self.show(scene);
+        if keep_structure {
+            self.index = index;
+        }
+    }
+
     pub fn scene(&self) -> Option<&LoadedScene> {
         self.scene.as_ref()
     }
