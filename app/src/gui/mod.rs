@@ -3,13 +3,15 @@
 //! image on screen, the controls; the interface to the renderer), `app`
 //! (the frame: arrivals, commands, saving), `panels` (drawing, over
 //! narrow views of the state), `image` (the viewport and what is drawn
-//! over it), `comparison` (compare mode's layout and measures),
+//! over it), `comparison` (compare mode's layout and measures), `editor`
+//! (changing the scene: selection, the editor window, moving objects),
 //! `windows` (ray tree, benchmark, studies, help) and `platform` (frame
 //! pacing, CPU clocks, the software rasterizer, screenshots).
 
 mod app;
 mod commands;
 mod comparison;
+mod editor;
 mod image;
 mod observer;
 mod panels;
@@ -22,6 +24,7 @@ use std::path::PathBuf;
 pub use app::WorkbenchApp;
 pub use commands::Command;
 pub use comparison::{Comparison, Layout, ReferenceImage};
+pub use editor::{Editor, Pending};
 pub use image::pixel_views::PixelViews;
 pub use image::structure_overlay::StructureOverlay;
 pub use observer::{Observer, ObserverLayout};

@@ -19,7 +19,11 @@ use crate::report;
 pub fn run(args: &RenderArgs) -> Result<()> {
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
     if let Some(path) = &args.save_scene {
-        std::fs::write(path, tracer::scene::write_p3f(&loaded.scene))
+        let folder = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => std::path::Path::new("."),
+        };
+        std::fs::write(path, tracer::scene::write_p3f_in(&loaded.scene, folder))
             .with_context(|| format!("cannot write the scene to {}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }

@@ -7,6 +7,7 @@ mod support;
 
 mod basics;
 mod commands;
+mod editing;
 mod harness;
 mod observer;
 mod persistence;

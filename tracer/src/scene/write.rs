@@ -2,6 +2,7 @@
 //! can be saved and a parsed scene can be checked by parsing it again.
 
 use std::fmt::{self, Display, Formatter};
+use std::path::Path;
 
 use glam::Vec3;
 
@@ -19,6 +20,32 @@ use super::{LightSpec, Material, Object, Primitive, Scene};
 /// `f` line (the default material for a bad index).
 pub fn write_p3f(scene: &Scene) -> String {
     P3f(scene).to_string()
+}
+
+/// [`write_p3f`] for a file in `folder`: the skybox (`env`) is found
+/// relative to the scene file's folder, so a relative `env` of a scene
+/// from another folder is written as the absolute path of the same skybox.
+pub fn write_p3f_in(scene: &Scene, folder: &Path) -> String {
+    let same_folder = |base: &Path| match (base.canonicalize(), folder.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => base == folder,
+    };
+    let moved_env = match (&scene.env, &scene.base_dir) {
+        (Some(env), Some(base)) if Path::new(env).is_relative() && !same_folder(base) => {
+            std::path::absolute(base.join(env)).ok()
+        }
+        _ => None,
+    };
+    match moved_env.and_then(|p| p.to_str().map(str::to_owned)) {
+        Some(env) if !env.contains(char::is_whitespace) => {
+            let relocated = Scene {
+                env: Some(env),
+                ..scene.clone()
+            };
+            P3f(&relocated).to_string()
+        }
+        _ => P3f(scene).to_string(),
+    }
 }
 
 /// One light as its P3F command on one line: the text an edit that adds a

@@ -25,6 +25,7 @@ impl WorkbenchApp {
                 Reply::Open(path) => self.open(SceneSource::File(path)),
                 Reply::Notice(text) => self.messages.notify(text),
                 Reply::Error(text) => self.messages.error = Some(text),
+                Reply::SceneSaved { side, path, state } => self.scene_saved(side, &path, state),
                 Reply::Screenshot(result) => {
                     if let Some(request) = &self.screenshot
                         && let Ok(mut slot) = request.outcome.lock()
@@ -123,8 +124,13 @@ impl WorkbenchApp {
     }
 
     fn update_title(&mut self, ctx: &egui::Context) {
+        let edited = if self.sides.each().any(|s| s.history.is_modified()) {
+            " *"
+        } else {
+            ""
+        };
         let title = match self.sides.a.engine.scene() {
-            Some(s) => format!("Whitted Workbench — {}", s.source.label()),
+            Some(s) => format!("Whitted Workbench — {}{edited}", s.source.label()),
             None => "Whitted Workbench".into(),
         };
         if title != self.title {

@@ -5,6 +5,7 @@
 //! keeps the engines rendering them.
 
 mod command_handling;
+mod editing;
 mod logic;
 mod messages;
 mod navigation;
@@ -17,6 +18,7 @@ use crate::load::SceneSource;
 
 use super::commands::Command;
 use super::comparison::Comparison;
+use super::editor;
 use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
@@ -106,10 +108,27 @@ impl WorkbenchApp {
         self.observer.on = on;
     }
 
-    /// Starts loading a scene as the user would open it.
+    /// Opens a scene as the user would: first asking, when edits are
+    /// unsaved, whether to throw them away.
     pub fn open(&mut self, source: SceneSource) {
+        self.open_or_ask(editor::Pending::Open(source));
+    }
+
+    /// Starts loading `source`, which A's controls adopt.
+    fn open_now(&mut self, source: SceneSource) {
         self.sides.adopt_loaded_scene = true;
         self.sides.a.engine.load(source);
+    }
+
+    /// Reads the current scene file again, keeping the controls.
+    fn reload_now(&mut self) {
+        match self.session.last_scene.clone() {
+            Some(source) => {
+                self.sides.adopt_loaded_scene = false;
+                self.sides.a.engine.load(source);
+            }
+            None => self.messages.notify("no scene to reload"),
+        }
     }
 
     /// The side panel: scene, settings of the side being edited, views.
@@ -176,10 +195,11 @@ impl WorkbenchApp {
             moving,
             observer: &mut self.observer,
         };
-        let outcome = egui::CentralPanel::default()
+        let mut outcome = egui::CentralPanel::default()
             .frame(unfilled(egui::Frame::central_panel(ui.style())))
             .show(ui, |ui| central::show(ui, view))
             .inner;
+        self.move_selected(&mut outcome.viewport);
         let scene = self.sides.a.engine.scene().map(|s| &s.scene);
         self.navigation.take(&outcome.viewport, scene);
         for id in outcome.switch_to_bvh {
@@ -189,9 +209,10 @@ impl WorkbenchApp {
         }
     }
 
-    /// The windows over the image: help, benchmark, studies.
-    fn tool_windows(&mut self, ctx: &egui::Context) {
+    /// The windows over the image: help, the editor, benchmark, studies.
+    fn tool_windows(&mut self, ctx: &egui::Context, commands: &mut Vec<Command>) {
         help::window(ctx, &mut self.tools.help_open);
+        self.editor_window(ctx, commands);
         self.benchmark_window(ctx);
         self.studies_window(ctx);
     }
@@ -219,7 +240,7 @@ impl eframe::App for WorkbenchApp {
         self.tools.inspector.panel(ui, b.is_some());
         self.central_panel(ui);
         self.messages.show_notice(&ctx);
-        self.tool_windows(&ctx);
+        self.tool_windows(&ctx, &mut commands);
         for command in commands {
             self.run_command(command);
         }

@@ -105,6 +105,7 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
     if let Some(rect) = response.image_rect {
         let visits = tools.inspector.eye_visits();
         tools.overlay.paint(ui, &a.engine, rect, visits);
+        tools.editor.paint_outline(ui, &sides.active().engine, rect);
         tools.inspector.paths_drawn = match tools.inspector.tree(0) {
             Some(Ok(tree)) => ray_paths::paint(ui, tree, &a.engine, rect),
             _ => 0,
@@ -114,6 +115,9 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
         && ui.input(|i| i.pointer.primary_clicked())
     {
         tools.inspector.pin(pixel);
+        if tools.editor.open {
+            tools.editor.pick_at = Some(pixel);
+        }
     }
     ui.horizontal(|ui| {
         ui.label(status_line(a, moving || response.dragging_camera));

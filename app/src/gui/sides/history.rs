@@ -19,16 +19,32 @@ struct Step {
     /// The target and field ("object 5 ior"), for merging.
     slot: String,
     at: Instant,
+    /// Unique within the history: names the state this step leads to.
+    id: u64,
 }
 
 /// Undo and redo of one side's scene.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct History {
     done: Vec<Step>,
     undone: Vec<Step>,
-    /// How many steps the scene on disk has (`None`: none of these states,
-    /// after undoing past a save and editing anew).
-    saved: Option<usize>,
+    /// The state on disk ([`History::state`]); `None` when none of the
+    /// states undo and redo reach is.
+    saved: Option<u64>,
+    /// The last step id given out.
+    last_id: u64,
+}
+
+/// A freshly opened scene: no edits, as on disk.
+impl Default for History {
+    fn default() -> Self {
+        Self {
+            done: Vec::new(),
+            undone: Vec::new(),
+            saved: Some(0),
+            last_id: 0,
+        }
+    }
 }
 
 /// What two edits of one field in a row amount to: the later value, but
@@ -72,7 +88,7 @@ impl History {
         let slot = slot(&edit);
         let now = Instant::now();
         self.undone.clear();
-        let saved_here = self.saved == Some(self.done.len());
+        let saved_here = self.saved == Some(self.state());
         if let Some(last) = self.done.last_mut()
             && last.slot == slot
             && now - last.at < MERGE_WITHIN
@@ -82,15 +98,20 @@ impl History {
             last.at = now;
             return;
         }
-        if self.saved.is_some_and(|s| s > self.done.len()) {
-            self.saved = None;
-        }
+        self.last_id += 1;
         self.done.push(Step {
             edit,
             inverse,
             slot,
             at: now,
+            id: self.last_id,
         });
+    }
+
+    /// Names the scene as it stands: equal states, equal scenes (0: as
+    /// opened).
+    pub fn state(&self) -> u64 {
+        self.done.last().map_or(0, |s| s.id)
     }
 
     /// The edit that undoes the last step, taken off it (apply it, then
@@ -132,20 +153,18 @@ impl History {
 
     /// Whether the scene differs from the file it came from.
     pub fn is_modified(&self) -> bool {
-        self.saved.unwrap_or(usize::MAX) != self.done.len()
+        self.saved != Some(self.state())
     }
 
-    /// The scene as it stands was written to disk.
-    pub fn mark_saved(&mut self) {
-        self.saved = Some(self.done.len());
+    /// The scene in `state` was written to disk (saving takes a dialog:
+    /// the user may edit on meanwhile).
+    pub fn mark_saved(&mut self, state: u64) {
+        self.saved = Some(state);
     }
 
     /// A freshly opened scene: no edits, as on disk.
     pub fn reset(&mut self) {
-        *self = History {
-            saved: Some(0),
-            ..History::default()
-        };
+        *self = History::default();
     }
 
     /// The edits made, in order, as `--set` arguments for the command line.
@@ -189,7 +208,6 @@ mod tests {
     #[test]
     fn a_drag_of_one_field_is_one_step_and_saves_count() {
         let mut history = History::default();
-        history.reset();
         assert!(!history.is_modified());
         history.push(ior(5, 1.4), ior(5, 1.5));
         history.push(ior(5, 1.33), ior(5, 1.4));
@@ -206,10 +224,19 @@ mod tests {
         assert_eq!(history.undo(), None);
         assert!(!history.is_modified(), "as on disk again");
         assert_eq!(history.redo(), Some(ior(5, 1.33)));
-        history.mark_saved();
+        history.mark_saved(history.state());
         assert!(!history.is_modified());
         history.push(ior(5, 1.2), ior(5, 1.33));
         assert_eq!(history.len(), 2, "a save ends the step");
         assert!(history.is_modified() && !history.can_redo());
+        history.undo();
+        assert!(!history.is_modified(), "back to the saved state");
+        history.undo();
+        history.push(ior(4, 1.1), ior(4, 1.5));
+        assert_eq!(history.len(), 1);
+        assert!(
+            history.is_modified(),
+            "as many steps as saved, another scene"
+        );
     }
 }

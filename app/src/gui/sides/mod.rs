@@ -101,40 +101,52 @@ impl Side {
     /// Applies `edit` to this side's scene, renders again (keeping the
     /// structure unless the edit moved shapes) and records it for undo.
     /// A refused edit changes nothing and says why.
-    pub fn edit(&mut self, edit: Edit) -> Result<(), String> {
+    pub fn edit(&mut self, edit: Edit) -> Result<Effect, String> {
         let inverse = self.apply(&edit)?;
-        self.history.push(edit, inverse);
-        Ok(())
+        self.history.push(edit.clone(), inverse);
+        Ok(edit.kind())
     }
 
-    /// Undoes the last step; false when there is none.
-    pub fn undo(&mut self) -> Result<bool, String> {
+    /// Undoes the last step; `None` when there is none.
+    pub fn undo(&mut self) -> Result<Option<Effect>, String> {
         let Some(inverse) = self.history.undo() else {
-            return Ok(false);
+            return Ok(None);
         };
-        self.apply(&inverse).map(|_| true).inspect_err(|_| {
-            self.history.refused(true);
-        })
+        match self.apply(&inverse) {
+            Ok(_) => Ok(Some(inverse.kind())),
+            Err(why) => {
+                self.history.refused(true);
+                Err(why)
+            }
+        }
     }
 
-    /// Redoes the last undone step; false when there is none.
-    pub fn redo(&mut self) -> Result<bool, String> {
+    /// Redoes the last undone step; `None` when there is none.
+    pub fn redo(&mut self) -> Result<Option<Effect>, String> {
         let Some(edit) = self.history.redo() else {
-            return Ok(false);
+            return Ok(None);
         };
-        self.apply(&edit).map(|_| true).inspect_err(|_| {
-            self.history.refused(false);
-        })
+        match self.apply(&edit) {
+            Ok(_) => Ok(Some(edit.kind())),
+            Err(why) => {
+                self.history.refused(false);
+                Err(why)
+            }
+        }
     }
 
     /// `edit` on a copy of the scene and world, which then replace them;
-    /// returns its inverse.
+    /// returns its inverse. A lens edit is the lens the side renders with,
+    /// as the command line's `--set` is.
     fn apply(&mut self, edit: &Edit) -> Result<Edit, String> {
         let loaded = self.engine.scene().ok_or("there is no scene to edit")?;
         let mut scene = loaded.scene.clone();
         let inverse = edit.apply(&mut scene).map_err(|e| e.to_string())?;
         let mut world = (*loaded.world).clone();
         world.update(&scene, edit);
+        if edit.kind() == Effect::Camera {
+            self.controls.follow_lens(&scene.view);
+        }
         let edited = LoadedScene {
             scene,
             world: Arc::new(world),
@@ -225,6 +237,14 @@ impl Sides {
     /// A, then B while comparing.
     pub fn each_mut(&mut self) -> impl Iterator<Item = &mut Side> {
         std::iter::once(&mut self.a).chain(&mut self.b)
+    }
+
+    /// The side the panel edits.
+    pub fn active(&self) -> &Side {
+        match (&self.b, self.editing) {
+            (Some(b), SideId::B) => b,
+            _ => &self.a,
+        }
     }
 
     /// The side the panel edits.

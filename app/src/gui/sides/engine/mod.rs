@@ -144,6 +144,15 @@ impl Engine {
         }
     }
 
+    /// The scene was saved as `path`: it is that file's now, with nothing
+    /// rendered anew. Its skybox name stays relative to the folder it came
+    /// from, which is where the next save finds it.
+    pub fn saved_as(&mut self, path: &std::path::Path) {
+        if let Some(loaded) = &mut self.scene {
+            loaded.source = SceneSource::File(path.to_path_buf());
+        }
+    }
+
     pub fn scene(&self) -> Option<&LoadedScene> {
         self.scene.as_ref()
     }
