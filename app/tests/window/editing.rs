@@ -8,7 +8,7 @@
 use std::sync::Arc;
 
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::SceneIndex;
 use tracer::scene::Primitive;
 use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
@@ -223,4 +223,35 @@ fn opening_another_scene_asks_before_unsaved_edits_are_lost() {
             .is_some_and(|s| s.source.label() == "glass")
     });
     assert!(!harness.state().title().ends_with(" *"));
+}
+
+#[test]
+fn in_compare_mode_b_edits_its_own_scene_and_its_label_says_so() {
+    let mut harness = ready_window(WINDOW);
+    let before = finished(&mut harness);
+    harness.key_press(egui::Key::B);
+    harness.run_steps(2);
+    harness.state_mut().edit(glass(BIG_SPHERE)).unwrap();
+    wait_for(&mut harness, "both sides", |app| {
+        is_done(app) && app.is_display_current()
+    });
+    let app = harness.state();
+    let material = |scene: &tracer::scene::Scene| {
+        scene.materials[scene.objects[BIG_SPHERE].material as usize].transmittance
+    };
+    let b = &app.side_b().unwrap().engine.scene().unwrap().scene;
+    assert_eq!(material(b), 0.9, "B is edited");
+    assert_eq!(material(&app.engine().scene().unwrap().scene), 0.0);
+    assert!(app.shown().unwrap().rgba == before, "A's image stays");
+    let labels: Vec<String> = harness
+        .get_all_by_role(egui::accesskit::Role::Label)
+        .filter_map(|n| n.accesskit_node().label().or(n.accesskit_node().value()))
+        .collect();
+    assert!(
+        labels
+            .iter()
+            .any(|l| l == &format!("B: sphere #{BIG_SPHERE} t 0.9")),
+        "B's label names its edit: {labels:?}"
+    );
+    assert!(labels.iter().any(|l| l == "A: same settings"));
 }
