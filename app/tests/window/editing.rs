@@ -255,3 +255,30 @@ fn in_compare_mode_b_edits_its_own_scene_and_its_label_says_so() {
     );
     assert!(labels.iter().any(|l| l == "A: same settings"));
 }
+
+#[test]
+fn dragging_a_material_slider_changes_that_field_alone() {
+    let (mut harness, _) = editing();
+    click_the_middle(&mut harness);
+    harness.get_by_label("This object alone").click();
+    harness.run_steps(2);
+    let slider = harness
+        .get_by_role_and_label(egui::accesskit::Role::Slider, "T (transmittance)")
+        .rect();
+    // From the left end (T = 0) most of the way right, frame by frame: the
+    // first change gives the object a material of its own and shows ior.
+    let mut at = slider.left_center() + egui::vec2(2.0, 0.0);
+    harness.drag_at(at);
+    harness.step();
+    for _ in 0..6 {
+        at.x += slider.width() / 8.0;
+        harness.hover_at(at);
+        harness.step();
+    }
+    harness.drop_at(at);
+    harness.run_steps(2);
+    let scene = &harness.state().engine().scene().unwrap().scene;
+    let material = scene.materials[scene.objects[BIG_SPHERE].material as usize];
+    assert!(material.transmittance > 0.5, "{material:?}");
+    assert_eq!(material.ior, 1.0, "the drag stays on T: {material:?}");
+}

@@ -5,6 +5,7 @@
 //! the edited side ([`super::sides::Side::edit`]); the window is
 //! [`panel`].
 
+mod lights_and_camera;
 mod panel;
 
 use egui::{Color32, Rect, Stroke, Ui, pos2};

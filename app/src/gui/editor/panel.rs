@@ -5,12 +5,11 @@
 
 use egui::{DragValue, Slider, Ui};
 use glam::Vec3;
-use tracer::scene::edit::{
-    CameraChange, Edit, Effect, GeometryChange, LightChange, MaterialField, ObjectChange,
-};
-use tracer::scene::{LightSpec, Material, Primitive, Scene};
+use tracer::scene::edit::{Edit, Effect, GeometryChange, MaterialField, ObjectChange};
+use tracer::scene::{Material, Primitive, Scene};
 
 use super::Editor;
+use super::lights_and_camera::{camera, lights, vector};
 use crate::gui::commands::Command;
 use crate::gui::panels::settings::command_button;
 use crate::gui::sides::Side;
@@ -42,9 +41,9 @@ pub fn window(
     let mut edits = Vec::new();
     egui::Window::new(format!("Scene editor ({})", side.id.name()))
         .open(&mut open)
-        .default_size([380.0, 560.0])
+        .default_size([340.0, 560.0])
         // At the right, over the statistics rather than the image.
-        .default_pos([ctx.content_rect().right() - 400.0, 60.0])
+        .default_pos([ctx.content_rect().right() - 350.0, 60.0])
         .show(ctx, |ui| {
             let Some(scene) = side.engine.scene().map(|s| s.scene.clone()) else {
                 ui.label("No scene yet.");
@@ -205,6 +204,11 @@ fn selected_object(
             }
         }
     } else {
+        // The same line as for a shared material, so the fields below do
+        // not move when an edit gives the object a material of its own.
+        ui.small(format!(
+            "Editing material {material_index}, used by this object only"
+        ));
         Some(false)
     };
     if let Some(all) = all {
@@ -232,17 +236,24 @@ fn material_fields(ui: &mut Ui, m: &Material) -> Vec<MaterialField> {
     let mut changed = Vec::new();
     let colour = |ui: &mut Ui, label: &str, c: Vec3| -> Option<Vec3> {
         let mut rgb = [c.x, c.y, c.z];
-        ui.horizontal(|ui| {
-            let picked = egui::color_picker::color_edit_button_rgb(ui, &mut rgb).changed();
-            ui.label(label);
-            picked.then(|| Vec3::from(rgb))
+        ui.push_id(label, |ui| {
+            ui.horizontal(|ui| {
+                let picked = egui::color_picker::color_edit_button_rgb(ui, &mut rgb).changed();
+                ui.label(label);
+                picked.then(|| Vec3::from(rgb))
+            })
+            .inner
         })
         .inner
     };
+    // Each field keeps its id whatever shows around it (a drag stays on
+    // its slider, a colour popup open) when the rows above change.
     let number = |ui: &mut Ui, label: &str, v: f32, range: std::ops::RangeInclusive<f32>, log| {
         let mut value = v;
         let slider = Slider::new(&mut value, range).text(label).logarithmic(log);
-        ui.add(slider).changed().then_some(value)
+        ui.push_id(label, |ui| ui.add(slider).changed())
+            .inner
+            .then_some(value)
     };
     changed.extend(colour(ui, "Diffuse colour", m.diffuse).map(MaterialField::Diffuse));
     changed.extend(number(ui, "Kd", m.kd, 0.0..=1.0, false).map(MaterialField::Kd));
@@ -297,118 +308,5 @@ fn geometry(ui: &mut Ui, scene: &Scene, object: usize) -> Option<Edit> {
             let mut by = Vec3::ZERO;
             vector(ui, "Move by", &mut by).then(|| edit(GeometryChange::Translate(by)))
         }
-    }
-}
-
-/// Three drag values in a row; whether one changed.
-fn vector(ui: &mut Ui, label: &str, v: &mut Vec3) -> bool {
-    ui.horizontal(|ui| {
-        ui.label(label);
-        let mut changed = false;
-        for (axis, value) in ["x ", "y ", "z "]
-            .iter()
-            .zip([&mut v.x, &mut v.y, &mut v.z])
-        {
-            changed |= ui
-                .add(DragValue::new(value).speed(0.02).prefix(*axis))
-                .changed();
-        }
-        changed
-    })
-    .inner
-}
-
-/// The lights: a list to select from, the selected one's position and
-/// colour, adding and removing.
-fn lights(ui: &mut Ui, editor: &mut Editor, scene: &Scene, edits: &mut Vec<Edit>) {
-    for (i, light) in scene.lights.iter().enumerate() {
-        let (kind, at) = match light {
-            LightSpec::Point { position, .. } => ("point", *position),
-            LightSpec::Area { centre, .. } => ("area", *centre),
-        };
-        let text = format!(
-            "light {i}: {kind} at ({:.2}, {:.2}, {:.2})",
-            at.x, at.y, at.z
-        );
-        if ui.selectable_label(editor.light == Some(i), text).clicked() {
-            editor.light = Some(i);
-        }
-    }
-    if let Some(index) = editor.light.filter(|i| *i < scene.lights.len()) {
-        let (mut at, colour) = match scene.lights[index] {
-            LightSpec::Point { position, color } => (position, color),
-            LightSpec::Area { centre, color, .. } => (centre, color),
-        };
-        let light_edit = |change| Edit::Light { index, change };
-        if vector(ui, "Position", &mut at) {
-            edits.push(light_edit(LightChange::Position(at)));
-        }
-        ui.horizontal(|ui| {
-            let mut rgb = colour.map_or([1.0; 3], |c| [c.x, c.y, c.z]);
-            if egui::color_picker::color_edit_button_rgb(ui, &mut rgb).changed() {
-                edits.push(light_edit(LightChange::Colour(Some(Vec3::from(rgb)))));
-            }
-            ui.label(if colour.is_some() {
-                "Colour"
-            } else {
-                "Colour (default: white shared by the lights)"
-            });
-        });
-        if ui.button("Remove this light").clicked() {
-            edits.push(Edit::RemoveLight(index));
-            editor.light = None;
-        }
-    }
-    if ui
-        .button("Add a light at the camera")
-        .on_hover_text("A point light where the scene camera stands")
-        .clicked()
-    {
-        edits.push(Edit::AddLight {
-            index: scene.lights.len(),
-            light: LightSpec::Point {
-                position: scene.view.from,
-                color: None,
-            },
-        });
-        editor.light = Some(scene.lights.len());
-    }
-}
-
-/// The scene camera's numbers.
-fn camera(ui: &mut Ui, scene: &Scene, edits: &mut Vec<Edit>) {
-    let view = &scene.view;
-    let (mut from, mut at, mut up) = (view.from, view.at, view.up);
-    if vector(ui, "From", &mut from) {
-        edits.push(Edit::Camera(CameraChange::From(from)));
-    }
-    if vector(ui, "At", &mut at) {
-        edits.push(Edit::Camera(CameraChange::At(at)));
-    }
-    if vector(ui, "Up", &mut up) {
-        edits.push(Edit::Camera(CameraChange::Up(up)));
-    }
-    let (mut angle, mut aperture, mut focal) = (view.angle, view.aperture, view.focal);
-    if ui
-        .add(Slider::new(&mut angle, 1.0..=170.0).text("Angle (degrees)"))
-        .changed()
-    {
-        edits.push(Edit::Camera(CameraChange::Angle(angle)));
-    }
-    if ui
-        .add(Slider::new(&mut aperture, 0.0..=64.0).text("Aperture (px)"))
-        .changed()
-    {
-        edits.push(Edit::Camera(CameraChange::Aperture(aperture)));
-    }
-    if ui
-        .add(
-            Slider::new(&mut focal, 0.1..=4.0)
-                .logarithmic(true)
-                .text("Focal ratio"),
-        )
-        .changed()
-    {
-        edits.push(Edit::Camera(CameraChange::Focal(focal)));
     }
 }
