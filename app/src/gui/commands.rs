@@ -33,6 +33,7 @@ pub enum Command {
     Undo,
     Redo,
     SaveScene,
+    ClearSelection,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -44,7 +45,7 @@ impl Command {
     ///
     /// egui matches Ctrl+Z when Ctrl+Shift+Z is pressed, so a shortcut with
     /// Shift comes before the same one without.
-    pub const ALL: [Command; 27] = [
+    pub const ALL: [Command; 28] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -64,6 +65,7 @@ impl Command {
         Command::CycleView,
         Command::ToggleObserver,
         Command::ToggleEditor,
+        Command::ClearSelection,
         Command::Redo,
         Command::Undo,
         Command::ToggleCompare,
@@ -104,6 +106,7 @@ impl Command {
             Command::Undo => "Undo edit",
             Command::Redo => "Redo edit",
             Command::SaveScene => "Save scene...",
+            Command::ClearSelection => "Clear selection",
         }
     }
 
@@ -157,6 +160,7 @@ impl Command {
             Command::Undo => "Take back the last edit of the edited side's scene",
             Command::Redo => "Apply again the edit last taken back",
             Command::SaveScene => "Write the edited scene to a P3F file",
+            Command::ClearSelection => "Forget the selected object (no outline, nothing to move); cancels the unsaved-edits question",
         }
     }
 
@@ -194,6 +198,7 @@ impl Command {
             KeyboardShortcut::new(CTRL, Key::Y),
         ];
         const CTRL_SHIFT_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL_SHIFT, Key::S)];
+        const ESCAPE: &[KeyboardShortcut] = &[key(Key::Escape)];
         match self {
             Command::ToggleAntialiasing => A,
             Command::ToggleSoftShadows => S,
@@ -222,6 +227,7 @@ impl Command {
             Command::Undo => CTRL_Z,
             Command::Redo => REDO,
             Command::SaveScene => CTRL_SHIFT_S,
+            Command::ClearSelection => ESCAPE,
         }
     }
 

@@ -79,6 +79,10 @@ fn a_click_selects_the_object_the_image_shows() {
         harness.query_all_by_label("Kd").next().is_some(),
         "its material's sliders"
     );
+    harness.key_press(egui::Key::Escape);
+    harness.run_steps(2);
+    assert_eq!(harness.state().editor().selected, None, "Esc clears it");
+    assert!(harness.query_all_by_label("Kd").next().is_none());
 }
 
 #[test]
@@ -213,6 +217,12 @@ fn opening_another_scene_asks_before_unsaved_edits_are_lost() {
     harness.run_steps(2);
     assert!(harness.state().editor().pending.is_none());
     assert!(harness.state().title().ends_with(" *"), "the edit is kept");
+    harness.state_mut().open(other.clone());
+    harness.run_steps(2);
+    harness.key_press(egui::Key::Escape);
+    harness.run_steps(2);
+    assert!(harness.state().editor().pending.is_none(), "Esc cancels");
+    assert!(!harness.state().engine().is_loading());
 
     harness.state_mut().open(other);
     harness.run_steps(2);

@@ -64,6 +64,12 @@ impl WorkbenchApp {
             Command::Undo => self.step_history(false),
             Command::Redo => self.step_history(true),
             Command::SaveScene => self.save_scene_dialog(self.sides.editing),
+            // Esc answers a pending unsaved-edits question with Cancel first.
+            Command::ClearSelection => {
+                if self.tools.editor.pending.take().is_none() {
+                    self.tools.editor.select(None);
+                }
+            }
         }
     }
 
