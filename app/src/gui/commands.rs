@@ -160,7 +160,9 @@ impl Command {
             Command::Undo => "Take back the last edit of the edited side's scene",
             Command::Redo => "Apply again the edit last taken back",
             Command::SaveScene => "Write the edited scene to a P3F file",
-            Command::ClearSelection => "Forget the selected object (no outline, nothing to move); cancels the unsaved-edits question",
+            Command::ClearSelection => {
+                "Forget the selected object (no outline, nothing to move); cancels the unsaved-edits question"
+            }
         }
     }
 

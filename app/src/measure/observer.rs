@@ -253,13 +253,25 @@ fn circle(centre: Vec3A, u: Vec3A, v: Vec3A, radius: f32, part: Part) -> Vec<Seg
         .collect()
 }
 
+/// Lights farther than this many times the scene's radius from its centre
+/// are left out of the framing: a sun far away would shrink the scene to
+/// a dot.
+const FRAMED_LIGHT_REACH: f32 = 4.0;
+
 /// Where the observer starts: behind, above and to the side of the scene
-/// camera, far enough that the scene's bounds and the camera both fit in a
-/// view `angle` degrees high and `aspect` (height over width) as tall as
-/// wide (lights far away may fall outside).
+/// camera, far enough that the scene's bounds, the camera and the lights
+/// near the scene fit in a view `angle` degrees high and `aspect` (height
+/// over width) as tall as wide, so that every marker can be grabbed.
 pub fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> CameraPose {
     let eye = camera.eye();
-    let bounds = world.bounds.grow(eye);
+    let scene = world.bounds.grow(eye);
+    let reach = (scene.extent().length() * 0.5).max(1e-3) * FRAMED_LIGHT_REACH;
+    let bounds = world
+        .lights
+        .iter()
+        .map(|light| light.position)
+        .filter(|p| (*p - scene.centre()).length() <= reach)
+        .fold(scene, |b, p| b.grow(p));
     let centre = bounds.centre();
     let radius = (bounds.extent().length() * 0.5).max(1e-3);
     let [right, up, forward] = camera.basis();

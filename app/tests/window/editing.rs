@@ -15,7 +15,7 @@ use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
 use workbench::gui::{Pending, WorkbenchApp};
 use workbench::load::{SceneSource, load_source_edited};
 
-use crate::harness::{WINDOW, is_done, ready_window, wait_for};
+use crate::harness::{WINDOW, is_done, observer_done, ready_window, wait_for};
 use crate::support::scratch;
 
 /// The big sphere in the middle of `balls_low`.
@@ -291,4 +291,95 @@ fn dragging_a_material_slider_changes_that_field_alone() {
     let material = scene.materials[scene.objects[BIG_SPHERE].material as usize];
     assert!(material.transmittance > 0.5, "{material:?}");
     assert_eq!(material.ior, 1.0, "the drag stays on T: {material:?}");
+}
+
+/// Where the observer view draws `point`, on screen.
+fn in_observer(harness: &Harness<'static, WorkbenchApp>, point: glam::Vec3) -> egui::Pos2 {
+    let app = harness.state();
+    let world = &app.engine().scene().unwrap().world;
+    let camera = app.observer().camera(world).expect("the observer's camera");
+    let rect = harness
+        .get_by_role_and_label(egui::accesskit::Role::Image, "Observer")
+        .rect();
+    let p = camera
+        .project(point.into())
+        .expect("in front of the observer");
+    let size = egui::vec2(camera.width() as f32, camera.height() as f32);
+    rect.min + egui::vec2(p.x, p.y) / size * rect.size()
+}
+
+fn light_position(app: &WorkbenchApp, index: usize) -> glam::Vec3 {
+    match app.engine().scene().unwrap().scene.lights[index] {
+        tracer::scene::LightSpec::Point { position, .. } => position,
+        tracer::scene::LightSpec::Area { centre, .. } => centre,
+    }
+}
+
+#[test]
+fn in_the_observer_a_click_selects_and_a_drag_on_a_light_moves_that_light() {
+    // Wide enough that the editor's window, at the right, leaves the
+    // middle of the observer's image free.
+    let mut harness = ready_window([1800.0, 900.0]);
+    finished(&mut harness);
+    harness.key_press(egui::Key::E);
+    harness.key_press(egui::Key::O);
+    wait_for(&mut harness, "the observer's render", observer_done);
+    // A click where the observer shows the big sphere's centre selects it.
+    let sphere = in_observer(&harness, big_sphere_centre(harness.state()));
+    harness.hover_at(sphere);
+    harness.step();
+    harness.drag_at(sphere);
+    harness.step();
+    harness.drop_at(sphere);
+    harness.run_steps(2);
+    assert_eq!(harness.state().editor().selected, Some(BIG_SPHERE));
+
+    // A drag from light 0's marker moves light 0, not the observer.
+    let pose = harness.state().observer().pose();
+    let before = light_position(harness.state(), 0);
+    let mut at = in_observer(&harness, before);
+    harness.hover_at(at);
+    harness.step();
+    harness.drag_at(at);
+    harness.step();
+    for _ in 0..4 {
+        at += egui::vec2(10.0, 6.0);
+        harness.hover_at(at);
+        harness.step();
+    }
+    harness.drop_at(at);
+    harness.run_steps(2);
+    let app = harness.state();
+    let after = light_position(app, 0);
+    assert!((after - before).length() > 1e-3, "{before} -> {after}");
+    assert_eq!(app.observer().pose(), pose, "the observer stayed");
+    assert_eq!(app.editor().light, Some(0));
+    // It lands where the pointer let go, and the whole drag is one step.
+    let landed = in_observer(&harness, after);
+    assert!(landed.distance(at) < 2.0, "{landed:?} vs {at:?}");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run_steps(2);
+    assert_eq!(light_position(harness.state(), 0), before);
+
+    // In move mode a drag elsewhere moves the selected sphere.
+    harness.state_mut().editor_mut().move_mode = true;
+    let before = big_sphere_centre(harness.state());
+    let mut at = in_observer(&harness, before);
+    harness.drag_at(at);
+    harness.step();
+    for _ in 0..3 {
+        at += egui::vec2(-8.0, 5.0);
+        harness.hover_at(at);
+        harness.step();
+    }
+    harness.drop_at(at);
+    harness.run_steps(2);
+    let after = big_sphere_centre(harness.state());
+    assert!((after - before).length() > 1e-3, "{before} -> {after}");
+    assert!(in_observer(&harness, after).distance(at) < 2.0);
+    assert_eq!(
+        harness.state().observer().pose(),
+        pose,
+        "the observer stayed"
+    );
 }

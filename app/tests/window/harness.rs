@@ -56,6 +56,13 @@ pub fn is_done(app: &WorkbenchApp) -> bool {
     finished(app.engine()) && app.side_b().is_none_or(|b| finished(&b.engine))
 }
 
+/// Whether the observer's render is done and on screen.
+pub fn observer_done(app: &WorkbenchApp) -> bool {
+    let observer = app.observer();
+    observer.engine().activity() == Activity::Job(JobState::Done)
+        && observer.image.is_current(observer.engine())
+}
+
 /// Drags the left button across the image named `label` ("Render",
 /// "Observer"), as a user orbits its camera.
 pub fn drag(harness: &mut Harness<'static, WorkbenchApp>, label: &str) {

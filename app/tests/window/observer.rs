@@ -5,16 +5,9 @@
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use tracer::render::JobState;
-use workbench::gui::{Activity, WorkbenchApp};
+use workbench::gui::WorkbenchApp;
 
-use crate::harness::{drag, is_done, ready_window, wait_for};
-
-fn observer_done(app: &WorkbenchApp) -> bool {
-    let observer = app.observer();
-    observer.engine().activity() == Activity::Job(JobState::Done)
-        && observer.image.is_current(observer.engine())
-}
+use crate::harness::{drag, is_done, observer_done, ready_window, wait_for};
 
 /// Tall enough for the side panel's observer section.
 const TALL: [f32; 2] = [1280.0, 1500.0];

@@ -5,8 +5,7 @@
 
 use std::path::Path;
 
-use tracer::render::Outcome;
-use tracer::scene::edit::Effect;
+use tracer::scene::edit::{Edit, Effect};
 
 use super::WorkbenchApp;
 use super::saving::SceneSave;
@@ -15,7 +14,6 @@ use crate::gui::editor::{self, Pending};
 use crate::gui::image::viewport::ViewportResponse;
 use crate::gui::sides::SideId;
 use crate::load::SceneSource;
-use crate::measure::ray_tree_report;
 
 impl WorkbenchApp {
     /// The editor window over the edited side, after the image took this
@@ -36,17 +34,7 @@ impl WorkbenchApp {
         let Some(pixel) = self.tools.editor.pick_at.take() else {
             return;
         };
-        let engine = &self.sides.active_mut().engine;
-        let (Some(scene), Some(settings)) = (engine.scene(), engine.settings()) else {
-            return;
-        };
-        let tree = ray_tree_report::inspect(&scene.world, engine.index(), settings, pixel, 0);
-        let hit = tree
-            .ok()
-            .and_then(|tree| match &tree.nodes.first()?.outcome {
-                Outcome::Surface(surface) => Some(surface.object as usize),
-                _ => None,
-            });
+        let hit = editor::object_at(&self.sides.active().engine, pixel);
         self.tools.editor.select(hit);
     }
 
@@ -64,6 +52,15 @@ impl WorkbenchApp {
             && let Err(why) = side.edit(edit)
         {
             self.tools.editor.message = Some(why);
+        }
+    }
+
+    /// Edits of side A made by dragging in the observer view.
+    pub(super) fn apply_observer_edits(&mut self, edits: Vec<Edit>) {
+        for edit in edits {
+            if let Err(why) = self.sides.a.edit(edit) {
+                self.tools.editor.message = Some(why);
+            }
         }
     }
 

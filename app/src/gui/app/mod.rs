@@ -200,6 +200,7 @@ impl WorkbenchApp {
             .show(ui, |ui| central::show(ui, view))
             .inner;
         self.move_selected(&mut outcome.viewport);
+        self.apply_observer_edits(outcome.observer_edits);
         let scene = self.sides.a.engine.scene().map(|s| &s.scene);
         self.navigation.take(&outcome.viewport, scene);
         for id in outcome.switch_to_bvh {

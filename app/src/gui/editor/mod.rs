@@ -5,21 +5,30 @@
 //! the edited side ([`super::sides::Side::edit`]); the window is
 //! [`panel`].
 
+mod in_observer;
 mod lights_and_camera;
 mod panel;
 
+use std::sync::Arc;
+
 use egui::{Color32, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
+use tracer::camera::Camera;
 use tracer::geometry::Aabb;
-use tracer::render::Frame;
+use tracer::render::{Frame, Outcome};
 use tracer::scene::edit::{Edit, GeometryChange, ObjectChange};
+use tracer::world::World;
 
 use super::image::viewport::Gesture;
 use super::sides::{Engine, Side};
 use crate::load::SceneSource;
 use crate::measure::projection::Projector;
+use crate::measure::ray_tree_report;
 
 pub use panel::window;
+
+/// The selection's colour, on the image and in the observer view.
+const SELECTION_COLOUR: Color32 = Color32::from_rgb(255, 170, 0);
 
 /// What waits for the user's word because the scene has unsaved edits.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,6 +60,10 @@ pub struct Editor {
     pub pending: Option<Pending>,
     /// Why the last edit was refused.
     pub message: Option<String>,
+    /// What the drag under way in the observer view holds.
+    grab: Option<in_observer::Grab>,
+    /// A light was selected outside the panel: its list opens.
+    pub reveal_lights: bool,
     /// The selected object's box, and what it was made for (the world's
     /// address, the object).
     outline: Option<((usize, usize), Aabb)>,
@@ -69,43 +82,59 @@ impl Editor {
     /// Draws the selected object's bounding box over the image of `engine`
     /// in `rect`, through the camera it renders with.
     pub fn paint_outline(&mut self, ui: &Ui, engine: &Engine, rect: Rect) {
-        let (Some(object), Some(scene), Some(settings)) =
-            (self.selected, engine.scene(), engine.settings())
-        else {
+        let (Some(scene), Some(settings)) = (engine.scene(), engine.settings()) else {
             return;
         };
-        let world = &scene.world;
-        let key = (std::sync::Arc::as_ptr(world) as usize, object);
-        if self.outline.as_ref().is_none_or(|(k, _)| *k != key) {
-            let bounds = world
-                .shape_object
-                .iter()
-                .zip(&world.shapes)
-                .filter(|(o, _)| **o as usize == object)
-                .filter_map(|(_, shape)| shape.bounds())
-                .fold(Aabb::empty(), |b, s| b.union(&s));
-            self.outline = Some((key, bounds));
+        if let Ok(camera) = Frame::camera(&scene.world, settings) {
+            self.paint_outline_through(ui, &scene.world, &camera, rect);
         }
-        let Some((_, bounds)) = &self.outline else {
+    }
+
+    /// Draws the selected object's bounding box through `camera`, whose
+    /// image fills `rect`.
+    pub fn paint_outline_through(
+        &mut self,
+        ui: &Ui,
+        world: &Arc<World>,
+        camera: &Camera,
+        rect: Rect,
+    ) {
+        let Some(object) = self.selected else {
             return;
         };
+        let bounds = self.bounds(world, object);
         if bounds.is_empty() {
             return;
         }
-        let Ok(camera) = Frame::camera(world, settings) else {
-            return;
-        };
-        let projector = Projector::new(&camera);
-        let size = egui::vec2(settings.width as f32, settings.height as f32);
-        let to_screen = |p: glam::Vec2| {
-            let s = rect.min + egui::vec2(p.x, p.y) / size * rect.size();
-            pos2(s.x, s.y)
-        };
+        let projector = Projector::new(camera);
         let painter = ui.painter().with_clip_rect(rect.intersect(ui.clip_rect()));
-        let stroke = Stroke::new(1.5, Color32::from_rgb(255, 170, 0));
-        for [a, b] in box_edges(bounds) {
+        let stroke = Stroke::new(1.5, SELECTION_COLOUR);
+        for [a, b] in box_edges(&bounds) {
             if let Some([a, b]) = projector.segment(a, b) {
-                painter.line_segment([to_screen(a), to_screen(b)], stroke);
+                painter.line_segment(
+                    [to_screen(camera, rect, a), to_screen(camera, rect, b)],
+                    stroke,
+                );
+            }
+        }
+    }
+
+    /// The bounding box of `object`'s shapes in `world`, kept while the
+    /// world and the object stay the same.
+    fn bounds(&mut self, world: &Arc<World>, object: usize) -> Aabb {
+        let key = (Arc::as_ptr(world) as usize, object);
+        match &self.outline {
+            Some((k, bounds)) if *k == key => *bounds,
+            _ => {
+                let bounds = world
+                    .shape_object
+                    .iter()
+                    .zip(&world.shapes)
+                    .filter(|(o, _)| **o as usize == object)
+                    .filter_map(|(_, shape)| shape.bounds())
+                    .fold(Aabb::empty(), |b, s| b.union(&s));
+                self.outline = Some((key, bounds));
+                bounds
             }
         }
     }
@@ -114,7 +143,7 @@ impl Editor {
     /// of `side`) into a translation of the selected object parallel to
     /// the image plane; returns the gestures that still move the camera.
     pub fn take_drag(
-        &self,
+        &mut self,
         gestures: Vec<Gesture>,
         side: &Side,
         image_rect: Option<Rect>,
@@ -128,44 +157,76 @@ impl Editor {
         let Ok(camera) = Frame::camera(&scene.world, settings) else {
             return (gestures, None);
         };
-        let Some(centre) = self
-            .outline
-            .as_ref()
-            .filter(|((_, o), b)| *o == object && !b.is_empty())
-            .map(|(_, b)| b.centre())
-        else {
+        let bounds = self.bounds(&scene.world, object);
+        if bounds.is_empty() {
             return (gestures, None);
-        };
-        let mut moved = Vec3A::ZERO;
-        let mut rest = Vec::new();
-        // Screen points per image pixel.
-        let scale = rect.width() / settings.width.max(1) as f32;
-        let projector = Projector::new(&camera);
-        for gesture in gestures {
-            let Gesture::Orbit { yaw, pitch } = gesture else {
-                rest.push(gesture);
-                continue;
-            };
-            // The viewport reports a drag of (dx, dy) points as a yaw of
-            // -dx / 100 and a pitch of dy / 100 radians.
-            let (dx, dy) = (-yaw * 100.0 / scale, pitch * 100.0 / scale);
-            let Some(at) = projector.point(centre + moved) else {
-                continue;
-            };
-            let eye = camera.eye();
-            let depth = camera.depth(centre + moved);
-            let plane = |x: f32, y: f32| {
-                let through = camera.view_plane_point(x, y);
-                eye + (through - eye) * (depth / camera.depth(through))
-            };
-            moved += plane(at.x + dx, at.y + dy) - plane(at.x, at.y);
         }
-        let edit = (moved != Vec3A::ZERO).then(|| Edit::Object {
-            index: object,
-            change: ObjectChange::Geometry(GeometryChange::Translate(moved.into())),
-        });
-        (rest, edit)
+        let (rest, moved) = drag_shift(&camera, rect, bounds.centre(), gestures);
+        (rest, translation(object, moved))
     }
+}
+
+/// The object the eye ray of `engine`'s render through `pixel` meets
+/// first, if any.
+pub fn object_at(engine: &Engine, pixel: (u32, u32)) -> Option<usize> {
+    let (scene, settings) = (engine.scene()?, engine.settings()?);
+    let tree = ray_tree_report::inspect(&scene.world, engine.index(), settings, pixel, 0).ok()?;
+    match &tree.nodes.first()?.outcome {
+        Outcome::Surface(surface) => Some(surface.object as usize),
+        _ => None,
+    }
+}
+
+/// Where image point `p` of `camera` lands on screen when its image fills
+/// `rect`.
+fn to_screen(camera: &Camera, rect: Rect, p: glam::Vec2) -> egui::Pos2 {
+    let size = egui::vec2(camera.width() as f32, camera.height() as f32);
+    let s = rect.min + egui::vec2(p.x, p.y) / size * rect.size();
+    pos2(s.x, s.y)
+}
+
+/// Turns the orbit gestures of a left drag over `camera`'s image, shown in
+/// `rect`, into a shift of the point `centre` parallel to the image plane
+/// that keeps it under the pointer; gives back the other gestures.
+fn drag_shift(
+    camera: &Camera,
+    rect: Rect,
+    centre: Vec3A,
+    gestures: Vec<Gesture>,
+) -> (Vec<Gesture>, Vec3A) {
+    let mut moved = Vec3A::ZERO;
+    let mut rest = Vec::new();
+    // Screen points per image pixel.
+    let scale = rect.width() / camera.width().max(1) as f32;
+    let projector = Projector::new(camera);
+    for gesture in gestures {
+        let Gesture::Orbit { yaw, pitch } = gesture else {
+            rest.push(gesture);
+            continue;
+        };
+        // The viewport reports a drag of (dx, dy) points as a yaw of
+        // -dx / 100 and a pitch of dy / 100 radians.
+        let (dx, dy) = (-yaw * 100.0 / scale, pitch * 100.0 / scale);
+        let Some(at) = projector.point(centre + moved) else {
+            continue;
+        };
+        let eye = camera.eye();
+        let depth = camera.depth(centre + moved);
+        let plane = |x: f32, y: f32| {
+            let through = camera.view_plane_point(x, y);
+            eye + (through - eye) * (depth / camera.depth(through))
+        };
+        moved += plane(at.x + dx, at.y + dy) - plane(at.x, at.y);
+    }
+    (rest, moved)
+}
+
+/// The edit moving `object` by `moved`, if it moves.
+fn translation(object: usize, moved: Vec3A) -> Option<Edit> {
+    (moved != Vec3A::ZERO).then(|| Edit::Object {
+        index: object,
+        change: ObjectChange::Geometry(GeometryChange::Translate(moved.into())),
+    })
 }
 
 /// The 12 edges of `bounds`.

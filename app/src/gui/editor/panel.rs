@@ -67,6 +67,7 @@ pub fn window(
                 }
                 egui::CollapsingHeader::new(format!("Lights ({})", scene.lights.len()))
                     .id_salt("editor_lights")
+                    .open(std::mem::take(&mut editor.reveal_lights).then_some(true))
                     .show(ui, |ui| lights(ui, editor, &scene, &mut edits));
                 egui::CollapsingHeader::new("Camera").show(ui, |ui| camera(ui, &scene, &mut edits));
             });

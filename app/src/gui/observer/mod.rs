@@ -9,8 +9,9 @@ mod paint;
 
 use std::sync::Arc;
 
-use tracer::camera::CameraPose;
+use tracer::camera::{Camera, CameraPose};
 use tracer::render::{Frame, JobState, RayTree, RenderSettings, View};
+use tracer::world::World;
 
 use crate::measure::observer::{self, PixelPattern};
 use crate::measure::projection::DepthMap;
@@ -106,7 +107,18 @@ impl Observer {
         self.placement = Placement::default();
     }
 
-    /// The observer's engine (for tests: what it renders).
+    /// The observer's camera at its current pose and its render's size:
+    /// what the figure is drawn and a press is read through, following a
+    /// move before the image catches up.
+    pub fn camera(&self, world: &World) -> Option<Camera> {
+        let settings = RenderSettings {
+            camera: Some(self.pose?),
+            ..self.engine.settings()?.clone()
+        };
+        Frame::camera(world, &settings).ok()
+    }
+
+    /// The observer's engine (what it renders; picks read its pixels).
     pub fn engine(&self) -> &Engine {
         &self.engine
     }

@@ -32,19 +32,11 @@ pub fn paint(
     a: &Side,
     overlay: &StructureOverlay,
 ) -> usize {
-    let (Some(scene), Some(rendered), Some(pose)) =
-        (a.engine.scene(), observer.engine.settings(), observer.pose)
-    else {
+    let Some(scene) = a.engine.scene() else {
         return 0;
     };
     let world = &scene.world;
-    // Projected through the current pose, so lines follow a move before
-    // the observer's image catches up.
-    let moved = tracer::render::RenderSettings {
-        camera: Some(pose),
-        ..rendered.clone()
-    };
-    let (Ok(camera), Some(a_settings)) = (Frame::camera(world, &moved), a.engine.settings()) else {
+    let (Some(camera), Some(a_settings)) = (observer.camera(world), a.engine.settings()) else {
         return 0;
     };
     let Ok(scene_camera) = Frame::camera(world, a_settings) else {
@@ -52,7 +44,7 @@ pub fn paint(
     };
     let projector = Projector::new(&camera);
     let depth = observer.depth();
-    let size = Vec2::new(rendered.width as f32, rendered.height as f32);
+    let size = Vec2::new(camera.width() as f32, camera.height() as f32);
     let to_screen = |p: Vec2| -> Pos2 {
         let s = rect.min + egui::vec2(p.x / size.x, p.y / size.y) * rect.size();
         pos2(s.x, s.y)

@@ -4,10 +4,10 @@
 
 use egui::{Rect, Ui, pos2};
 use tracer::render::JobState;
+use tracer::scene::edit::Edit;
 
 use super::banners;
 use crate::gui::comparison::{Comparison, Layout};
-use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::image::viewport::{self, Layers, Placement, SplitWith, ViewportResponse};
 use crate::gui::image::{pixel_views, ray_paths};
 use crate::gui::observer::{self, Observer, ObserverLayout};
@@ -37,6 +37,8 @@ pub struct CentralOutcome {
     pub viewport: ViewportResponse,
     /// Sides whose brute-force banner's "Switch to BVH" was clicked.
     pub switch_to_bvh: Vec<SideId>,
+    /// Edits of side A dragged in the observer view.
+    pub observer_edits: Vec<Edit>,
 }
 
 pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
@@ -99,9 +101,13 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
         }
         None => ViewportResponse::default(),
     };
-    if let Some(observer_area) = observer_area {
-        show_observer(ui, observer_area, observer, a, &tools.overlay);
-    }
+    let observer_edits = match observer_area {
+        Some(area) => {
+            let edits_a = sides.editing == SideId::A;
+            show_observer(ui, area, observer, a, tools, edits_a)
+        }
+        None => Vec::new(),
+    };
     if let Some(rect) = response.image_rect {
         let visits = tools.inspector.eye_visits();
         tools.overlay.paint(ui, &a.engine, rect, visits);
@@ -130,24 +136,27 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
     CentralOutcome {
         viewport: response,
         switch_to_bvh,
+        observer_edits,
     }
 }
 
 /// The observer's image in `area`, the figure over it, and its gestures
-/// (which move the observer's camera only).
+/// (which move the observer's camera, unless the editor takes them: then
+/// they are edits of A, returned).
 fn show_observer(
     ui: &mut Ui,
     area: Rect,
     observer: &mut Observer,
     a: &Side,
-    overlay: &StructureOverlay,
-) {
+    tools: &mut Tools,
+    edits_a: bool,
+) -> Vec<Edit> {
     let size = observer
         .image
         .shown()
         .map_or([0, 0], |s| [s.width as usize, s.height as usize]);
     let full = [size[0].max(1) as u32, size[1].max(1) as u32];
-    let response = ui
+    let mut response = ui
         .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
             let layers = observer.image.layers();
             let mut placement = observer.placement;
@@ -157,11 +166,19 @@ fn show_observer(
             response
         })
         .inner;
+    let edits = tools
+        .editor
+        .observer_input(ui, &mut response, observer, a, edits_a);
     observer.take(&response, area);
     observer.segments_drawn = match response.image_rect {
-        Some(rect) => observer::paint(ui, rect, observer, a, overlay),
+        Some(rect) => {
+            let painted = observer::paint(ui, rect, observer, a, &tools.overlay);
+            tools.editor.paint_in_observer(ui, observer, a, rect);
+            painted
+        }
         None => 0,
     };
+    edits
 }
 
 /// The slow-render banner of a side that runs brute force over a large

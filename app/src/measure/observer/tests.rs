@@ -220,3 +220,25 @@ fn a_segment_behind_a_sphere_is_hidden_from_the_observer() {
         .unwrap();
     assert!(p.x > 0.0 && p.y > 0.0 && p.x < 40.0 && p.y < 30.0, "{p}");
 }
+
+#[test]
+fn the_framing_takes_in_a_light_above_the_scene_but_not_a_far_sun() {
+    let text = format!("{SCENE}l 0 0 14\nl 0 0 900\n");
+    let scene = parse_scene(&text, None, &Limits::default()).unwrap();
+    let world = Arc::new(World::build(&scene));
+    let settings = RenderSettings::from_scene(&scene);
+    let scene_camera = Frame::camera(&world, &settings).unwrap();
+    let framed = RenderSettings {
+        camera: Some(framing(&world, &scene_camera, 40.0, 0.75)),
+        ..settings
+    };
+    let camera = Frame::camera(&world, &framed).unwrap();
+    let inside = |p: Vec3A| {
+        Projector::new(&camera)
+            .point(p)
+            .is_some_and(|p| p.x > 0.0 && p.y > 0.0 && p.x < 40.0 && p.y < 30.0)
+    };
+    assert!(inside(Vec3A::new(0.0, 0.0, 14.0)), "the light above");
+    assert!(inside(scene_camera.eye()), "the camera");
+    assert!(!inside(Vec3A::new(0.0, 0.0, 900.0)), "the sun is left out");
+}
