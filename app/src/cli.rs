@@ -30,6 +30,9 @@ pub struct Cli {
     /// done (or an error is shown), then close.
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
+    /// Open the window with the observer view on (the scene from outside).
+    #[arg(long)]
+    pub observer: bool,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]
     pub screenshot_after: Option<f64>,
@@ -64,6 +67,10 @@ pub enum Headless {
     /// Show every ray one sample of one pixel spawned: what each hit, its
     /// material, its shadow rays and what it added to the pixel.
     Inspect(InspectArgs),
+    /// Draw the scene seen from outside: the scene camera with its image
+    /// plane, the lights, and the rays of a pixel (or a row, column or grid
+    /// of pixels) flying through it, as a PNG figure or JSON segments.
+    Observe(ObserveArgs),
     /// Time frames of a scene with each acceleration structure, or the
     /// course report's whole timing matrix (--matrix).
     Bench(BenchArgs),
@@ -359,6 +366,9 @@ pub struct RenderArgs {
     /// Print the statistics in this format instead of the summary.
     #[arg(long, value_name = "FORMAT")]
     pub stats: Option<StatsFormat>,
+    /// Write the scene, after its --set edits, to this P3F file.
+    #[arg(long, value_name = "P3F")]
+    pub save_scene: Option<PathBuf>,
     #[command(flatten)]
     pub view: ViewArgs,
     /// Draw the acceleration structure over the image: bvh:DEPTH (the
@@ -440,6 +450,67 @@ fn parse_heat_scale(text: &str) -> Result<HeatScale, String> {
 }
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+The figure is the scene rendered from an observer camera (by default
+behind, above and to the side of the scene camera, framing the scene),
+with the scene camera's frustum, its image plane showing the render, the
+lens and the plane in focus with depth of field, the lights (and their
+areas with soft shadows), and every ray of the pixel's sample: eye white,
+reflection blue, refraction pink, shadow rays yellow (dashed and ending
+at the occluder when blocked), a green tick along each hit's normal.
+What a surface hides is drawn faint.
+
+  workbench observe scene.p3f --pixel 160 150 -o figure.png
+  workbench observe scene.p3f --pixel 160 150 --pixels row:150 --format json")]
+pub struct ObserveArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// The pixel whose rays are drawn, from the top-left corner.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
+    pub pixel: Vec<u32>,
+    /// Also draw these pixels' rays: row:Y, column:X (32 pixels along it)
+    /// or grid:STEP (one pixel every STEP).
+    #[arg(long, value_parser = pixel_pattern, value_name = "row:Y|column:X|grid:STEP")]
+    pub pixels: Option<crate::measure::observer::PixelPattern>,
+    /// Which of the pixels' samples (the pass that traces it, from 0).
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub sample: u32,
+    /// Where the observer stands (default: framed on the scene).
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], requires = "at", allow_negative_numbers = true)]
+    pub from: Option<Vec<f32>>,
+    /// What the observer looks at.
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], requires = "from", allow_negative_numbers = true)]
+    pub at: Option<Vec<f32>>,
+    /// The observer's up (default: the scene camera's).
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], allow_negative_numbers = true)]
+    pub up: Option<Vec<f32>>,
+    /// The figure's size in pixels.
+    #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [800, 600])]
+    pub size: Vec<u32>,
+    /// Draw the acceleration structure too: bvh:DEPTH, bvh:leaves or grid,
+    /// with the pixel's eye-ray walk through it.
+    #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
+    pub overlay: Option<StructureLayer>,
+    /// Where to write the figure.
+    #[arg(short, long, default_value = "observe.png")]
+    pub output: PathBuf,
+    /// A summary, or every drawn segment as JSON.
+    #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+    pub format: MetricsFormat,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = thread_count)]
+    pub threads: Option<usize>,
+}
+
+fn pixel_pattern(text: &str) -> Result<crate::measure::observer::PixelPattern, String> {
+    text.parse()
+}
+
+#[derive(Args, Debug)]
 pub struct InspectArgs {
     /// The scene file (.p3f or .nff).
     pub scene: PathBuf,
@@ -511,6 +582,12 @@ pub struct SettingsArgs {
     /// Seed of the random numbers.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Edit the scene before it is prepared, e.g. 'object 5 ior 1.33',
+    /// 'material 2 kd 0.5', 'light 0 position 1 2 3', 'camera aperture 8';
+    /// repeatable, applied in order. Objects count from 0 in the file's
+    /// order, as `inspect` numbers them.
+    #[arg(long = "set", value_name = "EDIT")]
+    pub set: Vec<String>,
 }
 
 /// How images are written: what the commands that write images take
@@ -545,11 +622,12 @@ struct SettingsLine {
 
 impl SettingsArgs {
     /// Reads settings flags (and `--srgb`) from one string, as `workbench
-    /// render` takes them ("--accel grid --grid-m 4 --aa"). Values never hold spaces, so
-    /// whitespace separates the words. The error names the bad flag or
-    /// value, e.g. "unexpected argument '--fast' found".
+    /// render` takes them ("--accel grid --grid-m 4 --aa"). Whitespace
+    /// separates the words, except inside quotes (`--set 'object 5 ior
+    /// 1.33'`). The error names the bad flag or value, e.g. "unexpected
+    /// argument '--fast' found".
     pub fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
-        SettingsLine::try_parse_from(text.split_whitespace())
+        SettingsLine::try_parse_from(split_words(text)?)
             .map(|line| (line.settings, line.encoding))
             .map_err(|e| {
                 let message = e.render().to_string();
@@ -609,6 +687,31 @@ impl SettingsArgs {
     }
 }
 
+/// `text` split into words as a shell splits them, at whitespace outside
+/// single or double quotes, the quotes removed.
+fn split_words(text: &str) -> Result<Vec<String>, String> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut quote = None;
+    for c in text.chars() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), c) => word.get_or_insert_default().push(c),
+            (None, '\'' | '"') => {
+                quote = Some(c);
+                word.get_or_insert_default();
+            }
+            (None, c) if c.is_whitespace() => words.extend(word.take()),
+            (None, c) => word.get_or_insert_default().push(c),
+        }
+    }
+    if let Some(q) = quote {
+        return Err(format!("a {q} quote is not closed in \"{text}\""));
+    }
+    words.extend(word);
+    Ok(words)
+}
+
 /// Most worker threads accepted: starting and stopping threads costs more
 /// than they render beyond this (20 000 threads took over a minute for an
 /// 8 x 8 image).
@@ -641,6 +744,18 @@ mod tests {
         );
         assert!(SettingsArgs::parse_str("").is_ok());
         assert!(SettingsArgs::parse_str("  ").is_ok());
+    }
+
+    #[test]
+    fn settings_strings_keep_quoted_edits_whole() {
+        let (args, _) =
+            SettingsArgs::parse_str("--aa --set 'object 5 ior 1.33' --set \"camera focal 2\"")
+                .unwrap();
+        assert_eq!(args.set, ["object 5 ior 1.33", "camera focal 2"]);
+        assert!(args.aa);
+        assert_eq!(split_words(" a  ''  'b c'd ").unwrap(), ["a", "", "b cd"]);
+        let open = SettingsArgs::parse_str("--set 'object 5").unwrap_err();
+        assert!(open.contains("quote is not closed"), "{open}");
     }
 
     #[test]

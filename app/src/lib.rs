@@ -19,13 +19,14 @@ pub fn run() -> std::process::ExitCode {
     let result = match cli.command {
         Some(cli::Headless::Render(args)) => headless::render::run(&args),
         Some(cli::Headless::Inspect(args)) => headless::inspect::run(&args),
+        Some(cli::Headless::Observe(args)) => headless::observe::run(&args),
         Some(cli::Headless::Bench(args)) => headless::bench::run(&args),
         Some(cli::Headless::Compare(args)) => headless::compare::run(&args),
         Some(cli::Headless::Gen(args)) => headless::generate::run(&args),
         Some(cli::Headless::Sweep(args)) => headless::sweep::run(&args),
         None => cli
             .screenshot_plan()
-            .and_then(|plan| gui::run(cli.scene, plan)),
+            .and_then(|plan| gui::run(cli.scene, plan, cli.observer)),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

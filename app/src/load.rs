@@ -10,6 +10,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use tracer::mesh_io::{self, LoadProgress, MeshFormat};
+use tracer::scene::edit::Edit;
 use tracer::scene::{Limits, Scene, parse_scene, parse_scene_file};
 use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;
@@ -55,6 +56,31 @@ pub fn load_source_with_progress(
     source: &SceneSource,
     on_progress: &mut dyn FnMut(LoadProgress),
 ) -> Result<(Scene, World)> {
+    load_source_edited(source, &[], on_progress)
+}
+
+/// [`load_source_with_progress`] with `--set` edits applied to the scene
+/// before the world is built from it (see [`apply_edits`]).
+pub fn load_source_edited(
+    source: &SceneSource,
+    edits: &[String],
+    on_progress: &mut dyn FnMut(LoadProgress),
+) -> Result<(Scene, World)> {
+    let (mut scene, warnings) = read_source(source, on_progress)?;
+    apply_edits(&mut scene, edits)?;
+    let mut world = match source {
+        SceneSource::Bundled(_) => World::build_with_skybox(&scene, embedded_skybox),
+        SceneSource::File(_) => build_with_sky(&scene),
+    };
+    world.warnings.extend(warnings);
+    Ok((scene, world))
+}
+
+/// The scene document of `source`, and what reading a bare mesh warned of.
+fn read_source(
+    source: &SceneSource,
+    on_progress: &mut dyn FnMut(LoadProgress),
+) -> Result<(Scene, Vec<String>)> {
     match source {
         SceneSource::File(path) if source.is_bare_mesh() => {
             let limits = Limits::default();
@@ -63,16 +89,10 @@ pub fn load_source_with_progress(
             let warnings = mesh.warnings.clone();
             let mut scene = mesh_io::frame(mesh);
             scene.base_dir = path.parent().map(Path::to_path_buf);
-            let mut world = build_with_sky(&scene);
-            world.warnings.extend(warnings);
-            Ok((scene, world))
+            Ok((scene, warnings))
         }
-        SceneSource::File(path) => {
-            // The parse error already names the file, line and column.
-            let scene = parse_scene_file(path, &Limits::default())?;
-            let world = build_with_sky(&scene);
-            Ok((scene, world))
-        }
+        // The parse error already names the file, line and column.
+        SceneSource::File(path) => Ok((parse_scene_file(path, &Limits::default())?, Vec::new())),
         SceneSource::Bundled(name) => {
             let bundled =
                 bundled::find(name).with_context(|| format!("no bundled scene called `{name}`"))?;
@@ -81,10 +101,39 @@ pub fn load_source_with_progress(
                 Some(Path::new(bundled.file)),
                 &Limits::default(),
             )?;
-            let world = World::build_with_skybox(&scene, embedded_skybox);
-            Ok((scene, world))
+            Ok((scene, Vec::new()))
         }
     }
+}
+
+/// Applies `--set` lines to `scene` in order, each read against the scene
+/// the earlier ones left (so `object 0 t 0.5` may follow `object 0 ior
+/// 1.5`); returns each edit in words (`sphere #5 ior 1.33`). The error
+/// quotes the line and says what is wrong, naming the valid range or the
+/// fields.
+pub fn apply_edits(scene: &mut Scene, lines: &[String]) -> Result<Vec<String>> {
+    apply_edits_then(scene, lines, |_, _| {})
+}
+
+/// [`apply_edits`], calling `then` with the scene after each edit.
+fn apply_edits_then(
+    scene: &mut Scene,
+    lines: &[String],
+    mut then: impl FnMut(&Scene, &Edit),
+) -> Result<Vec<String>> {
+    let mut described = Vec::with_capacity(lines.len());
+    for line in lines {
+        let edit = Edit::parse_in(line, scene)
+            .and_then(|edit| {
+                let words = edit.describe(scene);
+                edit.apply(scene)?;
+                described.push(words);
+                Ok(edit)
+            })
+            .map_err(|e| anyhow::anyhow!("--set '{line}': {e}"))?;
+        then(scene, &edit);
+    }
+    Ok(described)
 }
 
 /// The world of a scene from disk: an `env` folder that cannot be loaded
@@ -131,13 +180,40 @@ pub struct Loaded {
     pub world: Arc<World>,
 }
 
+impl Loaded {
+    /// This scene with more `--set` edits (one side of a comparison), and
+    /// the edits in words. The world follows each edit ([`World::update`])
+    /// instead of being built again: the skybox and the untouched shapes
+    /// are kept.
+    pub fn edited(&self, lines: &[String]) -> Result<(Loaded, Vec<String>)> {
+        let mut scene = self.scene.clone();
+        if lines.is_empty() {
+            let same = Loaded {
+                scene,
+                world: self.world.clone(),
+            };
+            return Ok((same, Vec::new()));
+        }
+        let mut world = (*self.world).clone();
+        let described =
+            apply_edits_then(&mut scene, lines, |scene, edit| world.update(scene, edit))?;
+        let world = Arc::new(world);
+        Ok((Loaded { scene, world }, described))
+    }
+}
+
 /// Parses a scene file (or frames a bare mesh) for the headless commands;
 /// warnings, and progress while a large mesh is read, go to stderr.
 pub fn load_scene(path: &Path) -> Result<Loaded> {
+    load_scene_edited(path, &[])
+}
+
+/// [`load_scene`] with `--set` edits applied before the world is built.
+pub fn load_scene_edited(path: &Path, edits: &[String]) -> Result<Loaded> {
     let source = SceneSource::File(path.to_path_buf());
     let start = Instant::now();
     let mut progress = MeshProgress::new(path);
-    let (scene, world) = load_source_with_progress(&source, &mut |p| progress.show(p))?;
+    let (scene, world) = load_source_edited(&source, edits, &mut |p| progress.show(p))?;
     progress.finish(&world, start);
     if source.is_bare_mesh() {
         eprintln!("note: {}: {}", path.display(), mesh_io::FRAMING_NOTE);
@@ -238,7 +314,7 @@ mod tests {
         std::fs::write(&path, "env nowhere\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n").unwrap();
         let (_, world) = load_source(&SceneSource::File(path)).unwrap();
         let bundled = embedded_skybox("sky").unwrap();
-        assert_eq!(world.skybox, Some(bundled));
+        assert_eq!(world.skybox, Some(Arc::new(bundled)));
         let warnings = world.warnings.join("; ");
         assert!(warnings.contains("nowhere"), "{warnings}");
         assert!(

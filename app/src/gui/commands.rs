@@ -28,6 +28,11 @@ pub enum Command {
     CopyAToB,
     ToggleBenchmark,
     ToggleStudies,
+    ToggleObserver,
+    ToggleEditor,
+    Undo,
+    Redo,
+    SaveScene,
 }
 
 const fn key(key: Key) -> KeyboardShortcut {
@@ -36,7 +41,10 @@ const fn key(key: Key) -> KeyboardShortcut {
 
 impl Command {
     /// Every command, in the order the help lists them.
-    pub const ALL: [Command; 22] = [
+    ///
+    /// egui matches Ctrl+Z when Ctrl+Shift+Z is pressed, so a shortcut with
+    /// Shift comes before the same one without.
+    pub const ALL: [Command; 27] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -44,6 +52,7 @@ impl Command {
         Command::TogglePause,
         Command::Restart,
         Command::ToggleKeepRefining,
+        Command::SaveScene,
         Command::Save,
         Command::SaveExr,
         Command::Open,
@@ -53,6 +62,10 @@ impl Command {
         Command::ZoomActualSize,
         Command::ToggleStats,
         Command::CycleView,
+        Command::ToggleObserver,
+        Command::ToggleEditor,
+        Command::Redo,
+        Command::Undo,
         Command::ToggleCompare,
         Command::SwapSides,
         Command::CopyAToB,
@@ -86,6 +99,11 @@ impl Command {
             Command::CopyAToB => "Copy A to B",
             Command::ToggleBenchmark => "Benchmark matrix",
             Command::ToggleStudies => "Studies",
+            Command::ToggleObserver => "Observer view",
+            Command::ToggleEditor => "Scene editor",
+            Command::Undo => "Undo edit",
+            Command::Redo => "Redo edit",
+            Command::SaveScene => "Save scene...",
         }
     }
 
@@ -130,6 +148,15 @@ impl Command {
             Command::ToggleStudies => {
                 "Sweep one parameter (grid m, N, depth, ...) or a generated scene's size and chart the times"
             }
+            Command::ToggleObserver => {
+                "See the scene from outside: the camera, its image plane, the lights and the pinned pixel's rays"
+            }
+            Command::ToggleEditor => {
+                "Change materials, shapes, lights and the camera; a click on the image selects what it shows"
+            }
+            Command::Undo => "Take back the last edit of the edited side's scene",
+            Command::Redo => "Apply again the edit last taken back",
+            Command::SaveScene => "Write the edited scene to a P3F file",
         }
     }
 
@@ -157,7 +184,16 @@ impl Command {
         const M: &[KeyboardShortcut] = &[key(Key::M)];
         const P: &[KeyboardShortcut] = &[key(Key::P)];
         const V: &[KeyboardShortcut] = &[key(Key::V)];
+        const O: &[KeyboardShortcut] = &[key(Key::O)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
+        const E: &[KeyboardShortcut] = &[key(Key::E)];
+        const CTRL_Z: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::Z)];
+        const CTRL_SHIFT: Modifiers = CTRL.plus(Modifiers::SHIFT);
+        const REDO: &[KeyboardShortcut] = &[
+            KeyboardShortcut::new(CTRL_SHIFT, Key::Z),
+            KeyboardShortcut::new(CTRL, Key::Y),
+        ];
+        const CTRL_SHIFT_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL_SHIFT, Key::S)];
         match self {
             Command::ToggleAntialiasing => A,
             Command::ToggleSoftShadows => S,
@@ -181,6 +217,11 @@ impl Command {
             Command::CopyAToB => SHIFT_B,
             Command::ToggleBenchmark => M,
             Command::ToggleStudies => P,
+            Command::ToggleObserver => O,
+            Command::ToggleEditor => E,
+            Command::Undo => CTRL_Z,
+            Command::Redo => REDO,
+            Command::SaveScene => CTRL_SHIFT_S,
         }
     }
 

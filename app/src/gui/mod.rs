@@ -3,14 +3,17 @@
 //! image on screen, the controls; the interface to the renderer), `app`
 //! (the frame: arrivals, commands, saving), `panels` (drawing, over
 //! narrow views of the state), `image` (the viewport and what is drawn
-//! over it), `comparison` (compare mode's layout and measures),
+//! over it), `comparison` (compare mode's layout and measures), `editor`
+//! (changing the scene: selection, the editor window, moving objects),
 //! `windows` (ray tree, benchmark, studies, help) and `platform` (frame
 //! pacing, CPU clocks, the software rasterizer, screenshots).
 
 mod app;
 mod commands;
 mod comparison;
+mod editor;
 mod image;
+mod observer;
 mod panels;
 mod platform;
 mod sides;
@@ -21,8 +24,10 @@ use std::path::PathBuf;
 pub use app::WorkbenchApp;
 pub use commands::Command;
 pub use comparison::{Comparison, Layout, ReferenceImage};
+pub use editor::{Editor, Pending};
 pub use image::pixel_views::PixelViews;
 pub use image::structure_overlay::StructureOverlay;
+pub use observer::{Observer, ObserverLayout};
 pub use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use sides::{Activity, Controls, Engine, Side, SideId};
 pub use windows::benchmark::BenchWindow;
@@ -31,10 +36,14 @@ pub use windows::studies::{Applied, StudiesWindow};
 
 use crate::load::SceneSource;
 
-/// Opens the window on `scene` (or the last scene, or the bundled default)
-/// and runs until it is closed, or until the screenshot of `screenshot` is
-/// taken.
-pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow::Result<()> {
+/// Opens the window on `scene` (or the last scene, or the bundled default),
+/// with the observer view on when `observer`, and runs until it is closed,
+/// or until the screenshot of `screenshot` is taken.
+pub fn run(
+    scene: Option<PathBuf>,
+    screenshot: Option<ScreenshotPlan>,
+    observer: bool,
+) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("Whitted Workbench")
@@ -63,7 +72,8 @@ pub fn run(scene: Option<PathBuf>, screenshot: Option<ScreenshotPlan>) -> anyhow
             if let Some(render_state) = &cc.wgpu_render_state {
                 settle_animations(&cc.egui_ctx, render_state.adapter.get_info().device_type);
             }
-            let app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
+            let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
+            app.show_observer(observer);
             Ok(Box::new(match plan {
                 Some(plan) => app.with_screenshot(plan, app_outcome),
                 None => app,

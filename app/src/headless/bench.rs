@@ -8,14 +8,14 @@ use tracer::accel::AccelKind;
 use tracer::render::{Frame, RenderSettings};
 
 use crate::cli::{BenchArgs, TableFormat};
-use crate::load::{Loaded, load_scene};
+use crate::load::{Loaded, load_scene_edited};
 use crate::measure::bench_report::{Format, Layout, table};
 use crate::measure::benchmark::{self, Measurement, RunOptions};
 use crate::measure::ray_cast::{self, RayBenchOptions};
 use crate::output::save_png;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
-    let loaded = load_scene(&args.scene)?;
+    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     // A benchmark frame is one sample per pixel with hard shadows unless
     // the command line (or the matrix) asks for more.

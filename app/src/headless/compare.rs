@@ -2,26 +2,39 @@
 //! image), one A | B | difference PNG and the times and metrics of both
 //! sides.
 
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, anyhow};
 use tracer::render::{RenderSettings, View, ViewSummary};
+use tracer::world::World;
 
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
-use crate::load::load_scene;
+use crate::load::load_scene_edited;
 use crate::measure::ab::{self, Comparison, Heatmap, ImageComparison, SideOptions};
 use crate::measure::benchmark::{Case, Measurement};
 use crate::measure::heatmap_image;
 use crate::output::save_png;
 use crate::report::si;
 
+/// One side: its case, the world it renders (the scene with the side's own
+/// `--set` edits) and those edits in words.
+struct Side {
+    case: Case,
+    world: Arc<World>,
+    edits: Vec<String>,
+}
+
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let loaded = load_scene(&args.scene)?;
-    let base = RenderSettings::from_scene(&loaded.scene);
-    let side = |name: &str, flags: &str| -> Result<Case> {
+    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let side = |name: &str, flags: &str| -> Result<Side> {
         let (own, own_encoding) =
             SettingsArgs::parse_str(flags).map_err(|e| anyhow!("--{name} \"{flags}\": {e}"))?;
-        let mut settings = base.clone();
+        let (edited, edits) = loaded
+            .edited(&own.set)
+            .with_context(|| format!("--{name} \"{flags}\""))?;
+        // The side's camera edits (aperture, focal) reach its settings.
+        let mut settings = RenderSettings::from_scene(&edited.scene);
         args.settings.apply(&mut settings);
         own.apply(&mut settings);
         let encoding = if own_encoding.srgb {
@@ -29,14 +42,19 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         } else {
             args.encoding.encoding()
         };
-        Ok(Case {
+        let case = Case {
             label: name.to_uppercase(),
             settings,
             encoding,
+        };
+        Ok(Side {
+            case,
+            world: edited.world,
+            edits,
         })
     };
     let a = side("a", &args.a)?;
-    super::warn_brute_force(&a.settings, &loaded.world.counts);
+    super::warn_brute_force(&a.case.settings, &a.world.counts);
     let heatmap = Heatmap::from(args.heatmap);
     if let Some(path) = &args.b_image {
         if args.view.view().is_some() {
@@ -44,25 +62,26 @@ pub fn run(args: &CompareArgs) -> Result<()> {
                 "--view compares the views of two renders; it does not work with --b-image"
             );
         }
-        return against_image(args, &loaded.world, a, path, heatmap);
+        return against_image(args, a, path, heatmap);
     }
     let b = side("b", &args.b)?;
-    super::warn_brute_force(&b.settings, &loaded.world.counts);
+    super::warn_brute_force(&b.case.settings, &b.world.counts);
     let mut progress = super::runner_progress(vec!["A".into(), "B".into()], 1);
     let options = SideOptions {
         threads: args.threads,
         views: args.view.view().is_some(),
     };
     let comparison = ab::run(
-        &loaded.world,
-        a,
-        b,
+        [&a.world, &b.world],
+        a.case,
+        b.case,
         options,
         heatmap,
         &AtomicBool::new(false),
         &mut progress,
     );
-    let comparison = finished(comparison, args)?;
+    let mut comparison = finished(comparison, args)?;
+    comparison.labels = with_edits(comparison.labels, (&a.edits, &b.edits));
     let c = &comparison;
     let views = match args.view.view() {
         Some(view) => Some(compare_views(args, view, c)?),
@@ -95,6 +114,21 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     Ok(())
 }
 
+/// The sides' labels with their edits: what differs in the settings, then
+/// in the scene (`sphere #5 ior 1.33`), when the sides' edits differ.
+fn with_edits(labels: (String, String), edits: (&[String], &[String])) -> (String, String) {
+    if edits.0 == edits.1 {
+        return labels;
+    }
+    let label = |settings: String, edits: &[String]| match (settings.as_str(), edits) {
+        ("same settings", []) => "the scene unedited".into(),
+        (_, []) => settings,
+        ("same settings", edits) => edits.join(", "),
+        (_, edits) => format!("{settings}, {}", edits.join(", ")),
+    };
+    (label(labels.0, edits.0), label(labels.1, edits.1))
+}
+
 /// The comparison, or why there is none: it failed or was cancelled.
 fn finished<T>(outcome: Result<Option<T>>, args: &CompareArgs) -> Result<T> {
     outcome
@@ -105,18 +139,22 @@ fn finished<T>(outcome: Result<Option<T>>, args: &CompareArgs) -> Result<T> {
 /// `--b-image`: A against a reference image.
 fn against_image(
     args: &CompareArgs,
-    world: &std::sync::Arc<tracer::world::World>,
-    a: Case,
+    side: Side,
     path: &std::path::Path,
     heatmap: Heatmap,
 ) -> Result<()> {
+    let Side {
+        case: a,
+        world,
+        edits,
+    } = side;
     let image = ab::read_reference(path, a.encoding)?;
     let size = (a.settings.width, a.settings.height);
     let reference = ab::fit_reference(image, size, args.fit)
         .with_context(|| format!("cannot compare with {}", path.display()))?;
     let mut progress = super::runner_progress(vec!["A".into()], 1);
     let c = ab::run_against_image(
-        world,
+        &world,
         a,
         reference,
         args.threads,
@@ -134,7 +172,12 @@ fn against_image(
         ),
         &args.output,
     )?;
-    let label = crate::measure::describe::describe(&c.a.case.settings);
+    let settings = crate::measure::describe::describe(&c.a.case.settings);
+    let label = [settings]
+        .into_iter()
+        .chain(edits)
+        .collect::<Vec<_>>()
+        .join(", ");
     match args.format {
         MetricsFormat::Text => {
             let resized = c

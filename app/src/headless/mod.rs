@@ -4,6 +4,7 @@ pub mod bench;
 pub mod compare;
 pub mod generate;
 pub mod inspect;
+pub mod observe;
 pub mod render;
 pub mod sweep;
 

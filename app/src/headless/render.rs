@@ -11,13 +11,22 @@ use tracer::render::{Frame, JobOptions, JobState, RenderJob, RenderSettings, Vie
 use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
-use crate::load::load_scene;
+use crate::load::load_scene_edited;
 use crate::measure::{heatmap_image, overlay_image, ray_tree_report};
 use crate::output::{is_exr, save_exr, save_png};
 use crate::report;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let loaded = load_scene(&args.scene)?;
+    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    if let Some(path) = &args.save_scene {
+        let folder = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => std::path::Path::new("."),
+        };
+        std::fs::write(path, tracer::scene::write_p3f_in(&loaded.scene, folder))
+            .with_context(|| format!("cannot write the scene to {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);
     let encoding = args.encoding.encoding();

@@ -13,7 +13,7 @@ use tracer::render::RenderSettings;
 use tracer::scene::Scene;
 
 use crate::cli::{SettingsArgs, SweepArgs};
-use crate::load::load_scene;
+use crate::load::load_scene_edited;
 use crate::measure::bench_report::Format;
 use crate::measure::benchmark::{RunOptions, Stop};
 use crate::measure::study::{self, Param, Study, StudyEvent, Subject, plot, report, values};
@@ -132,18 +132,18 @@ fn subject(args: &SweepArgs) -> Result<(Subject, String, RenderSettings)> {
         let Some(path) = &args.scene else {
             bail!("give a scene file to sweep {} on", args.param);
         };
-        let loaded = load_scene(path)?;
+        let loaded = load_scene_edited(path, &args.settings.set)?;
         let base = base_settings(&loaded.scene, &args.settings);
         let name = path.display().to_string();
-        let world = loaded.world;
-        return Ok((
-            Subject::Scene {
-                world,
-                base: base.clone(),
-            },
-            name,
-            base,
-        ));
+        let subject = Subject::Document {
+            scene: Arc::new(loaded.scene),
+            world: loaded.world,
+            base: base.clone(),
+        };
+        return Ok((subject, name, base));
+    }
+    if !args.settings.set.is_empty() {
+        bail!("--set edits a scene file; the level study generates its scenes");
     }
     if let Some(scene) = &args.scene {
         bail!(

@@ -13,7 +13,7 @@ use tracer::metrics::{self, Palette};
 use tracer::render::Encoding;
 use tracer::world::World;
 
-use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
+use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
 use crate::measure::describe::side_labels;
 
 /// How the difference panel is drawn.
@@ -106,10 +106,12 @@ pub struct SideOptions {
     pub views: bool,
 }
 
-/// Renders `a` then `b` once each (progress reported as cases 0 and 1) and
-/// compares them. `None` when `cancel` stopped it.
+/// Renders `a` over the first world then `b` over the second once each
+/// (progress reported as cases 0 and 1) and compares them; the worlds are
+/// one, or the scene with each side's edits. B traces the structure built
+/// for A when its shapes are A's. `None` when `cancel` stopped it.
 pub fn run(
-    world: &Arc<World>,
+    worlds: [&Arc<World>; 2],
     a: Case,
     b: Case,
     sides: SideOptions,
@@ -122,15 +124,34 @@ pub fn run(
         runs: 1,
         threads: sides.threads,
     };
-    let cases = [a, b];
-    let outcome = if sides.views {
-        benchmark::run_measuring_views(world, &cases, options, cancel, on_event)?
-    } else {
-        benchmark::run(world, &cases, options, cancel, on_event)?
+    let stop = Stop {
+        now: cancel,
+        after_frame: &AtomicBool::new(false),
     };
-    let [a, b]: [Measurement; 2] = match outcome.measurements.try_into() {
-        Ok(sides) if !outcome.cancelled => sides,
-        _ => return Ok(None),
+    let same_shapes = Arc::ptr_eq(worlds[0], worlds[1]) || worlds[0].shapes == worlds[1].shapes;
+    let mut structures = Structures::default();
+    let mut measured = Vec::new();
+    for (i, (world, case)) in worlds.into_iter().zip([a, b]).enumerate() {
+        if i == 1 && !same_shapes {
+            structures = Structures::default();
+        }
+        let cases = [case];
+        let outcome = benchmark::run_cases(
+            world,
+            &cases,
+            options,
+            &mut structures,
+            stop,
+            sides.views,
+            &mut |event| on_event(event.offset(i)),
+        )?;
+        if outcome.cancelled {
+            return Ok(None);
+        }
+        measured.extend(outcome.measurements);
+    }
+    let Ok([a, b]) = <[Measurement; 2]>::try_from(measured) else {
+        return Ok(None);
     };
     let (metrics, heatmap) = measure(&a.image, &b.image, heatmap)?;
     Ok(Some(Comparison {

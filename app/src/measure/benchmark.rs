@@ -151,6 +151,28 @@ pub enum Event<'a> {
     },
 }
 
+impl Event<'_> {
+    /// The event as the runner of more cases tells it, this case being
+    /// its `first + case`.
+    pub fn offset(self, first: usize) -> Self {
+        match self {
+            Event::Rendering {
+                case,
+                run,
+                fraction,
+            } => Event::Rendering {
+                case: first + case,
+                run,
+                fraction,
+            },
+            Event::Measured { case, measurement } => Event::Measured {
+                case: first + case,
+                measurement,
+            },
+        }
+    }
+}
+
 /// A case's results.
 #[derive(Debug, Clone)]
 pub struct Measurement {
@@ -165,7 +187,7 @@ pub struct Measurement {
     /// The last frame's image.
     pub image: RgbImage,
     /// The last frame's per-pixel views, when the run measured them
-    /// ([`run_measuring_views`]).
+    /// ([`run_cases`] with `views`).
     pub views: Option<ViewFilm>,
 }
 
@@ -318,37 +340,12 @@ pub fn run(
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Outcome> {
-    run_cancellable(world, cases, options, cancel, false, on_event)
-}
-
-/// [`run`] measuring the per-pixel views in the same frames, so a
-/// comparison of views renders each side once; the frame times include
-/// the views' bookkeeping.
-pub fn run_measuring_views(
-    world: &Arc<World>,
-    cases: &[Case],
-    options: RunOptions,
-    cancel: &AtomicBool,
-    on_event: &mut dyn FnMut(Event),
-) -> Result<Outcome> {
-    run_cancellable(world, cases, options, cancel, true, on_event)
-}
-
-/// [`run`], measuring the views or not.
-fn run_cancellable(
-    world: &Arc<World>,
-    cases: &[Case],
-    options: RunOptions,
-    cancel: &AtomicBool,
-    views: bool,
-    on_event: &mut dyn FnMut(Event),
-) -> Result<Outcome> {
     let stop = Stop {
         now: cancel,
         after_frame: &AtomicBool::new(false),
     };
     let structures = &mut Structures::default();
-    run_cases(world, cases, options, structures, stop, views, on_event)
+    run_cases(world, cases, options, structures, stop, false, on_event)
 }
 
 /// [`run`] with structures kept by the caller (a study measures one world
@@ -364,8 +361,10 @@ pub fn run_with(
     run_cases(world, cases, options, structures, stop, false, on_event)
 }
 
-/// The runner behind [`run_with`] and [`run_measuring_views`].
-fn run_cases(
+/// The runner behind [`run`] and [`run_with`], measuring the per-pixel
+/// views in the same frames or not: a comparison of views renders each
+/// side once (the frame times then include the views' bookkeeping).
+pub fn run_cases(
     world: &Arc<World>,
     cases: &[Case],
     options: RunOptions,

@@ -13,6 +13,7 @@ pub mod cost;
 pub mod describe;
 pub mod heatmap_image;
 pub mod observer;
+pub mod observer_image;
 pub mod overlay_image;
 pub mod projection;
 pub mod ray_cast;

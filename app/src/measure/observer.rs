@@ -12,9 +12,7 @@ use glam::{Vec3, Vec3A};
 use serde::Serialize;
 use tracer::accel::{SceneIndex, StructureLayer, Visit};
 use tracer::camera::{Camera, CameraPose};
-use tracer::render::{
-    Film, JobOptions, JobState, Outcome, RayKind, RayTree, RenderJob, RenderSettings, View,
-};
+use tracer::render::{Film, Outcome, RayKind, RayTree, RenderSettings, View, render_with_views};
 use tracer::world::World;
 
 use super::projection::DepthMap;
@@ -76,6 +74,8 @@ pub struct Segment {
     /// When the animation draws it: eye rays 0, bounce generation `d` at
     /// `d`, shadow rays after every bounce; the rest at 0.
     pub phase: u32,
+    /// A ray's bounces above it (the eye ray and its shadow rays: 0).
+    pub depth: u32,
 }
 
 impl Segment {
@@ -85,6 +85,7 @@ impl Segment {
             part,
             side: 0,
             phase: 0,
+            depth: 0,
         }
     }
 }
@@ -125,6 +126,7 @@ pub fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
             part,
             side,
             phase,
+            depth: node.depth,
         });
         if let Outcome::Surface(s) = &node.outcome {
             segments.push(Segment {
@@ -132,6 +134,7 @@ pub fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
                 part: Part::Normal,
                 side,
                 phase,
+                depth: node.depth,
             });
         }
     }
@@ -252,24 +255,123 @@ fn circle(centre: Vec3A, u: Vec3A, v: Vec3A, radius: f32, part: Part) -> Vec<Seg
 
 /// Where the observer starts: behind, above and to the side of the scene
 /// camera, far enough that the scene's bounds and the camera both fit in a
-/// view `angle` degrees high.
-pub fn framing(world: &World, camera: &Camera, angle: f32) -> CameraPose {
+/// view `angle` degrees high and `aspect` (height over width) as tall as
+/// wide (lights far away may fall outside).
+pub fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> CameraPose {
     let eye = camera.eye();
-    let mut bounds = world.bounds.grow(eye);
-    for light in &world.lights {
-        bounds = bounds.grow(light.position);
-    }
+    let bounds = world.bounds.grow(eye);
     let centre = bounds.centre();
     let radius = (bounds.extent().length() * 0.5).max(1e-3);
     let [right, up, forward] = camera.basis();
     let direction = (-forward * 1.0 + up * 0.6 + right * 0.5).normalize();
-    let half = (angle.clamp(10.0, 170.0) * 0.5).to_radians();
+    let vertical = (angle.clamp(10.0, 170.0) * 0.5).to_radians();
+    let horizontal = (vertical.tan() / aspect.max(1e-3)).atan();
+    let half = vertical.min(horizontal);
     let distance = radius / half.sin() * 1.05;
     CameraPose {
         from: (centre + direction * distance).into(),
         at: centre.into(),
         up: up.into(),
     }
+}
+
+/// Which pixels' trees a figure draws beside the pinned one: a row, a
+/// column, or a coarse grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PixelPattern {
+    Row(u32),
+    Column(u32),
+    /// One pixel every `STEP` in both directions.
+    Grid(u32),
+}
+
+/// Pixels of a row or column the figure samples (evenly spaced).
+const LINE_PIXELS: u32 = 32;
+
+/// Most segments a figure draws; the trees of further pixels are left out
+/// (and the figure says so).
+pub const MAX_SEGMENTS: usize = 20_000;
+
+impl std::str::FromStr for PixelPattern {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        let bad = || format!("'{text}' is not row:Y, column:X or grid:STEP");
+        let (kind, number) = text.split_once(':').ok_or_else(bad)?;
+        let number: u32 = number.parse().map_err(|_| bad())?;
+        match kind {
+            "row" => Ok(PixelPattern::Row(number)),
+            "column" => Ok(PixelPattern::Column(number)),
+            "grid" if number > 0 => Ok(PixelPattern::Grid(number)),
+            "grid" => Err(format!("'{text}': the grid's step must be at least 1")),
+            _ => Err(bad()),
+        }
+    }
+}
+
+impl PixelPattern {
+    /// The pattern's pixels in a `width` x `height` image, or why it does
+    /// not fit (the valid range named).
+    pub fn pixels(self, width: u32, height: u32) -> Result<Vec<(u32, u32)>, String> {
+        let spaced = |n: u32| -> Vec<u32> {
+            let count = n.min(LINE_PIXELS);
+            (0..count).map(|i| (i * n + n / 2) / count).collect()
+        };
+        match self {
+            PixelPattern::Row(y) if y >= height => Err(format!(
+                "row {y} is outside the image: rows 0..{} of {width} x {height}",
+                height - 1
+            )),
+            PixelPattern::Column(x) if x >= width => Err(format!(
+                "column {x} is outside the image: columns 0..{} of {width} x {height}",
+                width - 1
+            )),
+            PixelPattern::Row(y) => Ok(spaced(width).into_iter().map(|x| (x, y)).collect()),
+            PixelPattern::Column(x) => Ok(spaced(height).into_iter().map(|y| (x, y)).collect()),
+            PixelPattern::Grid(step) => Ok((step / 2..height)
+                .step_by(step as usize)
+                .flat_map(|y| {
+                    (step / 2..width)
+                        .step_by(step as usize)
+                        .map(move |x| (x, y))
+                })
+                .collect()),
+        }
+    }
+}
+
+/// The colour of each kind of ray wherever rays are drawn: over the image
+/// and in the observer view.
+pub fn ray_colour(kind: RayKindName) -> [u8; 3] {
+    match kind {
+        RayKindName::Eye => [255, 255, 255],
+        RayKindName::Reflection => [90, 200, 255],
+        RayKindName::Refraction => [255, 120, 220],
+        RayKindName::Shadow => [255, 220, 60],
+    }
+}
+
+/// How a part is drawn: its colour, and whether dashed (blocked shadow
+/// rays, and side B's rays beside A's in compare mode).
+pub fn style(segment: &Segment, world: &World) -> ([u8; 3], bool) {
+    let colour = match segment.part {
+        Part::Ray { kind } => ray_colour(kind),
+        Part::BlockedShadow => ray_colour(RayKindName::Shadow),
+        Part::Normal => [120, 255, 160],
+        Part::Frustum => [200, 200, 200],
+        Part::ImagePlane => [255, 255, 255],
+        Part::Lens => [80, 230, 255],
+        Part::FocalPlane => [255, 150, 80],
+        Part::Light { index } => world.lights.get(index).map_or([255; 3], |l| {
+            let c = l.color / l.color.max_element().max(1e-6);
+            [c.x, c.y, c.z].map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8)
+        }),
+        Part::Structure => [80, 255, 120],
+        Part::Visit { order, of } => super::overlay_image::visit_colour(order, of),
+    };
+    let dashed = segment.part == Part::BlockedShadow
+        || (segment.side == 1 && matches!(segment.part, Part::Ray { .. } | Part::Normal));
+    (colour, dashed)
 }
 
 /// The scene rendered by `settings` (an observer's: its camera, size and
@@ -282,23 +384,9 @@ pub fn render_with_depth(
     threads: Option<usize>,
 ) -> Result<(Film, DepthMap)> {
     let (width, height) = (settings.width, settings.height);
-    let job = RenderJob::start(
-        world,
-        Some(index),
-        settings,
-        JobOptions {
-            threads,
-            views: true,
-            ..JobOptions::default()
-        },
-    )?;
-    let (film, views, _, state) = job.wait_with_views();
-    if let JobState::Failed(message) = state {
-        return Err(anyhow!("the observer's render failed: {message}"));
-    }
-    let distances = views
-        .map(|v| v.values(View::Distance))
-        .ok_or_else(|| anyhow!("the observer's render measured no distances"))?;
+    let (film, views, _) = render_with_views(world, index, settings, threads)
+        .map_err(|e| anyhow!("the observer's render failed: {e}"))?;
+    let distances = views.values(View::Distance);
     let depth = DepthMap::new(width, height, distances)
         .ok_or_else(|| anyhow!("the observer's distances do not fit its image"))?;
     Ok((film, depth))

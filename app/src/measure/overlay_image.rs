@@ -49,17 +49,24 @@ pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
 /// image first, so a segment reaching far off-screen costs no more than
 /// one across it.
 pub fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
-    let size = Vec2::new(image.width() as f32, image.height() as f32);
+    for (x, y) in line_pixels(a, b, image.width(), image.height()) {
+        image.put_pixel(x, y, colour);
+    }
+}
+
+/// The pixels of a one-pixel line from `a` to `b` inside a `width` x
+/// `height` image.
+pub fn line_pixels(a: Vec2, b: Vec2, width: u32, height: u32) -> Vec<(u32, u32)> {
+    let size = Vec2::new(width as f32, height as f32);
     let Some((a, b)) = clip(a, b, size) else {
-        return;
+        return Vec::new();
     };
     let steps = (b - a).abs().max_element().ceil().max(1.0);
-    for i in 0..=steps as u32 {
-        let p = a + (b - a) * (i as f32 / steps);
-        if p.x >= 0.0 && p.y >= 0.0 && p.x < size.x && p.y < size.y {
-            image.put_pixel(p.x as u32, p.y as u32, colour);
-        }
-    }
+    (0..=steps as u32)
+        .map(|i| a + (b - a) * (i as f32 / steps))
+        .filter(|p| p.x >= 0.0 && p.y >= 0.0 && p.x < size.x && p.y < size.y)
+        .map(|p| (p.x as u32, p.y as u32))
+        .collect()
 }
 
 /// The part of segment `a`-`b` inside `[0, size]` (Liang and Barsky);

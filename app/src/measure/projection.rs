@@ -98,14 +98,16 @@ impl DepthMap {
         if p.x < 0.0 || p.y < 0.0 || p.x >= self.width as f32 || p.y >= self.height as f32 {
             return false;
         }
-        let pixel = p.y as usize * self.width as usize + p.x as usize;
-        match self.distances[pixel] {
-            Some(surface) => {
-                let distance = projector.distance(point);
-                distance > surface * (1.0 + ON_SURFACE) + 1e-4
-            }
-            None => false,
+        self.nearer_than(p.x as u32, p.y as u32, projector.distance(point))
+    }
+
+    /// Whether the surface pixel `(x, y)` sees is nearer than `distance`.
+    pub fn nearer_than(&self, x: u32, y: u32, distance: f32) -> bool {
+        if x >= self.width || y >= self.height {
+            return false;
         }
+        self.distances[(y * self.width + x) as usize]
+            .is_some_and(|surface| surface * (1.0 + ON_SURFACE) + 1e-4 < distance)
     }
 
     /// Segment `a`-`b` cut into `pieces` equal parts, each with whether it
@@ -116,15 +118,28 @@ impl DepthMap {
         [a, b]: [Vec3A; 2],
         pieces: usize,
     ) -> Vec<([Vec3A; 2], bool)> {
+        self.split_params(projector, [a, b], pieces)
+            .into_iter()
+            .map(|([t0, t1], hidden)| ([a + (b - a) * t0, a + (b - a) * t1], hidden))
+            .collect()
+    }
+
+    /// [`DepthMap::split`] as parameters along the segment (0 at `a`, 1 at
+    /// `b`), for drawing part of it (an animation growing the segment).
+    pub fn split_params(
+        &self,
+        projector: &Projector<'_>,
+        [a, b]: [Vec3A; 2],
+        pieces: usize,
+    ) -> Vec<([f32; 2], bool)> {
         let pieces = pieces.max(1);
-        let at = |i: usize| a + (b - a) * (i as f32 / pieces as f32);
-        let mut parts: Vec<([Vec3A; 2], bool)> = Vec::new();
+        let mut parts: Vec<([f32; 2], bool)> = Vec::new();
         for i in 0..pieces {
-            let (from, to) = (at(i), at(i + 1));
-            let hidden = self.hides(projector, (from + to) * 0.5);
+            let (t0, t1) = (i as f32 / pieces as f32, (i + 1) as f32 / pieces as f32);
+            let hidden = self.hides(projector, a + (b - a) * ((t0 + t1) * 0.5));
             match parts.last_mut() {
-                Some((segment, was_hidden)) if *was_hidden == hidden => segment[1] = to,
-                _ => parts.push(([from, to], hidden)),
+                Some((range, was_hidden)) if *was_hidden == hidden => range[1] = t1,
+                _ => parts.push(([t0, t1], hidden)),
             }
         }
         parts

@@ -348,6 +348,106 @@ const CHECKED: &[(&str, &str, &str)] = &[
         "srgb",
         "sweep_reference_spp_accel_and_encoding_apply",
     ),
+    (
+        "render",
+        "set",
+        "edits::set_gives_the_image_of_the_scene_edited_by_hand",
+    ),
+    (
+        "render",
+        "save-scene",
+        "edits::a_saved_scene_renders_as_the_edited_one",
+    ),
+    (
+        "compare",
+        "set",
+        "edits::compare_applies_edits_to_both_sides_and_per_side",
+    ),
+    (
+        "inspect",
+        "set",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
+    ),
+    (
+        "bench",
+        "set",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
+    ),
+    (
+        "sweep",
+        "set",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
+    ),
+    (
+        "observe",
+        "set",
+        "edits::inspect_bench_sweep_and_observe_see_the_edits",
+    ),
+    (
+        "observe",
+        "scene",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "pixel",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "pixels",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "sample",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "from",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "at",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "up",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "size",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "overlay",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "observe",
+        "output",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "format",
+        "observe::the_figure_draws_the_pixels_rays_from_the_camera",
+    ),
+    (
+        "observe",
+        "srgb",
+        "observe_sample_from_at_up_and_overlay_apply",
+    ),
+    (
+        "",
+        "observer",
+        "real_window::the_window_opens_with_the_observer_on_when_asked",
+    ),
 ];
 
 /// The settings flags `render` shares with the other subcommands.
@@ -376,9 +476,11 @@ const SOURCES: &[&str] = &[
     include_str!("render.rs"),
     include_str!("views.rs"),
     include_str!("compare.rs"),
+    include_str!("edits.rs"),
     include_str!("meshes_and_images.rs"),
     include_str!("sweep.rs"),
     include_str!("bench_rays.rs"),
+    include_str!("observe.rs"),
     include_str!("../window/real_window.rs"),
 ];
 
@@ -425,6 +527,12 @@ fn every_flag_has_a_test_that_sees_its_effect() {
 fn scene(dir: &Scratch) -> String {
     let path = write(dir, "scene.p3f", &spheres_on_a_floor(24, 16, "", ""));
     path.to_str().unwrap().to_string()
+}
+
+/// [`scene`] and where a run writes `name` beside it.
+fn scene_and_output(dir: &Scratch, name: &str) -> (String, String) {
+    let out = dir.join(name);
+    (scene(dir), out.to_str().unwrap().to_string())
 }
 
 /// What a `render` run produced: the PNG's bytes, and the statistics that
@@ -606,9 +714,8 @@ fn progressive_out_writes_every_pass() {
 #[test]
 fn every_subcommand_applies_the_settings_flags() {
     let dir = scratch("flags-shared");
-    let scene = scene(&dir);
-    let out = dir.join("out.png");
-    let out = out.to_str().unwrap();
+    let (scene, out) = scene_and_output(&dir, "out.png");
+    let out = out.as_str();
     let size = ["--width", "17", "--height", "9"];
     let runs: [Vec<&str>; 5] = [
         vec!["render", &scene, "-o", out],
@@ -680,23 +787,12 @@ fn bench_runs_structures_and_encoding_apply() {
     assert_eq!(frames, Some(2), "{json}");
 
     let (linear, srgb) = (dir.join("linear"), dir.join("srgb"));
-    bench(&[
-        "--runs",
-        "1",
-        "--structures",
-        "bvh",
-        "--images",
-        linear.to_str().unwrap(),
-    ]);
-    bench(&[
-        "--runs",
-        "1",
-        "--structures",
-        "bvh",
-        "--images",
-        srgb.to_str().unwrap(),
-        "--srgb",
-    ]);
+    for (folder, encoding) in [(&linear, None), (&srgb, Some("--srgb"))] {
+        let mut flags = vec!["--runs", "1", "--structures", "bvh", "--images"];
+        flags.push(folder.to_str().unwrap());
+        flags.extend(encoding);
+        bench(&flags);
+    }
     let image = |dir: &Path| std::fs::read(dir.join("bvh.png")).unwrap();
     assert_ne!(image(&linear), image(&srgb));
 }
@@ -872,4 +968,69 @@ fn screenshot_after_takes_a_delay_in_seconds() {
     }
     let stderr = workbench_fails(&["--screenshot-after", "2"]);
     assert!(stderr.contains("--screenshot"), "{stderr}");
+}
+
+#[test]
+fn observe_sample_from_at_up_and_overlay_apply() {
+    let dir = scratch("flags-observe");
+    let (scene, out) = scene_and_output(&dir, "figure.png");
+    let out = out.as_str();
+    let observe = |flags: &[&str]| {
+        let mut args = vec![
+            "observe", &scene, "-o", out, "--size", "64", "48", "--format", "json",
+        ];
+        args.extend(flags);
+        let json: serde_json::Value = serde_json::from_str(&workbench_ok(&args)).unwrap();
+        (json, std::fs::read(out).unwrap())
+    };
+    let pixel = ["--pixel", "12", "8", "--aa"];
+    let (first, png) = observe(&pixel);
+    let (second, _) = observe(&[&pixel[..], &["--sample", "1"]].concat());
+    let eye = |json: &serde_json::Value| {
+        json["segments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["kind"] == "eye")
+            .unwrap()["to"]
+            .clone()
+    };
+    assert_ne!(eye(&first), eye(&second), "another sample's eye ray");
+    let placed = [
+        &pixel[..],
+        &["--from", "0", "-12", "6", "--at", "0", "0", "0.5"],
+    ]
+    .concat();
+    let (placed_json, placed_png) = observe(&placed);
+    assert_eq!(placed_json["observer"]["from"][1], -12.0);
+    assert_ne!(placed_png, png);
+    let upside = [&placed[..], &["--up", "0", "0", "-1"]].concat();
+    let (upside_json, upside_png) = observe(&upside);
+    assert_eq!(upside_json["observer"]["up"][2], -1.0);
+    assert_ne!(upside_png, placed_png);
+    let (_, srgb) = observe(&[&placed[..], &["--srgb"]].concat());
+    assert_ne!(srgb, placed_png);
+    let (grid, _) = observe(&[&placed[..], &["--accel", "grid", "--overlay", "grid"]].concat());
+    let parts = |json: &serde_json::Value, part: &str| {
+        json["segments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|s| s["part"] == part)
+            .count()
+    };
+    assert!(parts(&grid, "structure") > 12 && parts(&grid, "visit") > 0);
+    assert_eq!(parts(&placed_json, "structure"), 0);
+    let refused = workbench_fails(&[
+        "observe",
+        &scene,
+        "-o",
+        out,
+        "--pixel",
+        "1",
+        "1",
+        "--overlay",
+        "grid",
+    ]);
+    assert!(refused.contains("--accel grid"), "{refused}");
 }

@@ -365,6 +365,16 @@ fn side_b<'a>(harness: &'a Harness<'static, WorkbenchApp>) -> &'a Side {
     harness.state().side_b().expect("compare mode is on")
 }
 
+/// The comparison's metrics, once measured.
+fn metrics(harness: &Harness<'static, WorkbenchApp>) -> workbench::measure::ab::Metrics {
+    let comparison = harness.state().comparison().expect("compare mode is on");
+    comparison
+        .metrics()
+        .expect("measured")
+        .clone()
+        .expect("no error")
+}
+
 fn both_done_and_measured(app: &WorkbenchApp) -> bool {
     app.comparison().is_some_and(|c| c.metrics().is_some()) && is_done(app)
 }
@@ -390,14 +400,7 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
         "both sides and their metrics",
         both_done_and_measured,
     );
-    let same = harness
-        .state()
-        .comparison()
-        .unwrap()
-        .metrics()
-        .unwrap()
-        .clone()
-        .unwrap();
+    let same = metrics(&harness);
     assert_eq!(same.mse, 0.0);
     assert_eq!(same.flip, 0.0);
     assert!(
@@ -419,14 +422,7 @@ fn compare_mode_renders_b_beside_a_and_measures_the_difference() {
                 .side_b()
                 .is_some_and(|b| b.engine.settings().is_some_and(|s| s.soft_shadows))
     });
-    let differ = harness
-        .state()
-        .comparison()
-        .unwrap()
-        .metrics()
-        .unwrap()
-        .clone()
-        .unwrap();
+    let differ = metrics(&harness);
     assert!(differ.mse > 0.0 && differ.flip > 0.0, "{differ:?}");
     assert!(differ.psnr.is_finite());
 
@@ -820,6 +816,16 @@ fn the_viewport_paints_its_background_around_a_finished_image_only() {
     );
 }
 
+/// Holds the first render from its start: it is surely under way when the
+/// test looks (a 64 x 64 render could end before the scene's first frame
+/// on a busy machine, leaving nothing to look at).
+fn hold_first_render(harness: &mut Harness<'static, WorkbenchApp>) {
+    harness.key_press(egui::Key::Space);
+    wait_for(harness, "the first render, held", |app| {
+        app.engine().is_paused() && app.engine().activity() == Activity::Job(JobState::Rendering)
+    });
+}
+
 /// Counting the bundled scenes for the scene list (parsing a 262k-triangle
 /// mesh among them) waits until the first render is done: it took 30-100
 /// ms of a two-core machine during a 0.4 s render, at its lowest priority.
@@ -828,13 +834,7 @@ fn the_scene_list_is_counted_after_the_first_render() {
     let mut harness = small_window(Harness::builder());
     // No deadline: only the end of the first render lets counting start.
     harness.state_mut().set_catalog_delay(Duration::MAX);
-    // Held from its start, the first render is surely under way when the
-    // test looks (a 64 x 64 render could end before the scene's first
-    // frame on a busy machine, leaving nothing to look at).
-    harness.key_press(egui::Key::Space);
-    wait_for(&mut harness, "the first render, held", |app| {
-        app.engine().is_paused() && app.engine().activity() == Activity::Job(JobState::Rendering)
-    });
+    hold_first_render(&mut harness);
     for _ in 0..10 {
         harness.step();
         assert!(
@@ -860,10 +860,8 @@ fn the_scene_list_is_counted_after_the_first_render() {
 fn the_scene_list_is_counted_by_its_deadline_even_during_a_render() {
     let mut harness = small_window(Harness::builder());
     harness.state_mut().set_catalog_delay(Duration::ZERO);
-    harness.key_press(egui::Key::Space);
-    wait_for(&mut harness, "the counts during a held render", |app| {
-        app.is_catalog_started()
-            && app.engine().is_paused()
-            && app.engine().activity() == Activity::Job(JobState::Rendering)
+    hold_first_render(&mut harness);
+    wait_for(&mut harness, "the counts during the held render", |app| {
+        app.is_catalog_started() && app.engine().is_paused()
     });
 }

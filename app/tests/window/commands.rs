@@ -3,7 +3,6 @@
 //! back, saving writes the shown render (PNG) and the linear film (EXR), a
 //! JPEG can be side B, and the slow brute-force banner switches to the BVH.
 
-use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::accel::AccelKind;
@@ -11,7 +10,7 @@ use tracer::generate::{GenerateOptions, GeneratorName, generate};
 use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
-use crate::harness::{WINDOW, is_done, small_window_sized, wait_for, wait_for_scene};
+use crate::harness::{WINDOW, drag, is_done, small_window_sized, wait_for, wait_for_scene};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
 
@@ -57,16 +56,8 @@ fn c_puts_the_camera_back_where_the_file_has_it() {
         harness.state().shown().unwrap().rgba.clone()
     };
     let before = finished(&mut harness);
-    let view = harness.get_by_role_and_label(Role::Image, "Render").rect();
-    let mut at = view.center();
-    harness.drag_at(at);
-    for _ in 0..4 {
-        at += egui::vec2(12.0, 4.0);
-        harness.hover_at(at);
-        harness.step();
-    }
-    harness.drop_at(at);
-    harness.run_steps(2);
+    drag(&mut harness, "Render");
+    harness.step();
     assert!(settings(&harness).camera.is_some(), "the drag orbited");
     assert!(
         finished(&mut harness) != before,

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
+use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, HarnessBuilder};
 use tracer::render::JobState;
 use workbench::gui::{Activity, WorkbenchApp};
@@ -53,6 +54,23 @@ pub fn ready_window(size: [f32; 2]) -> Harness<'static, WorkbenchApp> {
 pub fn is_done(app: &WorkbenchApp) -> bool {
     let finished = |e: &workbench::gui::Engine| e.activity() == Activity::Job(JobState::Done);
     finished(app.engine()) && app.side_b().is_none_or(|b| finished(&b.engine))
+}
+
+/// Drags the left button across the image named `label` ("Render",
+/// "Observer"), as a user orbits its camera.
+pub fn drag(harness: &mut Harness<'static, WorkbenchApp>, label: &str) {
+    let view = harness
+        .get_by_role_and_label(egui::accesskit::Role::Image, label)
+        .rect();
+    let mut at = view.center();
+    harness.drag_at(at);
+    for _ in 0..4 {
+        at += egui::vec2(15.0, 5.0);
+        harness.hover_at(at);
+        harness.step();
+    }
+    harness.drop_at(at);
+    harness.step();
 }
 
 /// Steps the window until `done` holds (the render runs on other threads).

@@ -7,7 +7,9 @@ mod support;
 
 mod basics;
 mod commands;
+mod editing;
 mod harness;
+mod observer;
 mod persistence;
 mod real_window;
 mod soak;

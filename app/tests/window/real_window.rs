@@ -170,3 +170,28 @@ fn a_screenshot_after_a_delay_waits_for_the_delay() {
     let shot_image = image::open(&shot).expect("the screenshot").to_rgb8();
     assert!(shot_image.width() >= 640, "the whole window");
 }
+
+/// `--observer`: the window opens with the observer view beside the image
+/// (the viewport then fills only the left half), and still finishes its
+/// render.
+#[test]
+#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
+fn the_window_opens_with_the_observer_on_when_asked() {
+    let dir = Scratch::new("window-observer");
+    let (plain, observed) = (dir.join("plain.png"), dir.join("observed.png"));
+    for (shot, extra) in [(&plain, None), (&observed, Some("--observer"))] {
+        let mut window = workbench(&dir);
+        window.args(["--scene", SCENE, "--screenshot"]).arg(shot);
+        window.args(extra);
+        let said = String::from_utf8_lossy(&run_bounded(window).stdout).into_owned();
+        assert!(said.contains("spp"), "{said}");
+    }
+    let plain = image::open(&plain).unwrap().to_rgb8();
+    let observed = image::open(&observed).unwrap().to_rgb8();
+    // Near the top left of the image area: the square render, which fills
+    // the area's height, in the plain window; with the observer beside it
+    // the render has half the width, and the background shows above it.
+    let probe = |shot: &RgbImage| shot.get_pixel(300, 20).0;
+    assert_ne!(probe(&plain), BACKGROUND, "the plain window's image");
+    assert_eq!(probe(&observed), BACKGROUND, "the halved image's margin");
+}

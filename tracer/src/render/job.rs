@@ -80,6 +80,10 @@ pub struct JobOptions {
     /// (batch scheduling on Linux, the lowest priority elsewhere), while
     /// render threads keep the share of the cores a headless render gets.
     pub yield_to_viewer: bool,
+    /// Render only in the time other work leaves (Linux's idle scheduling,
+    /// the lowest priority elsewhere): a second view beside the main render
+    /// (the window's observer) that must not slow it.
+    pub idle_priority: bool,
     /// Also measure the views (cost and what each pixel saw) into a
     /// [`ViewFilm`]; off, the render pays nothing for them.
     pub views: bool,
@@ -170,12 +174,14 @@ impl RenderJob {
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
         Frame::camera(&world, &settings)?;
-        let yield_to_viewer = options.yield_to_viewer;
+        let (yield_to_viewer, idle) = (options.yield_to_viewer, options.idle_priority);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads.unwrap_or(0))
             .thread_name(|i| format!("render-{i}"))
             .start_handler(move |_| {
-                if yield_to_viewer {
+                if idle {
+                    run_when_idle();
+                } else if yield_to_viewer {
                     yield_to_interactive_threads();
                 }
             })
@@ -467,6 +473,29 @@ fn yield_to_interactive_threads() {
                 ThreadSchedulePolicy::Normal(NormalThreadSchedulePolicy::Batch),
             );
         }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Min);
+    }
+}
+
+/// The calling render thread runs only when the cores have nothing else
+/// to do (see [`JobOptions::idle_priority`]).
+fn run_when_idle() {
+    #[cfg(target_os = "linux")]
+    {
+        use thread_priority::unix::{
+            NormalThreadSchedulePolicy, ThreadSchedulePolicy, set_thread_priority_and_policy,
+            thread_native_id,
+        };
+        // SCHED_IDLE takes no priority but the minimum (a crossplatform
+        // value is refused as out of its 0..=0 range).
+        let _ = set_thread_priority_and_policy(
+            thread_native_id(),
+            thread_priority::ThreadPriority::Min,
+            ThreadSchedulePolicy::Normal(NormalThreadSchedulePolicy::Idle),
+        );
     }
     #[cfg(not(target_os = "linux"))]
     {

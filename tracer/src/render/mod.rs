@@ -46,18 +46,43 @@ pub fn render(
     settings: RenderSettings,
     threads: Option<usize>,
 ) -> Result<(Film, RenderStats), RenderError> {
+    let (film, _, stats) = render_job(world, index, settings, threads, false)?;
+    Ok((film, stats))
+}
+
+/// [`render`] that also measures the views (cost and what each pixel
+/// saw): the same image, and its [`ViewFilm`].
+pub fn render_with_views(
+    world: Arc<World>,
+    index: Arc<SceneIndex>,
+    settings: RenderSettings,
+    threads: Option<usize>,
+) -> Result<(Film, ViewFilm, RenderStats), RenderError> {
+    let (film, views, stats) = render_job(world, index, settings, threads, true)?;
+    let views = views.ok_or_else(|| RenderError::Panicked("no views were measured".into()))?;
+    Ok((film, views, stats))
+}
+
+fn render_job(
+    world: Arc<World>,
+    index: Arc<SceneIndex>,
+    settings: RenderSettings,
+    threads: Option<usize>,
+    views: bool,
+) -> Result<(Film, Option<ViewFilm>, RenderStats), RenderError> {
     let job = RenderJob::start(
         world,
         Some(index),
         settings,
         JobOptions {
             threads,
+            views,
             ..JobOptions::default()
         },
     )?;
-    let (film, stats, state) = job.wait();
+    let (film, views, stats, state) = job.wait_with_views();
     match state {
         JobState::Failed(message) => Err(RenderError::Panicked(message)),
-        _ => Ok((film, stats)),
+        _ => Ok((film, views, stats)),
     }
 }

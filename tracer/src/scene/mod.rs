@@ -2,10 +2,12 @@
 //! anything is prepared for rendering. Parsing produces it, the P3F writer
 //! serialises it back, and [`crate::world::World`] is built from it.
 
+pub mod edit;
 mod error;
 mod lexer;
 mod limits;
 mod parse;
+mod rules;
 mod write;
 
 #[cfg(test)]
@@ -14,7 +16,7 @@ mod tests;
 pub use error::{ParseError, ParseErrorKind};
 pub use limits::Limits;
 pub use parse::{parse_scene, parse_scene_file};
-pub use write::write_p3f;
+pub use write::{write_p3f, write_p3f_in};
 
 use std::path::PathBuf;
 
@@ -139,6 +141,21 @@ pub enum Primitive {
         vertices: Vec<Vec3>,
         triangles: Vec<[u32; 3]>,
     },
+}
+
+impl Primitive {
+    /// What the inspector and the statistics call it: "sphere", "mesh", ...
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Primitive::Sphere { .. } => "sphere",
+            Primitive::Plane { .. } => "plane",
+            Primitive::Polygon { .. } => "polygon",
+            Primitive::Patch { .. } => "patch",
+            Primitive::Cone { .. } => "cone",
+            Primitive::Box { .. } => "box",
+            Primitive::Mesh { .. } => "mesh",
+        }
+    }
 }
 
 /// A primitive with the material in force when it was declared.

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use self::cursor::{Cursor, looks_numeric};
 use super::lexer::{Pos, Token};
-use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene};
+use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene, rules};
 
 /// Every command word, for telling a misspelt `v` field from the next
 /// command. `#` comments are removed by the lexer.
@@ -31,21 +31,8 @@ pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<S
     if size > limits.max_file_bytes {
         return Err(file_error(file, too_large(size, limits)));
     }
-    let mut parser = Parser {
-        cursor: Cursor::new(text, file),
-        limits,
-        scene: Scene::default(),
-        material: None,
-        primitives: 0,
-        view_given: false,
-    };
-    let mut commands = 0usize;
-    while let Some(token) = parser.cursor.next_token() {
-        parser.cursor.set_command(Some(token.text));
-        parser.command(token)?;
-        parser.cursor.set_command(None);
-        commands += 1;
-    }
+    let mut parser = Parser::new(text, file, limits);
+    let commands = parser.commands()?;
     if !parser.view_given && parser.scene.objects.is_empty() {
         let what = if commands == 0 {
             "the file holds no command (only comments or blank lines)"
@@ -60,6 +47,16 @@ pub fn parse_scene(text: &str, file: Option<&Path>, limits: &Limits) -> Result<S
         _ => Path::new(".").to_path_buf(),
     });
     Ok(scene)
+}
+
+/// Parses `text` as commands on a fresh document, without asking for a
+/// camera or an object: the P3F pieces an edit carries (`object 3 shape s
+/// 0 0 0 1`, `light 0 add l 1 2 3`), checked as a file's would be.
+pub(crate) fn parse_fragment(text: &str) -> Result<Scene, ParseError> {
+    let limits = Limits::default();
+    let mut parser = Parser::new(text, None, &limits);
+    parser.commands()?;
+    Ok(parser.scene)
 }
 
 /// Reads and parses a scene file. Bytes that are not UTF-8 (a Latin-1
@@ -121,6 +118,31 @@ struct Parser<'a, 'l> {
     /// Whether a `v` command came: a file with neither a camera nor an
     /// object is refused as empty.
     view_given: bool,
+}
+
+impl<'a, 'l> Parser<'a, 'l> {
+    fn new(text: &'a str, file: Option<&'a Path>, limits: &'l Limits) -> Self {
+        Parser {
+            cursor: Cursor::new(text, file),
+            limits,
+            scene: Scene::default(),
+            material: None,
+            primitives: 0,
+            view_given: false,
+        }
+    }
+
+    /// Reads every command; returns how many there were.
+    fn commands(&mut self) -> Result<usize, ParseError> {
+        let mut commands = 0usize;
+        while let Some(token) = self.cursor.next_token() {
+            self.cursor.set_command(Some(token.text));
+            self.command(token)?;
+            self.cursor.set_command(None);
+            commands += 1;
+        }
+        Ok(commands)
+    }
 }
 
 impl Parser<'_, '_> {
@@ -237,6 +259,11 @@ impl Parser<'_, '_> {
                 limit: limit.try_into().unwrap_or(u64::MAX),
             },
         )
+    }
+
+    /// A broken [`rules`] rule as an error at `pos`.
+    fn rule(&self, pos: Pos, rule: Result<(), rules::Invalid>) -> Result<(), ParseError> {
+        rule.map_err(|rules::Invalid { what, why }| self.invalid(pos, what, why))
     }
 
     fn invalid(&self, pos: Pos, what: &'static str, why: impl Into<String>) -> ParseError {

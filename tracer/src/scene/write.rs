@@ -2,6 +2,7 @@
 //! can be saved and a parsed scene can be checked by parsing it again.
 
 use std::fmt::{self, Display, Formatter};
+use std::path::Path;
 
 use glam::Vec3;
 
@@ -21,10 +22,61 @@ pub fn write_p3f(scene: &Scene) -> String {
     P3f(scene).to_string()
 }
 
+/// [`write_p3f`] for a file in `folder`: the skybox (`env`) is found
+/// relative to the scene file's folder, so a relative `env` of a scene
+/// from another folder is written as the absolute path of the same skybox.
+pub fn write_p3f_in(scene: &Scene, folder: &Path) -> String {
+    let same_folder = |base: &Path| match (base.canonicalize(), folder.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => base == folder,
+    };
+    let moved_env = match (&scene.env, &scene.base_dir) {
+        (Some(env), Some(base)) if Path::new(env).is_relative() && !same_folder(base) => {
+            std::path::absolute(base.join(env)).ok()
+        }
+        _ => None,
+    };
+    match moved_env.and_then(|p| p.to_str().map(str::to_owned)) {
+        Some(env) if !env.contains(char::is_whitespace) => {
+            let relocated = Scene {
+                env: Some(env),
+                ..scene.clone()
+            };
+            P3f(&relocated).to_string()
+        }
+        _ => P3f(scene).to_string(),
+    }
+}
+
+/// One light as its P3F command on one line: the text an edit that adds a
+/// light carries.
+pub(crate) fn light_command(light: &LightSpec) -> String {
+    one_line(|f| write_light(f, light))
+}
+
+/// One primitive as its P3F command on one line: the text an edit that
+/// replaces an object's geometry carries.
+pub(crate) fn primitive_command(primitive: &Primitive) -> String {
+    one_line(|f| write_primitive(f, primitive))
+}
+
+/// What `write` writes, its lines joined by single spaces (P3F does not
+/// care where a command's numbers break).
+fn one_line(write: impl Fn(&mut Formatter<'_>) -> fmt::Result) -> String {
+    struct Lines<F>(F);
+    impl<F: Fn(&mut Formatter<'_>) -> fmt::Result> Display for Lines<F> {
+        fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+            (self.0)(f)
+        }
+    }
+    let text = Lines(write).to_string();
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
 struct P3f<'a>(&'a Scene);
 
 /// A vector as three space-separated numbers.
-struct V(Vec3);
+pub(crate) struct V(pub Vec3);
 
 impl Display for V {
     fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
@@ -115,17 +167,27 @@ fn write_objects(f: &mut Formatter<'_>, materials: &[Material], objects: &[Objec
 
 /// Always the 11-number P3F form, which keeps the specular color.
 fn write_material(f: &mut Formatter<'_>, m: &Material) -> fmt::Result {
-    writeln!(
-        f,
-        "f {} {} {} {} {} {} {}",
-        V(m.diffuse),
-        m.kd,
-        V(m.specular),
-        m.ks,
-        m.shine,
-        m.transmittance,
-        m.ior
-    )
+    writeln!(f, "f {}", MaterialValues(m))
+}
+
+/// A material's 11 numbers as the P3F `f` line gives them.
+pub(crate) struct MaterialValues<'a>(pub &'a Material);
+
+impl Display for MaterialValues<'_> {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        let m = self.0;
+        write!(
+            f,
+            "{} {} {} {} {} {} {}",
+            V(m.diffuse),
+            m.kd,
+            V(m.specular),
+            m.ks,
+            m.shine,
+            m.transmittance,
+            m.ior
+        )
+    }
 }
 
 fn write_primitive(f: &mut Formatter<'_>, primitive: &Primitive) -> fmt::Result {

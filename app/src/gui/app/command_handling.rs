@@ -4,6 +4,7 @@
 
 use crate::gui::commands::Command;
 use crate::gui::comparison::Comparison;
+use crate::gui::editor::Pending;
 use crate::gui::sides::SideId;
 use crate::gui::windows::studies::Applied;
 use crate::load::SceneSource;
@@ -39,6 +40,7 @@ impl WorkbenchApp {
             }
             Command::ToggleBenchmark => self.tools.bench.open ^= true,
             Command::ToggleStudies => self.tools.studies.open ^= true,
+            Command::ToggleObserver => self.observer.on ^= true,
             Command::SwapSides => {
                 if !self.sides.swap() {
                     self.messages.notify("swap: turn compare mode on first (B)");
@@ -50,13 +52,7 @@ impl WorkbenchApp {
                         .notify("copy A to B: turn compare mode on first (B)");
                 }
             }
-            Command::Reload => match self.session.last_scene.clone() {
-                Some(source) => {
-                    self.sides.adopt_loaded_scene = false;
-                    self.sides.a.engine.load(source);
-                }
-                None => self.messages.notify("no scene to reload"),
-            },
+            Command::Reload => self.open_or_ask(Pending::Reload),
             Command::Open => {
                 if !self.dialogs.open() {
                     self.messages.notify("cannot open a file dialog");
@@ -64,6 +60,10 @@ impl WorkbenchApp {
             }
             Command::Save => self.save_dialog(false),
             Command::SaveExr => self.save_dialog(true),
+            Command::ToggleEditor => self.tools.editor.open ^= true,
+            Command::Undo => self.step_history(false),
+            Command::Redo => self.step_history(true),
+            Command::SaveScene => self.save_scene_dialog(self.sides.editing),
         }
     }
 

@@ -25,6 +25,7 @@ impl WorkbenchApp {
                 Reply::Open(path) => self.open(SceneSource::File(path)),
                 Reply::Notice(text) => self.messages.notify(text),
                 Reply::Error(text) => self.messages.error = Some(text),
+                Reply::SceneSaved { side, path, state } => self.scene_saved(side, &path, state),
                 Reply::Screenshot(result) => {
                     if let Some(request) = &self.screenshot
                         && let Ok(mut slot) = request.outcome.lock()
@@ -102,6 +103,7 @@ impl WorkbenchApp {
             let view = shown.map(|(view, _)| view);
             self.comparison.refresh(ctx, &self.sides.a, b, view);
         }
+        self.observer.refresh(ctx, &self.sides.a, interval);
     }
 
     /// Starts counting the bundled scenes for the list once A's first
@@ -122,8 +124,13 @@ impl WorkbenchApp {
     }
 
     fn update_title(&mut self, ctx: &egui::Context) {
+        let edited = if self.sides.each().any(|s| s.history.is_modified()) {
+            " *"
+        } else {
+            ""
+        };
         let title = match self.sides.a.engine.scene() {
-            Some(s) => format!("Whitted Workbench — {}", s.source.label()),
+            Some(s) => format!("Whitted Workbench — {}{edited}", s.source.label()),
             None => "Whitted Workbench".into(),
         };
         if title != self.title {
@@ -148,6 +155,7 @@ impl WorkbenchApp {
                 self.messages.error = Some(e);
             }
         }
+        self.keep_observing(ctx);
         if let Some(failure) = self.sides.a.engine.take_failure() {
             self.messages.error = Some(format!(
                 "the render failed: {failure}. The image so far stays; change a setting or \
@@ -158,6 +166,32 @@ impl WorkbenchApp {
         if let Some(request) = &mut self.screenshot {
             let error = self.messages.error.is_some();
             request.take_when_due(ctx, &self.sides.a, error, &self.dialogs);
+        }
+    }
+
+    /// Keeps the observer rendering A's scene from its camera, its trees
+    /// those of the pinned pixel (and pattern) on each side, its animation
+    /// moving.
+    fn keep_observing(&mut self, ctx: &egui::Context) {
+        let sides: Vec<&crate::gui::sides::Side> = self
+            .sides
+            .each()
+            .filter(|s| {
+                s.id == crate::gui::sides::SideId::A || self.comparison.reference().is_none()
+            })
+            .collect();
+        let inspector = &self.tools.inspector;
+        self.observer
+            .record(&sides, inspector.pinned, inspector.sample);
+        if let Err(e) = self.observer.sync(&self.sides.a) {
+            self.messages.error = Some(format!("the observer view: {e}"));
+        }
+        if self
+            .observer
+            .animation
+            .advance(std::time::Instant::now(), self.observer.phases())
+        {
+            ctx.request_repaint();
         }
     }
 

@@ -5,6 +5,7 @@
 //! keeps the engines rendering them.
 
 mod command_handling;
+mod editing;
 mod logic;
 mod messages;
 mod navigation;
@@ -17,6 +18,8 @@ use crate::load::SceneSource;
 
 use super::commands::Command;
 use super::comparison::Comparison;
+use super::editor;
+use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
 use super::panels::{central, stats, unfilled};
@@ -40,6 +43,8 @@ pub struct WorkbenchApp {
     messages: Messages,
     dialogs: Dialogs,
     pacing: Pacing,
+    /// The scene seen from outside.
+    observer: Observer,
     /// The title last given to the window, to send it only when it changes
     /// (every viewport command asks for one more frame).
     title: String,
@@ -57,8 +62,10 @@ impl WorkbenchApp {
     ) -> Self {
         let (controls, session) = persisted::restore(storage);
         let pacing = Pacing::default();
+        let wakes = Wakes::of(ctx, &pacing.progress_pace);
         let mut app = Self {
-            sides: Sides::new(controls, Wakes::of(ctx, &pacing.progress_pace)),
+            observer: Observer::new(&wakes),
+            sides: Sides::new(controls, wakes),
             comparison: Comparison::default(),
             navigation: Navigation::default(),
             tools: Tools::default(),
@@ -96,10 +103,32 @@ impl WorkbenchApp {
         self
     }
 
-    /// Starts loading a scene as the user would open it.
+    /// Turns the observer view on or off, as O does.
+    pub fn show_observer(&mut self, on: bool) {
+        self.observer.on = on;
+    }
+
+    /// Opens a scene as the user would: first asking, when edits are
+    /// unsaved, whether to throw them away.
     pub fn open(&mut self, source: SceneSource) {
+        self.open_or_ask(editor::Pending::Open(source));
+    }
+
+    /// Starts loading `source`, which A's controls adopt.
+    fn open_now(&mut self, source: SceneSource) {
         self.sides.adopt_loaded_scene = true;
         self.sides.a.engine.load(source);
+    }
+
+    /// Reads the current scene file again, keeping the controls.
+    fn reload_now(&mut self) {
+        match self.session.last_scene.clone() {
+            Some(source) => {
+                self.sides.adopt_loaded_scene = false;
+                self.sides.a.engine.load(source);
+            }
+            None => self.messages.notify("no scene to reload"),
+        }
     }
 
     /// The side panel: scene, settings of the side being edited, views.
@@ -123,6 +152,7 @@ impl WorkbenchApp {
             paused,
             views: &mut self.tools.views,
             overlay: &mut self.tools.overlay,
+            observer: &mut self.observer,
         };
         let mut picked = None;
         egui::Panel::left("controls")
@@ -163,11 +193,13 @@ impl WorkbenchApp {
             tools: &mut self.tools,
             error: &mut self.messages.error,
             moving,
+            observer: &mut self.observer,
         };
-        let outcome = egui::CentralPanel::default()
+        let mut outcome = egui::CentralPanel::default()
             .frame(unfilled(egui::Frame::central_panel(ui.style())))
             .show(ui, |ui| central::show(ui, view))
             .inner;
+        self.move_selected(&mut outcome.viewport);
         let scene = self.sides.a.engine.scene().map(|s| &s.scene);
         self.navigation.take(&outcome.viewport, scene);
         for id in outcome.switch_to_bvh {
@@ -177,12 +209,10 @@ impl WorkbenchApp {
         }
     }
 
-    /// The windows over the image: help, ray tree, benchmark, studies.
-    fn tool_windows(&mut self, ctx: &egui::Context) {
+    /// The windows over the image: help, the editor, benchmark, studies.
+    fn tool_windows(&mut self, ctx: &egui::Context, commands: &mut Vec<Command>) {
         help::window(ctx, &mut self.tools.help_open);
-        let b = self.sides.b.as_ref().map(|b| &b.engine);
-        self.tools.inspector.update(&self.sides.a.engine, b);
-        self.tools.inspector.window(ctx, b.is_some());
+        self.editor_window(ctx, commands);
         self.benchmark_window(ctx);
         self.studies_window(ctx);
     }
@@ -205,9 +235,12 @@ impl eframe::App for WorkbenchApp {
         let mut commands = Command::pressed(&ctx);
         self.side_panel(ui, &mut commands);
         self.statistics_panel(ui);
+        let b = self.sides.b.as_ref().map(|b| &b.engine);
+        self.tools.inspector.update(&self.sides.a.engine, b);
+        self.tools.inspector.panel(ui, b.is_some());
         self.central_panel(ui);
         self.messages.show_notice(&ctx);
-        self.tool_windows(&ctx);
+        self.tool_windows(&ctx, &mut commands);
         for command in commands {
             self.run_command(command);
         }

@@ -1,15 +1,19 @@
 //! Files in and out: the native open and save dialogs on threads of their
-//! own (the UI keeps drawing), the PNG and EXR writes, and `--screenshot`.
+//! own (the UI keeps drawing), the PNG, EXR and edited-scene writes, and
+//! `--screenshot`.
 //! Their results come back to the UI thread as [`Reply`]s.
 
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
 
+use anyhow::Context as _;
 use tracer::render::{JobState, Snapshot};
+use tracer::scene::{Scene, write_p3f_in};
 
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
-use crate::gui::sides::{Activity, Side};
+use crate::gui::sides::{Activity, Side, SideId};
+use crate::load::SceneSource;
 use crate::output::{save_exr, save_png};
 
 /// Results of background dialogs and saves, delivered to the UI thread.
@@ -19,6 +23,48 @@ pub enum Reply {
     Error(String),
     /// The line to print once the screenshot is saved, or why it was not.
     Screenshot(Result<String, String>),
+    /// A side's scene, as it stood in history state `state`, is in `path`.
+    SceneSaved {
+        side: SideId,
+        path: PathBuf,
+        state: u64,
+    },
+}
+
+/// An edited scene to write: which side's, and its history state then.
+pub struct SceneSave {
+    pub scene: Scene,
+    pub side: SideId,
+    pub state: u64,
+}
+
+impl SceneSave {
+    /// The scene as P3F in `path`, its skybox still found from there.
+    pub fn write(&self, path: &Path) -> anyhow::Result<()> {
+        let folder = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        std::fs::write(path, write_p3f_in(&self.scene, folder))
+            .with_context(|| format!("cannot write the scene to {}", path.display()))
+    }
+
+    /// The name a save dialog offers: `<stem>-edited.p3f` beside the
+    /// scene's file (the current folder for a bundled scene).
+    pub fn suggested(&self, source: &SceneSource) -> (PathBuf, String) {
+        let stem = Path::new(&source.label())
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+        let stem = stem.strip_suffix("-edited").unwrap_or(&stem).to_string();
+        let folder = match source {
+            SceneSource::File(path) => path.parent().map(Path::to_path_buf),
+            _ => None,
+        };
+        (
+            folder.unwrap_or_else(|| PathBuf::from(".")),
+            format!("{stem}-edited.p3f"),
+        )
+    }
 }
 
 /// What a save writes: the shown render (PNG) or the linear film (EXR).
@@ -117,6 +163,39 @@ impl Dialogs {
                 };
                 let _ = reply.send(match image.write(&path) {
                     Ok(()) => Reply::Notice(format!("saved {}", path.display())),
+                    Err(e) => Reply::Error(format!("{e:#}")),
+                });
+            })
+            .is_ok()
+    }
+}
+
+impl Dialogs {
+    /// The native save dialog for an edited scene from `source`, and the
+    /// write; false when no thread could be started.
+    pub fn save_scene(&self, save: SceneSave, source: &SceneSource) -> bool {
+        let (folder, name) = save.suggested(source);
+        let reply = self.sender.clone();
+        std::thread::Builder::new()
+            .name("save-scene-dialog".into())
+            .spawn(move || {
+                let Some(path) = rfd::FileDialog::new()
+                    .add_filter("P3F scene", &["p3f"])
+                    .set_directory(folder)
+                    .set_file_name(name)
+                    .save_file()
+                else {
+                    let _ = reply.send(Reply::Notice(
+                        "scene not saved (cancelled, or no file dialog on this desktop)".into(),
+                    ));
+                    return;
+                };
+                let _ = reply.send(match save.write(&path) {
+                    Ok(()) => Reply::SceneSaved {
+                        side: save.side,
+                        path,
+                        state: save.state,
+                    },
                     Err(e) => Reply::Error(format!("{e:#}")),
                 });
             })

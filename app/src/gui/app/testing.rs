@@ -5,12 +5,15 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use tracer::render::Snapshot;
+use tracer::scene::edit::{Edit, Effect};
 
 use super::WorkbenchApp;
 use super::saving::SaveImage;
 use crate::gui::comparison::Comparison;
+use crate::gui::editor::Editor;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::observer::Observer;
 use crate::gui::sides::{Controls, Engine, Side};
 use crate::gui::windows::benchmark::BenchWindow;
 use crate::gui::windows::ray_tree::Inspector;
@@ -40,6 +43,17 @@ impl WorkbenchApp {
     /// The comparison, while comparing.
     pub fn comparison(&self) -> Option<&Comparison> {
         self.sides.b.as_ref().map(|_| &self.comparison)
+    }
+
+    /// The observer view.
+    pub fn observer(&self) -> &Observer {
+        &self.observer
+    }
+
+    /// The observer also draws the rays of row `y`'s pixels, as its
+    /// panel's "More pixels" does.
+    pub fn observer_pattern_row(&mut self, y: u32) {
+        self.observer.pattern = Some(crate::measure::observer::PixelPattern::Row(y));
     }
 
     /// The per-pixel view the images show.
@@ -138,5 +152,38 @@ impl WorkbenchApp {
             let encoding = self.sides.a.controls.encoding();
             self.comparison.open_reference(path, encoding);
         }
+    }
+
+    /// The scene editor: its selection and what waits on unsaved edits.
+    pub fn editor(&self) -> &Editor {
+        &self.tools.editor
+    }
+
+    /// The scene editor, as its window changes it.
+    pub fn editor_mut(&mut self) -> &mut Editor {
+        &mut self.tools.editor
+    }
+
+    /// Applies `edit` to the edited side's scene, as the editor window
+    /// does with a field changed.
+    pub fn edit(&mut self, edit: Edit) -> Result<Effect, String> {
+        self.sides.active_mut().edit(edit)
+    }
+
+    /// Writes the edited side's scene to `path`, as Save scene does with
+    /// the file picked.
+    pub fn save_scene_to(&mut self, path: &Path) -> anyhow::Result<()> {
+        let side = self.sides.editing;
+        let (save, _) = self
+            .scene_to_save(side)
+            .ok_or_else(|| anyhow::anyhow!("no scene"))?;
+        save.write(path)?;
+        self.scene_saved(side, path, save.state);
+        Ok(())
+    }
+
+    /// The window's title as last sent.
+    pub fn title(&self) -> &str {
+        &self.title
     }
 }

@@ -48,7 +48,7 @@ impl StructureOverlay {
     }
 
     /// The layer for the structure `engine` renders with, if it has one.
-    fn layer(&self, kind: AccelKind) -> Option<StructureLayer> {
+    pub fn layer(&self, kind: AccelKind) -> Option<StructureLayer> {
         match kind {
             AccelKind::Bvh if self.leaves => Some(StructureLayer::BvhLeaves),
             AccelKind::Bvh => Some(StructureLayer::BvhDepth(self.depth)),

@@ -95,11 +95,23 @@ pub fn show(
     image_size: [usize; 2],
     full_size: [u32; 2],
 ) -> ViewportResponse {
+    show_named(ui, "Render", view, layers, split, image_size, full_size)
+}
+
+/// [`show`] for an image named `name` for screen readers (and for tests
+/// that look for it): "Render", "Observer".
+pub fn show_named(
+    ui: &mut egui::Ui,
+    name: &str,
+    view: &mut Placement,
+    layers: &Layers<'_>,
+    split: Option<SplitWith<'_>>,
+    image_size: [usize; 2],
+    full_size: [u32; 2],
+) -> ViewportResponse {
     let rect = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(rect, Sense::click_and_drag());
-    // Named for screen readers (and for tests that look for the image).
-    response
-        .widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Image, true, "Render"));
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Image, true, name));
     let mut out = ViewportResponse::default();
 
     // The displayed size follows the full-resolution render, so a preview

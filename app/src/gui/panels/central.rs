@@ -2,13 +2,15 @@
 //! sides as the comparison's layout shows them), what is drawn over it,
 //! and the status line with the readout of the pixel under the cursor.
 
-use egui::Ui;
+use egui::{Rect, Ui, pos2};
 use tracer::render::JobState;
 
 use super::banners;
 use crate::gui::comparison::{Comparison, Layout};
+use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::image::viewport::{self, Layers, Placement, SplitWith, ViewportResponse};
 use crate::gui::image::{pixel_views, ray_paths};
+use crate::gui::observer::{self, Observer, ObserverLayout};
 use crate::gui::sides::{Activity, Side, SideId, Sides};
 use crate::gui::windows::Tools;
 
@@ -26,6 +28,7 @@ pub struct CentralView<'a> {
     pub error: &'a mut Option<String>,
     /// The camera moves: the status line says the image is a preview.
     pub moving: bool,
+    pub observer: &'a mut Observer,
 }
 
 /// What the user did in the image area.
@@ -44,6 +47,7 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
         tools,
         error,
         moving,
+        observer,
     } = view;
     banners::error(ui, error);
     let switch_to_bvh = sides
@@ -66,23 +70,42 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
     );
     let mut area = ui.available_rect_before_wrap();
     area.max.y -= STATUS_HEIGHT;
+    let (main_area, observer_area) = match (observer.on, observer.layout) {
+        (false, _) => (Some(area), None),
+        (true, ObserverLayout::Instead) => (None, Some(area)),
+        (true, ObserverLayout::Beside) => {
+            let middle = area.center().x;
+            (
+                Some(Rect::from_min_max(area.min, pos2(middle - 2.0, area.max.y))),
+                Some(Rect::from_min_max(pos2(middle + 2.0, area.min.y), area.max)),
+            )
+        }
+    };
     let flip_held = ui.input(|i| i.key_down(FLIP_KEY));
-    let response = ui
-        .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
-            let images = Images {
-                placement,
-                size,
-                full,
-            };
-            match &sides.b {
-                None => images.show(ui, &a.image.layers(), None),
-                Some(b) => images.compared(ui, comparison, a, b, flip_held),
-            }
-        })
-        .inner;
+    let response = match main_area {
+        Some(main_area) => {
+            ui.scope_builder(egui::UiBuilder::new().max_rect(main_area), |ui| {
+                let images = Images {
+                    placement,
+                    size,
+                    full,
+                };
+                match &sides.b {
+                    None => images.show(ui, &a.image.layers(), None),
+                    Some(b) => images.compared(ui, comparison, a, b, flip_held),
+                }
+            })
+            .inner
+        }
+        None => ViewportResponse::default(),
+    };
+    if let Some(observer_area) = observer_area {
+        show_observer(ui, observer_area, observer, a, &tools.overlay);
+    }
     if let Some(rect) = response.image_rect {
         let visits = tools.inspector.eye_visits();
         tools.overlay.paint(ui, &a.engine, rect, visits);
+        tools.editor.paint_outline(ui, &sides.active().engine, rect);
         tools.inspector.paths_drawn = match tools.inspector.tree(0) {
             Some(Ok(tree)) => ray_paths::paint(ui, tree, &a.engine, rect),
             _ => 0,
@@ -92,6 +115,9 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
         && ui.input(|i| i.pointer.primary_clicked())
     {
         tools.inspector.pin(pixel);
+        if tools.editor.open {
+            tools.editor.pick_at = Some(pixel);
+        }
     }
     ui.horizontal(|ui| {
         ui.label(status_line(a, moving || response.dragging_camera));
@@ -105,6 +131,37 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
         viewport: response,
         switch_to_bvh,
     }
+}
+
+/// The observer's image in `area`, the figure over it, and its gestures
+/// (which move the observer's camera only).
+fn show_observer(
+    ui: &mut Ui,
+    area: Rect,
+    observer: &mut Observer,
+    a: &Side,
+    overlay: &StructureOverlay,
+) {
+    let size = observer
+        .image
+        .shown()
+        .map_or([0, 0], |s| [s.width as usize, s.height as usize]);
+    let full = [size[0].max(1) as u32, size[1].max(1) as u32];
+    let response = ui
+        .scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
+            let layers = observer.image.layers();
+            let mut placement = observer.placement;
+            let response =
+                viewport::show_named(ui, "Observer", &mut placement, &layers, None, size, full);
+            observer.placement = placement;
+            response
+        })
+        .inner;
+    observer.take(&response, area);
+    observer.segments_drawn = match response.image_rect {
+        Some(rect) => observer::paint(ui, rect, observer, a, overlay),
+        None => 0,
+    };
 }
 
 /// The slow-render banner of a side that runs brute force over a large

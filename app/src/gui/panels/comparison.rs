@@ -15,14 +15,51 @@ use crate::measure::heatmap_image::format_number;
 use crate::measure::value_difference::{ValueStats, diverging_colour};
 
 /// "A: grid off", "B: grid on, m = 4": what differs between the sides
-/// (or what A is, beside B's image).
+/// (or what A is, beside B's image), and the scene edits one side has and
+/// the other has not ("B: sphere #2 T 0.9").
 pub fn labels(comparison: &Comparison, a: &Side, b: &Side) -> Option<(String, String)> {
-    let a = a.settings()?;
+    let settings_a = a.settings()?;
     if let Some(reference) = comparison.reference() {
-        return Some((format!("A: {}", describe(a)), reference.label()));
+        return Some((format!("A: {}", describe(settings_a)), reference.label()));
     }
-    let (a, b) = side_labels(a, b.settings()?);
-    Some((format!("A: {a}"), format!("B: {b}")))
+    let (label_a, label_b) = side_labels(settings_a, b.settings()?);
+    let edits = |side: &Side| {
+        side.engine
+            .scene()
+            .map_or_else(Vec::new, |s| side.history.describe(&s.scene))
+    };
+    let (edits_a, edits_b) = (edits(a), edits(b));
+    let shared = edits_a
+        .iter()
+        .zip(&edits_b)
+        .take_while(|(x, y)| x == y)
+        .count();
+    Some((
+        format!("A: {}", with_edits(label_a, &edits_a[shared..])),
+        format!("B: {}", with_edits(label_b, &edits_b[shared..])),
+    ))
+}
+
+/// How many of a side's own edits its label names.
+const EDITS_NAMED: usize = 3;
+
+/// `settings` and then `edits` (the last few, with how many more).
+fn with_edits(settings: String, edits: &[String]) -> String {
+    if edits.is_empty() {
+        return settings;
+    }
+    let shown = &edits[edits.len().saturating_sub(EDITS_NAMED)..];
+    let more = edits.len() - shown.len();
+    let mut text = if settings == "same settings" {
+        String::new()
+    } else {
+        format!("{settings}; ")
+    };
+    if more > 0 {
+        text.push_str(&format!("{more} edits, then "));
+    }
+    text.push_str(&shown.join(", "));
+    text
 }
 
 /// Above the images in compare mode: the layout, B as an image, what each

@@ -6,6 +6,7 @@
 pub mod banners;
 pub mod central;
 pub mod comparison;
+pub mod observer;
 pub mod scene_list;
 pub mod settings;
 pub mod side_panel;

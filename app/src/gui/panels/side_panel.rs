@@ -12,6 +12,7 @@ use super::settings::{self, command_button, command_toggle};
 use crate::gui::commands::Command;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::observer::Observer;
 use crate::gui::sides::{Controls, SideId};
 use crate::load::SceneSource;
 
@@ -28,6 +29,7 @@ pub struct SidePanelView<'a> {
     pub paused: bool,
     pub views: &'a mut PixelViews,
     pub overlay: &'a mut StructureOverlay,
+    pub observer: &'a mut Observer,
 }
 
 /// Draws the panel's contents; returns the scene the user picked.
@@ -61,6 +63,8 @@ pub fn show(
     ui.separator();
     view.views.ui(ui, comparing);
     view.overlay.ui(ui);
+    ui.separator();
+    super::observer::show(ui, view.observer, commands);
     ui.separator();
     command_button(ui, Command::ToggleHelp, commands);
     picked

@@ -6,15 +6,18 @@
 
 mod controls;
 mod engine;
+mod history;
 mod live_image;
 
 use std::sync::Arc;
 
 use tracer::camera::CameraPose;
 use tracer::render::{RenderSettings, View, ViewHeatmap};
+use tracer::scene::edit::{Edit, Effect};
 
 pub use controls::Controls;
 pub use engine::{Activity, Engine, LoadedScene, Version, Wake};
+pub use history::History;
 pub use live_image::LiveImage;
 
 use super::platform::frame_meter::ProgressPace;
@@ -44,6 +47,11 @@ pub struct Wakes {
 }
 
 impl Wakes {
+    /// An engine that wakes the window so.
+    pub fn engine(&self) -> Engine {
+        Engine::with_wakes(self.paced.clone(), self.now.clone())
+    }
+
     /// Wakes that redraw `ctx` at `pace` (and at once for last passes).
     pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
         let (paced_ctx, now_ctx, pace) = (ctx.clone(), ctx.clone(), pace.clone());
@@ -60,6 +68,8 @@ pub struct Side {
     pub engine: Engine,
     pub image: LiveImage,
     pub controls: Controls,
+    /// The edits of this side's scene.
+    pub history: History,
     /// This frame's settings, made once per frame by [`Side::plan`].
     plan: Option<Plan>,
 }
@@ -77,14 +87,74 @@ impl Side {
     fn new(id: SideId, controls: Controls, wakes: &Wakes) -> Self {
         Self {
             id,
-            engine: Engine::with_wakes(wakes.paced.clone(), wakes.now.clone()),
+            engine: wakes.engine(),
             image: LiveImage::new(match id {
                 SideId::A => "render A",
                 SideId::B => "render B",
             }),
             controls,
+            history: History::default(),
             plan: None,
         }
+    }
+
+    /// Applies `edit` to this side's scene, renders again (keeping the
+    /// structure unless the edit moved shapes) and records it for undo.
+    /// A refused edit changes nothing and says why.
+    pub fn edit(&mut self, edit: Edit) -> Result<Effect, String> {
+        let inverse = self.apply(&edit)?;
+        self.history.push(edit.clone(), inverse);
+        Ok(edit.kind())
+    }
+
+    /// Undoes the last step; `None` when there is none.
+    pub fn undo(&mut self) -> Result<Option<Effect>, String> {
+        let Some(inverse) = self.history.undo() else {
+            return Ok(None);
+        };
+        match self.apply(&inverse) {
+            Ok(_) => Ok(Some(inverse.kind())),
+            Err(why) => {
+                self.history.refused(true);
+                Err(why)
+            }
+        }
+    }
+
+    /// Redoes the last undone step; `None` when there is none.
+    pub fn redo(&mut self) -> Result<Option<Effect>, String> {
+        let Some(edit) = self.history.redo() else {
+            return Ok(None);
+        };
+        match self.apply(&edit) {
+            Ok(_) => Ok(Some(edit.kind())),
+            Err(why) => {
+                self.history.refused(false);
+                Err(why)
+            }
+        }
+    }
+
+    /// `edit` on a copy of the scene and world, which then replace them;
+    /// returns its inverse. A lens edit is the lens the side renders with,
+    /// as the command line's `--set` is.
+    fn apply(&mut self, edit: &Edit) -> Result<Edit, String> {
+        let loaded = self.engine.scene().ok_or("there is no scene to edit")?;
+        let mut scene = loaded.scene.clone();
+        let inverse = edit.apply(&mut scene).map_err(|e| e.to_string())?;
+        let mut world = (*loaded.world).clone();
+        world.update(&scene, edit);
+        if edit.kind() == Effect::Camera {
+            self.controls.follow_lens(&scene.view);
+        }
+        let edited = LoadedScene {
+            scene,
+            world: Arc::new(world),
+            ..loaded.clone()
+        };
+        self.engine
+            .edit_scene(edited, edit.kind() != Effect::Geometry);
+        Ok(inverse)
     }
 
     /// Makes this frame's settings from the controls, the scene and the
@@ -170,6 +240,14 @@ impl Sides {
     }
 
     /// The side the panel edits.
+    pub fn active(&self) -> &Side {
+        match (&self.b, self.editing) {
+            (Some(b), SideId::B) => b,
+            _ => &self.a,
+        }
+    }
+
+    /// The side the panel edits.
     pub fn active_mut(&mut self) -> &mut Side {
         match (&mut self.b, self.editing) {
             (Some(b), SideId::B) => b,
@@ -188,6 +266,7 @@ impl Sides {
         if let Some(scene) = self.a.engine.scene() {
             b.engine.show(scene.clone());
         }
+        b.history = self.a.history.clone();
         b.engine.set_paused(self.a.engine.is_paused());
         self.b = Some(b);
         self.editing = SideId::B;
@@ -204,22 +283,27 @@ impl Sides {
         true
     }
 
-    /// Gives B the controls of A; false without B.
+    /// Gives B the controls of A, and A's scene with its edits; false
+    /// without B.
     pub fn copy_a_to_b(&mut self) -> bool {
-        match &mut self.b {
-            Some(b) => {
-                b.controls = self.a.controls.clone();
-                true
-            }
-            None => false,
+        let Some(b) = &mut self.b else {
+            return false;
+        };
+        b.controls = self.a.controls.clone();
+        if let Some(scene) = self.a.engine.scene() {
+            b.engine.show(scene.clone());
         }
+        b.history = self.a.history.clone();
+        true
     }
 
-    /// A opened `scene`: B shows it too.
+    /// A opened `scene`: B shows it too, and neither has edits.
     pub fn follow_scene(&mut self, scene: &LoadedScene) {
+        self.a.history.reset();
         if let Some(b) = &mut self.b {
             b.engine.show(scene.clone());
             b.image.forget();
+            b.history.reset();
         }
     }
 }

@@ -12,6 +12,7 @@ use benchmark::BenchWindow;
 use ray_tree::Inspector;
 use studies::StudiesWindow;
 
+use super::editor::Editor;
 use super::image::pixel_views::PixelViews;
 use super::image::structure_overlay::StructureOverlay;
 
@@ -27,4 +28,6 @@ pub struct Tools {
     /// Which per-pixel view the images show.
     pub views: PixelViews,
     pub help_open: bool,
+    /// The scene editor and its selection.
+    pub editor: Editor,
 }

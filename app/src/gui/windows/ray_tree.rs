@@ -1,4 +1,4 @@
-//! The ray-tree inspector panel: click a pixel to pin it; its sample's
+//! The ray-tree inspector, docked under the image: click a pixel to pin it; its sample's
 //! tree of rays is recorded again whenever the settings change, so a user
 //! toggles soft shadows or the grid and watches the tree change. In compare
 //! mode the same pixel is inspected on A and B.
@@ -25,7 +25,9 @@ pub struct Inspector {
 
 /// A tree and what it was recorded for.
 struct Inspected {
-    of: (RenderSettings, (u32, u32), u32),
+    /// The settings, the world (its address: an edit makes another), the
+    /// pixel and the sample.
+    of: (RenderSettings, usize, (u32, u32), u32),
     tree: Result<RayTree, String>,
 }
 
@@ -67,7 +69,8 @@ impl Inspector {
                 *slot = None;
                 continue;
             };
-            let of = (settings.clone(), pixel, self.sample);
+            let world = std::sync::Arc::as_ptr(&scene.world) as usize;
+            let of = (settings.clone(), world, pixel, self.sample);
             if slot.as_ref().is_some_and(|s| s.of == of) {
                 continue;
             }
@@ -83,39 +86,52 @@ impl Inspector {
         }
     }
 
-    /// The inspector window, open while a pixel is pinned.
-    pub fn window(&mut self, ctx: &egui::Context, comparing: bool) {
+    /// The ray tree docked under the image while a pixel is pinned, so the
+    /// image, the rays drawn over it, the tree and the observer show
+    /// together; A's and B's trees side by side in compare mode.
+    pub fn panel(&mut self, ui: &mut Ui, comparing: bool) {
         let Some((x, y)) = self.pinned else {
             return;
         };
-        let mut open = true;
-        egui::Window::new("Ray tree")
-            .open(&mut open)
-            .default_width(520.0)
-            .show(ctx, |ui| {
+        let mut close = false;
+        egui::Panel::bottom("ray_tree")
+            .resizable(true)
+            .default_size(220.0)
+            .show(ui, |ui| {
                 ui.horizontal(|ui| {
-                    ui.label(format!("Pixel ({x}, {y}), sample"));
+                    ui.strong("Ray tree");
+                    ui.label(format!("pixel ({x}, {y}), sample"));
                     ui.add(egui::DragValue::new(&mut self.sample).range(0..=4095));
+                    ui.small("Click another pixel to inspect it; the tree follows every setting.");
+                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                        close = ui.small_button("Close").clicked();
+                    });
                 });
-                ui.small("Click another pixel to inspect it; the tree follows every setting.");
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    for side in 0..if comparing { 2 } else { 1 } {
-                        if comparing {
-                            ui.strong(if side == 0 { "A" } else { "B" });
-                        }
-                        match self.tree(side) {
-                            Some(Ok(tree)) => show_tree(ui, tree, side),
-                            Some(Err(e)) => {
-                                ui.colored_label(ui.visuals().error_fg_color, e);
-                            }
-                            None => {
-                                ui.label("waiting for the scene");
-                            }
-                        }
+                let sides = if comparing { 2 } else { 1 };
+                ui.columns(sides, |columns| {
+                    for (side, ui) in columns.iter_mut().enumerate() {
+                        // Both ways: a long line scrolls inside its column
+                        // instead of running over the other side's.
+                        egui::ScrollArea::both()
+                            .id_salt(("ray_tree", side))
+                            .show(ui, |ui| {
+                                if comparing {
+                                    ui.strong(if side == 0 { "A" } else { "B" });
+                                }
+                                match self.tree(side) {
+                                    Some(Ok(tree)) => show_tree(ui, tree, side),
+                                    Some(Err(e)) => {
+                                        ui.colored_label(ui.visuals().error_fg_color, e);
+                                    }
+                                    None => {
+                                        ui.label("waiting for the scene");
+                                    }
+                                }
+                            });
                     }
                 });
             });
-        if !open {
+        if close {
             self.pinned = None;
         }
     }

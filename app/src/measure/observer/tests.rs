@@ -209,7 +209,7 @@ fn a_segment_behind_a_sphere_is_hidden_from_the_observer() {
             .all(|(_, h)| !*h)
     );
     // Framing fits the scene camera in the observer's view.
-    let framed = framing(&world, &scene_camera, 40.0);
+    let framed = framing(&world, &scene_camera, 40.0, 0.75);
     let framed_settings = RenderSettings {
         camera: Some(framed),
         ..settings

@@ -25,6 +25,19 @@ pub fn series(points: &[Point], accel: AccelKind) -> Vec<&Point> {
     series
 }
 
+/// The neighbouring points of the first structure between which `count`
+/// falls the most, if it falls anywhere: where a material study's rays
+/// change most (refraction lost to total internal reflection).
+pub fn steepest_fall(points: &[Point], count: impl Fn(&Point) -> u64) -> Option<(&Point, &Point)> {
+    let accel = *structures(points).first()?;
+    let series = series(points, accel);
+    series
+        .windows(2)
+        .map(|pair| (pair[0], pair[1]))
+        .filter(|(a, b)| count(b) < count(a))
+        .max_by_key(|(a, b)| count(a) - count(b))
+}
+
 /// Why a point is marked best.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Best {

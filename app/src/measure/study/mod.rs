@@ -6,6 +6,7 @@
 //! error against a high-N reference of the same scene.
 
 pub mod analysis;
+mod material;
 pub mod plot;
 pub mod report;
 pub mod values;
@@ -21,10 +22,13 @@ use tracer::accel::AccelKind;
 use tracer::generate::{self, GenerateOptions, GeneratorName};
 use tracer::render::{Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings};
 use tracer::scene::Scene;
+use tracer::scene::edit::{Edit, ObjectChange};
 use tracer::world::World;
 
 use crate::measure::ab::{self, Heatmap, Metrics};
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
+
+pub use material::Knob;
 
 /// The setting a study sweeps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -43,6 +47,9 @@ pub enum Param {
     Resolution,
     /// The level of a generated scene (its size).
     Level,
+    /// A numeric field of one object's material (`object:5:ior`), edited
+    /// as `--set 'object 5 ior V'` would; the structure is built once.
+    Material { object: u32, field: Knob },
 }
 
 impl Param {
@@ -66,6 +73,7 @@ impl Param {
             Param::Aperture => "aperture",
             Param::Resolution => "resolution",
             Param::Level => "level",
+            Param::Material { field, .. } => field.name(),
         }
     }
 
@@ -79,6 +87,7 @@ impl Param {
             Param::Aperture => "aperture (pixels)",
             Param::Resolution => "image width (pixels)",
             Param::Level => "primitives",
+            Param::Material { field, .. } => field.axis(),
         }
     }
 
@@ -104,6 +113,8 @@ impl Param {
             Param::LightSize | Param::Aperture => (0.0, f64::from(f32::MAX)),
             Param::Resolution => (1.0, f64::from(MAX_IMAGE_SIDE)),
             Param::Level => (0.0, f64::from(u32::MAX)),
+            // The edit checks its value against the material it changes.
+            Param::Material { .. } => (f64::MIN, f64::MAX),
         };
         if !(low..=high).contains(&value) {
             let range = match self {
@@ -141,7 +152,19 @@ impl Param {
                 settings.width = value as u32;
                 settings.height = ((value * aspect).round() as u32).max(1);
             }
-            Param::Level => {}
+            Param::Level | Param::Material { .. } => {}
+        }
+    }
+
+    /// The scene edit of a material study's point (none for the others,
+    /// which change settings).
+    pub fn edit(self, value: f64) -> Option<Edit> {
+        match self {
+            Param::Material { object, field } => Some(Edit::Object {
+                index: object as usize,
+                change: ObjectChange::Material(field.with(value as f32)),
+            }),
+            _ => None,
         }
     }
 
@@ -158,6 +181,7 @@ impl Param {
             Param::Aperture => "0..16:4".into(),
             Param::Resolution => "64..512:x2".into(),
             Param::Level => "1..4".into(),
+            Param::Material { field, .. } => field.default_values().into(),
         }
     }
 
@@ -173,8 +197,12 @@ impl Param {
 }
 
 impl fmt::Display for Param {
+    /// The name `--param` takes: `grid-m`, `object:5:ior`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        match self {
+            Param::Material { object, field } => write!(f, "object:{object}:{}", field.name()),
+            _ => f.write_str(self.name()),
+        }
     }
 }
 
@@ -182,14 +210,19 @@ impl FromStr for Param {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if let Some(rest) = s.trim().strip_prefix("object:") {
+            return material::parse(rest);
+        }
         Param::ALL
             .into_iter()
             .find(|p| p.name().eq_ignore_ascii_case(s.trim()))
             .ok_or_else(|| {
                 let names: Vec<&str> = Param::ALL.iter().map(|p| p.name()).collect();
                 format!(
-                    "unknown parameter `{s}` (expected one of {})",
-                    names.join(", ")
+                    "unknown parameter `{s}` (expected one of {}, or object:N:FIELD with FIELD \
+                     one of {})",
+                    names.join(", "),
+                    Knob::NAMES.join(", ")
                 )
             })
     }
@@ -199,6 +232,13 @@ impl FromStr for Param {
 pub enum Subject {
     /// One scene, with the settings every point starts from.
     Scene {
+        world: Arc<World>,
+        base: RenderSettings,
+    },
+    /// One scene with its document, for studies that edit the scene (a
+    /// material field) as well as those that change settings.
+    Document {
+        scene: Arc<Scene>,
         world: Arc<World>,
         base: RenderSettings,
     },
@@ -270,8 +310,17 @@ impl Study {
         for &value in &self.values {
             self.param.check(value).map_err(anyhow::Error::msg)?;
         }
+        if let (Param::Material { .. }, Subject::Document { scene, .. }) = (self.param, subject) {
+            return material::check(self, scene);
+        }
         match subject {
-            Subject::Scene { base, .. } => {
+            Subject::Scene { base, .. } | Subject::Document { base, .. } => {
+                if matches!(self.param, Param::Material { .. }) {
+                    bail!(
+                        "{} edits the scene: the study needs its document",
+                        self.param
+                    );
+                }
                 if self.param == Param::Level {
                     bail!(
                         "the level study sweeps a generated scene: give a generator, not a scene"
@@ -403,7 +452,12 @@ pub fn run(
 ) -> Result<StudyOutcome> {
     study.check(subject)?;
     match subject {
-        Subject::Scene { world, base } => run_scene(study, world, base, stop, on_event),
+        Subject::Document { scene, world, base } if study.param.edit(0.0).is_some() => {
+            material::run(study, scene, world, base, stop, on_event)
+        }
+        Subject::Scene { world, base } | Subject::Document { world, base, .. } => {
+            run_scene(study, world, base, stop, on_event)
+        }
         Subject::Generated {
             generator,
             seed,

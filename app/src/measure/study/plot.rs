@@ -61,6 +61,9 @@ struct Panel {
     title: String,
     x_label: String,
     y_label: String,
+    /// Start the y axis at 0 (times, errors), or at the data (ray counts
+    /// whose changes are small against their size).
+    y_from_zero: bool,
     log_x: bool,
     log_y: bool,
     /// Label only whole numbers on x (N, depth, width, ...).
@@ -113,6 +116,7 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         title: format!("{subject}: frame time vs {param}"),
         x_label: param.axis().to_string(),
         y_label: "frame time (ms, median)".into(),
+        y_from_zero: true,
         log_x,
         log_y,
         integer_x: param.is_integer() && param != Param::Level,
@@ -145,6 +149,9 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         time.title = format!("{subject}: frame time vs scene size (log-log)");
     }
     let mut panels = vec![time];
+    if let (Param::Material { .. }, Some(&accel)) = (param, accels.first()) {
+        panels.push(rays_by_kind(param, points, accel));
+    }
     if points.iter().any(|p| p.error.is_some()) {
         let mse = |p: &Point| p.error.map_or(f64::NAN, |e| e.mse);
         let errors: Vec<f64> = points.iter().map(mse).collect();
@@ -152,6 +159,7 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
             title: "image error vs frame time".into(),
             x_label: "frame time (ms, median)".into(),
             y_label: "MSE against the reference".into(),
+            y_from_zero: true,
             log_x: false,
             log_y: errors.iter().all(|&e| e > 0.0),
             integer_x: false,
@@ -176,6 +184,45 @@ fn panels(param: Param, points: &[Point], subject: &str) -> Vec<Panel> {
         });
     }
     panels
+}
+
+/// Reflection and refraction rays a pixel against a material parameter
+/// (the same for every structure: `accel`'s): where glass loses its
+/// refraction rays to total internal reflection, the refraction curve
+/// falls.
+fn rays_by_kind(param: Param, points: &[Point], accel: AccelKind) -> Panel {
+    let series = analysis::series(points, accel);
+    let curve = |name: &str, colour: RGBColor, count: fn(&Point) -> u64| Curve {
+        name: name.into(),
+        colour,
+        points: series
+            .iter()
+            .map(|p| {
+                let s = &p.measurement.case.settings;
+                let pixels = f64::from(s.width) * f64::from(s.height);
+                (p.x, count(p) as f64 / pixels.max(1.0))
+            })
+            .collect(),
+        best: None,
+    };
+    Panel {
+        title: format!("rays by kind vs {param}"),
+        x_label: param.axis().to_string(),
+        y_label: "rays a pixel".into(),
+        y_from_zero: false,
+        log_x: false,
+        log_y: false,
+        integer_x: false,
+        legend: SeriesLabelPosition::MiddleRight,
+        curves: vec![
+            curve("reflection", RGBColor(120, 120, 120), |p| {
+                p.measurement.stats.counters.reflection_rays
+            }),
+            curve("refraction", RGBColor(52, 120, 198), |p| {
+                p.measurement.stats.counters.refraction_rays
+            }),
+        ],
+    }
 }
 
 /// Whether the frame time chart has a log x and a log y axis: both for
@@ -231,7 +278,7 @@ fn tick(v: &f64) -> String {
 fn draw_panel(panel: &Panel, area: &DrawingArea<BitMapBackend, Shift>) -> Result<()> {
     let all = || panel.curves.iter().flat_map(|c| c.points.iter());
     let x = range(all().map(|p| p.0), panel.log_x, false);
-    let y = range(all().map(|p| p.1), panel.log_y, true);
+    let y = range(all().map(|p| p.1), panel.log_y, panel.y_from_zero);
     match (panel.log_x, panel.log_y) {
         (true, true) => draw_axes(panel, area, x.log_scale(), y.log_scale()),
         // A doubling sweep: ticks at the values swept, which the default

@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use super::analysis::{self, Best};
-use super::{Param, Point, values};
+use super::{Knob, Param, Point, values};
 use crate::measure::bench_report::{self, Format};
 use crate::report::si;
 
@@ -22,10 +22,12 @@ pub fn rows(param: Param, points: &[Point]) -> (Vec<String>, Vec<Vec<String>>) {
 fn cells(param: Param, points: &[Point], raw: bool) -> (Vec<String>, Vec<Vec<String>>) {
     let best = analysis::best(param, points);
     let with_error = points.iter().any(|p| p.error.is_some());
-    let mut headers = vec!["accel".to_string(), param.name().to_string()];
+    let mut headers = vec!["accel".to_string(), param.to_string()];
     if param == Param::Level {
         headers.push("primitives".into());
     }
+    // A material changes which rays are spawned: show how many of each.
+    let by_kind = matches!(param, Param::Material { .. });
     headers.extend(
         [
             "build ms",
@@ -39,6 +41,9 @@ fn cells(param: Param, points: &[Point], raw: bool) -> (Vec<String>, Vec<Vec<Str
         ]
         .map(String::from),
     );
+    if by_kind {
+        headers.extend(["reflection rays", "refraction rays"].map(String::from));
+    }
     if with_error {
         headers.extend(["MSE", "PSNR dB", "FLIP"].map(String::from));
     }
@@ -73,6 +78,13 @@ fn cells(param: Param, points: &[Point], raw: bool) -> (Vec<String>, Vec<Vec<Str
                 format!("{:.ratio$}", m.tests_per_ray()),
                 format!("{:.ratio$}", m.steps_per_ray()),
             ]);
+            if by_kind {
+                let counters = &m.stats.counters;
+                row.extend(
+                    [counters.reflection_rays, counters.refraction_rays]
+                        .map(|n| if raw { n.to_string() } else { si(n as f64) }),
+                );
+            }
             if with_error {
                 row.extend(match p.error {
                     Some(e) => [
@@ -125,7 +137,9 @@ fn json(param: Param, points: &[Point]) -> String {
             let m = &p.measurement;
             m.with_timing_json(serde_json::json!({
                 "accel": p.accel().name(),
-                "param": param.name(),
+                "param": param.to_string(),
+                "reflection_rays": m.stats.counters.reflection_rays,
+                "refraction_rays": m.stats.counters.refraction_rays,
                 "value": p.value,
                 "x": p.x,
                 "primitives": p.primitives,
@@ -159,6 +173,32 @@ pub fn summary(param: Param, points: &[Point]) -> Vec<String> {
                 })
             })
             .collect();
+    }
+    if let Param::Material {
+        field: Knob::Ior, ..
+    } = param
+    {
+        return analysis::steepest_fall(points, |p| p.measurement.stats.counters.refraction_rays)
+            .map(|(from, to)| {
+                let per_pixel = |p: &Point| {
+                    let s = &p.measurement.case.settings;
+                    let pixels = u64::from(s.width) * u64::from(s.height);
+                    p.measurement.stats.counters.refraction_rays as f64 / pixels.max(1) as f64
+                };
+                format!(
+                    "refraction rays fall most between {param} = {} and {} ({:.3} -> {:.3} a \
+                     pixel): where total internal reflection sets in, on glass",
+                    values::format(from.value),
+                    values::format(to.value),
+                    per_pixel(from),
+                    per_pixel(to)
+                )
+            })
+            .into_iter()
+            .collect();
+    }
+    if let Param::Material { .. } = param {
+        return Vec::new();
     }
     analysis::best(param, points)
         .into_iter()

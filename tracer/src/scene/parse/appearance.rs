@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use super::Parser;
 use crate::scene::lexer::Pos;
-use crate::scene::{LightSpec, Material, ParseError, ParseErrorKind};
+use crate::scene::{LightSpec, Material, ParseError, ParseErrorKind, rules};
 
 impl Parser<'_, '_> {
     /// `f` with 8 numbers (NFF: `r g b Kd Ks shine T ior`, white specular)
@@ -36,6 +36,7 @@ impl Parser<'_, '_> {
             }
             _ => return Err(self.wrong_count(pos, "8 (NFF) or 11 (P3F)", found)),
         };
+        self.rule(pos, rules::material(&material))?;
         self.push_material(material, pos)?;
         Ok(())
     }
@@ -60,18 +61,12 @@ impl Parser<'_, '_> {
         }
         let centre = self.cursor.vec3("the area light centre")?;
         let aim = self.cursor.vec3("the point the area light faces")?;
-        if centre == aim {
-            return Err(self.invalid(pos, "area light", "it faces its own centre"));
-        }
+        self.rule(pos, rules::area_light_aim(centre, aim))?;
         let mut side = |expected| {
             let pos = self.cursor.here();
             let value = self.cursor.number(expected)?;
-            if value > 0.0 {
-                Ok(value)
-            } else {
-                let why = format!("must be greater than 0, found {value}");
-                Err(self.invalid(pos, "area light size", why))
-            }
+            self.rule(pos, rules::area_light_side(value))?;
+            Ok(value)
         };
         let width = side("the area light width")?;
         let height = side("the area light height")?;

@@ -3,11 +3,7 @@
 
 use super::Parser;
 use crate::scene::lexer::Pos;
-use crate::scene::{ParseError, Primitive};
-
-/// Largest sine of the angle between two plane edges that counts as
-/// collinear.
-const COLLINEAR_SINE: f64 = 1e-6;
+use crate::scene::{ParseError, Primitive, rules};
 
 impl Parser<'_, '_> {
     /// `s cx cy cz r`; a negative radius means only the inside is visible.
@@ -15,9 +11,7 @@ impl Parser<'_, '_> {
         let centre = self.cursor.vec3("the sphere centre")?;
         let radius_pos = self.cursor.here();
         let radius = self.cursor.number("the sphere radius")?;
-        if radius == 0.0 {
-            return Err(self.invalid(radius_pos, "sphere radius", "must not be zero"));
-        }
+        self.rule(radius_pos, rules::sphere_radius(radius))?;
         let sphere = Primitive::Sphere {
             centre,
             radius: radius.abs(),
@@ -33,11 +27,7 @@ impl Parser<'_, '_> {
             self.cursor.vec3("a plane point")?,
             self.cursor.vec3("a plane point")?,
         ];
-        let [a, b, c] = points.map(|p| p.as_dvec3());
-        let (u, v) = (b - a, c - a);
-        if u.cross(v).length() <= COLLINEAR_SINE * u.length() * v.length() {
-            return Err(self.invalid(pos, "plane", "its three points are collinear"));
-        }
+        self.rule(pos, rules::plane(&points))?;
         self.push_object(Primitive::Plane { points }, pos)
     }
 
@@ -90,22 +80,15 @@ impl Parser<'_, '_> {
         let apex = self.cursor.vec3("the cone apex centre")?;
         let apex_pos = self.cursor.here();
         let apex_radius = self.cursor.number("the cone apex radius")?;
-        let inside_only = base_radius < 0.0 && apex_radius < 0.0;
-        if !inside_only && (base_radius < 0.0 || apex_radius < 0.0) {
-            let at = if base_radius < 0.0 {
-                base_pos
-            } else {
-                apex_pos
-            };
-            let why = "only both radii together may be negative (an inside-only cone)";
-            return Err(self.invalid(at, "cone radius", why));
-        }
-        if base_radius == 0.0 && apex_radius == 0.0 {
-            return Err(self.invalid(apex_pos, "cone radius", "both radii are zero"));
-        }
-        if base == apex {
-            return Err(self.invalid(pos, "cone", "base and apex are the same point"));
-        }
+        // A lone negative radius is reported at itself, both zero at the
+        // apex's.
+        let radii_pos = if base_radius < 0.0 && apex_radius >= 0.0 {
+            base_pos
+        } else {
+            apex_pos
+        };
+        self.rule(radii_pos, rules::cone_radii(base_radius, apex_radius))?;
+        self.rule(pos, rules::cone_axis(base, apex))?;
         let cone = Primitive::Cone {
             base,
             base_radius: base_radius.abs(),
@@ -122,9 +105,7 @@ impl Parser<'_, '_> {
         let a = self.cursor.vec3("the box minimum corner")?;
         let b = self.cursor.vec3("the box maximum corner")?;
         let (min, max) = (a.min(b), a.max(b));
-        if min.cmpeq(max).any() {
-            return Err(self.invalid(pos, "box", "it has zero thickness along an axis"));
-        }
+        self.rule(pos, rules::aabox(min, max))?;
         self.push_object(Primitive::Box { min, max }, pos)
     }
 

@@ -1,16 +1,11 @@
 //! The `v` command: labelled camera fields in any order, then a check that
 //! the camera can form an image.
 
-use glam::{DVec3, Vec3};
-
 use super::cursor::looks_numeric;
 use super::{COMMANDS, Parser};
 use crate::scene::lexer::Pos;
+use crate::scene::rules::{self, FROM_IS_AT, TOO_FAR};
 use crate::scene::{ParseError, ParseErrorKind, Viewpoint};
-
-/// Largest sine of the angle between `up` and the view direction that still
-/// counts as parallel.
-const PARALLEL_SINE: f64 = 1e-6;
 
 impl Parser<'_, '_> {
     /// `v` then `from at up angle hither resolution aperture focal` in any
@@ -57,9 +52,7 @@ impl Parser<'_, '_> {
                     self.cursor.next_token();
                     let pos = self.cursor.here();
                     view.focal = self.cursor.number("the focal distance ratio")?;
-                    if view.focal <= 0.0 {
-                        return Err(self.invalid(pos, "focal distance", "must be greater than 0"));
-                    }
+                    self.rule(pos, rules::focal(view.focal))?;
                 }
                 word if !looks_numeric(word) && !COMMANDS.contains(&word) => {
                     let kind = ParseErrorKind::UnknownViewField(word.to_string());
@@ -68,7 +61,7 @@ impl Parser<'_, '_> {
                 _ => break,
             }
         }
-        check_camera(&view).map_err(|why| {
+        rules::camera(&view).map_err(|why| {
             let pos = if why == FROM_IS_AT || why == TOO_FAR {
                 at_pos
             } else {
@@ -84,11 +77,8 @@ impl Parser<'_, '_> {
     fn angle(&mut self) -> Result<f32, ParseError> {
         let pos = self.cursor.here();
         let angle = self.cursor.number("the field of view angle")?;
-        if angle > 0.0 && angle < 180.0 {
-            return Ok(angle);
-        }
-        let why = format!("must lie strictly between 0 and 180 degrees, found {angle}");
-        Err(self.invalid(pos, "field of view angle", why))
+        self.rule(pos, rules::view_angle(angle))?;
+        Ok(angle)
     }
 
     fn non_negative(
@@ -98,10 +88,8 @@ impl Parser<'_, '_> {
     ) -> Result<f32, ParseError> {
         let pos = self.cursor.here();
         let value = self.cursor.number(expected)?;
-        if value >= 0.0 {
-            return Ok(value);
-        }
-        Err(self.invalid(pos, what, format!("must not be negative, found {value}")))
+        self.rule(pos, rules::non_negative(what, value))?;
+        Ok(value)
     }
 
     /// `resolution w h`: both in `1..=max_resolution`, `w * h` at most
@@ -140,31 +128,4 @@ impl Parser<'_, '_> {
         }
         Ok((width, height))
     }
-}
-
-const FROM_IS_AT: &str = "`from` and `at` are the same point";
-const TOO_FAR: &str = "`from` and `at` are too far apart (their distance overflows)";
-
-/// Whether the camera has a view direction and an `up` not parallel to it.
-/// Computed in f64 so extreme but finite coordinates cannot overflow.
-fn check_camera(view: &Viewpoint) -> Result<(), &'static str> {
-    let wide = |v: Vec3| v.as_dvec3();
-    let direction: DVec3 = wide(view.at) - wide(view.from);
-    // The renderer works in f32: a distance that underflows to 0 or
-    // overflows to infinity there leaves no view direction either.
-    let length = (view.at - view.from).length();
-    if direction == DVec3::ZERO || length == 0.0 {
-        return Err(FROM_IS_AT);
-    }
-    if !length.is_finite() {
-        return Err(TOO_FAR);
-    }
-    let up = wide(view.up);
-    if up == DVec3::ZERO {
-        return Err("`up` is the zero vector");
-    }
-    if direction.cross(up).length() <= PARALLEL_SINE * direction.length() * up.length() {
-        return Err("`up` is parallel to the view direction");
-    }
-    Ok(())
 }

@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use super::{assert_round_trip, parse_ok};
-use crate::scene::{LightSpec, Material, Object, Primitive, Scene, write_p3f};
+use crate::scene::{LightSpec, Material, Object, Primitive, Scene, write_p3f, write_p3f_in};
 
 #[test]
 fn every_command_round_trips() {
@@ -23,6 +23,32 @@ fn every_command_round_trips() {
     );
     assert_eq!(scene.materials.len(), 5);
     assert_round_trip(&scene);
+}
+
+#[test]
+fn a_scene_written_to_another_folder_keeps_its_skybox() {
+    let base = std::env::temp_dir();
+    let scene = Scene {
+        env: Some("sky_box".into()),
+        base_dir: Some(base.clone()),
+        ..Scene::default()
+    };
+    let here = write_p3f_in(&scene, &base);
+    assert!(
+        here.contains("env sky_box\n"),
+        "same folder, same name:\n{here}"
+    );
+    let elsewhere = write_p3f_in(&scene, &base.join("elsewhere"));
+    let absolute = std::path::absolute(base.join("sky_box")).unwrap();
+    assert!(
+        elsewhere.contains(&format!("env {}\n", absolute.display())),
+        "another folder, the skybox's own path:\n{elsewhere}"
+    );
+    let embedded = Scene {
+        base_dir: None,
+        ..scene
+    };
+    assert_eq!(write_p3f_in(&embedded, &base), write_p3f(&embedded));
 }
 
 #[test]

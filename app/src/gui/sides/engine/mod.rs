@@ -56,6 +56,8 @@ pub struct Engine {
     paused: bool,
     /// Jobs pause themselves once this many tiles are in.
     pause_after_tiles: Option<u64>,
+    /// Jobs render only in the time the other engines leave.
+    idle_priority: bool,
     /// Whether the current job's failure was handed out already.
     failure_taken: bool,
     /// Jobs started so far: part of [`Engine::version`], as every job
@@ -92,6 +94,7 @@ impl Engine {
             complete: Arc::new(AtomicBool::new(false)),
             paused: false,
             pause_after_tiles: None,
+            idle_priority: false,
             failure_taken: false,
             jobs_started: 0,
             views: false,
@@ -127,6 +130,27 @@ impl Engine {
         self.index = None;
         self.settings = None;
         self.scene = Some(scene);
+    }
+
+    /// Makes `scene`, an edit of the current one, the current scene, and
+    /// renders again; `keep_structure` when the edit left the shapes as
+    /// they were (a material, a light, the camera), so the structure built
+    /// over them serves the next job as it is.
+    pub fn edit_scene(&mut self, scene: LoadedScene, keep_structure: bool) {
+        let index = self.index();
+        self.show(scene);
+        if keep_structure {
+            self.index = index;
+        }
+    }
+
+    /// The scene was saved as `path`: it is that file's now, with nothing
+    /// rendered anew. Its skybox name stays relative to the folder it came
+    /// from, which is where the next save finds it.
+    pub fn saved_as(&mut self, path: &std::path::Path) {
+        if let Some(loaded) = &mut self.scene {
+            loaded.source = SceneSource::File(path.to_path_buf());
+        }
     }
 
     pub fn scene(&self) -> Option<&LoadedScene> {
@@ -203,6 +227,7 @@ impl Engine {
                     }
                 })),
                 yield_to_viewer: true,
+                idle_priority: self.idle_priority,
                 views: self.views,
                 paused: self.paused,
                 pause_after_tiles: self.pause_after_tiles,
@@ -245,6 +270,12 @@ impl Engine {
         self.job.as_ref().map_or(self.paused, RenderJob::is_paused)
     }
 
+    /// The next jobs render only in the time the other engines' renders
+    /// leave (the observer's, beside the sides').
+    pub fn set_idle_priority(&mut self, idle: bool) {
+        self.idle_priority = idle;
+    }
+
     /// The next jobs pause themselves once `tiles` tiles are in (`None`:
     /// they run on): a first pass held half done, whatever the machine.
     pub fn pause_after_tiles(&mut self, tiles: Option<u64>) {
@@ -283,6 +314,15 @@ impl Engine {
             .as_ref()
             .and_then(RenderJob::index)
             .or_else(|| self.index.clone())
+    }
+
+    /// Lends this engine the structure another engine built over the same
+    /// scene (the observer renders A's scene): its next job skips the
+    /// build when the structure fits its settings.
+    pub fn share_index(&mut self, index: Arc<SceneIndex>) {
+        if self.index.as_ref().is_none_or(|i| !Arc::ptr_eq(i, &index)) {
+            self.index = Some(index);
+        }
     }
 
     /// Whether jobs measure the views; a change renders again.

@@ -1,0 +1,284 @@
+//! Editing the scene in the window as a user would: E opens the editor, a
+//! click on the image selects the object it shows, edits render at once
+//! (a material edit on the structure already built), undo gives back the
+//! very image, a saved scene opens to the same image, unsaved edits are
+//! never thrown away without asking, and an edit in the window renders
+//! what `--set` renders on the command line.
+
+use std::sync::Arc;
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+use tracer::accel::SceneIndex;
+use tracer::scene::Primitive;
+use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
+use workbench::gui::{Pending, WorkbenchApp};
+use workbench::load::{SceneSource, load_source_edited};
+
+use crate::harness::{WINDOW, is_done, ready_window, wait_for};
+use crate::support::scratch;
+
+/// The big sphere in the middle of `balls_low`.
+const BIG_SPHERE: usize = 2;
+
+/// Waits for the render on screen and returns its pixels.
+fn finished(harness: &mut Harness<'static, WorkbenchApp>) -> Vec<u8> {
+    wait_for(harness, "the render on screen", |app| {
+        is_done(app) && app.is_display_current()
+    });
+    harness.state().shown().unwrap().rgba.clone()
+}
+
+fn glass(index: usize) -> Edit {
+    Edit::Object {
+        index,
+        change: ObjectChange::Material(MaterialField::Transmittance(0.9)),
+    }
+}
+
+fn big_sphere_centre(app: &WorkbenchApp) -> glam::Vec3 {
+    match &app.engine().scene().unwrap().scene.objects[BIG_SPHERE].primitive {
+        Primitive::Sphere { centre, .. } => *centre,
+        other => panic!("not the sphere: {other:?}"),
+    }
+}
+
+/// The window with the editor open on a finished render.
+fn editing() -> (Harness<'static, WorkbenchApp>, Vec<u8>) {
+    let mut harness = ready_window(WINDOW);
+    let before = finished(&mut harness);
+    harness.key_press(egui::Key::E);
+    harness.run_steps(2);
+    assert!(harness.state().editor().open, "E opens the editor");
+    (harness, before)
+}
+
+/// Clicks the middle of the render, where the big sphere is.
+fn click_the_middle(harness: &mut Harness<'static, WorkbenchApp>) {
+    let image = harness
+        .get_by_role_and_label(egui::accesskit::Role::Image, "Render")
+        .rect();
+    harness.hover_at(image.center());
+    harness.step();
+    harness.drag_at(image.center());
+    harness.step();
+    harness.drop_at(image.center());
+    harness.run_steps(2);
+}
+
+#[test]
+fn a_click_selects_the_object_the_image_shows() {
+    let (mut harness, _) = editing();
+    click_the_middle(&mut harness);
+    assert_eq!(harness.state().editor().selected, Some(BIG_SPHERE));
+    // Its material is shared by the ten spheres: the editor asks first.
+    assert!(harness.query_by_label("All 10").is_some());
+    harness.get_by_label("This object alone").click();
+    harness.run_steps(2);
+    assert!(
+        harness.query_all_by_label("Kd").next().is_some(),
+        "its material's sliders"
+    );
+}
+
+#[test]
+fn a_material_edit_keeps_the_structure_and_undo_gives_back_the_image() {
+    let (mut harness, before) = editing();
+    let index = harness.state().engine().index().unwrap();
+    assert_eq!(
+        harness.state_mut().edit(glass(BIG_SPHERE)),
+        Ok(Effect::Shading)
+    );
+    let edited = finished(&mut harness);
+    assert_ne!(edited, before, "glass looks different");
+    let app = harness.state();
+    assert!(
+        Arc::ptr_eq(&index, &app.engine().index().unwrap()),
+        "a material edit renders on the structure already built"
+    );
+    assert!(app.title().ends_with(" *"), "the title says: unsaved");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.step();
+    assert!(
+        finished(&mut harness) == before,
+        "undo: the very image again"
+    );
+    assert!(!harness.state().title().ends_with(" *"));
+    // Ctrl+Shift+Z redoes (egui would also match it as Ctrl+Z).
+    harness.key_press_modifiers(
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+        egui::Key::Z,
+    );
+    harness.step();
+    assert!(finished(&mut harness) == edited, "redo: the edit is back");
+}
+
+#[test]
+fn a_light_added_from_the_editor_lights_the_scene_and_undo_removes_it() {
+    let (mut harness, before) = editing();
+    harness.get_by_label("Lights (3)").click();
+    harness.run_steps(2);
+    harness.get_by_label("Add a light at the camera").click();
+    harness.run_steps(2);
+    let lights = |app: &WorkbenchApp| app.engine().scene().unwrap().scene.lights.len();
+    assert_eq!(lights(harness.state()), 4);
+    assert_ne!(finished(&mut harness), before);
+    harness.get_by_label("Undo edit").click();
+    harness.run_steps(2);
+    assert_eq!(lights(harness.state()), 3);
+    assert!(finished(&mut harness) == before);
+}
+
+#[test]
+fn a_drag_in_move_mode_moves_the_selected_object_not_the_camera() {
+    let (mut harness, before) = editing();
+    click_the_middle(&mut harness);
+    harness
+        .get_by_label("Drag moves the selected object")
+        .click();
+    harness.run_steps(2);
+    assert!(harness.state().editor().move_mode);
+    let start = big_sphere_centre(harness.state());
+    crate::harness::drag(&mut harness, "Render");
+    let moved = big_sphere_centre(harness.state());
+    assert!((moved - start).length() > 1e-3, "{start} -> {moved}");
+    let app = harness.state();
+    assert_eq!(app.engine().settings().unwrap().camera, None, "no orbit");
+    // In the image plane: as far from the camera as before.
+    let eye = app.engine().scene().unwrap().scene.view.from;
+    let at = app.engine().scene().unwrap().scene.view.at;
+    let forward = (at - eye).normalize();
+    assert!(((moved - eye).dot(forward) - (start - eye).dot(forward)).abs() < 1e-3);
+    assert_ne!(finished(&mut harness), before);
+}
+
+#[test]
+fn an_edit_in_the_window_renders_what_set_renders_headless() {
+    let (mut harness, _) = editing();
+    harness.state_mut().edit(glass(BIG_SPHERE)).unwrap();
+    let shown = finished(&mut harness);
+    let app = harness.state();
+    let settings = app.engine().settings().cloned().unwrap();
+    let source = SceneSource::Bundled("balls_low".into());
+    let (_, world) =
+        load_source_edited(&source, &[glass(BIG_SPHERE).to_string()], &mut |_| {}).unwrap();
+    let index = Arc::new(SceneIndex::build(
+        &world.shapes,
+        settings.accel,
+        settings.grid_multiplier,
+    ));
+    let (film, _) = tracer::render::render(Arc::new(world), index, settings, None).unwrap();
+    assert!(
+        shown == film.to_rgba8(app.controls().encoding()),
+        "the window's edit and `--set '{}'` render alike",
+        glass(BIG_SPHERE)
+    );
+}
+
+#[test]
+fn a_saved_scene_opens_to_the_same_image() {
+    let (mut harness, _) = editing();
+    harness.state_mut().edit(glass(BIG_SPHERE)).unwrap();
+    let edited = finished(&mut harness);
+    let dir = scratch("editing-save");
+    let path = dir.join("balls_low-edited.p3f");
+    harness.state_mut().save_scene_to(&path).unwrap();
+    harness.step();
+    assert!(!harness.state().title().ends_with(" *"), "saved");
+    assert!(harness.state().title().contains("balls_low-edited.p3f"));
+    harness.key_press(egui::Key::F5);
+    wait_for(&mut harness, "the saved file read", |app| {
+        !app.engine().is_loading() && app.engine().index().is_some()
+    });
+    assert!(
+        harness.state().editor().pending.is_none(),
+        "nothing unsaved to ask about"
+    );
+    assert!(finished(&mut harness) == edited, "the file holds the edit");
+}
+
+#[test]
+fn opening_another_scene_asks_before_unsaved_edits_are_lost() {
+    let (mut harness, _) = editing();
+    harness.state_mut().edit(glass(BIG_SPHERE)).unwrap();
+    let other = SceneSource::Bundled("glass".into());
+    harness.state_mut().open(other.clone());
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().editor().pending,
+        Some(Pending::Open(other.clone()))
+    );
+    assert!(!harness.state().engine().is_loading(), "nothing opened yet");
+    harness.get_by_label("Cancel").click();
+    harness.run_steps(2);
+    assert!(harness.state().editor().pending.is_none());
+    assert!(harness.state().title().ends_with(" *"), "the edit is kept");
+
+    harness.state_mut().open(other);
+    harness.run_steps(2);
+    harness.get_by_label("Discard edits").click();
+    wait_for(&mut harness, "the other scene", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "glass")
+    });
+    assert!(!harness.state().title().ends_with(" *"));
+}
+
+#[test]
+fn in_compare_mode_b_edits_its_own_scene_and_its_label_says_so() {
+    let mut harness = ready_window(WINDOW);
+    let before = finished(&mut harness);
+    harness.key_press(egui::Key::B);
+    harness.run_steps(2);
+    harness.state_mut().edit(glass(BIG_SPHERE)).unwrap();
+    wait_for(&mut harness, "both sides", |app| {
+        is_done(app) && app.is_display_current()
+    });
+    let app = harness.state();
+    let material = |scene: &tracer::scene::Scene| {
+        scene.materials[scene.objects[BIG_SPHERE].material as usize].transmittance
+    };
+    let b = &app.side_b().unwrap().engine.scene().unwrap().scene;
+    assert_eq!(material(b), 0.9, "B is edited");
+    assert_eq!(material(&app.engine().scene().unwrap().scene), 0.0);
+    assert!(app.shown().unwrap().rgba == before, "A's image stays");
+    let labels: Vec<String> = harness
+        .get_all_by_role(egui::accesskit::Role::Label)
+        .filter_map(|n| n.accesskit_node().label().or(n.accesskit_node().value()))
+        .collect();
+    assert!(
+        labels
+            .iter()
+            .any(|l| l == &format!("B: sphere #{BIG_SPHERE} t 0.9")),
+        "B's label names its edit: {labels:?}"
+    );
+    assert!(labels.iter().any(|l| l == "A: same settings"));
+}
+
+#[test]
+fn dragging_a_material_slider_changes_that_field_alone() {
+    let (mut harness, _) = editing();
+    click_the_middle(&mut harness);
+    harness.get_by_label("This object alone").click();
+    harness.run_steps(2);
+    let slider = harness
+        .get_by_role_and_label(egui::accesskit::Role::Slider, "T (transmittance)")
+        .rect();
+    // From the left end (T = 0) most of the way right, frame by frame: the
+    // first change gives the object a material of its own and shows ior.
+    let mut at = slider.left_center() + egui::vec2(2.0, 0.0);
+    harness.drag_at(at);
+    harness.step();
+    for _ in 0..6 {
+        at.x += slider.width() / 8.0;
+        harness.hover_at(at);
+        harness.step();
+    }
+    harness.drop_at(at);
+    harness.run_steps(2);
+    let scene = &harness.state().engine().scene().unwrap().scene;
+    let material = scene.materials[scene.objects[BIG_SPHERE].material as usize];
+    assert!(material.transmittance > 0.5, "{material:?}");
+    assert_eq!(material.ior, 1.0, "the drag stays on T: {material:?}");
+}

@@ -1,0 +1,139 @@
+//! The observer view driven as a user would: O shows the scene from
+//! outside, drags move the observer (and never the render), a pinned
+//! pixel's rays fly through it generation by generation, compare mode
+//! shows both sides' trees.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use tracer::render::JobState;
+use workbench::gui::{Activity, WorkbenchApp};
+
+use crate::harness::{drag, is_done, ready_window, wait_for};
+
+fn observer_done(app: &WorkbenchApp) -> bool {
+    let observer = app.observer();
+    observer.engine().activity() == Activity::Job(JobState::Done)
+        && observer.image.is_current(observer.engine())
+}
+
+/// Tall enough for the side panel's observer section.
+const TALL: [f32; 2] = [1280.0, 1500.0];
+
+/// The window with the observer on and its first render on screen.
+fn observing() -> Harness<'static, WorkbenchApp> {
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the render", is_done);
+    harness.key_press(egui::Key::O);
+    wait_for(&mut harness, "the observer's render", observer_done);
+    harness
+}
+
+#[test]
+fn o_shows_the_scene_from_outside_and_moving_it_never_restarts_the_render() {
+    let mut harness = observing();
+    let app = harness.state();
+    assert!(app.observer().on);
+    let framed = app.observer().pose().expect("framed on the scene");
+    let scene_eye = app.engine().scene().unwrap().scene.view.from;
+    assert!(
+        (framed.from - scene_eye).length() > 1e-3,
+        "outside the camera"
+    );
+    assert!(
+        app.observer().segments_drawn > 0,
+        "the camera and lights drawn"
+    );
+    let jobs = app.engine().version().0;
+    drag(&mut harness, "Observer");
+    let moved = harness.state().observer().pose().unwrap();
+    assert_ne!(moved, framed, "the drag orbits the observer");
+    wait_for(&mut harness, "the observer's render from there", |app| {
+        observer_done(app) && app.observer().engine().settings().unwrap().camera == Some(moved)
+    });
+    let app = harness.state();
+    assert_eq!(app.engine().version().0, jobs, "the main render went on");
+    assert_eq!(app.engine().settings().unwrap().camera, None);
+    // The main image's own drag still moves the scene camera.
+    drag(&mut harness, "Render");
+    assert!(
+        harness
+            .state()
+            .engine()
+            .settings()
+            .unwrap()
+            .camera
+            .is_some()
+    );
+    assert_eq!(harness.state().observer().pose(), Some(moved));
+}
+
+#[test]
+fn a_pinned_pixels_rays_grow_generation_by_generation() {
+    let mut harness = observing();
+    harness.state_mut().inspect((32, 40));
+    wait_for(&mut harness, "the pixel's tree in the observer", |app| {
+        !app.observer().trees().is_empty()
+    });
+    let tree = &harness.state().observer().trees()[0].1;
+    let rays = tree.nodes.len();
+    assert!(rays >= 2, "an eye ray and its shadow rays");
+    let phases = harness.state().observer().phases();
+    harness.run_steps(2);
+    let all = harness.state().observer().segments_drawn;
+    harness.get_by_label("Step").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().observer().animation.phase(), Some(1));
+    let first = harness.state().observer().segments_drawn;
+    assert!(
+        first < all,
+        "the first step draws fewer rays ({first} of {all})"
+    );
+    for _ in 1..phases {
+        harness.get_by_label("Step").click();
+        harness.run_steps(2);
+    }
+    assert_eq!(harness.state().observer().animation.phase(), None);
+    assert_eq!(
+        harness.state().observer().segments_drawn,
+        all,
+        "at rest: all"
+    );
+    harness.get_by_label("Play").click();
+    harness.run_steps(2);
+    assert!(harness.state().observer().animation.is_playing());
+    // A row of pixels: their trees too.
+    harness.state_mut().observer_pattern_row(40);
+    wait_for(&mut harness, "the row's trees", |app| {
+        app.observer().trees().len() > 8
+    });
+}
+
+#[test]
+fn compare_mode_draws_both_sides_trees() {
+    let mut harness = observing();
+    harness.key_press(egui::Key::B);
+    harness.run_steps(2);
+    harness.key_press(egui::Key::S);
+    harness.state_mut().inspect((32, 40));
+    wait_for(&mut harness, "A's and B's trees", |app| {
+        let sides: Vec<u8> = app.observer().trees().iter().map(|(s, _)| *s).collect();
+        sides.contains(&0) && sides.contains(&1)
+    });
+    let trees = harness.state().observer().trees();
+    let shadows = |side: u8| {
+        trees
+            .iter()
+            .filter(|(s, _)| *s == side)
+            .map(|(_, t)| {
+                t.nodes
+                    .iter()
+                    .filter(|n| n.kind == tracer::render::RayKind::Shadow)
+                    .count()
+            })
+            .sum::<usize>()
+    };
+    assert!(
+        shadows(1) >= shadows(0),
+        "B's soft shadows sample the light"
+    );
+}
