@@ -10,7 +10,7 @@ use super::{SceneIndex, Structure, Visit};
 /// What of the structure to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StructureLayer {
-    /// The BVH's boxes at this depth of the 4-wide tree (the scene box is
+    /// The BVH's boxes at this depth of the 8-wide tree (the scene box is
     /// 0), leaves above it too.
     BvhDepth(u32),
     /// Every BVH leaf.
@@ -116,9 +116,9 @@ mod tests {
         let xs: Vec<f32> = root.iter().flat_map(|[a, b]| [a.x, b.x]).collect();
         assert_eq!(xs.iter().copied().fold(f32::INFINITY, f32::min), -1.0);
         assert_eq!(xs.iter().copied().fold(f32::NEG_INFINITY, f32::max), 22.0);
-        // The root of the 4-wide tree has two to four children.
+        // The root of the 8-wide tree has two to eight children.
         let children = index.wireframe(StructureLayer::BvhDepth(1)).len() / 12;
-        assert!((2..=4).contains(&children), "{children}");
+        assert!((2..=8).contains(&children), "{children}");
         let leaves = index.wireframe(StructureLayer::BvhLeaves).len() / 12;
         assert!((1..=8).contains(&leaves), "{leaves}");
         assert!(index.wireframe(StructureLayer::Grid).is_empty());

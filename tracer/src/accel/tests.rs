@@ -16,7 +16,7 @@ use crate::stats::Counters;
 
 /// A deterministic generator of scene parts (xorshift), so a failing case
 /// is reproducible from its seed.
-struct Rand(u64);
+pub(super) struct Rand(pub(super) u64);
 
 impl Rand {
     fn next(&mut self) -> f32 {
@@ -45,7 +45,7 @@ impl Rand {
 
 /// `count` bounded primitives of every kind in a cube of side 20, plus
 /// `planes` randomly oriented planes through points of that cube.
-fn random_shapes(seed: u64, count: usize, planes: usize) -> Vec<Shape> {
+pub(super) fn random_shapes(seed: u64, count: usize, planes: usize) -> Vec<Shape> {
     let mut r = Rand(seed.max(1));
     let mut shapes = Vec::new();
     for i in 0..count {
@@ -92,7 +92,7 @@ fn indices(shapes: &[Shape]) -> Vec<SceneIndex> {
 
 /// The boxes of the bounded shapes, and the scene's box around them
 /// (empty when there are none).
-fn boxes_and_bounds(shapes: &[Shape]) -> (Vec<Aabb>, Aabb) {
+pub(super) fn boxes_and_bounds(shapes: &[Shape]) -> (Vec<Aabb>, Aabb) {
     let boxes: Vec<Aabb> = shapes.iter().filter_map(Shape::bounds).collect();
     let bounds = boxes.iter().fold(Aabb::empty(), |acc, b| acc.union(b));
     (boxes, bounds)
@@ -100,7 +100,11 @@ fn boxes_and_bounds(shapes: &[Shape]) -> (Vec<Aabb>, Aabb) {
 
 /// A ray and its `(t_min, t_max)` interval, as the renderer could ask, in
 /// a scene of primitives with boxes `bounded` inside `bounds`.
-fn random_query(r: &mut Rand, bounded: &[Aabb], bounds: &Aabb) -> Option<(Ray, f32, f32)> {
+pub(super) fn random_query(
+    r: &mut Rand,
+    bounded: &[Aabb],
+    bounds: &Aabb,
+) -> Option<(Ray, f32, f32)> {
     let origin = match (r.below(4), bounded.is_empty()) {
         // Inside a primitive: the centre of its box lies inside every
         // sphere, box, cylinder and cone generated above.

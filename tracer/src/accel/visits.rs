@@ -17,7 +17,7 @@ use super::{Hit, SceneIndex, Structure};
 pub(super) enum Step {
     /// The grid walk entered this cell.
     Cell(IVec3),
-    /// The BVH descent visited this 4-wide node (tested its children's boxes).
+    /// The BVH descent visited this 8-wide node (tested its children's boxes).
     Node(u32),
     /// The BVH descent tested this leaf's primitives `first..first + count`.
     Leaf(u32, u32),
@@ -47,7 +47,7 @@ impl VisitLog for Vec<Step> {
 pub enum Visit {
     /// A grid cell the 3D-DDA walked through: its (x, y, z) and its box.
     Cell { cell: [u32; 3], bounds: Aabb },
-    /// A 4-wide BVH node whose children's boxes were tested against the
+    /// An 8-wide BVH node whose children's boxes were tested against the
     /// ray. `depth` counts as the overlay's does: the root's box (the
     /// scene's) is 0, the root's children 1.
     Node { bounds: Aabb, depth: u32 },

@@ -157,7 +157,11 @@ pub(crate) fn intersect_edges(
 /// [`intersect_edges`] for one triangle (`f32`) or four side by side
 /// (`Vec4`, a triangle a lane; `[v0, e1, e2]`), with the same operations in
 /// every lane: which lanes are hit in `(t_min, t_max)` and at what
-/// distance, or `None` as soon as no lane can be.
+/// distance. One triangle gives up (`None`) as soon as it cannot be hit;
+/// four go through to the end: whether any lane is still in play is a
+/// branch the CPU mostly guesses wrong on shadow rays, which pass close
+/// to the triangles they miss, and the arithmetic it skipped cost less
+/// (shadow rays 1.03-1.23x on the triangle scenes of `bench --rays`).
 #[inline(always)]
 pub(crate) fn intersect_triangles<L: Lanes>(
     [v0, e1, e2]: [L::Vector; 3],
@@ -167,24 +171,25 @@ pub(crate) fn intersect_triangles<L: Lanes>(
     t_min: L,
     t_max: L,
 ) -> Option<(L::Mask, L)> {
+    let give_up = |hit: L::Mask| L::LANES == 1 && !L::any(hit);
     let p = dir.cross(e2);
     let det = e1.dot(p);
     // Range tests are written so that NaN fails them.
     let mut hit = parallel_eps.lt(det.abs());
-    if !L::any(hit) {
+    if give_up(hit) {
         return None;
     }
     let inv_det = L::splat(1.0) / det;
     let s = origin.sub(v0);
     let u = s.dot(p) * inv_det;
     hit = hit & L::splat(0.0).le(u) & u.le(L::splat(1.0));
-    if !L::any(hit) {
+    if give_up(hit) {
         return None;
     }
     let q = s.cross(e1);
     let v = dir.dot(q) * inv_det;
     hit = hit & L::splat(0.0).le(v) & (u + v).le(L::splat(1.0));
-    if !L::any(hit) {
+    if give_up(hit) {
         return None;
     }
     let t = e2.dot(q) * inv_det;

@@ -1,6 +1,6 @@
 //! The binned SAH builder: a binary tree over the primitives' boxes,
 //! built top-down with rayon for large subtrees; [`super::node`] turns it
-//! into the 4-wide nodes traversal uses.
+//! into the 8-wide nodes traversal uses.
 //!
 //! Near the root a node holds most of the primitives, and binning them on
 //! one core would leave the other idle: there the boxes and the bins are
@@ -61,6 +61,8 @@ pub(super) struct BuildNode {
     pub(super) first: u32,
     pub(super) count: u32,
     block: u32,
+    /// How many of its primitives are triangles.
+    pub(super) triangles: u32,
 }
 
 impl BuildNode {
@@ -230,6 +232,7 @@ impl Builder<'_> {
             first: offset,
             count: prims.len() as u32,
             block,
+            triangles: extent.triangles,
         });
         if prims.len() <= 1 || depth >= MAX_DEPTH - 1 {
             return;
@@ -374,7 +377,7 @@ const TRIANGLE_GROUP_COST: f32 = 1.25;
 /// What testing `count` primitives, `triangles` of them triangles, costs a
 /// leaf in primitive tests: a leaf with enough triangles tests them in
 /// groups of four (`packed`), each other primitive on its own.
-fn leaf_cost(count: u32, triangles: u32) -> f32 {
+pub(super) fn leaf_cost(count: u32, triangles: u32) -> f32 {
     if (triangles as usize) < MIN_GROUPED_TRIANGLES {
         return count as f32;
     }

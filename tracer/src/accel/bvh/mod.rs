@@ -1,7 +1,8 @@
 //! A bounding volume hierarchy: a binned SAH build (parallel for large
-//! subtrees) collapsed into 4-wide nodes whose four boxes are tested at
-//! once with SIMD, primitives packed in leaf order, traversed with a small
-//! stack, nearest child first for closest hits.
+//! subtrees) collapsed into 8-wide nodes whose eight boxes are tested at
+//! once with SIMD (AVX2 where the CPU has it, SSE elsewhere), primitives
+//! packed in leaf order, traversed with a small stack, nearest child first
+//! for closest hits.
 
 mod build;
 mod node;
@@ -22,7 +23,9 @@ use super::packed::{
 use super::visits::{Step, VisitLog};
 use super::{Hit, Nearest};
 use build::{BuildPrim, build_tree};
-use node::{EMPTY, Node4, WideRay, flatten};
+#[cfg(target_arch = "x86_64")]
+use node::Avx2;
+use node::{Baseline, EMPTY, Node, NodeCode, WIDTH, flatten};
 
 /// Build parameters, as a documented struct with named presets.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,18 +63,22 @@ impl Default for BvhParams {
 const UNBOUNDED: u32 = u32::MAX;
 
 /// Deepest tree allowed: traversal's fixed stack holds this many nodes.
-/// Deepest binary tree the build makes; the 4-wide tree is no deeper.
+/// Deepest binary tree the build makes; the 8-wide tree is no deeper.
 const MAX_DEPTH: usize = 64;
 
-/// Deferred children a traversal can hold: three per level, plus one.
-const STACK_SIZE: usize = 3 * MAX_DEPTH + 4;
+/// Deferred children a traversal can hold: all but one per level, plus a
+/// node's worth.
+const STACK_SIZE: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 
 /// The hierarchy, with its own packed copy of the primitives in leaf order
 /// so a leaf's primitives are contiguous in memory.
 #[derive(Debug, Clone)]
 pub struct Bvh {
-    nodes: Vec<Node4>,
+    nodes: Vec<Node>,
     prims: Vec<PackedShape>,
+    /// The AVX2 node test, where the CPU runs it; SSE's otherwise.
+    #[cfg(target_arch = "x86_64")]
+    avx2: Option<Avx2>,
 }
 
 /// A child waiting on the traversal stack: its slot's `first` and `count`
@@ -105,20 +112,25 @@ impl Bvh {
             .collect();
         prims.retain(|p| p.id != UNBOUNDED);
         let root = build_tree(&mut prims, params);
-        let mut nodes = flatten(&root, prims.len());
+        let mut nodes = flatten(&root, prims.len(), params.traversal_cost);
         let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
         let prims = pack_leaves(&mut nodes, &ids, shapes);
-        Bvh { nodes, prims }
+        Bvh {
+            nodes,
+            prims,
+            #[cfg(target_arch = "x86_64")]
+            avx2: Avx2::detect(),
+        }
     }
 
-    /// Nodes in the flattened tree (each holds up to four children).
+    /// Nodes in the flattened tree (each holds up to eight children).
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
 
     /// Bytes used by nodes and packed primitives.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node4>()
+        self.nodes.len() * std::mem::size_of::<Node>()
             + self.prims.len() * std::mem::size_of::<PackedShape>()
     }
 
@@ -190,6 +202,50 @@ impl Bvh {
         shapes: &[Shape],
         ray: &Ray,
         t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+        log: &mut impl VisitLog,
+    ) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = self.avx2 {
+            // SAFETY: an `Avx2` exists only where the CPU runs AVX2.
+            return unsafe {
+                self.closest_hit_avx2(avx2, shapes, ray, t_min, t_max, counters, log)
+            };
+        }
+        self.closest_hit_in(Baseline, shapes, ray, t_min, t_max, counters, log)
+    }
+
+    /// [`Bvh::closest_hit`] compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn closest_hit_avx2(
+        &self,
+        avx2: Avx2,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+        log: &mut impl VisitLog,
+    ) -> Option<Hit> {
+        self.closest_hit_in(avx2, shapes, ray, t_min, t_max, counters, log)
+    }
+
+    /// The closest-hit traversal with `code`'s node test, inlined into the
+    /// function compiled for it.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn closest_hit_in<C: NodeCode>(
+        &self,
+        code: C,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
         mut t_max: f32,
         counters: &mut Counters,
         log: &mut impl VisitLog,
@@ -197,7 +253,7 @@ impl Bvh {
         if self.prims.is_empty() {
             return None;
         }
-        let wide = WideRay::new(ray);
+        let wide = code.ray(ray);
         let mut nearest = Nearest::new(t_max);
         let mut stack = NodeStack::<Deferred>::new();
         let mut visited = 0u64;
@@ -227,9 +283,9 @@ impl Bvh {
                 visited += 1;
                 log.step(Step::Node(next.first));
                 let node = &self.nodes[next.first as usize];
-                let (near, mask) = node.hit(&wide, t_min, t_max);
+                let (near, mask) = code.hit(node, &wide, t_min, t_max);
                 if mask != 0 {
-                    next = visit_nearest(node, near.to_array(), mask, &mut stack);
+                    next = visit_nearest(node, near, mask, &mut stack);
                     continue;
                 }
             }
@@ -258,10 +314,48 @@ impl Bvh {
         t_max: f32,
         counters: &mut Counters,
     ) -> Option<u32> {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = self.avx2 {
+            // SAFETY: an `Avx2` exists only where the CPU runs AVX2.
+            return unsafe { self.occluder_avx2(avx2, shapes, ray, t_min, t_max, counters) };
+        }
+        self.occluder_in(Baseline, shapes, ray, t_min, t_max, counters)
+    }
+
+    /// [`Bvh::occluder`] compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn occluder_avx2(
+        &self,
+        avx2: Avx2,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+    ) -> Option<u32> {
+        self.occluder_in(avx2, shapes, ray, t_min, t_max, counters)
+    }
+
+    /// The any-hit traversal with `code`'s node test, inlined into the
+    /// function compiled for it.
+    #[inline(always)]
+    fn occluder_in<C: NodeCode>(
+        &self,
+        code: C,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        counters: &mut Counters,
+    ) -> Option<u32> {
         if self.prims.is_empty() {
             return None;
         }
-        let wide = WideRay::new(ray);
+        let wide = code.ray(ray);
         // Children are deferred in slot order; any occluder ends the search,
         // so no sorting.
         let mut stack = NodeStack::<(u32, u32)>::new();
@@ -280,7 +374,7 @@ impl Bvh {
             } else {
                 visited += 1;
                 let node = &self.nodes[first];
-                let (_, mut mask) = node.hit(&wide, t_min, t_max);
+                let (_, mut mask) = code.hit(node, &wide, t_min, t_max);
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
@@ -302,9 +396,9 @@ impl Bvh {
 /// build's order `ids` (packed in parallel), each leaf slot's `first`
 /// turned from its place in `ids` into the place of its records. Leaves
 /// without groups keep the records and places they had before groups.
-fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<PackedShape> {
+fn pack_leaves(nodes: &mut [Node], ids: &[u32], shapes: &[Shape]) -> Vec<PackedShape> {
     let mut leaves: Vec<(usize, usize)> = (0..nodes.len())
-        .flat_map(|n| (0..4).map(move |slot| (n, slot)))
+        .flat_map(|n| (0..WIDTH).map(move |slot| (n, slot)))
         .filter(|&(n, slot)| !matches!(nodes[n].count[slot], 0 | EMPTY))
         .collect();
     leaves.sort_unstable_by_key(|&(n, slot)| nodes[n].first[slot]);
@@ -344,13 +438,11 @@ fn pack_leaves(nodes: &mut [Node4], ids: &[u32], shapes: &[Shape]) -> Vec<Packed
 /// The hit children of `node` (`mask`, entered at `near`) sorted nearest
 /// first, ties in slot order: the others are deferred farthest first and
 /// the nearest is returned to visit now. One and two hit children, the
-/// common cases, take no sort; `near` is an array because indexing a
-/// `Vec4` by a run-time slot compiled to a jump table (an indirect branch
-/// per child, mispredicted on triangle scenes).
+/// common cases, take no sort.
 #[inline(always)]
 fn visit_nearest(
-    node: &Node4,
-    near: [f32; 4],
+    node: &Node,
+    near: [f32; WIDTH],
     mut mask: u32,
     stack: &mut NodeStack<Deferred>,
 ) -> Deferred {
@@ -371,11 +463,9 @@ fn visit_nearest(
         stack.push(child(later));
         return child(now);
     }
-    let mut order = [a, b, 0, 0];
+    let mut order = [0; WIDTH];
+    (order[0], order[1]) = if near[b] < near[a] { (b, a) } else { (a, b) };
     let mut n = 2;
-    if near[b] < near[a] {
-        order.swap(0, 1);
-    }
     while mask != 0 {
         let slot = mask.trailing_zeros() as usize;
         mask &= mask - 1;
@@ -393,7 +483,7 @@ fn visit_nearest(
     child(order[0])
 }
 
-/// The children a traversal has deferred: at most three per level of the
+/// The children a traversal has deferred: at most seven per level of the
 /// tree (a node pushes the hit children it does not visit at once).
 ///
 /// Its slots start uninitialised: traversal runs once per ray, and zeroing
@@ -440,8 +530,8 @@ impl Bvh {
             .reduce(|a, b| a.union(&b))
     }
 
-    /// The boxes of the 4-wide nodes' children at `depth` (0 is the whole
-    /// scene's box, 1 the root's up to four children), with the leaves above
+    /// The boxes of the 8-wide nodes' children at `depth` (0 is the whole
+    /// scene's box, 1 the root's up to eight children), with the leaves above
     /// it so the scene stays covered; every leaf for `None`. Read only, for
     /// drawing the structure over the image.
     pub fn boxes(&self, depth: Option<u32>) -> Vec<Aabb> {
@@ -470,8 +560,104 @@ impl Bvh {
 mod tests {
     use super::*;
     use crate::accel::packed::MIN_GROUPED_TRIANGLES;
+    use crate::accel::tests::{Rand, boxes_and_bounds, random_query, random_shapes};
     use crate::accel::visits::NoLog;
     use crate::geometry::{Plane, Sphere, Triangle};
+
+    /// The traversals compiled for AVX2 and for the baseline find the same
+    /// hit, the same occluder, and count the same nodes and tests, on
+    /// scenes of every bounded primitive and rays along their planes and
+    /// from their corners: the views' counts do not depend on the CPU.
+    #[test]
+    fn avx2_and_baseline_traversals_agree_hit_for_hit_and_count_for_count() {
+        for (seed, count) in [(1, 3), (2, 60), (3, 700), (4, 3000)] {
+            let shapes = random_shapes(seed, count, 0);
+            let ids: Vec<u32> = (0..shapes.len() as u32).collect();
+            let fast = Bvh::build(&shapes, &ids, &BvhParams::default());
+            #[cfg(target_arch = "x86_64")]
+            assert_eq!(
+                fast.avx2.is_some(),
+                is_x86_feature_detected!("avx2"),
+                "the tree uses AVX2 where the CPU has it"
+            );
+            let baseline = Bvh {
+                #[cfg(target_arch = "x86_64")]
+                avx2: None,
+                ..fast.clone()
+            };
+            let (boxes, bounds) = boxes_and_bounds(&shapes);
+            let mut r = Rand(seed ^ 0x2b2b);
+            for _ in 0..4000 {
+                let Some((ray, t_min, t_max)) = random_query(&mut r, &boxes, &bounds) else {
+                    continue;
+                };
+                let run = |bvh: &Bvh| {
+                    let (mut closest, mut any) = (Counters::default(), Counters::default());
+                    let hit =
+                        bvh.closest_hit(&shapes, &ray, t_min, t_max, &mut closest, &mut NoLog);
+                    let occluder = bvh.occluder(&shapes, &ray, t_min, t_max, &mut any);
+                    let work = |c: &Counters| (c.nodes_visited, c.intersection_tests);
+                    (hit, work(&closest), occluder, work(&any))
+                };
+                assert_eq!(run(&fast), run(&baseline), "{ray:?} in ({t_min}, {t_max})");
+            }
+        }
+    }
+
+    /// The corners of a regular tetrahedron.
+    const TETRAHEDRON: [Vec3A; 4] = [
+        Vec3A::new(1.0, 1.0, 1.0),
+        Vec3A::new(1.0, -1.0, -1.0),
+        Vec3A::new(-1.0, 1.0, -1.0),
+        Vec3A::new(-1.0, -1.0, 1.0),
+    ];
+
+    /// The faces of the Sierpinski tetrahedron of `level` on `corners`.
+    fn sierpinski(corners: [Vec3A; 4], level: u32, out: &mut Vec<Shape>) {
+        if level == 0 {
+            for skip in 0..4 {
+                let [a, b, c] = [0, 1, 2].map(|i| corners[(skip + 1 + i) % 4]);
+                out.extend(Triangle::new(a, b, c).map(Shape::Triangle));
+            }
+            return;
+        }
+        for keep in 0..4 {
+            let half = corners.map(|c| (c + corners[keep]) * 0.5);
+            sierpinski(half, level - 1, out);
+        }
+    }
+
+    /// The Sierpinski tetrahedron (`mesh_large`) splits four ways at every
+    /// level, two binary levels, and an 8-wide node takes three: at level
+    /// 5 (ten binary levels below the root, leaves of one small
+    /// tetrahedron) the collapse left bottom nodes holding just two
+    /// leaves. Those become one leaf of both, and every primitive is still
+    /// reached once.
+    #[test]
+    fn nodes_of_just_two_leaves_become_one_leaf() {
+        let mut shapes = Vec::new();
+        sierpinski(TETRAHEDRON, 5, &mut shapes);
+        assert_eq!(shapes.len(), 4 * 4usize.pow(5));
+        let ids: Vec<u32> = (0..shapes.len() as u32).collect();
+        let bvh = Bvh::build(&shapes, &ids, &BvhParams::default());
+        assert_eq!(bvh.validate(), Ok(()));
+        let two_leaves = bvh
+            .nodes
+            .iter()
+            .filter(|node| {
+                let used: Vec<usize> = node.used_slots().collect();
+                used.len() == 2 && used.iter().all(|&slot| node.count[slot] != 0)
+            })
+            .count();
+        assert_eq!(two_leaves, 0, "of {} nodes", bvh.nodes.len());
+        let largest = bvh
+            .nodes
+            .iter()
+            .flat_map(|n| n.count)
+            .filter(|&c| c != EMPTY)
+            .max();
+        assert_eq!(largest, Some(8), "two tetrahedra a leaf");
+    }
 
     /// A shape without bounds among the ids is left out of the tree, not
     /// given a box: a plane's rays find the spheres only.
