@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # A bounded fuzz run of both targets, for CI: fails on any crash (the
 # crashing input is kept in fuzz/artifacts/<target>/). Stable Rust works with
-# `--sanitizer none` (ASan needs nightly; the tracer has no unsafe code, so
-# it would add little). Seconds per target: FUZZ_SECONDS (default 30).
+# `--sanitizer none` (ASan needs nightly; the tracer's only unsafe code is
+# the BVH's AVX2 node test and its traversal stack, which the property
+# tests compare with the safe paths). Seconds per target: FUZZ_SECONDS (default 30).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}

@@ -452,12 +452,13 @@ fn parse_heat_scale(text: &str) -> Result<HeatScale, String> {
 #[derive(Args, Debug)]
 #[command(after_help = "\
 The figure is the scene rendered from an observer camera (by default
-behind, above and to the side of the scene camera, framing the scene),
-with the scene camera's frustum, its image plane showing the render, the
-lens and the plane in focus with depth of field, the lights (and their
-areas with soft shadows), and every ray of the pixel's sample: eye white,
-reflection blue, refraction pink, shadow rays yellow (dashed and ending
-at the occluder when blocked), a green tick along each hit's normal.
+behind, above and to the side of the scene camera, framing the scene and
+the lights near it), with the scene camera's frustum, its image plane
+showing the render, the lens and the plane in focus with depth of field,
+the lights (and their areas with soft shadows), and every ray of the
+pixel's sample: eye white, reflection blue, refraction pink, shadow rays
+yellow (dashed and ending at the occluder when blocked), a green tick
+along each hit's normal.
 What a surface hides is drawn faint.
 
   workbench observe scene.p3f --pixel 160 150 -o figure.png
