@@ -7,6 +7,7 @@ use std::sync::Arc;
 use glam::Vec3A;
 
 use crate::geometry::{AaBox, Aabb, Cone, Plane, Shape, Sphere, Triangle, triangulate_polygon};
+use crate::optics::bounded;
 use crate::scene::edit::{Edit, Effect};
 use crate::scene::{LightSpec, Material, Primitive, Scene, Viewpoint};
 use crate::skybox::{Skybox, SkyboxError};
@@ -15,10 +16,15 @@ use crate::stats::SceneCounts;
 /// A material in the form shading wants it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Surface {
-    /// Diffuse colour times Kd.
+    /// Diffuse colour times Kd, each component within
+    /// [`crate::optics::MAX_RADIANCE`] (a product of two huge but finite
+    /// numbers would be infinite).
     pub diffuse: Vec3A,
-    /// Specular colour times Ks: weights both the highlight and the mirror.
+    /// Specular colour times Ks, bounded the same way: weights both the
+    /// highlight and the mirror.
     pub specular: Vec3A,
+    /// The Blinn-Phong exponent, at least 0: a negative one would make the
+    /// highlight grow without bound away from the mirror direction.
     pub shine: f32,
     pub transmittance: f32,
     pub ior: f32,
@@ -27,9 +33,9 @@ pub struct Surface {
 impl From<&Material> for Surface {
     fn from(m: &Material) -> Self {
         Self {
-            diffuse: Vec3A::from(m.diffuse) * m.kd,
-            specular: Vec3A::from(m.specular) * m.ks,
-            shine: m.shine,
+            diffuse: bounded(Vec3A::from(m.diffuse) * m.kd),
+            specular: bounded(Vec3A::from(m.specular) * m.ks),
+            shine: m.shine.max(0.0),
             transmittance: m.transmittance,
             ior: m.ior,
         }
@@ -41,6 +47,7 @@ impl From<&Material> for Surface {
 pub struct Light {
     /// The point light's position, or the centre of an area light.
     pub position: Vec3A,
+    /// Within [`crate::optics::MAX_RADIANCE`], like a surface's colours.
     pub color: Vec3A,
     /// For `al` lights, the rectangle's two edge vectors (full width and
     /// height); point lights get a square of the "light size" setting when
@@ -288,7 +295,7 @@ fn lights(specs: &[LightSpec]) -> Vec<Light> {
         .map(|spec| match *spec {
             LightSpec::Point { position, color } => Light {
                 position: position.into(),
-                color: color.map_or(default_color, Vec3A::from),
+                color: color.map_or(default_color, |c| bounded(c.into())),
                 area: None,
             },
             LightSpec::Area {
@@ -303,7 +310,7 @@ fn lights(specs: &[LightSpec]) -> Vec<Light> {
                 let (u, v) = perpendicular_basis(normal);
                 Light {
                     position: centre,
-                    color: color.map_or(default_color, Vec3A::from),
+                    color: color.map_or(default_color, |c| bounded(c.into())),
                     area: Some((u * width, v * height)),
                 }
             }

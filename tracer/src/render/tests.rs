@@ -408,3 +408,78 @@ fn a_panic_inside_a_job_is_reported_and_what_was_rendered_stays() {
     );
     assert!(stats.counters.eye_rays > 0);
 }
+
+/// Renders `text` the way the `parse_render` fuzz target does (at most
+/// 8 x 8, 2 x 2 samples, depth 3, soft shadows forced on, one thread) and
+/// returns every film value that is not a finite number.
+fn non_finite_pixels(text: &str) -> Vec<(u32, u32, Vec3A)> {
+    let scene = parse_scene(text, None, &Limits::default()).expect("test scene parses");
+    let world = Arc::new(World::build(&scene));
+    let mut settings = RenderSettings::from_scene(&scene);
+    settings.width = settings.width.min(8);
+    settings.height = settings.height.min(8);
+    settings.samples = settings.samples.min(2);
+    settings.max_depth = settings.max_depth.min(3);
+    settings.soft_shadows = true;
+    let index = Arc::new(SceneIndex::build(
+        &world.shapes,
+        settings.accel,
+        settings.grid_multiplier,
+    ));
+    let (film, _) = render(world, index, settings, Some(1)).expect("the scene renders");
+    let mut bad = Vec::new();
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            let value = film.pixel(x, y).unwrap_or_default();
+            if !value.is_finite() {
+                bad.push((x, y, value));
+            }
+        }
+    }
+    bad
+}
+
+/// Found by the `parse_render` fuzz target (minimised): a blue of 3e38 in
+/// a material is a finite number the parser accepts, but diffuse times the
+/// light from two lights overflowed to infinity in the shading, and the
+/// film then held `inf` (an EXR would too; a PNG shows it as white).
+#[test]
+fn huge_but_finite_colours_give_a_finite_film() {
+    let fuzzed = "\
+#e1
+l 1 -4 4 1 1 1
+l -3 1 5 1 1 1
+f 1 0.75 3e38 0.8 1 1 1 1
+p 3
+3 3 -0.5
+-3 3 -0.5
+-3 -3 -0.57
+s 0.055556
+ 0.4203137 0.51 55556
+";
+    // The same overflow, each factor at most f32::MAX: a colour times Kd
+    // (inf when the world is built), a light colour times a diffuse colour
+    // (with a zero channel: inf * 0 is NaN), two lights adding up, a huge
+    // and a negative highlight exponent, reflections multiplying the
+    // radiance at every bounce, and a huge background in a huge mirror.
+    let scenes = [
+        fuzzed,
+        "f 1e30 1e30 1e30 3e38 3e38 3e38 3e38 3e38 3e38 1 3e38\ns 0 0 0 1\n",
+        "l 0 0 5 3e38 3e38 0\nf 3e38 3e38 3e38 1 0 0 0 0 1 0 1\ns 0 0 0 1\n",
+        "l 0 0 5\nl 0 0 5\nf 1 1 3e38 1 0 1 0 1\ns 0 0 0 1\n",
+        "l 0 0 5\nf 1 1 1 1 1 1 1 1 3e38 0 1\ns 0 0 0 1\n",
+        "l 0 0 5\nf 1 1 1 1 1 1 1 1 -3e38 0 1\ns 0 0 0 1\n",
+        "l 0 0 5 3e38 3e38 3e38\nf 1 1 1 1 3e38 3e38 3e38 1 1 0 1\n\
+         s 0 0 0 1\ns 0 0 10 3\n",
+        "b 3e38 3e38 3e38\nf 1 1 1 0 1 1 1 3e38 1 0 1\ns 0 0 0 1\n",
+    ];
+    let failures: Vec<(&str, usize)> = scenes
+        .into_iter()
+        .map(|scene| (scene, non_finite_pixels(scene).len()))
+        .filter(|&(_, bad)| bad > 0)
+        .collect();
+    assert!(
+        failures.is_empty(),
+        "scenes with non-finite pixels (how many of 64): {failures:#?}"
+    );
+}

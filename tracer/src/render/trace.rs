@@ -8,7 +8,7 @@ use glam::Vec3A;
 
 use crate::accel::{Hit, SceneIndex};
 use crate::geometry::Ray;
-use crate::optics::{blinn_phong, fresnel, reflect, refract};
+use crate::optics::{MAX_RADIANCE, blinn_phong, bounded, fresnel, reflect, refract};
 use crate::sampling::{SampleStream, multi_jittered};
 use crate::stats::Counters;
 use crate::world::{Light, Surface, World, perpendicular_basis};
@@ -125,6 +125,9 @@ pub struct Tracer<'a> {
     index: &'a SceneIndex,
     settings: &'a RenderSettings,
     shadow_mode: ShadowMode,
+    /// The ambient share of the settings, at most [`MAX_RADIANCE`] like
+    /// every other factor of the shading.
+    ambient: f32,
     /// Offset floor: a millionth of the scene's size.
     min_offset: f32,
     /// POV-Ray's shadow cache: per light, the shape that blocked the last
@@ -153,6 +156,7 @@ impl<'a> Tracer<'a> {
             index,
             settings,
             shadow_mode,
+            ambient: settings.ambient.min(MAX_RADIANCE),
             min_offset: 1e-6 * size.min(1e30),
             last_occluder: vec![Cell::new(None); world.lights.len()],
         }
@@ -214,6 +218,8 @@ impl<'a> Tracer<'a> {
     }
 
     /// Radiance along a ray already announced to `recorder`; closes it.
+    /// Within [`MAX_RADIANCE`], so that a chain of bright mirrors cannot
+    /// multiply it past f32 (see there).
     fn trace<R: TraceRecorder>(
         &self,
         ray: &Ray,
@@ -235,6 +241,7 @@ impl<'a> Tracer<'a> {
                     background
                 }
             };
+        let radiance = bounded(radiance);
         recorder.end(radiance);
         radiance
     }
@@ -269,7 +276,7 @@ impl<'a> Tracer<'a> {
         let offset = self.min_offset + RELATIVE_OFFSET * p.abs().max_element();
         let above = p + ng * offset;
 
-        let mut color = surface.diffuse * self.settings.ambient;
+        let mut color = surface.diffuse * self.ambient;
         recorder.hit(
             &SurfaceHit {
                 t: hit.t,
@@ -345,7 +352,10 @@ impl<'a> Tracer<'a> {
                         return;
                     }
                     let l = to_light / distance;
-                    if n.dot(l) <= 0.0 {
+                    // A sample point beyond f32's range (on a huge `al`
+                    // light) leaves a NaN direction: nothing to shade with.
+                    let cos = n.dot(l);
+                    if cos.is_nan() || cos <= 0.0 {
                         return;
                     }
                     counters.shadow_rays += 1;
