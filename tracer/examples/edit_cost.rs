@@ -78,6 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut edited = scene.clone();
     edit.apply(&mut edited)?;
     let (mut rebuilt, mut refitted, mut fresh) = (Vec::new(), Vec::new(), Vec::new());
+    let mut structure = Vec::new();
     let mut refits = 0;
     let mut last = None;
     for _ in 0..rounds {
@@ -101,7 +102,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         edit.apply(&mut refit_scene)?;
         let mut refit_world = world.clone();
         let change = refit_world.update_shapes(&refit_scene, &edit);
+        let follow_start = Instant::now();
         let (refit_index, refit) = follow(&index, &refit_world, &change);
+        structure.push(follow_start.elapsed());
         refitted.push(start.elapsed());
         refits += usize::from(refit);
 
@@ -120,10 +123,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "{path}: '{text}' ({:?}, {} shapes), {rounds} alternated rounds, medians: \
          edit + update + new BVH {rebuilt:.3} ms, edit + update + refit {refitted:.3} ms \
-         (refitted {refits} of {rounds}), build world + BVH {fresh:.3} ms; \
+         (the refit {:.3} ms; refitted {refits} of {rounds}), build world + BVH {fresh:.3} ms; \
          refit / new BVH {:.3}, refit / build {:.3}",
         edit.kind(),
         world.shapes.len(),
+        median(&mut structure),
         refitted / rebuilt,
         refitted / fresh,
     );

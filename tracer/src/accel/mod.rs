@@ -279,7 +279,7 @@ impl SceneIndex {
     /// rather than built again; `None` when it cannot be, and a build
     /// must follow: the shapes' count changed, a moved shape gained or
     /// lost its bounds, a grid's moved box leaves the grid, or the BVH's
-    /// boxes would grow so much that its rays would cost more than 1.25
+    /// boxes would grow so much that its rays would cost more than 1.1
     /// times what they did when it was built (its SAH cost).
     /// The result finds the hits a build over `shapes` finds; `build_time`
     /// is the refit's.

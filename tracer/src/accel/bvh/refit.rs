@@ -17,7 +17,7 @@ use crate::accel::packed::{leaf_grouped, leaf_ids};
 /// cost it had when it was built: above it, rays would pay more than a
 /// build costs. Measured on balls_high, one sphere moved (see
 /// docs/PERFORMANCE.md, "Scene edits").
-pub(in crate::accel) const MAX_COST_GROWTH: f64 = 1.25;
+pub(in crate::accel) const MAX_COST_GROWTH: f64 = 1.1;
 
 /// The SAH cost of a tree in absolute units (not divided by the root's
 /// area, so that a box pulled far out counts in full): every child's box's
