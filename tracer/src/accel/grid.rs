@@ -42,8 +42,8 @@ pub struct Grid {
     cell_size: Vec3A,
     inv_cell_size: Vec3A,
     /// Cell `i` lists `refs[offsets[i]..offsets[i + 1]]`.
-    offsets: Vec<u32>,
-    refs: Vec<u32>,
+    pub(super) offsets: Vec<u32>,
+    pub(super) refs: Vec<u32>,
 }
 
 /// Slots of the per-ray mailbox: an object spanning several cells is tested

@@ -107,6 +107,13 @@ impl PackedShape {
         }
     }
 
+    /// The record's bits, NaN lanes included, for comparing records.
+    #[cfg(test)]
+    pub(super) fn bits(&self) -> [u32; 12] {
+        let [a, b, c] = [self.a, self.b, self.c].map(|v| v.to_array().map(f32::to_bits));
+        std::array::from_fn(|i| [a, b, c][i / 4][i % 4])
+    }
+
     /// The kind of record: [`SPHERE`], [`TRIANGLE`], [`OTHER`], or the
     /// header of a group, [`SPHERES`] or [`TRIANGLES`].
     #[inline(always)]

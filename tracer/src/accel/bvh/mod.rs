@@ -128,6 +128,14 @@ impl Bvh {
         }
     }
 
+    /// Whether `other` has the same nodes and packed records, to the bit
+    /// (unused lanes of a group hold NaN).
+    #[cfg(test)]
+    pub(in crate::accel) fn same_as(&self, other: &Bvh) -> bool {
+        let bits = |prims: &[PackedShape]| prims.iter().map(PackedShape::bits).collect::<Vec<_>>();
+        self.nodes == other.nodes && bits(&self.prims) == bits(&other.prims)
+    }
+
     /// Nodes in the flattened tree (each holds up to eight children).
     pub fn node_count(&self) -> usize {
         self.nodes.len()

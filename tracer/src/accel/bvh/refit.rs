@@ -87,9 +87,6 @@ impl Bvh {
             }
         }
         let cost = tree_cost(nodes);
-        if std::env::var_os("REFIT_DEBUG").is_some() {
-            eprintln!("refit cost ratio {}", cost / self.built_cost);
-        }
         (cost <= MAX_COST_GROWTH * self.built_cost).then_some(bvh)
     }
 }
