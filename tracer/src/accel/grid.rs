@@ -3,8 +3,6 @@
 //! each object listed in every cell its box overlaps, rays walked cell by
 //! cell with Amanatides and Woo's 3D-DDA.
 
-use std::ops::Range;
-
 use glam::{IVec3, Vec3A};
 
 use crate::geometry::{Aabb, Ray, Shape};
@@ -42,8 +40,8 @@ pub struct Grid {
     cell_size: Vec3A,
     inv_cell_size: Vec3A,
     /// Cell `i` lists `refs[offsets[i]..offsets[i + 1]]`.
-    pub(super) offsets: Vec<u32>,
-    pub(super) refs: Vec<u32>,
+    offsets: Vec<u32>,
+    refs: Vec<u32>,
 }
 
 /// Slots of the per-ray mailbox: an object spanning several cells is tested
@@ -128,76 +126,6 @@ impl Grid {
             inv_cell_size: cell_size.recip(),
             offsets,
             refs,
-        }
-    }
-
-    /// This grid with the shapes `moved` of `shapes` (which kept their
-    /// index) listed in the cells of their new boxes instead of their old
-    /// ones, every cell's list still in index order, as a build lists
-    /// them; `None` when a moved box leaves the grid's box (a build would
-    /// make a larger grid) or the references would exceed the build's
-    /// limit. One pass over the cells and references, which is what a
-    /// build spends most of its time on besides the boxes.
-    pub(in crate::accel) fn refit(&self, shapes: &[Shape], moved: Range<u32>) -> Option<Grid> {
-        let cells = self.cells;
-        let index = |c: IVec3| (c.x + cells.x * (c.y + cells.y * c.z)) as u32;
-        let mut added: Vec<(u32, u32)> = Vec::new();
-        for id in moved.clone() {
-            let Some(b) = shapes.get(id as usize)?.bounds() else {
-                continue;
-            };
-            if !(b.min.cmpge(self.bounds.min) & b.max.cmple(self.bounds.max)).all() {
-                return None;
-            }
-            let (lo, hi) = cell_range(&self.bounds, cells, &b);
-            for z in lo.z..=hi.z {
-                for y in lo.y..=hi.y {
-                    for x in lo.x..=hi.x {
-                        added.push((index(IVec3::new(x, y, z)), id));
-                    }
-                }
-            }
-        }
-        added.sort_unstable();
-        let cell_count = self.offsets.len() - 1;
-        let mut offsets = Vec::with_capacity(self.offsets.len());
-        let mut refs = Vec::with_capacity(self.refs.len() + added.len());
-        offsets.push(0);
-        let mut added = added.as_slice();
-        for cell in 0..cell_count {
-            let old = &self.refs[self.offsets[cell] as usize..self.offsets[cell + 1] as usize];
-            let here = added.partition_point(|&(c, _)| c as usize == cell);
-            let (new, rest) = added.split_at(here);
-            added = rest;
-            let mut new = new.iter().map(|&(_, id)| id).peekable();
-            for &id in old.iter().filter(|id| !moved.contains(id)) {
-                while let Some(n) = new.next_if(|&n| n < id) {
-                    refs.push(n);
-                }
-                refs.push(id);
-            }
-            refs.extend(new);
-            offsets.push(u32::try_from(refs.len()).ok()?);
-        }
-        if refs.len() as u64 > MAX_REFERENCES {
-            return None;
-        }
-        Some(Grid {
-            offsets,
-            refs,
-            ..self.clone_frame()
-        })
-    }
-
-    /// This grid's box and cells with no references, for [`Grid::refit`].
-    fn clone_frame(&self) -> Grid {
-        Grid {
-            bounds: self.bounds,
-            cells: self.cells,
-            cell_size: self.cell_size,
-            inv_cell_size: self.inv_cell_size,
-            offsets: Vec::new(),
-            refs: Vec::new(),
         }
     }
 

@@ -278,7 +278,8 @@ impl SceneIndex {
     /// number of shapes, each of its old kind), refitted around them
     /// rather than built again; `None` when it cannot be, and a build
     /// must follow: the shapes' count changed, a moved shape gained or
-    /// lost its bounds, a grid's moved box leaves the grid, or the BVH's
+    /// lost its bounds, the structure is a grid (whose refit measured no
+    /// faster than its build), or the BVH's
     /// boxes would grow so much that its rays would cost more than 1.1
     /// times what they did when it was built (its SAH cost).
     /// The result finds the hits a build over `shapes` finds; `build_time`
@@ -297,22 +298,16 @@ impl SceneIndex {
         }
         let structure = match &self.structure {
             Structure::None(b) => Structure::None(b.clone()),
-            Structure::Grid(g) => Structure::Grid(g.refit(shapes, moved)?),
+            // Relisting the moved shapes' references is a pass over every
+            // cell, no faster than a build: 0.8-1.08x of one on
+            // balls_high, 2.3x slower on mount_very_high's 15 ms grid
+            // (docs/PERFORMANCE.md, "Scene edits"). A grid is built anew.
+            Structure::Grid(_) => return None,
             Structure::Bvh(b) => Structure::Bvh(b.refit(shapes, moved)?),
-        };
-        let grid = match &structure {
-            Structure::Grid(g) => Some(g.stats()),
-            _ => None,
-        };
-        let memory_bytes = match &structure {
-            Structure::Grid(g) => g.memory_bytes() + self.unbounded.len() * 4,
-            _ => self.info.memory_bytes,
         };
         Some(SceneIndex {
             info: AccelInfo {
                 build_time: start.elapsed(),
-                memory_bytes,
-                grid,
                 ..self.info.clone()
             },
             shapes: self.shapes,
