@@ -23,7 +23,7 @@ pub(in crate::accel) const MAX_COST_GROWTH: f64 = 1.1;
 /// area, so that a box pulled far out counts in full): every child's box's
 /// half area times what entering it costs, a node visit for an inner child
 /// ([`NODE_VISIT_COST`]), a test per primitive for a leaf. Read from the
-/// nodes alone, a pass over them (a tenth of the primitives' count).
+/// nodes alone, a pass over them that reads no primitive.
 pub(super) fn tree_cost(nodes: &[Node]) -> f64 {
     nodes
         .iter()
