@@ -2,6 +2,7 @@
 //! materials are pre-multiplied, lights get their colours and areas, the
 //! skybox is loaded. Built once per scene, shared by every render of it.
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use glam::Vec3A;
@@ -12,6 +13,20 @@ use crate::scene::edit::{Edit, Effect};
 use crate::scene::{LightSpec, Material, Primitive, Scene, Viewpoint};
 use crate::skybox::{Skybox, SkyboxError};
 use crate::stats::SceneCounts;
+
+/// Which shapes [`World::update_shapes`] changed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ShapeChange {
+    /// None: a structure over the shapes stays valid as it is.
+    None,
+    /// These shapes (one object's) were made again in their place, as many
+    /// as before, each of the kind it was (a sphere is still a sphere): a
+    /// structure over them can be refitted around them.
+    InPlace(Range<u32>),
+    /// Shapes were added, removed or changed kind (a polygon triangulated
+    /// anew into fewer triangles): the structure must be built again.
+    Renumbered,
+}
 
 /// A material in the form shading wants it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -164,11 +179,18 @@ impl World {
     /// the edited scene (tested), but for the warnings: an edit adds one if
     /// it skips degenerate shapes, and keeps those of the first build.
     pub fn update(&mut self, scene: &Scene, edit: &Edit) {
+        self.update_shapes(scene, edit);
+    }
+
+    /// [`World::update`], saying which shapes it changed, for the
+    /// structure over them to follow ([`crate::accel::SceneIndex::refit`]).
+    pub fn update_shapes(&mut self, scene: &Scene, edit: &Edit) -> ShapeChange {
         match edit.kind() {
             Effect::Geometry => {
-                if let Edit::Object { index, .. } = edit {
-                    self.update_object(scene, *index);
-                }
+                return match edit {
+                    Edit::Object { index, .. } => self.update_object(scene, *index),
+                    _ => ShapeChange::Renumbered,
+                };
             }
             Effect::Shading => {
                 self.surfaces = surfaces(&scene.materials);
@@ -185,15 +207,16 @@ impl World {
             }
             Effect::Camera => self.view = scene.view.clone(),
         }
+        ShapeChange::None
     }
 
     /// Object `index`'s shapes built again from `scene`, in their place
     /// (a world's shapes are in object order).
-    fn update_object(&mut self, scene: &Scene, index: usize) {
+    fn update_object(&mut self, scene: &Scene, index: usize) -> ShapeChange {
         let (Some(object), Some(kind)) =
             (scene.objects.get(index), self.object_kinds.get_mut(index))
         else {
-            return;
+            return ShapeChange::Renumbered;
         };
         let start = self.shape_object.partition_point(|&o| (o as usize) < index);
         let end = self
@@ -202,6 +225,15 @@ impl World {
         let mut builder = Builder::default();
         *kind = builder.add(&object.primitive, object.material);
         let count = builder.shapes.len();
+        let same_kinds = count == end - start
+            && (self.shapes[start..end].iter())
+                .zip(&builder.shapes)
+                .all(|(old, new)| std::mem::discriminant(old) == std::mem::discriminant(new));
+        let change = if same_kinds {
+            ShapeChange::InPlace(start as u32..end as u32)
+        } else {
+            ShapeChange::Renumbered
+        };
         let materials = clamped(&self.surfaces, builder.materials.iter().copied());
         self.shape_surface.splice(start..end, materials);
         self.shapes.splice(start..end, builder.shapes);
@@ -217,6 +249,7 @@ impl World {
                 builder.degenerate
             ));
         }
+        change
     }
 
     /// The surface of shape `index`.

@@ -107,6 +107,13 @@ impl PackedShape {
         }
     }
 
+    /// The record's bits, NaN lanes included, for comparing records.
+    #[cfg(test)]
+    pub(super) fn bits(&self) -> [u32; 12] {
+        let [a, b, c] = [self.a, self.b, self.c].map(|v| v.to_array().map(f32::to_bits));
+        std::array::from_fn(|i| [a, b, c][i / 4][i % 4])
+    }
+
     /// The kind of record: [`SPHERE`], [`TRIANGLE`], [`OTHER`], or the
     /// header of a group, [`SPHERES`] or [`TRIANGLES`].
     #[inline(always)]
@@ -403,6 +410,35 @@ fn pack_groups<G: Group>(
         }
         G::pack(&group[..n], grouped, emit);
     }
+}
+
+/// Appends the world indices of the leaf of `count` primitives whose
+/// slot says `first` to `ids`, in the order of its records (spheres, then
+/// triangles, then the rest: [`pack_leaf`] packs them back in the same
+/// order), and returns how many records it takes up; `None` when they run
+/// past the end of `prims`.
+pub(super) fn leaf_ids(
+    prims: &[PackedShape],
+    first: usize,
+    count: usize,
+    ids: &mut Vec<u32>,
+) -> Option<usize> {
+    let leaf = Leaf::at(prims, first, count)?;
+    let mut groups = |records: &[PackedShape], size: usize| {
+        for group in records.chunks_exact(size) {
+            let lanes = group_size(group) as u32;
+            ids.extend((0..lanes).map(|lane| group_id(group, lane)));
+        }
+    };
+    groups(leaf.spheres, Spheres::RECORDS);
+    groups(leaf.triangles, Triangles::RECORDS);
+    ids.extend(leaf.records.iter().map(Primitive::id));
+    Some(leaf.len())
+}
+
+/// Whether the slot of a leaf says its records start with groups.
+pub(super) fn leaf_grouped(first: usize) -> bool {
+    first & GROUPED != 0
 }
 
 /// A leaf's records as its loops read them.

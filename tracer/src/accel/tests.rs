@@ -19,19 +19,19 @@ use crate::stats::Counters;
 pub(super) struct Rand(pub(super) u64);
 
 impl Rand {
-    fn next(&mut self) -> f32 {
+    pub(super) fn next(&mut self) -> f32 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
         (self.0 >> 40) as f32 / (1u64 << 24) as f32
     }
 
-    fn point(&mut self, scale: f32) -> Vec3A {
+    pub(super) fn point(&mut self, scale: f32) -> Vec3A {
         Vec3A::new(self.next(), self.next(), self.next()) * (2.0 * scale) - scale
     }
 
     /// One of `0..n`.
-    fn below(&mut self, n: usize) -> usize {
+    pub(super) fn below(&mut self, n: usize) -> usize {
         ((self.next() * n as f32) as usize).min(n.saturating_sub(1))
     }
 

@@ -99,7 +99,8 @@ impl Side {
     }
 
     /// Applies `edit` to this side's scene, renders again (keeping the
-    /// structure unless the edit moved shapes) and records it for undo.
+    /// structure unless the edit moved shapes, refitting it around shapes
+    /// moved in place) and records it for undo.
     /// A refused edit changes nothing and says why.
     pub fn edit(&mut self, edit: Edit) -> Result<Effect, String> {
         let inverse = self.apply(&edit)?;
@@ -143,7 +144,7 @@ impl Side {
         let mut scene = loaded.scene.clone();
         let inverse = edit.apply(&mut scene).map_err(|e| e.to_string())?;
         let mut world = (*loaded.world).clone();
-        world.update(&scene, edit);
+        let shapes = world.update_shapes(&scene, edit);
         if edit.kind() == Effect::Camera {
             self.controls.follow_lens(&scene.view);
         }
@@ -152,8 +153,7 @@ impl Side {
             world: Arc::new(world),
             ..loaded.clone()
         };
-        self.engine
-            .edit_scene(edited, edit.kind() != Effect::Geometry);
+        self.engine.edit_scene(edited, shapes);
         Ok(inverse)
     }
 

@@ -6,6 +6,7 @@
 
 mod build;
 mod node;
+mod refit;
 mod visits;
 
 use std::mem::MaybeUninit;
@@ -76,6 +77,9 @@ const STACK_SIZE: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 pub struct Bvh {
     nodes: Vec<Node>,
     prims: Vec<PackedShape>,
+    /// The tree's cost ([`refit::tree_cost`]) when it was built, which a
+    /// refit compares its own to.
+    built_cost: f64,
     /// The AVX2 node test, where the CPU runs it; SSE's otherwise.
     #[cfg(target_arch = "x86_64")]
     avx2: Option<Avx2>,
@@ -116,11 +120,20 @@ impl Bvh {
         let ids: Vec<u32> = prims.iter().map(|p| p.id).collect();
         let prims = pack_leaves(&mut nodes, &ids, shapes);
         Bvh {
+            built_cost: refit::tree_cost(&nodes),
             nodes,
             prims,
             #[cfg(target_arch = "x86_64")]
             avx2: Avx2::detect(),
         }
+    }
+
+    /// Whether `other` has the same nodes and packed records, to the bit
+    /// (unused lanes of a group hold NaN).
+    #[cfg(test)]
+    pub(in crate::accel) fn same_as(&self, other: &Bvh) -> bool {
+        let bits = |prims: &[PackedShape]| prims.iter().map(PackedShape::bits).collect::<Vec<_>>();
+        self.nodes == other.nodes && bits(&self.prims) == bits(&other.prims)
     }
 
     /// Nodes in the flattened tree (each holds up to eight children).

@@ -64,6 +64,18 @@ impl Node {
         self.count[i] = count;
     }
 
+    /// Sets the box of slot `i`, keeping its child.
+    pub(super) fn set_bounds(&mut self, i: usize, bounds: &Aabb) {
+        let (first, count) = (self.first[i], self.count[i]);
+        self.set(i, bounds, first, count);
+    }
+
+    /// The box around all of its children's boxes.
+    pub(super) fn union(&self) -> Aabb {
+        self.used_slots()
+            .fold(Aabb::empty(), |b, slot| b.union(&self.bounds(slot)))
+    }
+
     /// The slots that hold a child (they come first).
     pub(super) fn used_slots(&self) -> impl Iterator<Item = usize> + '_ {
         (0..WIDTH).take_while(|&i| self.count[i] != EMPTY)
@@ -322,7 +334,7 @@ pub(super) fn flatten(tree: &BuildTree, prims: usize, traversal_cost: f32) -> Ve
 /// holding two leaves and nothing else is four cache lines fetched to
 /// test two boxes, twice what a binary (or 4-wide) node costs, which the
 /// build's SAH prices at `traversal_cost`.
-const NODE_VISIT_COST: f32 = 2.0;
+pub(super) const NODE_VISIT_COST: f32 = 2.0;
 
 /// The leaf that an inner node with two leaf children, `at`, becomes when
 /// the SAH, a visit of its node priced as an 8-wide node's, says testing

@@ -178,3 +178,70 @@ fn new_settings_wait_for_the_structure_being_built_instead_of_building_another()
     engine.render(&grid).unwrap();
     assert_eq!(engine.version().0, 3);
 }
+
+/// `text` applied to the engine's scene and world, as `Side::apply` does:
+/// the edited scene and which shapes changed.
+fn edited(engine: &Engine, text: &str) -> (LoadedScene, ShapeChange) {
+    let loaded = engine.scene().expect("a scene");
+    let mut scene = loaded.scene.clone();
+    let edit = tracer::scene::edit::Edit::parse_in(text, &scene).unwrap();
+    edit.apply(&mut scene).unwrap();
+    let mut world = (*loaded.world).clone();
+    let change = world.update_shapes(&scene, &edit);
+    let loaded = LoadedScene {
+        scene,
+        world: Arc::new(world),
+        ..loaded.clone()
+    };
+    (loaded, change)
+}
+
+#[test]
+fn a_move_refits_the_structure_and_the_next_job_builds_nothing() {
+    let mut engine = Engine::new(Arc::new(|| {}));
+    engine.load(SceneSource::Bundled("balls_low".into()));
+    wait_until(&mut engine, |e| e.poll_load().is_some());
+    let settings = RenderSettings {
+        width: 32,
+        height: 32,
+        accel: AccelKind::Bvh,
+        ..RenderSettings::from_scene(&engine.scene().unwrap().scene)
+    };
+    engine.render(&settings).unwrap();
+    wait_until(&mut engine, |e| {
+        e.activity() == Activity::Job(JobState::Done)
+    });
+    let built = engine.index().expect("the job's structure");
+
+    // A sphere nudged: the structure is refitted, and the next job renders
+    // over it at once, with no Building phase.
+    let (scene, change) = edited(&engine, "object 2 translate 0.01 0 0");
+    assert!(matches!(change, ShapeChange::InPlace(_)), "{change:?}");
+    engine.edit_scene(scene, change);
+    let refit = engine.index().expect("refitted");
+    assert!(!Arc::ptr_eq(&refit, &built));
+    engine.render(&settings).unwrap();
+    assert_eq!(engine.activity(), Activity::Job(JobState::Rendering));
+    assert!(Arc::ptr_eq(&engine.index().unwrap(), &refit));
+    wait_until(&mut engine, |e| {
+        e.activity() == Activity::Job(JobState::Done)
+    });
+
+    // A material edit keeps it as it is.
+    let (scene, change) = edited(&engine, "object 2 kd 0.5");
+    assert_eq!(change, ShapeChange::None);
+    engine.edit_scene(scene, change);
+    assert!(Arc::ptr_eq(&engine.index().unwrap(), &refit));
+
+    // A sphere made a box: built anew by the next job.
+    let (scene, change) = edited(&engine, "object 2 shape box 0 0 0 0.1 0.1 0.1");
+    assert_eq!(change, ShapeChange::Renumbered);
+    engine.edit_scene(scene, change);
+    assert!(engine.index().is_none());
+    engine.render(&settings).unwrap();
+    wait_until(&mut engine, |e| {
+        e.activity() == Activity::Job(JobState::Done)
+    });
+    let rebuilt = engine.index().expect("built again");
+    assert!(!Arc::ptr_eq(&rebuilt, &refit));
+}
