@@ -5,11 +5,8 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use tracer::accel::{AccelInfo, SceneIndex};
-use tracer::render::{
-    Encoding, JobOptions, JobState, RenderJob, RenderSettings, Snapshot, View, ViewHeatmap,
-};
-
+use tracer::accel::SceneIndex;
+use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
 use tracer::world::ShapeChange;
 
 use crate::load::SceneSource;
@@ -299,25 +296,6 @@ impl Engine {
         self.job.is_some() && self.complete.load(Ordering::Relaxed)
     }
 
-    /// A number that changes whenever the image or statistics change,
-    /// including when a new job replaces one that reached the same count.
-    pub fn version(&self) -> Version {
-        (
-            self.jobs_started,
-            self.job.as_ref().map_or(0, |j| j.version()),
-        )
-    }
-
-    /// The current image and statistics.
-    pub fn snapshot(&self, encoding: Encoding) -> Option<Snapshot> {
-        self.job.as_ref().map(|j| j.snapshot(encoding))
-    }
-
-    /// The current job's film as linear floats, for "Save as EXR".
-    pub fn linear_image(&self) -> Option<image::Rgb32FImage> {
-        self.job.as_ref().map(RenderJob::linear_image)
-    }
-
     /// The acceleration structure of the current job, once built (or the
     /// last one built), to inspect rays against the same structure.
     pub fn index(&self) -> Option<Arc<SceneIndex>> {
@@ -340,37 +318,6 @@ impl Engine {
     pub fn set_views(&mut self, on: bool) {
         self.views_changed |= on != self.views;
         self.views = on;
-    }
-
-    /// The current image under `view` (the shaded image while the job
-    /// does not measure views).
-    pub fn view_snapshot(
-        &self,
-        view: View,
-        heat: &ViewHeatmap,
-        encoding: Encoding,
-    ) -> Option<Snapshot> {
-        self.job
-            .as_ref()
-            .map(|j| j.view_snapshot(view, heat, encoding))
-    }
-
-    /// The value of a scalar view at one pixel, if the job measures views.
-    pub fn view_value(&self, view: View, x: u32, y: u32) -> Option<f32> {
-        self.job.as_ref()?.view_value(view, x, y)
-    }
-
-    /// The current values of a scalar view, if the job measures views.
-    pub fn view_values(&self, view: View) -> Option<Vec<Option<f32>>> {
-        self.job.as_ref().and_then(|j| j.view_values(view))
-    }
-
-    /// What was built for the current job, once built.
-    pub fn accel_info(&self) -> Option<AccelInfo> {
-        self.job
-            .as_ref()
-            .and_then(|j| j.index())
-            .map(|i| i.info().clone())
     }
 
     pub fn activity(&self) -> Activity {
@@ -408,6 +355,7 @@ impl Engine {
 }
 
 mod loader;
+mod outputs;
 #[cfg(test)]
 mod tests;
 

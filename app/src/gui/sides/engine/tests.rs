@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 
 use tracer::accel::AccelKind;
+use tracer::render::Encoding;
 
 use super::*;
 
