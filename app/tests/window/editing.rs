@@ -309,10 +309,7 @@ fn in_observer(harness: &Harness<'static, WorkbenchApp>, point: glam::Vec3) -> e
 }
 
 fn light_position(app: &WorkbenchApp, index: usize) -> glam::Vec3 {
-    match app.engine().scene().unwrap().scene.lights[index] {
-        tracer::scene::LightSpec::Point { position, .. } => position,
-        tracer::scene::LightSpec::Area { centre, .. } => centre,
-    }
+    app.engine().scene().unwrap().scene.lights[index].position()
 }
 
 #[test]

@@ -107,6 +107,24 @@ pub enum LightSpec {
     },
 }
 
+impl LightSpec {
+    /// Where the light stands: a point light's position, an area light's
+    /// centre (what `light N position` edits).
+    pub fn position(&self) -> Vec3 {
+        match self {
+            LightSpec::Point { position, .. } => *position,
+            LightSpec::Area { centre, .. } => *centre,
+        }
+    }
+
+    /// The colour the file gives, if any.
+    pub fn color(&self) -> Option<Vec3> {
+        match self {
+            LightSpec::Point { color, .. } | LightSpec::Area { color, .. } => *color,
+        }
+    }
+}
+
 /// One geometric object as the file states it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Primitive {

@@ -8,10 +8,9 @@
 use egui::{Pos2, Rect, Stroke, Ui};
 use glam::Vec3A;
 use tracer::camera::Camera;
-use tracer::scene::LightSpec;
 use tracer::scene::edit::{Edit, LightChange};
 
-use super::{Editor, SELECTION_COLOUR, drag_shift, object_at, to_screen, translation};
+use super::{Editor, SELECTION_COLOUR, drag_shift, object_at, to_screen};
 use crate::gui::image::viewport::ViewportResponse;
 use crate::gui::observer::Observer;
 use crate::gui::sides::Side;
@@ -50,15 +49,21 @@ impl Editor {
             self.grab = None;
             return Vec::new();
         }
-        let lights: Vec<Vec3A> = scene.scene.lights.iter().map(light_position).collect();
-        let (pressed, released, clicked, origin) = ui.input(|i| {
+        let lights: Vec<Vec3A> = scene
+            .scene
+            .lights
+            .iter()
+            .map(|l| l.position().into())
+            .collect();
+        let (pressed, released, clicked, origin, at) = ui.input(|i| {
             let p = &i.pointer;
-            let origin = p.press_origin();
+            let (origin, at) = (p.press_origin(), p.interact_pos());
             (
                 p.primary_pressed(),
                 p.primary_released(),
                 p.primary_clicked(),
                 origin,
+                at,
             )
         });
         let over_image = response.hovered_pixel.is_some();
@@ -72,8 +77,7 @@ impl Editor {
                 _ => None,
             };
             if let Some(Grab::Light(light)) = self.grab {
-                self.light = Some(light);
-                self.reveal_lights = true;
+                self.select_light(light);
             }
         }
         let mut edits = Vec::new();
@@ -90,11 +94,10 @@ impl Editor {
                 }
             }
             Some(Grab::Object(object)) => {
-                let bounds = self.bounds(&scene.world, object);
                 let gestures = std::mem::take(&mut response.gestures);
-                let (rest, moved) = drag_shift(&camera, rect, bounds.centre(), gestures);
+                let (rest, edit) = self.drag_object(&scene.world, object, &camera, rect, gestures);
                 response.gestures = rest;
-                edits.extend(translation(object, moved));
+                edits.extend(edit);
             }
             _ => {}
         }
@@ -102,9 +105,8 @@ impl Editor {
             self.grab = None;
         }
         if clicked && over_image {
-            if let Some(light) = light_at(ui.input(|i| i.pointer.interact_pos())) {
-                self.light = Some(light);
-                self.reveal_lights = true;
+            if let Some(light) = light_at(at) {
+                self.select_light(light);
             } else if let Some(pixel) = response.hovered_pixel {
                 self.select(object_at(observer.engine(), pixel));
             }
@@ -123,7 +125,7 @@ impl Editor {
         };
         self.paint_outline_through(ui, &scene.world, &camera, rect);
         let light = self.light.and_then(|i| scene.scene.lights.get(i));
-        if let Some(centre) = light.and_then(|l| marker(&camera, rect, light_position(l))) {
+        if let Some(centre) = light.and_then(|l| marker(&camera, rect, l.position().into())) {
             ui.painter()
                 .with_clip_rect(rect.intersect(ui.clip_rect()))
                 .circle_stroke(
@@ -132,14 +134,6 @@ impl Editor {
                     Stroke::new(2.0, SELECTION_COLOUR),
                 );
         }
-    }
-}
-
-/// Where a light stands: a point light's position, an area light's centre.
-fn light_position(light: &LightSpec) -> Vec3A {
-    match light {
-        LightSpec::Point { position, .. } => (*position).into(),
-        LightSpec::Area { centre, .. } => (*centre).into(),
     }
 }
 

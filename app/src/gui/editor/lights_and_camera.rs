@@ -35,10 +35,11 @@ fn vector_row(ui: &mut Ui, label: &str, v: &mut Vec3) -> bool {
 /// colour, adding and removing.
 pub(super) fn lights(ui: &mut Ui, editor: &mut Editor, scene: &Scene, edits: &mut Vec<Edit>) {
     for (i, light) in scene.lights.iter().enumerate() {
-        let (kind, at) = match light {
-            LightSpec::Point { position, .. } => ("point", *position),
-            LightSpec::Area { centre, .. } => ("area", *centre),
+        let kind = match light {
+            LightSpec::Point { .. } => "point",
+            LightSpec::Area { .. } => "area",
         };
+        let at = light.position();
         let text = format!(
             "light {i}: {kind} at ({:.2}, {:.2}, {:.2})",
             at.x, at.y, at.z
@@ -48,10 +49,8 @@ pub(super) fn lights(ui: &mut Ui, editor: &mut Editor, scene: &Scene, edits: &mu
         }
     }
     if let Some(index) = editor.light.filter(|i| *i < scene.lights.len()) {
-        let (mut at, colour) = match scene.lights[index] {
-            LightSpec::Point { position, color } => (position, color),
-            LightSpec::Area { centre, color, .. } => (centre, color),
-        };
+        let light = &scene.lights[index];
+        let (mut at, colour) = (light.position(), light.color());
         let light_edit = |change| Edit::Light { index, change };
         if vector(ui, "Position", &mut at) {
             edits.push(light_edit(LightChange::Position(at)));

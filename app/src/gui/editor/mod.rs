@@ -157,12 +157,37 @@ impl Editor {
         let Ok(camera) = Frame::camera(&scene.world, settings) else {
             return (gestures, None);
         };
-        let bounds = self.bounds(&scene.world, object);
+        self.drag_object(&scene.world, object, &camera, rect, gestures)
+    }
+
+    /// Turns a drag over `camera`'s image in `rect` into a translation of
+    /// `object` of `world` parallel to the image plane, keeping its centre
+    /// under the pointer; an object without bounds (a plane) is left alone
+    /// and the gestures given back.
+    fn drag_object(
+        &mut self,
+        world: &Arc<World>,
+        object: usize,
+        camera: &Camera,
+        rect: Rect,
+        gestures: Vec<Gesture>,
+    ) -> (Vec<Gesture>, Option<Edit>) {
+        let bounds = self.bounds(world, object);
         if bounds.is_empty() {
             return (gestures, None);
         }
-        let (rest, moved) = drag_shift(&camera, rect, bounds.centre(), gestures);
-        (rest, translation(object, moved))
+        let (rest, moved) = drag_shift(camera, rect, bounds.centre(), gestures);
+        let edit = (moved != Vec3A::ZERO).then(|| Edit::Object {
+            index: object,
+            change: ObjectChange::Geometry(GeometryChange::Translate(moved.into())),
+        });
+        (rest, edit)
+    }
+
+    /// Selects light `index` and opens the panel's list of lights on it.
+    fn select_light(&mut self, index: usize) {
+        self.light = Some(index);
+        self.reveal_lights = true;
     }
 }
 
@@ -219,14 +244,6 @@ fn drag_shift(
         moved += plane(at.x + dx, at.y + dy) - plane(at.x, at.y);
     }
     (rest, moved)
-}
-
-/// The edit moving `object` by `moved`, if it moves.
-fn translation(object: usize, moved: Vec3A) -> Option<Edit> {
-    (moved != Vec3A::ZERO).then(|| Edit::Object {
-        index: object,
-        change: ObjectChange::Geometry(GeometryChange::Translate(moved.into())),
-    })
 }
 
 /// The 12 edges of `bounds`.
