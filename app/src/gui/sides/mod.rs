@@ -148,10 +148,13 @@ impl Side {
         if edit.kind() == Effect::Camera {
             self.controls.follow_lens(&scene.view);
         }
+        // Field by field: `..loaded.clone()` would copy the whole scene
+        // document a second time only to drop it.
         let edited = LoadedScene {
+            source: loaded.source.clone(),
             scene,
             world: Arc::new(world),
-            ..loaded.clone()
+            load_time: loaded.load_time,
         };
         self.engine.edit_scene(edited, shapes);
         Ok(inverse)
