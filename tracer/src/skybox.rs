@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::{Mat3A, Quat, Vec3, Vec3A};
+use rayon::prelude::*;
 
 /// Face names in the order +x, -x, +y, -y, +z, -z.
 pub const FACE_NAMES: [&str; 6] = ["right", "left", "top", "bottom", "front", "back"];
@@ -28,7 +29,38 @@ pub enum SkyboxError {
 struct Face {
     width: u32,
     height: u32,
-    texels: Vec<Vec3A>,
+    texels: Texels,
+}
+
+/// A face's texels in the form its image came in.
+#[derive(Debug, Clone, PartialEq)]
+enum Texels {
+    /// An 8-bit image's own bytes, turned into `[0, 1]` on lookup as the
+    /// `image` crate turns them (`v / 255`): a sixteenth of the memory of
+    /// floats, which made the bundled sky's six faces 6 MB of fresh pages
+    /// and 5 ms of every start.
+    Bytes(Vec<[u8; 3]>),
+    /// Deeper images and painted skies, as floats.
+    Floats(Vec<Vec3A>),
+}
+
+impl Texels {
+    #[inline]
+    fn get(&self, i: usize) -> Vec3A {
+        match self {
+            Texels::Bytes(bytes) => {
+                let [r, g, b] = bytes[i];
+                Vec3A::new(unit(r), unit(g), unit(b))
+            }
+            Texels::Floats(floats) => floats[i],
+        }
+    }
+}
+
+/// An 8-bit value in `[0, 1]`, exactly as `image`'s `to_rgb32f` gives it.
+#[inline]
+fn unit(v: u8) -> f32 {
+    v as f32 / u8::MAX as f32
 }
 
 /// Six faces of a sky cube.
@@ -50,7 +82,7 @@ impl Skybox {
             return Err(SkyboxError::MissingFolder(dir.to_path_buf()));
         }
         let faces = FACE_NAMES
-            .iter()
+            .par_iter()
             .map(|&face| {
                 let file = ["png", "jpg", "jpeg"]
                     .iter()
@@ -77,14 +109,14 @@ impl Skybox {
     /// order, for skyboxes embedded in a binary.
     pub fn from_encoded(faces: [&[u8]; 6]) -> Result<Skybox, SkyboxError> {
         let faces = faces
-            .iter()
+            .par_iter()
             .zip(FACE_NAMES)
             .map(|(bytes, name)| {
                 let img = image::load_from_memory(bytes).map_err(|e| SkyboxError::Unreadable {
                     file: PathBuf::from(name),
                     message: e.to_string(),
                 })?;
-                Ok(face_from_image(img.to_rgb32f()))
+                Ok(face_from_image(img))
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Skybox::of(faces))
@@ -98,13 +130,15 @@ impl Skybox {
             .map(|f| Face {
                 width: size,
                 height: size,
-                texels: (0..size * size)
-                    .map(|i| {
-                        let s = ((i % size) as f32 + 0.5) / size as f32;
-                        let t = ((i / size) as f32 + 0.5) / size as f32;
-                        paint(f, s, t)
-                    })
-                    .collect(),
+                texels: Texels::Floats(
+                    (0..size * size)
+                        .map(|i| {
+                            let s = ((i % size) as f32 + 0.5) / size as f32;
+                            let t = ((i / size) as f32 + 0.5) / size as f32;
+                            paint(f, s, t)
+                        })
+                        .collect(),
+                ),
             })
             .collect();
         Skybox::of(faces)
@@ -130,7 +164,7 @@ impl Skybox {
         let f = &self.faces[face];
         let x = ((s * f.width as f32) as u32).min(f.width - 1);
         let y = ((t * f.height as f32) as u32).min(f.height - 1);
-        f.texels[(y * f.width + x) as usize]
+        f.texels.get((y * f.width + x) as usize)
     }
 }
 
@@ -176,17 +210,23 @@ fn load_face(file: &Path) -> Result<Face, SkyboxError> {
     if w as u64 * h as u64 > MAX_FACE_PIXELS || w == 0 || h == 0 {
         return Err(unreadable(format!("{w}x{h} is outside 1x1..4096x4096")));
     }
-    let img = image::open(file)
-        .map_err(|e| unreadable(e.to_string()))?
-        .to_rgb32f();
+    let img = image::open(file).map_err(|e| unreadable(e.to_string()))?;
     Ok(face_from_image(img))
 }
 
-fn face_from_image(img: image::Rgb32FImage) -> Face {
+/// A face from a decoded image: its bytes if it has 8 bits per channel,
+/// floats otherwise.
+fn face_from_image(img: image::DynamicImage) -> Face {
+    let (width, height) = (img.width(), img.height());
+    let texels = if img.color().bytes_per_pixel() / img.color().channel_count() == 1 {
+        Texels::Bytes(img.to_rgb8().pixels().map(|p| p.0).collect())
+    } else {
+        Texels::Floats(img.to_rgb32f().pixels().map(|p| Vec3A::from(p.0)).collect())
+    };
     Face {
-        width: img.width(),
-        height: img.height(),
-        texels: img.pixels().map(|p| Vec3A::from(p.0)).collect(),
+        width,
+        height,
+        texels,
     }
 }
 
@@ -407,5 +447,31 @@ v from {from} at {at} up {up} angle 70 hither 0 resolution 24 16
             Skybox::load(&dir),
             Err(SkyboxError::MissingFolder(_))
         ));
+    }
+
+    /// An 8-bit face keeps its bytes, yet every texel reads back as the
+    /// very float `to_rgb32f` gives (the image is the same bit for bit); a
+    /// 16-bit face keeps floats.
+    #[test]
+    fn an_8_bit_face_reads_as_image_converts_it() {
+        let ramp = image::RgbImage::from_fn(256, 2, |x, y| {
+            let v = x as u8;
+            image::Rgb([v, v.wrapping_mul(7), 255 - v ^ y as u8])
+        });
+        let face = face_from_image(image::DynamicImage::ImageRgb8(ramp.clone()));
+        assert!(matches!(face.texels, Texels::Bytes(_)));
+        let floats = image::DynamicImage::ImageRgb8(ramp).to_rgb32f();
+        for (i, p) in floats.pixels().enumerate() {
+            assert_eq!(face.texels.get(i), Vec3A::from(p.0), "texel {i}");
+        }
+        let deep = image::DynamicImage::ImageRgb16(image::ImageBuffer::from_pixel(
+            2,
+            2,
+            image::Rgb([65535u16, 1, 32768]),
+        ));
+        let face = face_from_image(deep);
+        assert!(matches!(face.texels, Texels::Floats(_)));
+        assert_eq!(face.texels.get(3).x, 1.0);
+        assert!(face.texels.get(3).y > 0.0 && face.texels.get(3).y < 1.0 / 255.0);
     }
 }

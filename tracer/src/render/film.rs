@@ -104,19 +104,27 @@ impl Film {
     /// Resolves the film to RGBA8, row-major from the top-left. Pixels with
     /// no sample yet are transparent black.
     pub fn to_rgba8(&self, encoding: Encoding) -> Vec<u8> {
-        let mut out = Vec::with_capacity(self.sum.len() * 4);
-        for (sum, &n) in self.sum.iter().zip(&self.samples) {
+        self.resolve::<4>(encoding)
+    }
+
+    /// Row-major pixels of `CHANNELS` bytes (3: RGB, 4: RGBA with an opaque
+    /// alpha), black for pixels with no sample. Written into a zeroed
+    /// buffer slot by slot: pushing bytes one slice at a time made this 2 ms
+    /// of a 512 x 512 `workbench render`.
+    fn resolve<const CHANNELS: usize>(&self, encoding: Encoding) -> Vec<u8> {
+        let mut out = vec![0; self.sum.len() * CHANNELS];
+        let pixels = out.chunks_exact_mut(CHANNELS).zip(&self.sum);
+        for ((pixel, sum), &n) in pixels.zip(&self.samples) {
             if n == 0 {
-                out.extend_from_slice(&[0, 0, 0, 0]);
                 continue;
             }
             let c = *sum / n as f32;
-            out.extend_from_slice(&[
-                encoding.encode(c.x),
-                encoding.encode(c.y),
-                encoding.encode(c.z),
-                255,
-            ]);
+            pixel[0] = encoding.encode(c.x);
+            pixel[1] = encoding.encode(c.y);
+            pixel[2] = encoding.encode(c.z);
+            if CHANNELS == 4 {
+                pixel[3] = u8::MAX;
+            }
         }
         out
     }
@@ -132,7 +140,7 @@ impl Film {
 
     /// Resolves the film to an RGB image.
     pub fn to_image(&self, encoding: Encoding) -> image::RgbImage {
-        rgba_to_rgb_image(self.width, self.height, &self.to_rgba8(encoding))
+        image::RgbImage::from_raw(self.width, self.height, self.resolve::<3>(encoding))
             .expect("the buffer holds exactly width * height pixels")
     }
 }
@@ -181,5 +189,9 @@ mod tests {
         let rgba = film.to_rgba8(Encoding::Linear);
         assert_eq!(&rgba[(4 + 2) * 4..(4 + 2) * 4 + 4], &[128, 128, 128, 255]);
         assert_eq!(&rgba[0..4], &[0, 0, 0, 0]);
+        let rgb = film.to_image(Encoding::Linear);
+        assert_eq!(rgb.get_pixel(2, 1).0, [128, 128, 128]);
+        assert_eq!(rgb.get_pixel(0, 0).0, [0, 0, 0]);
+        assert_eq!(rgb.as_raw().len(), 4 * 2 * 3);
     }
 }
