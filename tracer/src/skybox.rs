@@ -456,7 +456,7 @@ v from {from} at {at} up {up} angle 70 hither 0 resolution 24 16
     fn an_8_bit_face_reads_as_image_converts_it() {
         let ramp = image::RgbImage::from_fn(256, 2, |x, y| {
             let v = x as u8;
-            image::Rgb([v, v.wrapping_mul(7), 255 - v ^ y as u8])
+            image::Rgb([v, v.wrapping_mul(7), (255 - v) ^ y as u8])
         });
         let face = face_from_image(image::DynamicImage::ImageRgb8(ramp.clone()));
         assert!(matches!(face.texels, Texels::Bytes(_)));
