@@ -229,20 +229,34 @@ impl RenderJob {
                     if shared.cancelled() {
                         return Ok(());
                     }
-                    let index = index.unwrap_or_else(|| {
-                        let built = Arc::new(SceneIndex::build(
-                            &world.shapes,
-                            settings.accel,
-                            settings.grid_multiplier,
-                        ));
-                        *lock(&shared.index) = Some(built.clone());
-                        let mut p = shared.progress();
-                        p.stats.build_time = built.build_time();
-                        p.state = JobState::Rendering;
-                        drop(p);
-                        shared.notify();
-                        built
-                    });
+                    // The film's pages are written while the structure
+                    // builds, on the pool's other core (see `Film::prefault`).
+                    let prefault = || shared.progress().film.prefault();
+                    let index = match index {
+                        Some(index) => {
+                            prefault();
+                            index
+                        }
+                        None => {
+                            let (built, ()) = pool.join(
+                                || {
+                                    Arc::new(SceneIndex::build(
+                                        &world.shapes,
+                                        settings.accel,
+                                        settings.grid_multiplier,
+                                    ))
+                                },
+                                prefault,
+                            );
+                            *lock(&shared.index) = Some(built.clone());
+                            let mut p = shared.progress();
+                            p.stats.build_time = built.build_time();
+                            p.state = JobState::Rendering;
+                            drop(p);
+                            shared.notify();
+                            built
+                        }
+                    };
                     let frame = Frame::new(world, index, settings)
                         .map_err(|e| format!("invalid camera: {e}"))?;
                     pool.install(|| run_passes(&frame, &shared));

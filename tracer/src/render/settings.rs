@@ -2,6 +2,8 @@
 //! changes the image, so a change restarts the render; display-only choices
 //! (the output [`Encoding`], zoom) live apart.
 
+use glam::Vec3A;
+
 use crate::accel::AccelKind;
 use crate::camera::CameraPose;
 use crate::scene::Scene;
@@ -236,6 +238,24 @@ impl Encoding {
         };
         (v * 255.0 + 0.5) as u8
     }
+
+    /// The 8-bit values of a linear colour, the same as [`Encoding::encode`]
+    /// on each component: the linear encoding takes all three at once
+    /// (turning a 512 x 512 film into bytes was 1.9 ms, a twentieth of a
+    /// whole `workbench render`).
+    #[inline]
+    pub fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
+        match self {
+            Encoding::Linear => {
+                // `max` takes its second operand when the first is NaN,
+                // which is the scalar path's NaN -> 0.
+                let v = c.max(Vec3A::ZERO).min(Vec3A::ONE) * 255.0 + Vec3A::splat(0.5);
+                // In [0.5, 255.5]: truncated, each fits a byte.
+                v.as_uvec3().to_array().map(|n| n as u8)
+            }
+            Encoding::Srgb => [self.encode(c.x), self.encode(c.y), self.encode(c.z)],
+        }
+    }
 }
 
 #[cfg(test)]
@@ -251,6 +271,32 @@ mod tests {
         assert_eq!(Encoding::Srgb.encode(0.5), 188);
         assert_eq!(Encoding::Srgb.encode(0.0), 0);
         assert_eq!(Encoding::Srgb.encode(1.0), 255);
+    }
+
+    proptest::proptest! {
+        /// Both encodings of a colour at once give each component's byte,
+        /// whatever the value: NaN, infinities, negatives, the edges of
+        /// every byte's interval (`bits` covers every float).
+        #[test]
+        fn encoding_a_colour_is_encoding_each_component(
+            bits in proptest::array::uniform3(proptest::num::u32::ANY),
+            byte in 0u32..256,
+        ) {
+            let edge = byte as f32 / 255.0 - 0.5 / 255.0;
+            for c in [
+                Vec3A::from_array(bits.map(f32::from_bits)),
+                Vec3A::new(edge, f32::from_bits(edge.to_bits() + 1), byte as f32 / 255.0),
+                Vec3A::new(f32::NAN, f32::INFINITY, f32::NEG_INFINITY),
+            ] {
+                for e in [Encoding::Linear, Encoding::Srgb] {
+                    proptest::prop_assert_eq!(
+                        e.encode_rgb(c),
+                        [e.encode(c.x), e.encode(c.y), e.encode(c.z)],
+                        "{:?} {:?}", e, c
+                    );
+                }
+            }
+        }
     }
 
     #[test]
