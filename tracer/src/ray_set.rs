@@ -37,7 +37,7 @@ pub struct ShadowRay {
 /// hits, in the same order (a hit's rays light by light).
 #[derive(Debug, Clone)]
 pub struct RaySet {
-    /// One per pixel, tile after tile ([`RaySet::tiles`]).
+    /// One per pixel, tile after tile ([`RAY_TILE`] pixels square).
     pub eye: Vec<Ray>,
     /// Eye rays ignore hits nearer than this (the camera's hither).
     pub hither: f32,

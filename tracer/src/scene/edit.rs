@@ -1,6 +1,6 @@
 //! One typed edit of the scene document: a material's field, an object's
 //! geometry, a light, the camera. Applying an edit validates it by the
-//! rules the parser follows ([`super::rules`]), changes nothing when it is
+//! rules the parser follows (the `scene::rules` module), changes nothing when it is
 //! refused, and returns its inverse: undo applies the inverse, redo applies
 //! what that returns. The command line's `--set` lines are the same edits
 //! as text (module `text`), so the window can show any edit as its
