@@ -7,7 +7,9 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer, Visit};
-use tracer::render::{Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
+use tracer::render::{
+    Finished, Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary,
+};
 use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
@@ -71,6 +73,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             threads: args.threads,
             on_pass,
             views: args.view.view().is_some(),
+            // The bytes of the PNG that shows the render itself, made
+            // tile by tile by the render threads.
+            finished_image: (!is_exr(&args.output) && args.view.view().is_none())
+                .then_some(encoding),
             ..JobOptions::default()
         },
     )
@@ -81,7 +87,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if std::io::stderr().is_terminal() {
         show_progress(&job, &settings);
     }
-    let (film, views, stats, state) = job.wait_with_views();
+    let Finished {
+        film,
+        views,
+        image: finished,
+        stats,
+        state,
+    } = job.wait_with_image();
     if let JobState::Failed(message) = state {
         anyhow::bail!("rendering {} failed: {message}", args.scene.display());
     }
@@ -98,7 +110,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             Some((v, film, _, heat)) => {
                 heatmap_image::view_image(film, *v, heat).context("the view has no image")?
             }
-            None => film.to_image(encoding),
+            None => finished.unwrap_or_else(|| film.to_image(encoding)),
         };
         if let Some((layer, index)) = &overlay {
             let world = &loaded.world;

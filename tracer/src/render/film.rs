@@ -129,22 +129,44 @@ impl Film {
         const BAND: usize = 32 * 1024;
         let mut out = vec![0; self.sum.len() * CHANNELS];
         out.par_chunks_mut(BAND * CHANNELS)
-            .zip(self.sum.par_chunks(BAND).zip(self.samples.par_chunks(BAND)))
-            .for_each(|(out, (sums, samples))| {
-                let pixels = out.chunks_exact_mut(CHANNELS).zip(sums);
-                for ((pixel, sum), &n) in pixels.zip(samples) {
-                    if n == 0 {
+            .enumerate()
+            .for_each(|(band, out)| {
+                for (k, pixel) in out.chunks_exact_mut(CHANNELS).enumerate() {
+                    let i = band * BAND + k;
+                    if self.samples[i] == 0 {
                         continue;
                     }
-                    // One sample, the first pass: the sum is the mean.
-                    let mean = if n == 1 { *sum } else { *sum / n as f32 };
-                    pixel[..3].copy_from_slice(&encoding.encode_rgb(mean));
+                    pixel[..3].copy_from_slice(&self.resolve_pixel(i, encoding));
                     if CHANNELS == 4 {
                         pixel[3] = u8::MAX;
                     }
                 }
             });
         out
+    }
+
+    /// Writes `tile`'s pixels, resolved as [`Film::to_image`] resolves
+    /// them, into `rgb`, a row-major RGB buffer of the whole film.
+    pub fn resolve_tile(&self, tile: &Tile, encoding: Encoding, rgb: &mut [u8]) {
+        for y in tile.y..tile.y + tile.height {
+            let start = y as usize * self.width as usize + tile.x as usize;
+            let end = start + tile.width as usize;
+            let pixels = rgb[start * 3..end * 3].chunks_exact_mut(3);
+            for (pixel, i) in pixels.zip(start..end) {
+                pixel.copy_from_slice(&self.resolve_pixel(i, encoding));
+            }
+        }
+    }
+
+    /// Pixel `i`'s bytes, black before its first sample.
+    #[inline]
+    fn resolve_pixel(&self, i: usize, encoding: Encoding) -> [u8; 3] {
+        match self.samples[i] {
+            0 => [0; 3],
+            // One sample, the first pass: the sum is the mean.
+            1 => encoding.encode_rgb(self.sum[i]),
+            n => encoding.encode_rgb(self.sum[i] / n as f32),
+        }
     }
 
     /// The mean linear radiance of every pixel as floats, before any

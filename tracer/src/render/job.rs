@@ -94,6 +94,12 @@ pub struct JobOptions {
     /// finish too): a first pass held half done whatever the machine's
     /// speed, for a viewer stepping through it and for tests.
     pub pause_after_tiles: Option<u64>,
+    /// Also make the finished image's 8-bit RGB in this encoding, each
+    /// tile's bytes by the render thread that lands its last pass, while
+    /// they are in its cache ([`RenderJob::wait_with_image`]). For a caller
+    /// that saves the image once it is done: resolving the whole film after
+    /// the render was 1.5 ms of a 40 ms `workbench render`, on one thread.
+    pub finished_image: Option<Encoding>,
 }
 
 /// See [`JobOptions::on_pass`].
@@ -102,8 +108,22 @@ pub type PassObserver = Box<dyn Fn(u32, &Film) + Send + Sync>;
 struct Progress {
     film: Film,
     views: Option<ViewFilm>,
+    /// [`JobOptions::finished_image`]'s encoding and bytes, row-major RGB.
+    finished: Option<(Encoding, Vec<u8>)>,
     stats: RenderStats,
     state: JobState,
+}
+
+/// What a job leaves when it stops ([`RenderJob::wait_with_image`]).
+pub struct Finished {
+    pub film: Film,
+    /// The views, when the job measured them ([`JobOptions::views`]).
+    pub views: Option<ViewFilm>,
+    /// The finished image, when asked for ([`JobOptions::finished_image`])
+    /// and the job rendered every pass of its target.
+    pub image: Option<image::RgbImage>,
+    pub stats: RenderStats,
+    pub state: JobState,
 }
 
 struct Shared {
@@ -197,6 +217,10 @@ impl RenderJob {
                 views: options
                     .views
                     .then(|| ViewFilm::new(settings.width, settings.height)),
+                finished: options.finished_image.map(|encoding| {
+                    let bytes = settings.width as usize * settings.height as usize * 3;
+                    (encoding, vec![0; bytes])
+                }),
                 stats: RenderStats {
                     width: settings.width,
                     height: settings.height,
@@ -231,7 +255,13 @@ impl RenderJob {
                     }
                     // The film's pages are written while the structure
                     // builds, on the pool's other core (see `Film::prefault`).
-                    let prefault = || shared.progress().film.prefault();
+                    let prefault = || {
+                        let mut p = shared.progress();
+                        p.film.prefault();
+                        if let Some((_, bytes)) = &mut p.finished {
+                            bytes.fill(0);
+                        }
+                    };
                     let index = match index {
                         Some(index) => {
                             prefault();
@@ -385,15 +415,33 @@ impl RenderJob {
     }
 
     /// [`RenderJob::wait`], with the views when the job measured them.
-    pub fn wait_with_views(mut self) -> (Film, Option<ViewFilm>, RenderStats, JobState) {
+    pub fn wait_with_views(self) -> (Film, Option<ViewFilm>, RenderStats, JobState) {
+        let done = self.wait_with_image();
+        (done.film, done.views, done.stats, done.state)
+    }
+
+    /// Waits for the job to stop and returns all it made.
+    pub fn wait_with_image(mut self) -> Finished {
         if let Some(worker) = self.worker.take() {
             // The worker catches render panics itself; a join error could
             // only come from the bookkeeping around it.
             let _ = worker.join();
         }
         let mut p = self.shared.progress();
-        let film = std::mem::replace(&mut p.film, Film::new(0, 0));
-        (film, p.views.take(), p.stats.clone(), p.state.clone())
+        let complete = p.state == JobState::Done && p.stats.passes_done >= p.stats.passes_target;
+        let (width, height) = (p.film.width(), p.film.height());
+        let image = p
+            .finished
+            .take()
+            .filter(|_| complete)
+            .and_then(|(_, bytes)| image::RgbImage::from_raw(width, height, bytes));
+        Finished {
+            film: std::mem::replace(&mut p.film, Film::new(0, 0)),
+            views: p.views.take(),
+            image,
+            stats: p.stats.clone(),
+            state: p.state.clone(),
+        }
     }
 }
 
@@ -431,6 +479,11 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             {
                 let mut p = shared.progress();
                 p.film.add_tile(tile, &values);
+                let last = pass + 1 == target && !frame.settings.keep_refining;
+                let p = &mut *p;
+                if let (true, Some((encoding, bytes))) = (last, &mut p.finished) {
+                    p.film.resolve_tile(tile, *encoding, bytes);
+                }
                 if let (Some(film), Some(views)) = (&mut p.views, &views) {
                     film.add_tile(tile, views);
                 }

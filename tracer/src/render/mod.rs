@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 pub use film::{Film, Tile, rgba_to_rgb_image};
 pub use frame::{Frame, TILE_SIZE};
-pub use job::{JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
+pub use job::{Finished, JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
     Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3A;
 
-use super::{Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, render};
+use super::{Encoding, Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, render};
 use crate::accel::{AccelKind, SceneIndex};
 use crate::scene::{Limits, parse_scene};
 use crate::stats::Counters;
@@ -482,4 +482,43 @@ s 0.055556
         failures.is_empty(),
         "scenes with non-finite pixels (how many of 64): {failures:#?}"
     );
+}
+
+/// The finished image the render threads make tile by tile is the film
+/// resolved at the end, byte for byte, in either encoding and over
+/// several passes; a job stopped early leaves none.
+#[test]
+fn the_finished_image_is_the_resolved_film() {
+    let world = world(SCENE);
+    for (samples, encoding) in [(1, Encoding::Linear), (3, Encoding::Srgb)] {
+        let settings = RenderSettings {
+            antialiasing: samples > 1,
+            samples,
+            ..settings(40, 30)
+        };
+        let options = JobOptions {
+            threads: Some(2),
+            finished_image: Some(encoding),
+            ..JobOptions::default()
+        };
+        let done = RenderJob::start(world.clone(), None, settings, options)
+            .unwrap()
+            .wait_with_image();
+        assert_eq!(done.state, JobState::Done);
+        let image = done.image.expect("a finished image");
+        assert_eq!(image, done.film.to_image(encoding), "{samples} x {samples}");
+    }
+    let stopped = RenderJob::start(
+        world.clone(),
+        None,
+        settings(40, 30),
+        JobOptions {
+            paused: true,
+            finished_image: Some(Encoding::Linear),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    stopped.cancel();
+    assert!(stopped.wait_with_image().image.is_none());
 }

@@ -239,6 +239,7 @@ impl Engine {
                 views: self.views,
                 paused: self.paused,
                 pause_after_tiles: self.pause_after_tiles,
+                finished_image: None,
             },
         )
         .map_err(|e| e.to_string())?;
