@@ -8,6 +8,7 @@ use glam::{Vec2, Vec3A};
 
 use crate::accel::SceneIndex;
 use crate::camera::{Camera, CameraError};
+use crate::geometry::Ray;
 use crate::sampling::{SampleStream, concentric_disk, jittered, stratum_order};
 use crate::stats::Counters;
 use crate::world::World;
@@ -75,12 +76,25 @@ impl Frame {
     /// Renders pass `pass` over `tile`: one sample per pixel, row-major.
     /// Passes past the target start a new round of strata with fresh
     /// random numbers.
+    ///
+    /// A row's eye rays are made first, then traced: made one before each
+    /// trace, each ray's square root and divisions waited alone; in a loop
+    /// of their own the processor overlaps them across pixels. The rays
+    /// and their random numbers are [`Frame::sample`]'s.
     pub fn render_tile(&self, pass: u32, tile: &Tile, counters: &mut Counters) -> Vec<Vec3A> {
         let tracer = Tracer::new(&self.world, &self.index, &self.settings);
         let mut values = Vec::with_capacity(tile.pixel_count());
+        let mut row = Vec::with_capacity(tile.width as usize);
         for y in tile.y..tile.y + tile.height {
-            for x in tile.x..tile.x + tile.width {
-                values.push(self.sample(&tracer, x, y, pass, counters, &mut NoRecord));
+            row.extend((tile.x..tile.x + tile.width).map(|x| self.eye_ray(x, y, pass)));
+            for (ray, mut rng) in row.drain(..) {
+                values.push(tracer.trace_eye_recorded(
+                    &ray,
+                    self.camera.hither(),
+                    &mut rng,
+                    counters,
+                    &mut NoRecord,
+                ));
             }
         }
         values
@@ -122,6 +136,14 @@ impl Frame {
         counters: &mut Counters,
         recorder: &mut R,
     ) -> Vec3A {
+        let (ray, mut rng) = self.eye_ray(x, y, pass);
+        tracer.trace_eye_recorded(&ray, self.camera.hither(), &mut rng, counters, recorder)
+    }
+
+    /// The eye ray of sample `pass` of pixel `(x, y)`, and the pixel
+    /// sample's random numbers past those the camera drew, for the trace.
+    #[inline(always)]
+    fn eye_ray(&self, x: u32, y: u32, pass: u32) -> (Ray, SampleStream) {
         let stratum = self.order[(pass % self.passes_target()) as usize];
         let n = self.settings.samples.max(1);
         let aa = self.settings.antialiasing;
@@ -143,7 +165,7 @@ impl Frame {
         let ray = self
             .camera
             .ray(x as f32 + offset.x, y as f32 + offset.y, lens_point);
-        tracer.trace_eye_recorded(&ray, self.camera.hither(), &mut rng, counters, recorder)
+        (ray, rng)
     }
 }
 
@@ -200,5 +222,47 @@ mod tests {
         let posed = film(&scene("0 -5 2"), Some(moved));
         assert_eq!(posed, from_file);
         assert_ne!(film(&scene("0 -5 2"), None), from_file);
+    }
+
+    /// A tile rendered with its rows' eye rays made first gives the very
+    /// values and counts of tracing each pixel's sample as it is made, in
+    /// every mode that draws random numbers (jitter, lens, soft shadows).
+    #[test]
+    fn a_tile_is_its_pixels_samples() {
+        let scene = parse_scene(&scene("3 -4 2.5"), None, &Limits::default()).unwrap();
+        let world = Arc::new(World::build(&scene));
+        let index = Arc::new(crate::accel::SceneIndex::build(
+            &world.shapes,
+            AccelKind::Bvh,
+            2.0,
+        ));
+        let settings = RenderSettings {
+            antialiasing: true,
+            samples: 2,
+            depth_of_field: true,
+            aperture: 4.0,
+            soft_shadows: true,
+            light_size: 0.5,
+            ..RenderSettings::from_scene(&scene)
+        };
+        let frame = Frame::new(world, index, settings).unwrap();
+        for pass in 0..frame.passes_target() {
+            for tile in &frame.tiles {
+                // A tile's own tracer, as `render_tile` makes: the same
+                // shadow cache, so the same tests are counted.
+                let tracer = Tracer::new(&frame.world, &frame.index, &frame.settings);
+                let (mut by_tile, mut by_pixel) = (Counters::default(), Counters::default());
+                let values = frame.render_tile(pass, tile, &mut by_tile);
+                let mut one_by_one = Vec::new();
+                for y in tile.y..tile.y + tile.height {
+                    for x in tile.x..tile.x + tile.width {
+                        let value = frame.sample(&tracer, x, y, pass, &mut by_pixel, &mut NoRecord);
+                        one_by_one.push(value);
+                    }
+                }
+                assert_eq!(values, one_by_one, "pass {pass}, {tile:?}");
+                assert_eq!(by_tile, by_pixel);
+            }
+        }
     }
 }
