@@ -187,7 +187,9 @@ mod tests {
         )
     }
 
-    fn film(text: &str, camera: Option<CameraPose>) -> Vec<Vec3A> {
+    /// The frame of scene `text` on a BVH, with `settings` over the
+    /// scene's own.
+    fn frame_of(text: &str, settings: impl FnOnce(RenderSettings) -> RenderSettings) -> Frame {
         let scene = parse_scene(text, None, &Limits::default()).unwrap();
         let world = Arc::new(World::build(&scene));
         let index = Arc::new(crate::accel::SceneIndex::build(
@@ -195,11 +197,12 @@ mod tests {
             AccelKind::Bvh,
             2.0,
         ));
-        let settings = RenderSettings {
-            camera,
-            ..RenderSettings::from_scene(&scene)
-        };
-        let frame = Frame::new(world, index, settings).unwrap();
+        let settings = settings(RenderSettings::from_scene(&scene));
+        Frame::new(world, index, settings).unwrap()
+    }
+
+    fn film(text: &str, camera: Option<CameraPose>) -> Vec<Vec3A> {
+        let frame = frame_of(text, |s| RenderSettings { camera, ..s });
         let mut counters = Counters::default();
         frame
             .tiles
@@ -229,23 +232,15 @@ mod tests {
     /// every mode that draws random numbers (jitter, lens, soft shadows).
     #[test]
     fn a_tile_is_its_pixels_samples() {
-        let scene = parse_scene(&scene("3 -4 2.5"), None, &Limits::default()).unwrap();
-        let world = Arc::new(World::build(&scene));
-        let index = Arc::new(crate::accel::SceneIndex::build(
-            &world.shapes,
-            AccelKind::Bvh,
-            2.0,
-        ));
-        let settings = RenderSettings {
+        let frame = frame_of(&scene("3 -4 2.5"), |s| RenderSettings {
             antialiasing: true,
             samples: 2,
             depth_of_field: true,
             aperture: 4.0,
             soft_shadows: true,
             light_size: 0.5,
-            ..RenderSettings::from_scene(&scene)
-        };
-        let frame = Frame::new(world, index, settings).unwrap();
+            ..s
+        });
         for pass in 0..frame.passes_target() {
             for tile in &frame.tiles {
                 // A tile's own tracer, as `render_tile` makes: the same
