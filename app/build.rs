@@ -57,17 +57,65 @@ fn main() {
         .map(|f| sky_dir.join(format!("{f}.png")))
         .filter(|p| p.is_file())
         .collect();
-    out.push_str("/// The skybox faces embedded from `assets/skybox/`, if all six exist.\n");
+    out.push_str(
+        "/// The skybox faces embedded from `assets/skybox/`, if all six exist,\n\
+         /// decoded here to RGB bytes: a start then decodes nothing.\n",
+    );
     if files.len() == 6 {
-        out.push_str("pub const SKYBOX: Option<[&[u8]; 6]> = Some([\n");
-        for f in &files {
-            let path = f.canonicalize().unwrap_or(f.clone());
-            writeln!(out, "    include_bytes!({:?}),", path.display().to_string()).unwrap();
+        out.push_str("pub const SKYBOX: Option<[tracer::skybox::Rgb8Face; 6]> = Some([\n");
+        let out_dir = std::env::var_os("OUT_DIR").unwrap();
+        for (face, file) in faces.iter().zip(&files) {
+            let (width, height, rgb) = decode_rgb8(file);
+            let raw = Path::new(&out_dir).join(format!("sky_{face}.rgb"));
+            std::fs::write(&raw, rgb).unwrap();
+            writeln!(
+                out,
+                "    tracer::skybox::Rgb8Face {{ width: {width}, height: {height}, bytes: include_bytes!({:?}) }},",
+                raw.display().to_string()
+            )
+            .unwrap();
         }
         out.push_str("]);\n");
     } else {
-        out.push_str("pub const SKYBOX: Option<[&[u8]; 6]> = None;\n");
+        out.push_str("pub const SKYBOX: Option<[tracer::skybox::Rgb8Face; 6]> = None;\n");
     }
     let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("bundled.rs");
     std::fs::write(dest, out).unwrap();
+}
+
+/// A PNG face's size and its texels as 8-bit RGB, as the `image` crate's
+/// `to_rgb8` gives them (palettes and low bit depths expanded, alpha
+/// dropped, grey repeated), so the embedded sky is the one in the folder.
+/// A face that is not 8-bit is a build error: the project's own asset.
+fn decode_rgb8(file: &Path) -> (u32, u32, Vec<u8>) {
+    let fail = |e: &dyn std::fmt::Display| -> ! { panic!("skybox face {}: {e}", file.display()) };
+    let reader = std::fs::File::open(file).unwrap_or_else(|e| fail(&e));
+    let mut decoder = png::Decoder::new(std::io::BufReader::new(reader));
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().unwrap_or_else(|e| fail(&e));
+    let mut buf = vec![
+        0;
+        reader
+            .output_buffer_size()
+            .unwrap_or_else(|| fail(&"too large"))
+    ];
+    let info = reader.next_frame(&mut buf).unwrap_or_else(|e| fail(&e));
+    if info.bit_depth != png::BitDepth::Eight {
+        fail(&"not 8 bits per channel");
+    }
+    let bytes = &buf[..info.buffer_size()];
+    let rgb = match info.color_type {
+        png::ColorType::Rgb => bytes.to_vec(),
+        png::ColorType::Rgba => bytes
+            .chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect(),
+        png::ColorType::Grayscale => bytes.iter().flat_map(|&v| [v, v, v]).collect(),
+        png::ColorType::GrayscaleAlpha => bytes
+            .chunks_exact(2)
+            .flat_map(|p| [p[0], p[0], p[0]])
+            .collect(),
+        png::ColorType::Indexed => fail(&"a palette left after expansion"),
+    };
+    (info.width, info.height, rgb)
 }

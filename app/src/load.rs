@@ -169,7 +169,7 @@ fn build_with_sky(scene: &Scene) -> World {
 /// The embedded skybox, whatever folder name the scene gives.
 fn embedded_skybox(name: &str) -> Result<Skybox, SkyboxError> {
     match bundled::SKYBOX {
-        Some(faces) => Skybox::from_encoded(faces),
+        Some(faces) => Skybox::from_rgb8(faces),
         None => Err(SkyboxError::MissingFolder(PathBuf::from(name))),
     }
 }

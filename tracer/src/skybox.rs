@@ -4,6 +4,7 @@
 //! A sky painted for that convention stands upright in a y-up scene;
 //! [`Skybox::upright`] turns it for a scene whose up is another axis.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use glam::{Mat3A, Quat, Vec3, Vec3A};
@@ -23,6 +24,15 @@ pub enum SkyboxError {
     Unreadable { file: PathBuf, message: String },
 }
 
+/// One face of a sky decoded ahead of time: `width * height` texels of
+/// three bytes (red, green, blue), row by row from the top left.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Rgb8Face {
+    pub width: u32,
+    pub height: u32,
+    pub bytes: &'static [u8],
+}
+
 /// One face: RGB values in [0, 1], as stored (no decoding: the renderer
 /// writes values directly by default, so the sky looks as painted).
 #[derive(Debug, Clone, PartialEq)]
@@ -38,8 +48,9 @@ enum Texels {
     /// An 8-bit image's own bytes, turned into `[0, 1]` on lookup as the
     /// `image` crate turns them (`v / 255`): a sixteenth of the memory of
     /// floats, which made the bundled sky's six faces 6 MB of fresh pages
-    /// and 5 ms of every start.
-    Bytes(Vec<[u8; 3]>),
+    /// and 5 ms of every start. Borrowed when they were decoded before the
+    /// program ran (a sky embedded in a binary, see [`Skybox::from_rgb8`]).
+    Bytes(Cow<'static, [[u8; 3]]>),
     /// Deeper images and painted skies, as floats.
     Floats(Vec<Vec3A>),
 }
@@ -105,18 +116,36 @@ impl Skybox {
         }
     }
 
-    /// Decodes six encoded images (PNG or JPEG bytes) in [`FACE_NAMES`]
-    /// order, for skyboxes embedded in a binary.
-    pub fn from_encoded(faces: [&[u8]; 6]) -> Result<Skybox, SkyboxError> {
+    /// A skybox from six faces already decoded to 8-bit RGB, in
+    /// [`FACE_NAMES`] order: a sky embedded in a binary, decoded when it
+    /// was built, costs no decoding and no copy at each start (decoding
+    /// the bundled sky's six PNGs took 5 ms of every `workbench render`).
+    pub fn from_rgb8(faces: [Rgb8Face; 6]) -> Result<Skybox, SkyboxError> {
         let faces = faces
-            .par_iter()
+            .into_iter()
             .zip(FACE_NAMES)
-            .map(|(bytes, name)| {
-                let img = image::load_from_memory(bytes).map_err(|e| SkyboxError::Unreadable {
-                    file: PathBuf::from(name),
-                    message: e.to_string(),
-                })?;
-                Ok(face_from_image(img))
+            .map(|(face, name)| {
+                let texels = face.width as u64 * face.height as u64;
+                if face.width == 0
+                    || face.height == 0
+                    || texels > MAX_FACE_PIXELS
+                    || face.bytes.len() as u64 != texels * 3
+                {
+                    return Err(SkyboxError::Unreadable {
+                        file: PathBuf::from(name),
+                        message: format!(
+                            "{} bytes are not the RGB texels of a {}x{} face within 1x1..4096x4096",
+                            face.bytes.len(),
+                            face.width,
+                            face.height
+                        ),
+                    });
+                }
+                Ok(Face {
+                    width: face.width,
+                    height: face.height,
+                    texels: Texels::Bytes(Cow::Borrowed(bytemuck::cast_slice(face.bytes))),
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Skybox::of(faces))
@@ -447,6 +476,38 @@ v from {from} at {at} up {up} angle 70 hither 0 resolution 24 16
             Skybox::load(&dir),
             Err(SkyboxError::MissingFolder(_))
         ));
+    }
+
+    /// Faces decoded ahead of time are read in place, texel for texel as
+    /// the same image decoded at run time; bytes that are not a face's
+    /// RGB texels are an error naming the face, not a panic.
+    #[test]
+    fn rgb8_faces_read_as_their_decoded_image() {
+        static BYTES: [u8; 12] = [0, 51, 255, 10, 20, 30, 40, 50, 60, 255, 128, 1];
+        let face = Rgb8Face {
+            width: 2,
+            height: 2,
+            bytes: &BYTES,
+        };
+        let sky = Skybox::from_rgb8([face; 6]).unwrap();
+        let image = image::RgbImage::from_raw(2, 2, BYTES.to_vec()).unwrap();
+        let decoded = face_from_image(image::DynamicImage::ImageRgb8(image));
+        assert_eq!(sky.faces[0], decoded);
+
+        let short = Rgb8Face {
+            bytes: &BYTES[..11],
+            ..face
+        };
+        let mut faces = [face; 6];
+        faces[3] = short;
+        let error = Skybox::from_rgb8(faces).unwrap_err().to_string();
+        assert!(error.contains("bottom") && error.contains("2x2"), "{error}");
+        let empty = Rgb8Face {
+            width: 0,
+            height: 0,
+            bytes: &[],
+        };
+        assert!(Skybox::from_rgb8([empty; 6]).is_err());
     }
 
     /// An 8-bit face keeps its bytes, yet every texel reads back as the
