@@ -77,6 +77,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             // tile by tile by the render threads.
             finished_image: (!is_exr(&args.output) && args.view.view().is_none())
                 .then_some(encoding),
+            // Nothing reads the film when the image is made tile by tile,
+            // unless passes are saved (`on_pass`, which keeps it anyway).
+            image_only: true,
             ..JobOptions::default()
         },
     )

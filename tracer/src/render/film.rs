@@ -38,6 +38,16 @@ impl Tile {
         self.width as usize * self.height as usize
     }
 
+    /// Copies the tile's RGB bytes (`rgb`, row-major within the tile) into
+    /// `image`, row-major RGB bytes of an image `image_width` wide.
+    pub fn copy_rgb_into(&self, image_width: u32, rgb: &[u8], image: &mut [u8]) {
+        let pixels: &[[u8; 3]] = bytemuck::cast_slice(rgb);
+        let image: &mut [[u8; 3]] = bytemuck::cast_slice_mut(image);
+        for (start, row) in self.rows(image_width, pixels) {
+            image[start..start + row.len()].copy_from_slice(row);
+        }
+    }
+
     /// The tile's rows of `values` (row-major within the tile), each with
     /// the index of its first pixel in an image `image_width` wide.
     pub fn rows<'a, T>(
@@ -158,7 +168,8 @@ impl Film {
         }
     }
 
-    /// Pixel `i`'s bytes, black before its first sample.
+    /// Pixel `i`'s bytes, black before its first sample; after one sample
+    /// the bytes [`encode_values`] gives that sample.
     #[inline]
     fn resolve_pixel(&self, i: usize, encoding: Encoding) -> [u8; 3] {
         match self.samples[i] {
@@ -193,6 +204,15 @@ pub fn rgba_to_rgb_image(width: u32, height: u32, rgba: &[u8]) -> Option<image::
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect();
     image::RgbImage::from_raw(width, height, rgb)
+}
+
+/// One sample per pixel, `values`, as RGB bytes: what a film resolves
+/// them to after its first pass (the sum of one sample is the sample).
+pub(super) fn encode_values(values: &[Vec3A], encoding: Encoding) -> Vec<u8> {
+    values
+        .iter()
+        .flat_map(|&v| encoding.encode_rgb(v))
+        .collect()
 }
 
 #[cfg(test)]

@@ -508,6 +508,35 @@ fn the_finished_image_is_the_resolved_film() {
         let image = done.image.expect("a finished image");
         assert_eq!(image, done.film.to_image(encoding), "{samples} x {samples}");
     }
+    // Left out of the film, one pass gives the same bytes; the film stays
+    // without a sample. Over several passes the film is kept.
+    for (samples, encoding) in [(1, Encoding::Srgb), (2, Encoding::Linear)] {
+        let settings = RenderSettings {
+            antialiasing: samples > 1,
+            samples,
+            ..settings(40, 30)
+        };
+        let finished = |image_only| {
+            let options = JobOptions {
+                threads: Some(2),
+                finished_image: Some(encoding),
+                image_only,
+                ..JobOptions::default()
+            };
+            RenderJob::start(world.clone(), None, settings.clone(), options)
+                .unwrap()
+                .wait_with_image()
+        };
+        let (with_film, image_only) = (finished(false), finished(true));
+        assert_eq!(image_only.state, JobState::Done);
+        assert_eq!(image_only.image, with_film.image, "{samples} x {samples}");
+        assert_eq!(image_only.stats.counters, with_film.stats.counters);
+        assert_eq!(
+            image_only.film.pixel(20, 15).is_none(),
+            samples == 1,
+            "{samples} x {samples}"
+        );
+    }
     let stopped = RenderJob::start(
         world.clone(),
         None,

@@ -240,6 +240,7 @@ impl Engine {
                 paused: self.paused,
                 pause_after_tiles: self.pause_after_tiles,
                 finished_image: None,
+                image_only: false,
             },
         )
         .map_err(|e| e.to_string())?;
