@@ -11,8 +11,13 @@ fn main() {
     // relocations to apply, and no pages of pointers to copy for them, at
     // each start (`workbench --version` 5.9 -> 4.0 ms, median of 21
     // alternated runs). The binary's own code loses address
-    // randomisation; the libraries it loads keep theirs.
-    println!("cargo:rustc-link-arg-bins=-no-pie");
+    // randomisation; the libraries it loads keep theirs. (GNU toolchains
+    // on Linux: other linkers spell it otherwise.)
+    if std::env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("linux")
+        && std::env::var("CARGO_CFG_TARGET_ENV").as_deref() == Ok("gnu")
+    {
+        println!("cargo:rustc-link-arg-bins=-no-pie");
+    }
     // Read when the script runs, not baked in with `env!`: a build script
     // reused from a build cache made in another checkout (a git worktree
     // seeded with a copied `target/`) would otherwise embed that
