@@ -86,6 +86,12 @@ pub struct Skybox {
 /// Largest face accepted, so a hostile folder cannot exhaust memory.
 const MAX_FACE_PIXELS: u64 = 4096 * 4096;
 
+/// Whether a face of `width` x `height` texels is one we accept: at least
+/// one texel, at most [`MAX_FACE_PIXELS`].
+fn face_size_allowed(width: u32, height: u32) -> bool {
+    width > 0 && height > 0 && width as u64 * height as u64 <= MAX_FACE_PIXELS
+}
+
 impl Skybox {
     /// Loads the six faces from `dir`.
     pub fn load(dir: &Path) -> Result<Skybox, SkyboxError> {
@@ -126,9 +132,7 @@ impl Skybox {
             .zip(FACE_NAMES)
             .map(|(face, name)| {
                 let texels = face.width as u64 * face.height as u64;
-                if face.width == 0
-                    || face.height == 0
-                    || texels > MAX_FACE_PIXELS
+                if !face_size_allowed(face.width, face.height)
                     || face.bytes.len() as u64 != texels * 3
                 {
                     return Err(SkyboxError::Unreadable {
@@ -236,7 +240,7 @@ fn load_face(file: &Path) -> Result<Face, SkyboxError> {
     let (w, h) = reader
         .into_dimensions()
         .map_err(|e| unreadable(e.to_string()))?;
-    if w as u64 * h as u64 > MAX_FACE_PIXELS || w == 0 || h == 0 {
+    if !face_size_allowed(w, h) {
         return Err(unreadable(format!("{w}x{h} is outside 1x1..4096x4096")));
     }
     let img = image::open(file).map_err(|e| unreadable(e.to_string()))?;
