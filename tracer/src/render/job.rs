@@ -108,9 +108,8 @@ pub struct JobOptions {
     /// saves the image: adding into the film under the job's lock, and
     /// first writing its 5 MB at 512 x 512, made a `workbench render` of
     /// balls_medium take 99 ms instead of 86 (nine alternated rounds, 2
-    /// cores).
-    /// Ignored when the job refines, renders several passes or observes
-    /// them.
+    /// cores). Ignored when the job refines, renders several passes or
+    /// observes them.
     pub image_only: bool,
 }
 
