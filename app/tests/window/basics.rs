@@ -816,14 +816,17 @@ fn the_viewport_paints_its_background_around_a_finished_image_only() {
     );
 }
 
-/// Holds the first render from its start: it is surely under way when the
-/// test looks (a 64 x 64 render could end before the scene's first frame
-/// on a busy machine, leaving nothing to look at).
+/// Holds the first render after its first tile, so it is surely under way
+/// when the test looks. The window must not have stepped yet: its scene
+/// loads, and its first render starts, in later frames. (Pressing Space
+/// instead raced the render: a 64 x 64 render could end before the key
+/// arrived, and then nothing was ever held.)
 fn hold_first_render(harness: &mut Harness<'static, WorkbenchApp>) {
-    harness.key_press(egui::Key::Space);
+    harness.state_mut().pause_renders_after_tiles(Some(1));
     wait_for(harness, "the first render, held", |app| {
         app.engine().is_paused() && app.engine().activity() == Activity::Job(JobState::Rendering)
     });
+    harness.state_mut().pause_renders_after_tiles(None);
 }
 
 /// Counting the bundled scenes for the scene list (parsing a 262k-triangle
