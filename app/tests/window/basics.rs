@@ -17,7 +17,8 @@ use workbench::gui::{Activity, Layout, Side, WorkbenchApp};
 use workbench::load::SceneSource;
 
 use crate::harness::{
-    DroppedPath, PATIENCE, WINDOW, broken_scene, is_done, ready_window, small_window, wait_for,
+    DroppedPath, PATIENCE, WINDOW, broken_scene, is_done, one_window_at_a_time, ready_window,
+    small_window, wait_for,
 };
 
 /// The window on the bundled `balls_low`, rendered small so tests are quick.
@@ -187,6 +188,7 @@ const SNAPSHOTS: &str = "tests/snapshots";
 
 /// The window drawn by wgpu (Mesa's software Vulkan or GL on CI).
 fn drawn_window() -> Harness<'static, WorkbenchApp> {
+    one_window_at_a_time();
     let mut harness = Harness::builder()
         .with_size([1100.0, 700.0])
         .wgpu()

@@ -10,12 +10,15 @@ use tracer::generate::{GenerateOptions, GeneratorName, generate};
 use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
-use crate::harness::{WINDOW, drag, is_done, small_window_sized, wait_for, wait_for_scene};
+use crate::harness::{
+    WINDOW, drag, is_done, one_window_at_a_time, small_window_sized, wait_for, wait_for_scene,
+};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
 
 /// The window on `scene`, its structure built.
 fn window_on(scene: SceneSource) -> Harness<'static, WorkbenchApp> {
+    one_window_at_a_time();
     let mut harness = Harness::builder()
         .with_size(WINDOW)
         .build_eframe(|cc| WorkbenchApp::new(&cc.egui_ctx, None, Some(scene)));

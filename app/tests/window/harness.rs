@@ -1,7 +1,9 @@
 //! What the window's kittest suites share: waiting on the window, and the
 //! broken scene a user drops on it.
 
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
@@ -17,6 +19,28 @@ use crate::support::Scratch;
 /// guard against hanging, never a measure of speed.
 pub const PATIENCE: Duration = Duration::from_secs(180);
 
+/// Makes the calling test wait its turn for the window: one test's
+/// window at a time, in a process whose tests otherwise run in parallel.
+/// Each window renders its scene on every core and draws itself with
+/// Mesa's software rasterizer, and two such windows at once on two cores
+/// now and then kept a draw from finishing within egui_kittest's 10 s
+/// (`PollError`, one run in four of the suite); taking turns, the suite
+/// also runs faster (about 25 s instead of 33). The turn lasts until the
+/// test's thread ends; a thread that already has it keeps it (libtest
+/// may run every test on one thread).
+pub fn one_window_at_a_time() {
+    static TURN: Mutex<()> = Mutex::new(());
+    thread_local! {
+        static HELD: RefCell<Option<MutexGuard<'static, ()>>> = const { RefCell::new(None) };
+    }
+    HELD.with(|held| {
+        let mut held = held.borrow_mut();
+        if held.is_none() {
+            *held = Some(TURN.lock().unwrap_or_else(PoisonError::into_inner));
+        }
+    });
+}
+
 /// The window's usual size in these tests.
 pub const WINDOW: [f32; 2] = [1280.0, 820.0];
 
@@ -31,6 +55,7 @@ pub fn small_window_sized(
     builder: HarnessBuilder<WorkbenchApp>,
     size: [f32; 2],
 ) -> Harness<'static, WorkbenchApp> {
+    one_window_at_a_time();
     let mut harness = builder.with_size(size).build_eframe(|cc| {
         WorkbenchApp::new(
             &cc.egui_ctx,

@@ -12,7 +12,7 @@ use tracer::accel::AccelKind;
 use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
-use crate::harness::{WINDOW, wait_for, wait_for_scene};
+use crate::harness::{WINDOW, one_window_at_a_time, wait_for, wait_for_scene};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
 
@@ -43,6 +43,7 @@ fn start(
     initial: Option<SceneSource>,
 ) -> Harness<'static, WorkbenchApp> {
     let storage = storage.map(|s| MemoryStorage(s.0.clone()));
+    one_window_at_a_time();
     Harness::builder()
         .with_size(WINDOW)
         .build_eframe(move |cc| {
