@@ -1,7 +1,7 @@
-//! Embeds the project's scenes (`scenes/*.p3f`, `*.nff`) and the skybox
-//! (`assets/skybox/`) in the binary, so the window opens its scenes from any
-//! working directory. The list is generated, so a new scene file needs no
-//! code change.
+//! Embeds the project's scenes (`scenes/*.p3f`, `*.nff`), lessons
+//! (`assets/lessons/*.toml`) and the skybox (`assets/skybox/`) in the
+//! binary, so the window opens them from any working directory. The lists
+//! are generated, so a new scene or lesson file needs no code change.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -26,19 +26,12 @@ fn main() {
     let root = Path::new(&manifest_dir).join("..");
     let scenes_dir = root.join("scenes");
     let sky_dir = root.join("assets").join("skybox");
+    let lessons_dir = root.join("assets").join("lessons");
     println!("cargo:rerun-if-changed={}", scenes_dir.display());
+    println!("cargo:rerun-if-changed={}", lessons_dir.display());
     println!("cargo:rerun-if-changed={}", sky_dir.display());
 
-    let mut scenes: Vec<_> = std::fs::read_dir(&scenes_dir)
-        .map(|entries| {
-            entries
-                .filter_map(Result::ok)
-                .map(|e| e.path())
-                .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("p3f" | "nff")))
-                .collect()
-        })
-        .unwrap_or_default();
-    scenes.sort();
+    let scenes = files_in(&scenes_dir, &["p3f", "nff"]);
 
     let mut out = String::from("/// Scenes embedded from `scenes/`, sorted by file name.\n");
     out.push_str("pub const SCENES: &[BundledScene] = &[\n");
@@ -57,6 +50,26 @@ fn main() {
             out,
             "    BundledScene {{ name: {name:?}, file: {file:?}, description: {description:?}, text: include_str!({:?}) }},",
             path.canonicalize().unwrap_or(path.clone()).display().to_string()
+        )
+        .unwrap();
+    }
+    out.push_str("];\n\n");
+
+    out.push_str("/// Lessons embedded from `assets/lessons/`, sorted by file name.\n");
+    out.push_str("pub const LESSONS: &[BundledLesson] = &[\n");
+    for path in files_in(&lessons_dir, &["toml"]) {
+        println!("cargo:rerun-if-changed={}", path.display());
+        let name = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("lesson");
+        writeln!(
+            out,
+            "    BundledLesson {{ name: {name:?}, text: include_str!({:?}) }},",
+            path.canonicalize()
+                .unwrap_or(path.clone())
+                .display()
+                .to_string()
         )
         .unwrap();
     }
@@ -92,6 +105,53 @@ fn main() {
     }
     let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("bundled.rs");
     std::fs::write(dest, out).unwrap();
+    expose_commit(&root);
+}
+
+/// Sets `WORKBENCH_COMMIT` to the checkout's commit, for reports that say
+/// which build measured them; "unknown" when the source is not a git
+/// checkout or git is missing (a tarball, a vendored build), which must
+/// still build. Reruns when HEAD moves (a commit, a checkout).
+fn expose_commit(root: &Path) {
+    let git = |args: &[&str]| -> Option<String> {
+        let out = std::process::Command::new("git")
+            .arg("-C")
+            .arg(root)
+            .args(args)
+            .output()
+            .ok()?;
+        let text = String::from_utf8(out.stdout).ok()?;
+        (out.status.success() && !text.trim().is_empty()).then(|| text.trim().to_string())
+    };
+    let commit = git(&["rev-parse", "--short=12", "HEAD"]).unwrap_or_else(|| "unknown".into());
+    println!("cargo:rustc-env=WORKBENCH_COMMIT={commit}");
+    for file in ["HEAD", "logs/HEAD"] {
+        if let Some(path) = git(&["rev-parse", "--path-format=absolute", "--git-path", file])
+            && Path::new(&path).is_file()
+        {
+            println!("cargo:rerun-if-changed={path}");
+        }
+    }
+}
+
+/// The files in `dir` with one of `extensions`, sorted; none when the
+/// folder is missing.
+fn files_in(dir: &Path, extensions: &[&str]) -> Vec<std::path::PathBuf> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .filter_map(Result::ok)
+                .map(|e| e.path())
+                .filter(|p| {
+                    p.extension()
+                        .and_then(|e| e.to_str())
+                        .is_some_and(|e| extensions.contains(&e))
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
 }
 
 /// A PNG face's size and its texels as 8-bit RGB, as the `image` crate's

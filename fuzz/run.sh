@@ -7,6 +7,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}
+# libFuzzer reads 0 as "no limit": a run that never ends is no bounded run.
+if ! [[ $seconds =~ ^[0-9]+$ ]] || ((10#$seconds == 0)); then
+    echo "FUZZ_SECONDS=$seconds: give a positive whole number of seconds" >&2
+    exit 1
+fi
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 for target in parse parse_render; do
     # New inputs go to a scratch corpus; the committed seeds stay as they are.

@@ -1,18 +1,19 @@
 #!/usr/bin/env bash
 # Runs every test: installs what the window tests need (Mesa's software
-# Vulkan/GL drivers for the snapshot tests, Xvfb for the real window),
-# idempotently, then `cargo test`, then the real window under Xvfb.
+# Vulkan/GL drivers for the snapshot tests, Xvfb for the real window) and
+# Chromium for the lab report's page, idempotently, then `cargo test`, the
+# real window under Xvfb, and a report opened in headless Chromium.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb xauth)
+packages=(mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb xauth chromium)
 missing=()
 for p in "${packages[@]}"; do
     dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
     if ! command -v apt-get >/dev/null; then
-        echo "missing ${missing[*]} and no apt-get: install Mesa's drivers and Xvfb yourself" >&2
+        echo "missing ${missing[*]} and no apt-get: install Mesa's drivers, Xvfb and Chromium yourself" >&2
         exit 1
     fi
     sudo=""
@@ -34,3 +35,10 @@ cargo test --locked
 
 echo "== the real window under Xvfb"
 xvfb-run -a -s "-screen 0 1400x900x24" cargo test --locked --test window -- --ignored
+
+echo "== the lab report in headless Chromium"
+# No console error, no request leaving the file, every image loaded.
+report_dir=$(mktemp -d)
+trap 'rm -rf "$report_dir"' EXIT
+cargo run --locked -q -- report scenes/balls_low.p3f --quick --runs 1 -o "$report_dir/report.html"
+python3 scripts/check_report_page.py "$report_dir/report.html"

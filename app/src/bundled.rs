@@ -1,4 +1,4 @@
-//! The scenes and skybox embedded in the binary (see `build.rs`).
+//! The scenes, lessons and skybox embedded in the binary (see `build.rs`).
 
 /// A scene file compiled into the binary.
 #[derive(Debug, Clone, Copy)]
@@ -9,6 +9,14 @@ pub struct BundledScene {
     pub file: &'static str,
     /// The file's first comment line.
     pub description: &'static str,
+    pub text: &'static str,
+}
+
+/// A lesson file compiled into the binary (see [`crate::lessons`]).
+#[derive(Debug, Clone, Copy)]
+pub struct BundledLesson {
+    /// File stem, e.g. `camera`: the name `workbench lesson check` takes.
+    pub name: &'static str,
     pub text: &'static str,
 }
 

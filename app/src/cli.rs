@@ -5,11 +5,13 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::{AccelKind, StructureLayer};
-use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
+use tracer::render::{
+    AdaptiveSampling, Encoding, HeatScale, RenderSettings, Sampling, View, ViewHeatmap,
+};
 
 use crate::measure::ab::Heatmap;
-use crate::measure::bench_report::Format;
 use crate::measure::study::Param;
+use crate::reports::bench_table::Format;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -33,6 +35,10 @@ pub struct Cli {
     /// Open the window with the observer view on (the scene from outside).
     #[arg(long)]
     pub observer: bool,
+    /// Open the window on this lesson file (see docs/LESSONS.md), its first
+    /// step set up.
+    #[arg(long, value_name = "TOML", conflicts_with = "scene")]
+    pub lesson: Option<PathBuf>,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]
     pub screenshot_after: Option<f64>,
@@ -41,7 +47,7 @@ pub struct Cli {
 impl Cli {
     /// The window's screenshot request, checked: a delay must be a finite,
     /// non-negative number of seconds.
-    pub fn screenshot_plan(&self) -> anyhow::Result<Option<crate::gui::ScreenshotPlan>> {
+    pub fn screenshot_plan(&self) -> anyhow::Result<Option<ScreenshotPlan>> {
         let Some(path) = &self.screenshot else {
             return Ok(None);
         };
@@ -52,11 +58,20 @@ impl Cli {
                     anyhow::anyhow!("--screenshot-after {s}: not a delay in seconds")
                 })?),
             };
-        Ok(Some(crate::gui::ScreenshotPlan {
+        Ok(Some(ScreenshotPlan {
             path: path.clone(),
             after,
         }))
     }
+}
+
+/// When and where the window takes its screenshot (`--screenshot`).
+#[derive(Debug, Clone)]
+pub struct ScreenshotPlan {
+    pub path: PathBuf,
+    /// Take it this long after the window opened; `None`: once the render
+    /// is finished and on screen (or an error is shown).
+    pub after: Option<std::time::Duration>,
 }
 
 /// The subcommands: the engine run without the window.
@@ -82,9 +97,88 @@ pub enum Headless {
     /// six PNG faces.
     Gen(GenArgs),
     /// Sweep one parameter (grid-m, spp, depth, light-size, aperture,
-    /// resolution, or the level of a generated scene) and time each point
-    /// for each structure: a table, and a PNG chart with --plot.
+    /// resolution, noise-threshold, or the level of a generated scene) and
+    /// time each point for each structure: a table, and a PNG chart with --plot.
     Sweep(SweepArgs),
+    /// Lessons: list the bundled ones, or check lessons by replaying every
+    /// step (its starting state must fail its check, its solution pass it).
+    Lesson(LessonArgs),
+    /// Write the lab report: the course's experiments on a scene (Whitted
+    /// depth, sampling, the timing matrix, statistics, one pixel explained,
+    /// the course's own times) as one self-contained HTML page.
+    Report(ReportArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+The page has seven sections, as the course's report: the run (scene,
+camera, settings, machine), Whitted ray tracing (depth 0, 1 and the
+scene's), stochastic sampling (anti-aliasing, depth of field, soft shadows
+off and on, error against samples), acceleration (the course's timing table
+with a BVH row for each, the grid multiplier study, tests per pixel, build
+time and memory), statistics, one pixel explained, and the course's own
+times beside ours for balls_medium. Each time is the median of --runs
+frames on --threads threads, stated in the page.
+
+Images are inline PNG and charts inline SVG: the file opens in any browser
+without a network and prints to PDF. Ctrl-C stops and writes nothing.
+
+  workbench report scenes/balls_medium.p3f -o report.html --quick
+  workbench report scene.p3f -o report.html --runs 7 --json times.json")]
+pub struct ReportArgs {
+    /// The scene file (.p3f or .nff).
+    pub scene: PathBuf,
+    /// Where to write the HTML page.
+    #[arg(short, long, default_value = "report.html")]
+    pub output: PathBuf,
+    /// Frames per timed configuration; the median and spread are reported.
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    /// A quick report: images at most 128 pixels on their longer side and
+    /// at most 3 runs per time (said in the page).
+    #[arg(long)]
+    pub quick: bool,
+    /// The pixel to explain (default: one the report chooses, with a
+    /// reflection and a blocked shadow ray), in the measured image.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"])]
+    pub pixel: Option<Vec<u32>>,
+    /// Also write the timing table as `bench --matrix --format json`
+    /// writes it.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub encoding: EncodingArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = thread_count)]
+    pub threads: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+pub struct LessonArgs {
+    #[command(subcommand)]
+    pub command: LessonCommand,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum LessonCommand {
+    /// The bundled lessons: name, chapter, title and steps.
+    List {
+        /// A table, or JSON for scripts.
+        #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+        format: MetricsFormat,
+    },
+    /// Validate lessons (the file reads, the scene loads, the settings and
+    /// edits apply), then replay each step: its starting state must fail
+    /// its check and its `solution` must pass it. One line per step; the
+    /// exit status is non-zero on any failure.
+    Check {
+        /// Bundled lesson names or lesson files (.toml); default: every
+        /// bundled lesson.
+        #[arg(value_name = "NAME|FILE")]
+        lessons: Vec<String>,
+    },
 }
 
 #[derive(Args, Debug)]
@@ -102,23 +196,26 @@ steps (grid cells or BVH nodes) per ray. A built structure is reused by
 every point that traces against it. Frames are one sample per pixel with
 hard shadows unless the options ask for more; the swept parameter turns its
 own feature on (spp: anti-aliasing, light-size: soft shadows, aperture:
-depth of field).
+depth of field, noise-threshold: adaptive anti-aliasing).
 
   workbench sweep scene.p3f --param grid-m --values 0.25..8:x2 --plot m.png
   workbench sweep --param level --generator balls --levels 1..4 --plot scale.png
   workbench sweep scene.p3f --param spp --values 1..6 --structures bvh
+  workbench sweep scene.p3f --param noise-threshold --values 0.0025..0.04:x2
 
 The level study renders a built-in generator's scene at each level (x axis:
 primitives, log-log chart, with the slope of each structure). The spp study
 also gives each image's MSE, PSNR and FLIP against a reference rendered
 with twice the largest N (--reference-spp), and marks the knee of error vs
-time. Ctrl-C stops after the frame under way and prints what was measured
+time; the noise-threshold study does the same (reference: twice the
+strata of its --max-spp) and gives each point's samples per pixel.
+Ctrl-C stops after the frame under way and prints what was measured
 (a second Ctrl-C stops at once); the exit status is then non-zero.")]
 pub struct SweepArgs {
     /// The scene file (.p3f or .nff); none for --param level.
     pub scene: Option<PathBuf>,
-    /// What to sweep: grid-m, spp, depth, light-size, aperture, resolution
-    /// or level.
+    /// What to sweep: grid-m, spp, depth, light-size, aperture, resolution,
+    /// noise-threshold or level.
     #[arg(long, value_parser = study_param)]
     pub param: Param,
     /// The values (see below; default: a range suited to the parameter).
@@ -141,8 +238,8 @@ pub struct SweepArgs {
     /// Write the chart to this PNG file.
     #[arg(long, value_name = "PNG")]
     pub plot: Option<PathBuf>,
-    /// For --param spp: N of the reference image (default: twice the
-    /// largest N).
+    /// For --param spp and noise-threshold: N of the reference image
+    /// (default: twice the largest N).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub reference_spp: Option<u32>,
     #[command(flatten)]
@@ -212,6 +309,21 @@ pub struct BenchArgs {
     /// AA, AA with depth of field}.
     #[arg(long)]
     pub matrix: bool,
+    /// Measure the time to a given error: render a uniform reference
+    /// (--reference-spp), take uniform N x N's error (--spp, default 4) or
+    /// --target-mse as the target, find the cheapest uniform N and the
+    /// largest adaptive --noise-threshold that reach it (MSE and FLIP),
+    /// then time both --runs times, alternated.
+    #[arg(long, conflicts_with_all = ["matrix", "rays", "images"])]
+    pub to_error: bool,
+    /// With --to-error: N of the uniform reference (default 4 N, at most
+    /// 64).
+    #[arg(long, value_name = "N", requires = "to_error", value_parser = clap::value_parser!(u32).range(1..))]
+    pub reference_spp: Option<u32>,
+    /// With --to-error: the MSE to reach (8-bit units) instead of uniform
+    /// N x N's error.
+    #[arg(long, value_name = "MSE", requires = "to_error")]
+    pub target_mse: Option<f64>,
     /// How to print the table.
     #[arg(long, value_enum, default_value_t = TableFormat::Text)]
     pub format: TableFormat,
@@ -472,7 +584,7 @@ pub struct ObserveArgs {
     /// Also draw these pixels' rays: row:Y, column:X (32 pixels along it)
     /// or grid:STEP (one pixel every STEP).
     #[arg(long, value_parser = pixel_pattern, value_name = "row:Y|column:X|grid:STEP")]
-    pub pixels: Option<crate::measure::observer::PixelPattern>,
+    pub pixels: Option<crate::figures::observer::PixelPattern>,
     /// Which of the pixels' samples (the pass that traces it, from 0).
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub sample: u32,
@@ -507,7 +619,7 @@ pub struct ObserveArgs {
     pub threads: Option<usize>,
 }
 
-fn pixel_pattern(text: &str) -> Result<crate::measure::observer::PixelPattern, String> {
+fn pixel_pattern(text: &str) -> Result<crate::figures::observer::PixelPattern, String> {
     text.parse()
 }
 
@@ -533,6 +645,15 @@ pub enum StatsFormat {
     Json,
 }
 
+/// `--sampling`: how anti-aliasing spends its samples.
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum SamplingMode {
+    /// N x N jittered samples in every pixel.
+    Uniform,
+    /// Samples where each pixel's estimated error asks for them.
+    Adaptive,
+}
+
 /// Overrides of the scene's own settings; anything left out keeps the
 /// scene's value (or the tracer's default).
 #[derive(Args, Debug, Default, Clone)]
@@ -555,6 +676,24 @@ pub struct SettingsArgs {
     /// N: N x N samples per pixel (and lens / soft-shadow strata).
     #[arg(long, value_name = "N")]
     pub spp: Option<u32>,
+    /// How anti-aliasing spends its samples: uniform (N x N in every
+    /// pixel) or adaptive (until each pixel's estimated error is below
+    /// --noise-threshold; turns anti-aliasing on).
+    #[arg(long, value_enum, value_name = "MODE")]
+    pub sampling: Option<SamplingMode>,
+    /// Adaptive sampling: a pixel stops once the standard error of its
+    /// mean is below T, in display units 0..1 (default 0.01, 2.55 levels
+    /// of 255; 0 takes --max-spp everywhere). Implies --sampling adaptive.
+    #[arg(long, value_name = "T")]
+    pub noise_threshold: Option<f32>,
+    /// Adaptive sampling: samples every pixel takes first (default N^2/4,
+    /// at least 8). Implies --sampling adaptive.
+    #[arg(long, value_name = "M")]
+    pub min_spp: Option<u32>,
+    /// Adaptive sampling: samples no pixel exceeds (default (2N)^2).
+    /// Implies --sampling adaptive.
+    #[arg(long, value_name = "X")]
+    pub max_spp: Option<u32>,
     /// Soft shadows: lights get an area.
     #[arg(long)]
     pub soft_shadows: bool,
@@ -651,11 +790,12 @@ impl SettingsArgs {
         if self.aa {
             s.antialiasing = true;
         }
-        if self.no_aa {
-            s.antialiasing = false;
-        }
         if let Some(n) = self.spp {
             s.samples = n.max(1);
+        }
+        self.apply_sampling(s);
+        if self.no_aa {
+            s.antialiasing = false;
         }
         if self.soft_shadows {
             s.soft_shadows = true;
@@ -685,6 +825,42 @@ impl SettingsArgs {
         if let Some(seed) = self.seed {
             s.seed = seed;
         }
+    }
+
+    /// `--sampling` and the adaptive knobs: adaptive sampling (with
+    /// anti-aliasing on) from N's defaults, or the settings' own adaptive
+    /// sampling, with the knobs given; `--sampling uniform` wins over
+    /// them.
+    fn apply_sampling(&self, s: &mut RenderSettings) {
+        let knobs =
+            self.noise_threshold.is_some() || self.min_spp.is_some() || self.max_spp.is_some();
+        match self.sampling {
+            Some(SamplingMode::Uniform) => {
+                s.sampling = Sampling::Uniform;
+                return;
+            }
+            None if !knobs => return,
+            _ => {}
+        }
+        let mut adaptive = match s.sampling {
+            Sampling::Adaptive(a) if self.spp.is_none() => a,
+            _ => AdaptiveSampling::for_samples(
+                s.samples,
+                AdaptiveSampling::default().noise_threshold,
+            ),
+        };
+        if let Some(t) = self.noise_threshold {
+            adaptive.noise_threshold = t;
+        }
+        if let Some(max) = self.max_spp {
+            adaptive.max_spp = max;
+            adaptive.min_spp = adaptive.min_spp.min(max);
+        }
+        if let Some(min) = self.min_spp {
+            adaptive.min_spp = min;
+        }
+        s.sampling = Sampling::Adaptive(adaptive);
+        s.antialiasing = true;
     }
 }
 

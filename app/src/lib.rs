@@ -3,12 +3,15 @@
 
 pub mod bundled;
 pub mod cli;
+pub mod figures;
+#[cfg(feature = "window")]
 pub mod gui;
 pub mod headless;
+pub mod image_file;
+pub mod lessons;
 pub mod load;
 pub mod measure;
-pub mod output;
-pub mod report;
+pub mod reports;
 
 use clap::Parser;
 
@@ -24,9 +27,9 @@ pub fn run() -> std::process::ExitCode {
         Some(cli::Headless::Compare(args)) => headless::compare::run(&args),
         Some(cli::Headless::Gen(args)) => headless::generate::run(&args),
         Some(cli::Headless::Sweep(args)) => headless::sweep::run(&args),
-        None => cli
-            .screenshot_plan()
-            .and_then(|plan| gui::run(cli.scene, plan, cli.observer)),
+        Some(cli::Headless::Lesson(args)) => headless::lesson::run(&args),
+        Some(cli::Headless::Report(args)) => headless::report::run(&args),
+        None => window(cli),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -35,4 +38,22 @@ pub fn run() -> std::process::ExitCode {
             std::process::ExitCode::FAILURE
         }
     }
+}
+
+/// The window the command line asks for without a subcommand.
+#[cfg(feature = "window")]
+fn window(cli: cli::Cli) -> anyhow::Result<()> {
+    cli.screenshot_plan()
+        .and_then(|plan| gui::run(cli.scene, plan, cli.observer, cli.lesson))
+}
+
+/// Built without the window (cargo feature `window`): the flags are still
+/// checked, then the user is told what this build can do.
+#[cfg(not(feature = "window"))]
+fn window(cli: cli::Cli) -> anyhow::Result<()> {
+    cli.screenshot_plan()?;
+    anyhow::bail!(
+        "this workbench was built without the window (cargo feature `window`): \
+         run a subcommand (workbench --help lists them)"
+    )
 }

@@ -140,7 +140,7 @@ fn apply_edits_then(
 /// falls back to the bundled sky (not the flat background), with a warning.
 /// The bundled sky is painted y-up; it is stood upright on the camera's
 /// `up`, so a z-up course scene shows sky, not ground, above its horizon.
-fn build_with_sky(scene: &Scene) -> World {
+pub fn build_with_sky(scene: &Scene) -> World {
     let problem = RefCell::new(None);
     let mut world = World::build_with_skybox(scene, |name| {
         let dir = scene

@@ -50,4 +50,8 @@ pub mod stats;
 pub mod world;
 
 #[cfg(any(test, feature = "test-util"))]
+pub mod optional_input;
+#[cfg(any(test, feature = "test-util"))]
 pub mod scratch;
+#[cfg(any(test, feature = "test-util"))]
+pub mod waiting;

@@ -74,6 +74,12 @@ impl SampleStream {
     }
 }
 
+/// 32 random bits of pixel `pixel` under `seed`, the same for all its
+/// samples: the digits that shift a pixel's adaptive sample pattern.
+pub fn pixel_digits(seed: u64, pixel: u32) -> u32 {
+    (mix64(seed ^ 0x5ca1_ab1e_0000_0000 ^ u64::from(pixel)) >> 32) as u32
+}
+
 /// SplitMix64's finaliser: a bijective mix with good avalanche.
 #[inline]
 fn mix64(mut z: u64) -> u64 {

@@ -47,8 +47,8 @@ struct Face {
 enum Texels {
     /// An 8-bit image's own bytes, turned into `[0, 1]` on lookup as the
     /// `image` crate turns them (`v / 255`): a sixteenth of the memory of
-    /// floats, which made the bundled sky's six faces 6 MB of fresh pages
-    /// and 5 ms of every start. Borrowed when they were decoded before the
+    /// floats, which made the bundled sky's six faces megabytes of fresh
+    /// pages at every start. Borrowed when they were decoded before the
     /// program ran (a sky embedded in a binary, see [`Skybox::from_rgb8`]).
     Bytes(Cow<'static, [[u8; 3]]>),
     /// Deeper images and painted skies, as floats.
@@ -125,7 +125,8 @@ impl Skybox {
     /// A skybox from six faces already decoded to 8-bit RGB, in
     /// [`FACE_NAMES`] order: a sky embedded in a binary, decoded when it
     /// was built, costs no decoding and no copy at each start (decoding
-    /// the bundled sky's six PNGs took 5 ms of every `workbench render`).
+    /// the bundled sky's six PNGs was a visible part of every `workbench
+    /// render`).
     pub fn from_rgb8(faces: [Rgb8Face; 6]) -> Result<Skybox, SkyboxError> {
         let faces = faces
             .into_iter()

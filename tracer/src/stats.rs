@@ -80,6 +80,37 @@ pub struct RenderStats {
     pub render_time: Duration,
     /// Time spent building the acceleration structure.
     pub build_time: Duration,
+    /// How an adaptive render has spent its samples (after the last
+    /// completed pass); `None` for uniform sampling.
+    pub adaptive: Option<AdaptiveStats>,
+}
+
+/// Where an adaptive render stands after a pass.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AdaptiveStats {
+    pub pixels: u64,
+    /// Pixels that take more samples in the next pass.
+    pub active_pixels: u64,
+    /// Samples taken, every pixel's added up.
+    pub samples: u64,
+    /// The most samples one pixel took.
+    pub max_spp: u32,
+    /// Root mean square of the pixels' estimated errors (standard errors of
+    /// their means, in display units 0..1): about the RMS difference to
+    /// the converged image. Infinite before two samples.
+    pub error: f32,
+}
+
+impl AdaptiveStats {
+    /// The share of pixels still refining, 0..1.
+    pub fn active_share(&self) -> f64 {
+        self.active_pixels as f64 / self.pixels.max(1) as f64
+    }
+
+    /// Samples per pixel, on average.
+    pub fn mean_spp(&self) -> f64 {
+        self.samples as f64 / self.pixels.max(1) as f64
+    }
 }
 
 impl RenderStats {

@@ -88,7 +88,7 @@ pub struct World {
     pub lights: Vec<Light>,
     pub background: Vec3A,
     /// Shared, so that a world cloned to follow an edit does not copy
-    /// the sky's six faces (2 ms of a material edit's 2.1 on showcase).
+    /// the sky's six faces (most of a material edit's time, before).
     pub skybox: Option<Arc<Skybox>>,
     /// Bounds of all bounded shapes (empty when there are none).
     pub bounds: Aabb,

@@ -27,8 +27,10 @@ pub enum Command {
     SwapSides,
     CopyAToB,
     ToggleBenchmark,
+    ExportReport,
     ToggleStudies,
     ToggleObserver,
+    ToggleLessons,
     ToggleEditor,
     Undo,
     Redo,
@@ -45,7 +47,7 @@ impl Command {
     ///
     /// egui matches Ctrl+Z when Ctrl+Shift+Z is pressed, so a shortcut with
     /// Shift comes before the same one without.
-    pub const ALL: [Command; 28] = [
+    pub const ALL: [Command; 30] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -64,6 +66,7 @@ impl Command {
         Command::ToggleStats,
         Command::CycleView,
         Command::ToggleObserver,
+        Command::ToggleLessons,
         Command::ToggleEditor,
         Command::ClearSelection,
         Command::Redo,
@@ -72,6 +75,7 @@ impl Command {
         Command::SwapSides,
         Command::CopyAToB,
         Command::ToggleBenchmark,
+        Command::ExportReport,
         Command::ToggleStudies,
         Command::ToggleHelp,
     ];
@@ -100,8 +104,10 @@ impl Command {
             Command::SwapSides => "Swap A and B",
             Command::CopyAToB => "Copy A to B",
             Command::ToggleBenchmark => "Benchmark matrix",
+            Command::ExportReport => "Export report...",
             Command::ToggleStudies => "Studies",
             Command::ToggleObserver => "Observer view",
+            Command::ToggleLessons => "Lessons",
             Command::ToggleEditor => "Scene editor",
             Command::Undo => "Undo edit",
             Command::Redo => "Redo edit",
@@ -148,11 +154,17 @@ impl Command {
             Command::ToggleBenchmark => {
                 "Time every structure x shadows x sampling on this scene, as the course report's table"
             }
+            Command::ExportReport => {
+                "Measure the course's experiments on this scene, camera, settings and edits, and write them as one HTML page"
+            }
             Command::ToggleStudies => {
                 "Sweep one parameter (grid m, N, depth, ...) or a generated scene's size and chart the times"
             }
             Command::ToggleObserver => {
                 "See the scene from outside: the camera, its image plane, the lights and the pinned pixel's rays"
+            }
+            Command::ToggleLessons => {
+                "The course's chapters as guided steps, each checking what you achieved"
             }
             Command::ToggleEditor => {
                 "Change materials, shapes, lights and the camera; a click on the image selects what it shows"
@@ -179,6 +191,7 @@ impl Command {
         const CTRL_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::S)];
         const CTRL_O: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::O)];
         const CTRL_E: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::E)];
+        const CTRL_R: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::R)];
         const F5: &[KeyboardShortcut] = &[key(Key::F5)];
         const C: &[KeyboardShortcut] = &[key(Key::C)];
         const F: &[KeyboardShortcut] = &[key(Key::F)];
@@ -193,6 +206,7 @@ impl Command {
         const O: &[KeyboardShortcut] = &[key(Key::O)];
         const SHIFT_B: &[KeyboardShortcut] = &[KeyboardShortcut::new(Modifiers::SHIFT, Key::B)];
         const E: &[KeyboardShortcut] = &[key(Key::E)];
+        const L: &[KeyboardShortcut] = &[key(Key::L)];
         const CTRL_Z: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL, Key::Z)];
         const CTRL_SHIFT: Modifiers = CTRL.plus(Modifiers::SHIFT);
         const REDO: &[KeyboardShortcut] = &[
@@ -223,8 +237,10 @@ impl Command {
             Command::SwapSides => W,
             Command::CopyAToB => SHIFT_B,
             Command::ToggleBenchmark => M,
+            Command::ExportReport => CTRL_R,
             Command::ToggleStudies => P,
             Command::ToggleObserver => O,
+            Command::ToggleLessons => L,
             Command::ToggleEditor => E,
             Command::Undo => CTRL_Z,
             Command::Redo => REDO,
@@ -291,9 +307,11 @@ mod tests {
         }
     }
 
+    /// The user guide's key table is the one users read; the help
+    /// overlay is drawn from `ALL`, so only the guide can fall behind.
     #[test]
-    fn the_readme_lists_every_command_with_its_shortcut() {
-        let readme = include_str!("../../../README.md");
+    fn the_guide_lists_every_command_with_its_shortcut() {
+        let guide = include_str!("../../../docs/guide/window.md");
         let ctx = egui::Context::default();
         let table: String = Command::ALL
             .iter()
@@ -307,8 +325,8 @@ mod tests {
             })
             .collect();
         assert!(
-            readme.contains(&table),
-            "README.md's table of shortcuts should read:\n{table}"
+            guide.contains(&table),
+            "docs/guide/window.md's table of keys should read:\n{table}"
         );
     }
 

@@ -13,6 +13,7 @@ mod commands;
 mod comparison;
 mod editor;
 mod image;
+mod lessons;
 mod observer;
 mod panels;
 mod platform;
@@ -21,13 +22,15 @@ mod windows;
 
 use std::path::PathBuf;
 
-pub use app::WorkbenchApp;
+pub use app::{FileDialog, FileQuestion, WorkbenchApp};
 pub use commands::Command;
-pub use comparison::{Comparison, Layout, ReferenceImage};
+pub use comparison::{CompareLayout, Comparison, ReferenceImage};
 pub use editor::{Editor, Pending};
 pub use image::pixel_views::PixelViews;
 pub use image::structure_overlay::StructureOverlay;
+pub use lessons::Lessons;
 pub use observer::{Observer, ObserverLayout};
+pub use platform::clock::Clock;
 pub use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use sides::{Activity, Controls, Engine, Side, SideId};
 pub use windows::benchmark::BenchWindow;
@@ -37,12 +40,14 @@ pub use windows::studies::{Applied, StudiesWindow};
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
-/// with the observer view on when `observer`, and runs until it is closed,
+/// with the observer view on when `observer` and the lesson file `lesson`
+/// open, and runs until it is closed,
 /// or until the screenshot of `screenshot` is taken.
 pub fn run(
     scene: Option<PathBuf>,
     screenshot: Option<ScreenshotPlan>,
     observer: bool,
+    lesson: Option<PathBuf>,
 ) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -74,6 +79,9 @@ pub fn run(
             }
             let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
             app.show_observer(observer);
+            if let Some(path) = &lesson {
+                app.open_lesson(path);
+            }
             Ok(Box::new(match plan {
                 Some(plan) => app.with_screenshot(plan, app_outcome),
                 None => app,
@@ -104,11 +112,10 @@ pub fn run(
 }
 
 /// On a software rasterizer (a CPU "device": no GPU) egui animates
-/// nothing: each frame there costs the render ~25 ms of CPU, and the
-/// scroll bars fading in as the panels fill drew 10 frames during
-/// mount_very_high's 0.3 s first render where the progress pace asked for
-/// four (window/headless rays/s 0.70 -> 0.84). Transitions are instant
-/// instead. With a GPU, frames are cheap and animations stay.
+/// nothing: each frame there costs the render CPU, and the scroll bars
+/// fading in as the panels fill drew more than twice the frames the
+/// progress pace asked for during a short first render. Transitions are
+/// instant instead. With a GPU, frames are cheap and animations stay.
 fn settle_animations(ctx: &egui::Context, device: eframe::wgpu::DeviceType) {
     if device == eframe::wgpu::DeviceType::Cpu {
         ctx.all_styles_mut(|style| style.animation_time = 0.0);
@@ -121,7 +128,7 @@ mod tests {
     use std::path::Path;
 
     /// The window paints with the patched egui-wgpu of `vendor/` (see its
-    /// README): on a software rasterizer its frames cost a third of the
+    /// README): on a software rasterizer its frames cost much less than the
     /// crates.io one's. Fails when the patch stops applying (Cargo ignores a
     /// `[patch]` whose version no longer matches, with a mere warning) or a
     /// new copy of the crate lacks the change.

@@ -8,11 +8,15 @@ use tracer::accel::AccelKind;
 use tracer::render::{Frame, RenderSettings};
 
 use crate::cli::{BenchArgs, TableFormat};
+use crate::image_file::save_png;
 use crate::load::{Loaded, load_scene_edited};
-use crate::measure::bench_report::{Format, Layout, table};
 use crate::measure::benchmark::{self, Measurement, RunOptions};
 use crate::measure::ray_cast::{self, RayBenchOptions};
-use crate::output::save_png;
+use crate::measure::to_error::{self, ToErrorPlan};
+use crate::reports::{
+    self,
+    bench_table::{Columns, Format, table},
+};
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
@@ -21,9 +25,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // the command line (or the matrix) asks for more.
     settings.antialiasing = false;
     settings.depth_of_field = false;
+    if args.to_error {
+        // The target is the error of the report's N unless --spp says.
+        settings.samples = benchmark::MATRIX_SAMPLES;
+    }
     args.settings.apply(&mut settings);
     if args.rays {
         return rays(args, &loaded, &settings);
+    }
+    if args.to_error {
+        return to_error(args, &loaded, settings);
     }
     let encoding = args.encoding.encoding();
     let accels: Vec<AccelKind> = match (&args.structures, args.settings.accel) {
@@ -40,12 +51,12 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
         (
             benchmark::matrix(&settings, &accels, encoding),
-            Layout::Matrix,
+            Columns::Matrix,
         )
     } else {
         (
             benchmark::structures(&settings, &accels, encoding),
-            Layout::Structures,
+            Columns::Structures,
         )
     };
     let runs = args.runs.max(1);
@@ -116,6 +127,63 @@ fn rays(args: &BenchArgs, loaded: &Loaded, settings: &RenderSettings) -> Result<
         TableFormat::Text => print!("{}", bench.text(&scene)),
         TableFormat::Json => println!("{}", bench.json(&scene)),
         TableFormat::Md | TableFormat::Csv => bail!("--rays prints text or json"),
+    }
+    Ok(())
+}
+
+/// `bench --to-error`: the time uniform and adaptive sampling take to
+/// reach one error, as text or JSON.
+fn to_error(args: &BenchArgs, loaded: &Loaded, mut settings: RenderSettings) -> Result<()> {
+    if args.structures.as_ref().is_some_and(|s| s.len() > 1) {
+        bail!("--to-error measures one structure: give one to --structure");
+    }
+    if let Some([accel]) = args.structures.as_deref() {
+        settings.accel = *accel;
+    }
+    if !matches!(args.format, TableFormat::Text | TableFormat::Json) {
+        bail!("--to-error prints text or json");
+    }
+    let plan = ToErrorPlan {
+        reference_samples: args
+            .reference_spp
+            .unwrap_or_else(|| to_error::default_reference_samples(settings.samples)),
+        target_mse: args.target_mse,
+        noise_threshold: args.settings.noise_threshold,
+        runs: args.runs.max(1),
+        threads: args.threads,
+        encoding: args.encoding.encoding(),
+        base: settings,
+    };
+    let header = format!(
+        "{}: {}x{}, {}, {} timed run(s) per side, {} thread(s)",
+        args.scene.display(),
+        plan.base.width,
+        plan.base.height,
+        reports::describe::describe(&plan.base),
+        plan.runs,
+        args.threads.map_or_else(
+            || rayon::current_num_threads().to_string(),
+            |t| t.to_string()
+        ),
+    );
+    eprintln!("{header}");
+    let measured = to_error::measure(&loaded.world, &plan, &mut |attempt| {
+        eprintln!(
+            "  {}: {:.1} spp, MSE {:.3}, FLIP {:.4}, {:.3} s",
+            attempt.label,
+            attempt.spp_mean,
+            attempt.metrics.mse,
+            attempt.metrics.flip,
+            attempt.time.as_secs_f64()
+        )
+    })
+    .with_context(|| format!("cannot measure {}", args.scene.display()))?;
+    match args.format {
+        TableFormat::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(&reports::to_error::json(&measured)).unwrap_or_default()
+        ),
+        _ => print!("{header}\n{}", reports::to_error::text(&measured)),
     }
     Ok(())
 }

@@ -10,16 +10,17 @@ use tracer::render::{RenderSettings, View, ViewSummary};
 use tracer::world::World;
 
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
+use crate::figures::heat_map;
+use crate::image_file::save_png;
 use crate::load::load_scene_edited;
-use crate::measure::ab::{self, Comparison, Heatmap, ImageComparison, SideOptions};
+use crate::measure::ab::{self, Heatmap, ImageComparison, RenderComparison, SideOptions};
 use crate::measure::benchmark::{Case, Measurement};
-use crate::measure::heatmap_image;
-use crate::output::save_png;
-use crate::report::si;
+use crate::reports::render_stats::si;
+use crate::reports::view_summary;
 
 /// One side: its case, the world it renders (the scene with the side's own
 /// `--set` edits) and those edits in words.
-struct Side {
+struct SideSetup {
     case: Case,
     world: Arc<World>,
     edits: Vec<String>,
@@ -27,7 +28,7 @@ struct Side {
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
-    let side = |name: &str, flags: &str| -> Result<Side> {
+    let side = |name: &str, flags: &str| -> Result<SideSetup> {
         let (own, own_encoding) =
             SettingsArgs::parse_str(flags).map_err(|e| anyhow!("--{name} \"{flags}\": {e}"))?;
         let (edited, edits) = loaded
@@ -47,7 +48,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             settings,
             encoding,
         };
-        Ok(Side {
+        Ok(SideSetup {
             case,
             world: edited.world,
             edits,
@@ -139,11 +140,11 @@ fn finished<T>(outcome: Result<Option<T>>, args: &CompareArgs) -> Result<T> {
 /// `--b-image`: A against a reference image.
 fn against_image(
     args: &CompareArgs,
-    side: Side,
+    side: SideSetup,
     path: &std::path::Path,
     heatmap: Heatmap,
 ) -> Result<()> {
-    let Side {
+    let SideSetup {
         case: a,
         world,
         edits,
@@ -172,7 +173,7 @@ fn against_image(
         ),
         &args.output,
     )?;
-    let settings = crate::measure::describe::describe(&c.a.case.settings);
+    let settings = crate::reports::describe::describe(&c.a.case.settings);
     let label = [settings]
         .into_iter()
         .chain(edits)
@@ -257,16 +258,16 @@ struct ViewReport {
 
 /// Writes `view` of both sides (measured in the comparison's own frames)
 /// as A | B | difference on a shared scale, and reports both sides' numbers.
-fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewReport> {
+fn compare_views(args: &CompareArgs, view: View, c: &RenderComparison) -> Result<ViewReport> {
     let (Some(fa), Some(fb)) = (&c.a.views, &c.b.views) else {
         anyhow::bail!("the renders measured no views");
     };
     let (va, vb) = (fa.values(view), fb.values(view));
     let heat = args.view.heatmap(&[&va, &vb]);
-    let (image, difference) = heatmap_image::compose_sides(fa, fb, view, &heat)?;
+    let (image, difference) = heat_map::compose_sides(fa, fb, view, &heat)?;
     save_png(&image, &args.output)?;
     let (sa, sb) = (ViewSummary::of(&va), ViewSummary::of(&vb));
-    let number = heatmap_image::format_number;
+    let number = heat_map::format_number;
     let difference_line = difference.map_or_else(String::new, |d| {
         format!(
             "A - B: mean A / mean B {}, mean |A - B| {}, max |A - B| {} ({})\n",
@@ -279,12 +280,12 @@ fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewR
     Ok(ViewReport {
         text: format!(
             "A {}\nB {}\n{difference_line}",
-            heatmap_image::describe(view, sa.as_ref(), &heat),
-            heatmap_image::describe(view, sb.as_ref(), &heat)
+            view_summary::describe(view, sa.as_ref(), &heat),
+            view_summary::describe(view, sb.as_ref(), &heat)
         ),
         json: serde_json::json!({
-            "a": heatmap_image::summary_json(view, sa.as_ref(), &heat),
-            "b": heatmap_image::summary_json(view, sb.as_ref(), &heat),
+            "a": view_summary::summary_json(view, sa.as_ref(), &heat),
+            "b": view_summary::summary_json(view, sb.as_ref(), &heat),
             "difference": difference.map(|d| serde_json::json!({
                 "pixels": d.pixels,
                 "mean_a": d.mean_a,
@@ -297,7 +298,7 @@ fn compare_views(args: &CompareArgs, view: View, c: &Comparison) -> Result<ViewR
     })
 }
 
-fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
+fn text(args: &CompareArgs, c: &RenderComparison, heatmap: Heatmap) -> String {
     let side = side_text;
     let ratio = c.time_ratio();
     let speed = if ratio >= 1.0 {
@@ -326,7 +327,7 @@ fn text(args: &CompareArgs, c: &Comparison, heatmap: Heatmap) -> String {
 
 /// The times and metrics as one JSON object; PSNR is null for identical
 /// images (infinite).
-fn json(args: &CompareArgs, c: &Comparison) -> serde_json::Value {
+fn json(args: &CompareArgs, c: &RenderComparison) -> serde_json::Value {
     let side = side_json;
     serde_json::json!({
         "scene": args.scene.display().to_string(),

@@ -9,7 +9,7 @@ use tracer::scene::write_p3f;
 use tracer::skybox::FACE_NAMES;
 
 use crate::cli::GenArgs;
-use crate::output::save_png;
+use crate::image_file::save_png;
 
 pub fn run(args: &GenArgs) -> Result<()> {
     if args.name.eq_ignore_ascii_case("sky") {

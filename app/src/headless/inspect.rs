@@ -6,7 +6,7 @@ use tracer::render::RenderSettings;
 
 use crate::cli::{InspectArgs, MetricsFormat};
 use crate::load::load_scene_edited;
-use crate::measure::ray_tree_report;
+use crate::reports::ray_tree;
 
 pub fn run(args: &InspectArgs) -> Result<()> {
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
@@ -15,13 +15,13 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     let [x, y] = args.pixel[..] else {
         return Err(anyhow!("--pixel takes two numbers, X and Y"));
     };
-    let tree = ray_tree_report::inspect(&loaded.world, None, &settings, (x, y), args.sample)
+    let tree = ray_tree::inspect(&loaded.world, None, &settings, (x, y), args.sample)
         .map_err(|e| anyhow!("cannot inspect {}: {e}", args.scene.display()))?;
     match args.format {
-        MetricsFormat::Text => print!("{}", ray_tree_report::text(&tree)),
+        MetricsFormat::Text => print!("{}", ray_tree::text(&tree)),
         MetricsFormat::Json => println!(
             "{}",
-            serde_json::to_string_pretty(&ray_tree_report::json(&tree)).unwrap_or_default()
+            serde_json::to_string_pretty(&ray_tree::json(&tree)).unwrap_or_default()
         ),
     }
     Ok(())

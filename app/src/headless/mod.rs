@@ -4,8 +4,10 @@ pub mod bench;
 pub mod compare;
 pub mod generate;
 pub mod inspect;
+pub mod lesson;
 pub mod observe;
 pub mod render;
+pub mod report;
 pub mod sweep;
 
 use std::io::IsTerminal;
@@ -19,12 +21,35 @@ use crate::measure::cost::BruteForceCost;
 /// Warns on stderr, before rendering, when brute force over this scene
 /// would look like a hang; the scene's `accel` is respected all the same.
 fn warn_brute_force(settings: &RenderSettings, counts: &SceneCounts) {
+    warn_brute_force_with(
+        settings,
+        counts,
+        "add `--accel bvh` to render it in seconds",
+    );
+}
+
+/// [`warn_brute_force`] with the `fix` the subcommand offers.
+fn warn_brute_force_with(settings: &RenderSettings, counts: &SceneCounts, fix: &str) {
     if let Some(cost) = BruteForceCost::of(settings, counts) {
-        eprintln!(
-            "warning: {}; add `--accel bvh` to render it in seconds",
-            cost.describe()
-        );
+        eprintln!("warning: {}; {fix}", cost.describe());
     }
+}
+
+/// A spinner on stderr naming the stage of a long piece of work (it says
+/// what runs while a large scene's structure builds or its frames trace);
+/// hidden when stderr is not a terminal, so scripted output stays clean.
+fn stage_spinner() -> indicatif::ProgressBar {
+    let spinner = if std::io::stderr().is_terminal() {
+        indicatif::ProgressBar::new_spinner()
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+    spinner.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    spinner
 }
 
 /// Steps of a progress bar per frame.

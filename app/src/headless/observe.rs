@@ -9,15 +9,14 @@ use glam::Vec3;
 use serde_json::json;
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
 use tracer::camera::CameraPose;
-use tracer::render::{Frame, RayTree, RenderSettings, render};
+use tracer::render::{Frame, RayTree, RenderSettings};
 
 use crate::cli::{MetricsFormat, ObserveArgs};
+use crate::figures::observer::draw::{Piece, figure};
+use crate::figures::observer::{self, MAX_SEGMENTS, Part, Segment};
+use crate::image_file::save_png;
 use crate::load::load_scene_edited;
-use crate::measure::observer::{self, MAX_SEGMENTS, Part, Segment};
-use crate::measure::observer_image::{self, Piece};
-use crate::measure::projection::Projector;
-use crate::measure::ray_tree_report;
-use crate::output::save_png;
+use crate::reports::ray_tree;
 
 pub fn run(args: &ObserveArgs) -> Result<()> {
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
@@ -46,16 +45,7 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     let [figure_width, figure_height] = args.size[..] else {
         bail!("--size takes two numbers, W and H");
     };
-    let observer_settings = RenderSettings {
-        width: figure_width,
-        height: figure_height,
-        camera: Some(pose),
-        antialiasing: false,
-        depth_of_field: false,
-        soft_shadows: false,
-        keep_refining: false,
-        ..settings.clone()
-    };
+    let observer_settings = observer::render_settings(&settings, pose, figure_width, figure_height);
     observer_settings
         .validate()
         .map_err(|e| anyhow!("--size {figure_width} {figure_height}: {e}"))?;
@@ -63,18 +53,27 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
         .map_err(|e| anyhow!("the observer camera (--from, --at, --up): {e}"))?;
     let scene_camera = Frame::camera(&world, &settings)?;
 
+    super::warn_brute_force_with(
+        &settings,
+        &world.counts,
+        "the figure and its image plane are traced with a BVH, the pixels' rays as the \
+         scene says (add `--accel bvh` to trace those with it too)",
+    );
+    let stage = super::stage_spinner();
+    stage.set_message("building the scene's structure");
     let index = Arc::new(SceneIndex::build(
         &world.shapes,
         settings.accel,
         settings.grid_multiplier,
     ));
+    stage.set_message("recording the pixels' rays");
     let mut trees = Vec::new();
     let mut segments = observer::camera_segments(&scene_camera);
     segments.extend(observer::light_segments(&world, &settings));
     let stub = observer::stub_length(&world);
     let mut left_out = 0;
     for &p in &pixels {
-        let tree = ray_tree_report::inspect(&world, Some(index.clone()), &settings, p, args.sample)
+        let tree = ray_tree::inspect(&world, Some(index.clone()), &settings, p, args.sample)
             .map_err(|e| anyhow!("cannot record pixel ({}, {}): {e}", p.0, p.1))?;
         let rays = observer::ray_segments(&tree, stub, 0);
         if segments.len() + rays.len() > MAX_SEGMENTS && !trees.is_empty() {
@@ -90,25 +89,19 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
         segments.extend(observer::structure_segments(&index, Some(layer), visits));
     }
 
-    let encoding = args.encoding.encoding();
-    let (film, depth) = observer::render_with_depth(
-        world.clone(),
-        index.clone(),
-        observer_settings,
+    // The figure and its image plane are traced with a BVH whatever the
+    // scene's structure (`draw::figure`): the same image, in seconds.
+    stage.set_message("tracing the figure and the image on its plane");
+    let (figure, pieces) = figure(
+        &world,
+        index,
+        (&settings, &scene_camera),
+        (&observer_settings, &observer_camera),
+        &segments,
+        args.encoding.encoding(),
         args.threads,
     )?;
-    let mut figure = film.to_image(encoding);
-    let (scene_film, _) = render(world.clone(), index, settings.clone(), args.threads)?;
-    let scene_image = scene_film.to_image(encoding);
-    observer_image::paint_image_plane(
-        &mut figure,
-        &observer_camera,
-        &depth,
-        &scene_camera,
-        &scene_image,
-    );
-    let projector = Projector::new(&observer_camera);
-    let pieces = observer_image::draw_segments(&mut figure, &projector, &depth, &segments, &world);
+    stage.finish_and_clear();
     save_png(&figure, &args.output)?;
 
     match args.format {

@@ -13,10 +13,11 @@ use tracer::render::{
 use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
+use crate::figures::{heat_map, overlay};
+use crate::image_file::{is_exr, save_exr, save_png};
 use crate::load::load_scene_edited;
-use crate::measure::{heatmap_image, overlay_image, ray_tree_report};
-use crate::output::{is_exr, save_exr, save_png};
-use crate::report;
+use crate::reports::render_stats;
+use crate::reports::{ray_tree, view_summary};
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
@@ -111,7 +112,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     } else {
         let mut image = match &view {
             Some((v, film, _, heat)) => {
-                heatmap_image::view_image(film, *v, heat).context("the view has no image")?
+                heat_map::view_image(film, *v, heat).context("the view has no image")?
             }
             None => finished.unwrap_or_else(|| film.to_image(encoding)),
         };
@@ -119,24 +120,24 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             let world = &loaded.world;
             let camera = Frame::camera(world, &settings)
                 .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
-            overlay_image::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
+            overlay::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
             if let Some(pixel) = &args.pixel {
                 let visits = eye_visits(args, &loaded.world, index, &settings, pixel)?;
-                overlay_image::draw_visits(&mut image, &camera, &visits);
+                overlay::draw_visits(&mut image, &camera, &visits);
             }
         }
         match &view {
             Some((v, _, _, heat)) if v.is_scalar() => {
-                save_png(&heatmap_image::with_legend(&image, heat), &args.output)?
+                save_png(&heat_map::with_legend(&image, heat), &args.output)?
             }
             _ => save_png(&image, &args.output)?,
         }
     }
     match args.stats {
         Some(StatsFormat::Json) => {
-            let mut json = report::json_value(&stats, &loaded.world.counts);
+            let mut json = render_stats::json_value(&stats, &loaded.world.counts);
             if let Some((v, _, summary, heat)) = &view {
-                json["view"] = heatmap_image::summary_json(*v, summary.as_ref(), heat);
+                json["view"] = view_summary::summary_json(*v, summary.as_ref(), heat);
             }
             println!(
                 "{}",
@@ -148,10 +149,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 "{} -> {}\n{}",
                 args.scene.display(),
                 args.output.display(),
-                report::summary(&stats, &loaded.world.counts)
+                render_stats::summary(&stats, &loaded.world.counts)
             );
             if let Some((v, _, summary, heat)) = &view {
-                println!("{}", heatmap_image::describe(*v, summary.as_ref(), heat));
+                println!("{}", view_summary::describe(*v, summary.as_ref(), heat));
             }
         }
     }
@@ -180,7 +181,7 @@ fn eye_visits(
     };
     let mut settings = settings.clone();
     settings.accel = index.kind();
-    let tree = ray_tree_report::inspect(world, Some(index.clone()), &settings, (x, y), args.sample)
+    let tree = ray_tree::inspect(world, Some(index.clone()), &settings, (x, y), args.sample)
         .with_context(|| format!("cannot inspect a pixel of {}", args.scene.display()))?;
     Ok(tree.eye_visits)
 }

@@ -13,11 +13,13 @@ use tracer::render::RenderSettings;
 use tracer::scene::Scene;
 
 use crate::cli::{SettingsArgs, SweepArgs};
+use crate::figures::study_plot;
+use crate::image_file::save_png;
 use crate::load::load_scene_edited;
-use crate::measure::bench_report::Format;
 use crate::measure::benchmark::{RunOptions, Stop};
-use crate::measure::study::{self, Param, Study, StudyEvent, Subject, plot, report, values};
-use crate::output::save_png;
+use crate::measure::study::{self, Param, Study, StudyEvent, Subject, values};
+use crate::reports::bench_table::Format;
+use crate::reports::study_table;
 
 /// What Ctrl-C has asked: the first press stops after the frame under
 /// way, the second at once.
@@ -72,6 +74,19 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         reference_samples: args.reference_spp,
     };
     study.check(&subject)?;
+    if let Subject::Document { world, .. } = &subject
+        && study.structures.contains(&AccelKind::None)
+    {
+        let brute = RenderSettings {
+            accel: AccelKind::None,
+            ..base.clone()
+        };
+        super::warn_brute_force_with(
+            &brute,
+            &world.counts,
+            "each point renders so; leave `none` out of --structures to measure in seconds",
+        );
+    }
 
     let interrupt = Arc::new(Interrupt::default());
     let handler = interrupt.clone();
@@ -92,8 +107,8 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     let outcome = study::run(&study, &subject, stop, &mut progress)
         .with_context(|| format!("cannot sweep {name}"))?;
     let points = &outcome.points;
-    print!("{}", report::table(study.param, points, format));
-    let summary = report::summary(study.param, points);
+    print!("{}", study_table::table(study.param, points, format));
+    let summary = study_table::summary(study.param, points);
     if let Some(reference) = &outcome.reference {
         eprintln!(
             "error against a reference of N = {} ({} samples per pixel)",
@@ -221,7 +236,7 @@ fn write_plot(param: Param, points: &[study::Point], name: &str, path: &Path) ->
     let title = Path::new(name)
         .file_stem()
         .map_or_else(|| name.to_string(), |s| s.to_string_lossy().into_owned());
-    let image = plot::chart(param, points, &title)?;
+    let image = study_plot::chart(param, points, &title)?;
     save_png(&image, path)?;
     eprintln!("wrote {}", path.display());
     Ok(())

@@ -14,7 +14,7 @@ use tracer::render::Encoding;
 use tracer::world::World;
 
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
-use crate::measure::describe::side_labels;
+use crate::reports::describe::side_labels;
 
 /// How the difference panel is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -80,7 +80,7 @@ pub fn measure(a: &RgbImage, b: &RgbImage, heatmap: Heatmap) -> Result<(Metrics,
 
 /// A finished comparison.
 #[derive(Debug, Clone)]
-pub struct Comparison {
+pub struct RenderComparison {
     pub a: Measurement,
     pub b: Measurement,
     /// What differs, as each side has it (see [`side_labels`]).
@@ -89,7 +89,7 @@ pub struct Comparison {
     pub heatmap: RgbImage,
 }
 
-impl Comparison {
+impl RenderComparison {
     /// A's frame time over B's: above 1 when B is faster.
     pub fn time_ratio(&self) -> f64 {
         self.a.median().as_secs_f64() / self.b.median().as_secs_f64().max(1e-9)
@@ -118,7 +118,7 @@ pub fn run(
     heatmap: Heatmap,
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
-) -> Result<Option<Comparison>> {
+) -> Result<Option<RenderComparison>> {
     let labels = side_labels(&a.settings, &b.settings);
     let options = RunOptions {
         runs: 1,
@@ -154,7 +154,7 @@ pub fn run(
         return Ok(None);
     };
     let (metrics, heatmap) = measure(&a.image, &b.image, heatmap)?;
-    Ok(Some(Comparison {
+    Ok(Some(RenderComparison {
         a,
         b,
         labels,
@@ -165,7 +165,7 @@ pub fn run(
 
 /// A reference image read for side B, at the size it is compared at.
 #[derive(Debug, Clone)]
-pub struct Reference {
+pub struct FittedReference {
     pub image: RgbImage,
     /// The file's own size, when it was resized to fit the render.
     pub resized_from: Option<(u32, u32)>,
@@ -189,10 +189,10 @@ pub fn read_reference(path: &Path, encoding: Encoding) -> Result<RgbImage> {
 
 /// `image` at `size` (the render's): resized when `fit`, else refused with
 /// what to do when the sizes differ.
-pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<Reference> {
+pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<FittedReference> {
     let own = image.dimensions();
     if own == size {
-        return Ok(Reference {
+        return Ok(FittedReference {
             image,
             resized_from: None,
         });
@@ -215,7 +215,7 @@ pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<Ref
         size.1,
         image::imageops::FilterType::Triangle,
     );
-    Ok(Reference {
+    Ok(FittedReference {
         image,
         resized_from: Some(own),
     })
@@ -225,7 +225,7 @@ pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<Ref
 #[derive(Debug, Clone)]
 pub struct ImageComparison {
     pub a: Measurement,
-    pub reference: Reference,
+    pub reference: FittedReference,
     pub metrics: Metrics,
     pub heatmap: RgbImage,
 }
@@ -236,7 +236,7 @@ pub struct ImageComparison {
 pub fn run_against_image(
     world: &Arc<World>,
     a: Case,
-    reference: Reference,
+    reference: FittedReference,
     threads: Option<usize>,
     heatmap: Heatmap,
     cancel: &AtomicBool,

@@ -14,7 +14,7 @@ use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings, 
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
-use crate::measure::describe::describe;
+use crate::reports::describe::describe;
 
 /// One configuration to measure.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,6 +63,18 @@ pub enum Sampling {
     Antialiasing,
     /// Anti-aliasing and depth of field (the seed only measured DOF with AA).
     AntialiasingDof,
+}
+
+impl Sampling {
+    /// The column `settings` belong in (depth of field without
+    /// anti-aliasing, which the seed did not measure, counts as DOF).
+    pub fn of(settings: &RenderSettings) -> Sampling {
+        match (settings.antialiasing, settings.depth_of_field) {
+            (_, true) => Sampling::AntialiasingDof,
+            (true, false) => Sampling::Antialiasing,
+            (false, false) => Sampling::Single,
+        }
+    }
 }
 
 /// The seed measured its matrix with N = 4 (4 x 4 samples per pixel); a
@@ -268,7 +280,9 @@ impl Measurement {
     }
 }
 
-fn median(values: &[Duration]) -> Duration {
+/// The middle duration (the mean of the two middle ones for an even
+/// count); zero for none.
+pub fn median(values: &[Duration]) -> Duration {
     let mut sorted = values.to_vec();
     sorted.sort_unstable();
     match sorted.len() {
@@ -280,7 +294,7 @@ fn median(values: &[Duration]) -> Duration {
 
 /// The cases measured so far, and whether the run stopped early.
 #[derive(Debug, Clone, Default)]
-pub struct Outcome {
+pub struct BenchOutcome {
     pub measurements: Vec<Measurement>,
     pub cancelled: bool,
 }
@@ -339,7 +353,7 @@ pub fn run(
     options: RunOptions,
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
-) -> Result<Outcome> {
+) -> Result<BenchOutcome> {
     let stop = Stop {
         now: cancel,
         after_frame: &AtomicBool::new(false),
@@ -357,7 +371,7 @@ pub fn run_with(
     structures: &mut Structures,
     stop: Stop,
     on_event: &mut dyn FnMut(Event),
-) -> Result<Outcome> {
+) -> Result<BenchOutcome> {
     run_cases(world, cases, options, structures, stop, false, on_event)
 }
 
@@ -372,8 +386,8 @@ pub fn run_cases(
     stop: Stop,
     views: bool,
     on_event: &mut dyn FnMut(Event),
-) -> Result<Outcome> {
-    let mut outcome = Outcome::default();
+) -> Result<BenchOutcome> {
+    let mut outcome = BenchOutcome::default();
     for (case_no, case) in cases.iter().enumerate() {
         let settings = &case.settings;
         let index = structures.get(world, settings.accel, settings.grid_multiplier);

@@ -8,19 +8,13 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::Duration;
 
-use crate::support::{output_within, scratch};
+use crate::support::{RUN_TIMEOUT, output_within, scratch};
 
 use tracer::scene::{Limits, ParseErrorKind, parse_scene, parse_scene_file};
 
 fn corpus() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenes")
 }
-
-/// Longest a single `workbench render` of a small scene may run before it
-/// is killed and the test fails: each takes milliseconds, so only a hang
-/// (a parser or build loop that never ends) comes near it, and CI gets a
-/// failure naming the scene instead of a job that never finishes.
-const RUN_TIMEOUT: Duration = Duration::from_secs(60);
 
 /// Runs `workbench render` from the corpus folder, so errors name the file
 /// exactly as listed in the manifest. Panics, after killing it, if the
@@ -363,12 +357,7 @@ fn a_failed_render_or_save_leaves_existing_files_alone_and_no_temporaries() {
 fn a_run_that_hangs_is_killed_and_reported() {
     let mut command = Command::new("sleep");
     command.arg("30");
-    let start = std::time::Instant::now();
+    // `sleep 30` ending on its own would be an `Ok`: the error is the kill.
     let error = output_within(command, Duration::from_millis(200)).unwrap_err();
     assert!(error.contains("killed"), "{error}");
-    assert!(
-        start.elapsed() < Duration::from_secs(10),
-        "{:?}",
-        start.elapsed()
-    );
 }

@@ -111,3 +111,71 @@ fn rays_refuse_two_structures_and_table_formats() {
     let stderr = workbench_fails(&["bench", scene, "--rays", "--format", "csv"]);
     assert!(stderr.contains("text or json"), "{stderr}");
 }
+
+/// The text table says what was measured (scene, size, structure,
+/// threads, runs) and one row per kind of ray with the counts of the
+/// JSON: 1200 eye rays that all hit, 1200 shadow rays none blocked.
+#[test]
+fn the_text_table_has_a_row_per_kind_with_its_counts() {
+    let dir = scratch("bench-rays-text");
+    let scene = write(&dir, "floor.p3f", FLOOR);
+    let scene = scene.to_str().unwrap();
+    let args = [
+        "bench",
+        scene,
+        "--rays",
+        "--runs",
+        "2",
+        "--structures",
+        "bvh",
+        "--threads",
+        "1",
+    ];
+    let text = workbench_ok(&args);
+    let mut lines = text.lines();
+    let heading = lines.next().unwrap();
+    assert!(
+        heading.starts_with(&format!("{scene}: 40x30, bvh (built in "))
+            && heading.ends_with(", 1 thread(s), median of 2 run(s) after a warm-up"),
+        "{text}"
+    );
+    let header: Vec<&str> = lines
+        .find(|l| l.starts_with("kind"))
+        .unwrap()
+        .split_whitespace()
+        .collect();
+    assert_eq!(
+        header,
+        [
+            "kind",
+            "rays",
+            "hits",
+            "ms",
+            "min..max",
+            "ms",
+            "M",
+            "rays/s",
+            "nodes/ray",
+            "tests/ray"
+        ]
+    );
+    let row = |kind: &str| -> Vec<String> {
+        text.lines()
+            .find(|l| l.starts_with(kind))
+            .unwrap_or_else(|| panic!("no {kind} row in {text}"))
+            .split_whitespace()
+            .map(str::to_string)
+            .collect()
+    };
+    let (eye, shadow) = (row("eye"), row("shadow"));
+    assert_eq!((&eye[1][..], &eye[2][..]), ("1200", "1200"), "{text}");
+    assert_eq!((&shadow[1][..], &shadow[2][..]), ("1200", "0"), "{text}");
+    // A rate and work per ray: numbers, the rate positive.
+    for row in [&eye, &shadow] {
+        let numbers: Vec<f64> = [&row[3], &row[5], &row[6], &row[7]]
+            .iter()
+            .map(|v| v.parse().unwrap_or_else(|_| panic!("{v} in {text}")))
+            .collect();
+        assert!(numbers[2] > 0.0, "{text}");
+    }
+}

@@ -5,32 +5,28 @@
 //! sample, dimension and seed, and tiles are summed in a fixed order.
 
 use std::path::Path;
-use std::process::Command;
 
-use crate::support::Scratch;
 use crate::support::scenes::spheres_on_a_floor;
+use crate::support::{Scratch, workbench_ok};
 
 /// Renders the scene with `threads` workers and `seed`; returns the PNG bytes.
 fn render(scene: &Path, out: &Path, threads: u32, seed: u32) -> Vec<u8> {
-    let run = Command::new(env!("CARGO_BIN_EXE_workbench"))
-        .arg("render")
-        .arg(scene)
-        .arg("-o")
-        .arg(out)
-        .args(["--soft-shadows", "--aa", "--dof", "--depth", "3"])
-        .args([
-            "--threads",
-            &threads.to_string(),
-            "--seed",
-            &seed.to_string(),
-        ])
-        .output()
-        .expect("the workbench binary runs");
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let (threads, seed) = (threads.to_string(), seed.to_string());
+    workbench_ok(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--soft-shadows",
+        "--aa",
+        "--dof",
+        "--depth",
+        "3",
+        "--threads",
+        &threads,
+        "--seed",
+        &seed,
+    ]);
     std::fs::read(out).unwrap()
 }
 

@@ -4,15 +4,19 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod adaptive;
 mod bad_scenes;
 mod bench_rays;
 mod compare;
 mod determinism;
+mod docs;
 mod edits;
 mod flags;
 mod golden;
+mod lessons;
 mod meshes_and_images;
 mod observe;
 mod render;
+mod report;
 mod sweep;
 mod views;

@@ -129,3 +129,44 @@ fn a_reference_image_is_side_b() {
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert_eq!(json["b"]["resized_from"], serde_json::json!([32, 24]));
 }
+
+/// The bundled NFF scene and PLY mesh through the binary: every kind of
+/// object they hold is counted, and the image shows more than its
+/// background.
+#[test]
+fn the_bundled_nff_scene_and_ply_mesh_render() {
+    let dir = scratch("bundled-nff-ply");
+    let scenes = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/");
+    for (file, objects, triangles) in [
+        (
+            "nff_classic.nff",
+            serde_json::json!({"cone": 1, "polygon": 1, "sphere": 2}),
+            2,
+        ),
+        // The pyramid's six faces, on the ground plane the framing adds.
+        (
+            "ply_pyramid.ply",
+            serde_json::json!({"mesh": 1, "plane": 1}),
+            6,
+        ),
+    ] {
+        let out = dir.join(format!("{file}.png"));
+        let scene = format!("{scenes}{file}");
+        let args = [
+            "render",
+            &scene,
+            "-o",
+            out.to_str().unwrap(),
+            "--stats",
+            "json",
+        ];
+        let run = workbench(&args);
+        assert!(run.status.success(), "{file}: {}", stderr(&run));
+        let stats: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+        assert_eq!(stats["scene"]["objects"], objects, "{file}");
+        assert_eq!(stats["scene"]["triangles"], triangles, "{file}");
+        let image = image::open(&out).unwrap().to_rgb8();
+        let colours: std::collections::HashSet<[u8; 3]> = image.pixels().map(|p| p.0).collect();
+        assert!(colours.len() > 50, "{file}: {} colours", colours.len());
+    }
+}

@@ -5,7 +5,7 @@
 use serde_json::Value;
 
 use crate::support::scenes::RED_SPHERE_ON_A_BOX;
-use crate::support::{scratch, workbench_fails, workbench_ok, write};
+use crate::support::{Watchdog, scratch, workbench, workbench_fails, workbench_ok, write};
 
 fn observe(scene: &str, out: &str, extra: &[&str]) -> Value {
     let mut args = vec!["observe", scene, "-o", out, "--format", "json"];
@@ -118,4 +118,106 @@ fn bad_observer_input_names_the_value_and_writes_nothing() {
         "{row}"
     );
     assert!(!std::path::Path::new(out).exists(), "nothing written");
+}
+
+/// A course file's trap: `accel 0` over a large mesh (the course's dragon
+/// is 100 000 triangles; this one is 199 712) at 512 x 512. The figure and
+/// its image plane are traced with a BVH whatever the file says, so the
+/// run takes seconds (brute force ran for over 10 minutes, and here would
+/// meet the runner's kill timeout); the pixel's rays follow the file's
+/// brute force, which the warning says.
+#[test]
+fn a_large_brute_force_scene_is_observed_in_seconds_with_a_warning() {
+    let dir = scratch("observe-brute");
+    let scene = write(&dir, "terrain.p3f", &large_brute_force_scene());
+    let scene = scene.to_str().unwrap();
+    let out = dir.join("figure.png");
+    let out = out.to_str().unwrap();
+    let run = workbench(&[
+        "observe", scene, "-o", out, "--pixel", "256", "300", "--size", "160", "120", "--format",
+        "json",
+    ]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("no acceleration structure (accel 0) over 199712 primitives")
+            && stderr.contains("traced with a BVH"),
+        "{stderr}"
+    );
+    let json: Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert!(json["pixels"][0]["rays"].as_u64().unwrap() >= 2, "{json}");
+    assert_eq!(image::open(out).unwrap().width(), 160);
+}
+
+/// `sweep` says so before it renders a point brute force over a large
+/// scene; stopped once it has.
+#[test]
+fn a_sweep_with_brute_force_over_a_large_scene_warns_first() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+
+    let dir = scratch("sweep-brute");
+    let scene = write(&dir, "terrain.p3f", &large_brute_force_scene());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
+        .args([
+            "sweep",
+            scene.to_str().unwrap(),
+            "--param",
+            "depth",
+            "--values",
+            "1",
+        ])
+        .args(["--runs", "1", "--structures", "none"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let _watchdog = Watchdog::new(child.id());
+    let mut said = String::new();
+    for line in BufReader::new(child.stderr.take().unwrap()).lines() {
+        let line = line.unwrap();
+        said.push_str(&line);
+        said.push('\n');
+        if line.starts_with("warning:") {
+            break;
+        }
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(
+        said.contains("no acceleration structure (accel 0) over 199712 primitives")
+            && said.contains("leave `none` out of --structures"),
+        "{said}"
+    );
+}
+
+/// A terrain of 199 712 triangles in one mesh under one light, 512 x 512,
+/// `accel 0`: brute force would test every ray against every triangle.
+fn large_brute_force_scene() -> String {
+    use std::fmt::Write;
+    const SIDE: usize = 317;
+    let mut text = String::from(
+        "accel 0\nbclr 0.1 0.2 0.4\nv\nfrom 0 -3 2\nat 0 0 0\nup 0 0 1\nangle 45\n\
+         hither 0.01\nresolution 512 512\nl 2 -2 4 1 1 1\nf 0.6 0.5 0.4 0.8 1 1 1 0.1 10 0 1\n",
+    );
+    let cells = SIDE - 1;
+    writeln!(text, "mesh {} {}", SIDE * SIDE, 2 * cells * cells).unwrap();
+    for j in 0..SIDE {
+        for i in 0..SIDE {
+            let (x, y) = (
+                i as f32 / cells as f32 * 4.0 - 2.0,
+                j as f32 / cells as f32 * 4.0 - 2.0,
+            );
+            let z = 0.2 * (3.0 * x).sin() * (2.0 * y).cos();
+            writeln!(text, "{x} {y} {z}").unwrap();
+        }
+    }
+    for j in 0..cells {
+        for i in 0..cells {
+            let a = j * SIDE + i + 1;
+            let (b, c, d) = (a + 1, a + SIDE, a + SIDE + 1);
+            writeln!(text, "{a} {b} {d}\n{a} {d} {c}").unwrap();
+        }
+    }
+    text
 }

@@ -105,3 +105,54 @@ fn help_lists_the_subcommands() {
         assert!(out.contains(sub), "{out}");
     }
 }
+
+/// Total internal reflection in a rendered pixel: an eye ray enters a
+/// glass box's top at a grazing angle, refracts steeply, and meets a side
+/// face from inside beyond the critical angle (48.5 degrees against 41.8
+/// for ior 1.5): that hit reports it, and spawns a reflection and no
+/// refraction. With ior 1 nothing bends and nothing is reflected totally.
+#[test]
+fn a_grazing_ray_into_glass_is_reflected_totally_inside() {
+    let dir = scratch("render-tir");
+    let scene = write(
+        &dir,
+        "glass_box.p3f",
+        "bclr 0.2 0.3 0.5\nv\nfrom 0 -6 2.3\nat 0 0 2\nup 0 0 1\nangle 30\nhither 0.01\n\
+         resolution 41 41\nl 4 -3 6 1 1 1\nf 1 1 1 0.1 1 1 1 0.1 100 0.9 1.5\nbox -1 -1 0 1 1 2\n",
+    );
+    let scene = scene.to_str().unwrap();
+    let inspect = |extra: &[&str]| -> Vec<serde_json::Value> {
+        let mut args = vec!["inspect", scene, "--pixel", "20", "20", "--format", "json"];
+        args.extend(extra);
+        let json: serde_json::Value = serde_json::from_str(&workbench_ok(&args)).unwrap();
+        json["nodes"].as_array().unwrap().clone()
+    };
+    let totally = |nodes: &[serde_json::Value]| -> Vec<usize> {
+        (0..nodes.len())
+            .filter(|&i| nodes[i]["outcome"]["total_internal_reflection"] == true)
+            .collect()
+    };
+    let nodes = inspect(&[]);
+    let tir = totally(&nodes);
+    let first = *tir.first().expect("a total internal reflection");
+    assert_eq!(
+        nodes[first]["kind"], "refraction",
+        "the ray inside the glass"
+    );
+    assert_eq!(nodes[first]["outcome"]["from_inside"], true);
+    assert_eq!(nodes[first]["outcome"]["fresnel"], 1.0);
+    let children: Vec<&serde_json::Value> = nodes
+        .iter()
+        .filter(|n| n["parent"] == first)
+        .map(|n| &n["kind"])
+        .collect();
+    assert!(
+        children.contains(&&serde_json::json!("reflection")),
+        "{children:?}"
+    );
+    assert!(
+        !children.contains(&&serde_json::json!("refraction")),
+        "{children:?}"
+    );
+    assert!(totally(&inspect(&["--set", "object 0 ior 1"])).is_empty());
+}

@@ -2,10 +2,10 @@
 //! chart, the level study on small levels, the spp study's error columns,
 //! bad input, and Ctrl-C keeping what was measured.
 
-use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 
+#[cfg(target_os = "linux")]
+use crate::support::interrupted;
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, workbench, workbench_fails, workbench_ok, write};
 
@@ -173,40 +173,16 @@ fn bad_input_gets_a_clear_error() {
 }
 
 /// Ctrl-C during a sweep finishes the frame under way, prints its point and
-/// fails. When the signal lands is decided by events, not by time or the
-/// machine's speed: the child's stdout is a socket this test has filled,
-/// so the child blocks writing its header, which it does right after
-/// setting its Ctrl-C handler and before any frame. The signal goes once
-/// the kernel shows the handler set; the socket is drained once the child
-/// has said it will stop after this frame. So exactly one point of one
-/// frame is measured, on a fast machine or a loaded one, with a tiny
-/// scene or a large one.
+/// fails. The signal lands after the handler is set and before any frame
+/// ([`interrupted`]), so exactly one point of one frame is measured, on a
+/// fast machine or a loaded one, with a tiny scene or a large one.
 #[cfg(target_os = "linux")]
 #[test]
 fn ctrl_c_stops_after_the_frame_and_prints_what_was_measured() {
-    use std::io::{ErrorKind, Write};
-    use std::os::fd::OwnedFd;
-    use std::os::unix::net::UnixStream;
-
     let dir = scratch("sweep-interrupt");
     let scene = scene(&dir);
-    let (mut ours, theirs) = UnixStream::pair().unwrap();
-    // Fill the child's stdout to the brim: whole pages, then single bytes,
-    // until the kernel takes no more.
-    theirs.set_nonblocking(true).unwrap();
-    let mut filler = 0;
-    for chunk in [&[b'#'; 4096][..], b"#"] {
-        loop {
-            match (&theirs).write(chunk) {
-                Ok(n) => filler += n,
-                Err(e) if e.kind() == ErrorKind::WouldBlock => break,
-                Err(e) => panic!("cannot fill the socket: {e}"),
-            }
-        }
-    }
-    theirs.set_nonblocking(false).unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
-        .args([
+    let run = interrupted(
+        &[
             "sweep",
             scene.to_str().unwrap(),
             "--param",
@@ -219,42 +195,16 @@ fn ctrl_c_stops_after_the_frame_and_prints_what_was_measured() {
             "md",
             "--threads",
             "1",
-        ])
-        .stdout(Stdio::from(OwnedFd::from(theirs)))
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let pid = child.id();
-    wait_until("the sweep to catch SIGINT", || catches_sigint(pid));
-    let interrupted = Command::new("kill")
-        .args(["-INT", &pid.to_string()])
-        .status()
-        .unwrap();
-    assert!(interrupted.success());
-    let mut stderr = BufReader::new(child.stderr.take().unwrap());
-    let mut said = String::new();
-    while !said.contains("stopping after this frame") {
-        let mut line = String::new();
-        let read = stderr.read_line(&mut line).unwrap();
-        assert!(
-            read > 0,
-            "the sweep ended without a word about Ctrl-C: {said}"
-        );
-        said.push_str(&line);
-    }
-    // Only now may the child write its header and render.
-    let mut stdout = Vec::new();
-    ours.read_to_end(&mut stdout).unwrap();
-    let mut rest = String::new();
-    stderr.read_to_string(&mut rest).unwrap();
-    let status = child.wait().unwrap();
-    assert!(!status.success(), "an interrupted sweep must fail");
-    assert!(
-        rest.contains("interrupted: 1 of 8 points measured"),
-        "{rest}"
+        ],
+        "stopping after this frame",
     );
-    let table = String::from_utf8(stdout.split_off(filler)).unwrap();
-    assert!(stdout.iter().all(|&b| b == b'#'), "the filler comes first");
+    assert!(!run.status.success(), "an interrupted sweep must fail");
+    assert!(
+        run.stderr.contains("interrupted: 1 of 8 points measured"),
+        "{}",
+        run.stderr
+    );
+    let table = run.stdout;
     let lines: Vec<&str> = table.lines().filter(|l| l.starts_with('|')).collect();
     let cells =
         |line: &str| -> Vec<String> { line.split('|').map(|c| c.trim().to_string()).collect() };
@@ -268,30 +218,4 @@ fn ctrl_c_stops_after_the_frame_and_prints_what_was_measured() {
         "1"
     );
     assert_eq!(point[runs], "1", "{table}");
-}
-
-/// Whether process `pid` has a handler for SIGINT (the kernel's `SigCgt`
-/// mask in `/proc/PID/status`; SIGINT is signal 2, bit 1).
-#[cfg(target_os = "linux")]
-fn catches_sigint(pid: u32) -> bool {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
-    status
-        .lines()
-        .find_map(|line| line.strip_prefix("SigCgt:"))
-        .and_then(|mask| u64::from_str_radix(mask.trim(), 16).ok())
-        .is_some_and(|mask| mask & (1 << 1) != 0)
-}
-
-/// Polls `condition`, failing (not hanging) after a minute: a condition
-/// that never comes is a bug to report.
-#[cfg(target_os = "linux")]
-fn wait_until(what: &str, condition: impl Fn() -> bool) {
-    let start = std::time::Instant::now();
-    while !condition() {
-        assert!(
-            start.elapsed() < std::time::Duration::from_secs(60),
-            "gave up waiting for {what}"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(1));
-    }
 }

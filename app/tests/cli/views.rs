@@ -1,7 +1,7 @@
 //! End-to-end tests of the views: `render --view` and `compare --view`.
 
 use crate::support::scenes::RED_SPHERE_ON_A_BOX;
-use crate::support::{scratch, workbench, workbench_ok, write};
+use crate::support::{scratch, workbench, workbench_fails, workbench_ok, write};
 use tracer::render::{HEAT_PALETTE, NO_VALUE};
 
 #[test]
@@ -99,8 +99,16 @@ fn render_views_scale_log_and_colour_views() {
         stderr.contains("no view 'cost'") && stderr.contains("tests, steps"),
         "{stderr}"
     );
-    let bad = workbench(&["render", scene, "--view", "tests", "--view-scale", "-3"]);
-    assert!(!bad.status.success());
+    // `=`: a separate "-3" would be refused as an unknown flag, not as
+    // a scale.
+    for scale in ["-3", "0"] {
+        let flag = format!("--view-scale={scale}");
+        let stderr = workbench_fails(&["render", scene, "-o", out_str, "--view", "tests", &flag]);
+        assert!(
+            stderr.contains(&format!("'{scale}' is not max, p99 or a positive number")),
+            "{stderr}"
+        );
+    }
 }
 
 #[test]
@@ -244,9 +252,12 @@ fn render_overlay_draws_the_structure_over_the_image() {
         "tests",
     ]);
     assert!(wire(&out) > 0);
-    for bad in ["bvh:x", "octree"] {
-        let run = workbench(&["render", scene, "-o", out_str, "--overlay", bad]);
-        assert!(!run.status.success(), "{bad}");
+    for (bad, why) in [
+        ("bvh:x", "'x' is not a depth (0 is the root) or 'leaves'"),
+        ("octree", "'octree' is not bvh:DEPTH, bvh:leaves or grid"),
+    ] {
+        let stderr = workbench_fails(&["render", scene, "-o", out_str, "--overlay", bad]);
+        assert!(stderr.contains(why), "{bad}: {stderr}");
     }
 }
 
@@ -335,7 +346,37 @@ fn render_overlay_highlights_the_pixels_eye_ray_walk() {
         );
         assert!(changed.contains(&[255, 230, 0]), "{layer}: the first visit");
     }
-    // --pixel draws on the overlay: without one it is refused.
-    let run = workbench(&["render", scene, "-o", "x.png", "--pixel", "1", "1"]);
-    assert!(!run.status.success());
+    // --sample picks the sample whose walk is drawn: through a wide lens
+    // two samples of one pixel start far apart.
+    let lens = [
+        "--overlay",
+        "grid",
+        "--pixel",
+        "24",
+        "11",
+        "--aa",
+        "--spp",
+        "4",
+    ];
+    let lens = [&lens[..], &["--aperture", "30"]].concat();
+    let first = render(&walk, &[&lens[..], &["--sample", "0"]].concat());
+    let last = render(&walk, &[&lens[..], &["--sample", "15"]].concat());
+    assert_ne!(first, last, "another sample walks other cells");
+    // --pixel draws on the overlay: without one it is refused, and
+    // nothing is written.
+    let refused = dir.join("refused.png");
+    let stderr = workbench_fails(&[
+        "render",
+        scene,
+        "-o",
+        refused.to_str().unwrap(),
+        "--pixel",
+        "1",
+        "1",
+    ]);
+    assert!(
+        stderr.contains("required arguments were not provided") && stderr.contains("--overlay"),
+        "{stderr}"
+    );
+    assert!(!refused.exists());
 }

@@ -17,7 +17,8 @@ pub use tracer::scratch::Scratch;
 /// killed and the test fails: the slowest (a study, a large mesh on a
 /// loaded debug build) take seconds, so only a hang comes near it, and CI
 /// gets a failure naming the command instead of a job that never ends.
-pub const RUN_TIMEOUT: Duration = Duration::from_secs(300);
+/// The workspace's one bound on a test's wait.
+pub const RUN_TIMEOUT: Duration = tracer::waiting::PATIENCE;
 
 /// Runs `workbench` with `args` and waits for it, for at most
 /// [`RUN_TIMEOUT`].
@@ -76,6 +77,31 @@ pub fn output_within(mut command: Command, timeout: Duration) -> Result<Output, 
     })
 }
 
+/// Kills a child that is still running after [`RUN_TIMEOUT`], for a test
+/// that talks to it through its pipes (blocking reads) instead of
+/// [`output_within`]: the reads then end, and the test fails instead of
+/// hanging. Dropping the watchdog calls it off.
+pub struct Watchdog {
+    /// Dropped, it wakes the watching thread, which then leaves the child be.
+    _stop: std::sync::mpsc::Sender<()>,
+}
+
+impl Watchdog {
+    pub fn new(pid: u32) -> Self {
+        let (stop, stopped) = std::sync::mpsc::channel::<()>();
+        std::thread::spawn(move || {
+            if stopped.recv_timeout(RUN_TIMEOUT) == Err(std::sync::mpsc::RecvTimeoutError::Timeout)
+            {
+                eprintln!("process {pid} still running after {RUN_TIMEOUT:?}: killed");
+                let _ = Command::new("kill")
+                    .args(["-KILL", &pid.to_string()])
+                    .status();
+            }
+        });
+        Self { _stop: stop }
+    }
+}
+
 /// Reads a child's pipe to the end on its own thread, so a chatty child
 /// cannot block on a full pipe while the test waits for it to exit.
 fn drain(pipe: Option<impl Read + Send + 'static>) -> JoinHandle<Vec<u8>> {
@@ -98,4 +124,105 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
+}
+
+/// Whether process `pid` has a handler for SIGINT (the kernel's `SigCgt`
+/// mask in `/proc/PID/status`; SIGINT is signal 2, bit 1).
+#[cfg(target_os = "linux")]
+pub fn catches_sigint(pid: u32) -> bool {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+    status
+        .lines()
+        .find_map(|line| line.strip_prefix("SigCgt:"))
+        .and_then(|mask| u64::from_str_radix(mask.trim(), 16).ok())
+        .is_some_and(|mask| mask & (1 << 1) != 0)
+}
+
+/// A connected socket pair whose second end is full to the brim (whole
+/// pages, then single bytes, until the kernel takes no more), and how many
+/// bytes fill it: a child given that end as stdout blocks on its first
+/// write until the first end is read, an event a test can wait for.
+#[cfg(target_os = "linux")]
+pub fn full_socket() -> (
+    std::os::unix::net::UnixStream,
+    std::os::unix::net::UnixStream,
+    usize,
+) {
+    use std::io::{ErrorKind, Write};
+    let (ours, theirs) = std::os::unix::net::UnixStream::pair().unwrap();
+    theirs.set_nonblocking(true).unwrap();
+    let mut filler = 0;
+    for chunk in [&[b'#'; 4096][..], b"#"] {
+        loop {
+            match (&theirs).write(chunk) {
+                Ok(n) => filler += n,
+                Err(e) if e.kind() == ErrorKind::WouldBlock => break,
+                Err(e) => panic!("cannot fill the socket: {e}"),
+            }
+        }
+    }
+    theirs.set_nonblocking(false).unwrap();
+    (ours, theirs, filler)
+}
+
+/// What a `workbench` run interrupted by Ctrl-C did.
+#[cfg(target_os = "linux")]
+pub struct Interrupted {
+    /// stdout, after the socket's filler.
+    pub stdout: String,
+    /// stderr after the child said it stops.
+    pub stderr: String,
+    pub status: std::process::ExitStatus,
+}
+
+/// Runs `workbench args` and presses Ctrl-C at a moment decided by events,
+/// not by time or the machine's speed: the child's stdout is a socket
+/// filled to the brim ([`full_socket`]), so the child blocks on its first
+/// line, which it writes right after setting its Ctrl-C handler and before
+/// any work. SIGINT goes once the kernel shows the handler set; the socket
+/// is drained once the child has said `said` on stderr.
+#[cfg(target_os = "linux")]
+pub fn interrupted(args: &[&str], said: &str) -> Interrupted {
+    use std::io::{BufRead, BufReader};
+    use std::os::fd::OwnedFd;
+
+    let (mut ours, theirs, filler) = full_socket();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
+        .args(args)
+        .stdout(Stdio::from(OwnedFd::from(theirs)))
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let _watchdog = Watchdog::new(pid);
+    tracer::waiting::wait_until("the child to catch SIGINT", || catches_sigint(pid));
+    let signalled = Command::new("kill")
+        .args(["-INT", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(signalled.success());
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut before = String::new();
+    while !before.contains(said) {
+        let mut line = String::new();
+        let read = stderr.read_line(&mut line).unwrap();
+        assert!(
+            read > 0,
+            "the child ended without saying {said:?}: {before}"
+        );
+        before.push_str(&line);
+    }
+    // Only now may the child write its first line and work.
+    let mut stdout = Vec::new();
+    ours.read_to_end(&mut stdout).unwrap();
+    let mut rest = String::new();
+    stderr.read_to_string(&mut rest).unwrap();
+    let status = child.wait().unwrap();
+    let output = stdout.split_off(filler);
+    assert!(stdout.iter().all(|&b| b == b'#'), "the filler comes first");
+    Interrupted {
+        stdout: String::from_utf8(output).unwrap(),
+        stderr: rest,
+        status,
+    }
 }

@@ -3,25 +3,24 @@
 //! back, saving writes the shown render (PNG) and the linear film (EXR), a
 //! JPEG can be side B, and the slow brute-force banner switches to the BVH.
 
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::accel::AccelKind;
 use tracer::generate::{GenerateOptions, GeneratorName, generate};
-use workbench::gui::WorkbenchApp;
+use workbench::gui::{FileDialog, FileQuestion, WorkbenchApp};
 use workbench::load::SceneSource;
 
-use crate::harness::{
-    WINDOW, drag, is_done, one_window_at_a_time, small_window_sized, wait_for, wait_for_scene,
-};
+use crate::harness::{WINDOW, drag, is_done, small_window_sized, wait_for, wait_for_scene, window};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
 
 /// The window on `scene`, its structure built.
 fn window_on(scene: SceneSource) -> Harness<'static, WorkbenchApp> {
-    one_window_at_a_time();
-    let mut harness = Harness::builder()
-        .with_size(WINDOW)
-        .build_eframe(|cc| WorkbenchApp::new(&cc.egui_ctx, None, Some(scene)));
+    let mut harness = window(Harness::builder().with_size(WINDOW), None, Some(scene));
     wait_for_scene(&mut harness);
     harness
 }
@@ -72,18 +71,89 @@ fn c_puts_the_camera_back_where_the_file_has_it() {
     assert!(finished(&mut harness) == before, "back to the file's view");
 }
 
+/// The file dialogs as a test answers them: each question asked is kept,
+/// each answered with the next path given (`None`: cancelled).
+#[derive(Default)]
+struct Answers {
+    paths: Mutex<VecDeque<Option<PathBuf>>>,
+    asked: Mutex<Vec<FileQuestion>>,
+}
+
+impl FileDialog for Answers {
+    fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
+        self.asked.lock().unwrap().push(question.clone());
+        self.paths
+            .lock()
+            .unwrap()
+            .pop_front()
+            .expect("a dialog no answer was given for")
+    }
+}
+
+impl Answers {
+    fn next(&self, path: Option<&Path>) {
+        self.paths
+            .lock()
+            .unwrap()
+            .push_back(path.map(Path::to_path_buf));
+    }
+
+    /// The last question's filter extensions and offered name.
+    fn last(&self) -> (Vec<&'static str>, Option<String>, bool) {
+        let asked = self.asked.lock().unwrap();
+        let q = asked.last().expect("a question");
+        (q.filter.1.to_vec(), q.name.clone(), q.save)
+    }
+}
+
+/// Waits until `path` holds a whole file (the dialog's thread writes it).
+fn written(harness: &mut Harness<'static, WorkbenchApp>, path: &Path) {
+    wait_for(harness, "the file written", |_| {
+        image::open(path).is_ok()
+            || tracer::scene::parse_scene_file(path, &Default::default()).is_ok()
+    });
+}
+
 #[test]
-fn saving_writes_the_shown_render_and_the_linear_film() {
+fn open_save_png_save_exr_and_save_scene_go_through_the_file_dialog() {
+    let dir = scratch("command-dialogs");
+    let scene = write(&dir, "scene.p3f", &spheres_on_a_floor(32, 24, "", ""));
     let mut harness = small_window_sized(Harness::builder(), WINDOW);
-    wait_for(&mut harness, "the final image", |app| {
+    let answers = Arc::new(Answers::default());
+    harness
+        .state_mut()
+        .answer_file_dialogs_with(answers.clone());
+    wait_for_scene(&mut harness);
+
+    // Cancelled: nothing changes, a notice says so.
+    answers.next(None);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::O);
+    wait_for(&mut harness, "the notice", |_| {
+        answers.paths.lock().unwrap().is_empty()
+    });
+    harness.run_steps(2);
+    assert!(harness.query_by_label_contains("nothing opened").is_some());
+    let (filter, _, save) = answers.last();
+    assert_eq!((filter, save), (vec!["p3f", "nff", "obj", "ply"], false));
+
+    answers.next(Some(&scene));
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::O);
+    wait_for(&mut harness, "the picked scene", |app| {
+        app.engine().scene().map(|s| &s.source) == Some(&SceneSource::File(scene.clone()))
+    });
+    wait_for(&mut harness, "its final image", |app| {
         is_done(app) && app.is_display_current()
     });
-    let dir = scratch("command-save");
+
     let (png, exr) = (dir.join("shown.png"), dir.join("film.exr"));
-    let app = harness.state();
-    app.save_png_to(&png).unwrap();
-    app.save_exr_to(&exr).unwrap();
-    let shown = app.shown().unwrap();
+    answers.next(Some(&png));
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    written(&mut harness, &png);
+    assert_eq!(
+        answers.last(),
+        (vec!["png"], Some("scene.png".into()), true)
+    );
+    let shown = harness.state().shown().unwrap().clone();
     let saved = image::open(&png).unwrap().to_rgba8();
     assert_eq!((saved.width(), saved.height()), (shown.width, shown.height));
     assert_eq!(
@@ -91,9 +161,103 @@ fn saving_writes_the_shown_render_and_the_linear_film() {
         &shown.rgba,
         "the PNG is the render on screen"
     );
+
+    answers.next(Some(&exr));
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::E);
+    written(&mut harness, &exr);
+    assert_eq!(
+        answers.last(),
+        (vec!["exr"], Some("scene.exr".into()), true)
+    );
     let film = image::open(&exr).unwrap().to_rgb32f();
-    let linear = app.engine().linear_image().unwrap();
+    let linear = harness.state().engine().linear_image().unwrap();
     assert_eq!(film.as_raw(), linear.as_raw(), "the EXR is the linear film");
+
+    // An edit, saved as a scene: the file holds it, the title no longer
+    // says the scene is modified.
+    harness
+        .state_mut()
+        .edit("object 1 kd 0.25".parse().unwrap())
+        .unwrap();
+    harness.run_steps(2);
+    assert!(
+        harness.state().title().ends_with(" *"),
+        "{}",
+        harness.state().title()
+    );
+    let edited = dir.join("edited.p3f");
+    answers.next(Some(&edited));
+    harness.key_press_modifiers(
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+        egui::Key::S,
+    );
+    wait_for(&mut harness, "the scene saved", |app| {
+        !app.title().ends_with(" *")
+    });
+    assert_eq!(
+        answers.last(),
+        (vec!["p3f"], Some("scene-edited.p3f".into()), true)
+    );
+    let saved = tracer::scene::parse_scene_file(&edited, &Default::default()).unwrap();
+    let shown = &harness.state().engine().scene().unwrap().scene;
+    assert_eq!(
+        tracer::scene::write_p3f(&saved),
+        tracer::scene::write_p3f(shown),
+        "the file holds the edited scene"
+    );
+}
+
+/// K keeps refining, 1 shows one image pixel per screen pixel and F fits
+/// it again, H opens and closes the help, W swaps the sides.
+#[test]
+fn k_1_f_help_and_w_do_what_they_say() {
+    let mut harness = small_window_sized(Harness::builder(), WINDOW);
+    wait_for_scene(&mut harness);
+    harness.key_press(egui::Key::K);
+    harness.run_steps(2);
+    assert!(settings(&harness).keep_refining);
+    harness.key_press(egui::Key::K);
+    harness.run_steps(2);
+    assert!(!settings(&harness).keep_refining);
+
+    harness.key_press(egui::Key::Num1);
+    harness.run_steps(2);
+    assert_eq!(harness.state().zoom_scale(), Some(1.0));
+    harness.key_press(egui::Key::F);
+    harness.run_steps(2);
+    assert_eq!(harness.state().zoom_scale(), None, "fit");
+
+    let help = "Keyboard shortcuts and mouse";
+    assert!(harness.query_by_label(help).is_none());
+    harness.key_press(egui::Key::H);
+    harness.run_steps(2);
+    assert!(harness.query_by_label(help).is_some());
+    harness.key_press(egui::Key::H);
+    harness.run_steps(2);
+    assert!(harness.query_by_label(help).is_none());
+
+    // W without B says what it needs; with B (soft shadows on B) it swaps.
+    harness.key_press(egui::Key::W);
+    harness.run_steps(2);
+    assert!(
+        harness
+            .query_by_label_contains("turn compare mode on first")
+            .is_some()
+    );
+    harness.key_press(egui::Key::B);
+    harness.run_steps(2);
+    harness.key_press(egui::Key::S);
+    harness.run_steps(2);
+    let soft = |app: &WorkbenchApp| {
+        (
+            app.controls().render.soft_shadows,
+            app.side_b().unwrap().controls.render.soft_shadows,
+        )
+    };
+    assert_eq!(soft(harness.state()), (false, true));
+    harness.key_press(egui::Key::W);
+    harness.run_steps(2);
+    assert_eq!(soft(harness.state()), (true, false));
 }
 
 #[test]

@@ -1,23 +1,25 @@
-//! What the window's kittest suites share: waiting on the window, and the
-//! broken scene a user drops on it.
+//! What the window's kittest suites share: the one way to build a window
+//! ([`window`]), waiting on it, drawing it, and the broken scene a user
+//! drops on it.
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
-use std::thread::sleep;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, HarnessBuilder};
 use tracer::render::JobState;
-use workbench::gui::{Activity, WorkbenchApp};
+use tracer::waiting::PATIENCE;
+use workbench::gui::{Activity, Clock, WorkbenchApp};
 use workbench::load::SceneSource;
 
 use crate::support::Scratch;
 
-/// Long enough for any render in these tests on a slow CI machine; only a
-/// guard against hanging, never a measure of speed.
-pub const PATIENCE: Duration = Duration::from_secs(180);
+thread_local! {
+    /// This test's turn at the window ([`one_window_at_a_time`]).
+    static TURN: RefCell<Option<MutexGuard<'static, ()>>> = const { RefCell::new(None) };
+}
 
 /// Makes the calling test wait its turn for the window: one test's
 /// window at a time, in a process whose tests otherwise run in parallel.
@@ -27,18 +29,55 @@ pub const PATIENCE: Duration = Duration::from_secs(180);
 /// (`PollError`, one run in four of the suite); taking turns, the suite
 /// also runs faster (about 25 s instead of 33). The turn lasts until the
 /// test's thread ends; a thread that already has it keeps it (libtest
-/// may run every test on one thread).
-pub fn one_window_at_a_time() {
-    static TURN: Mutex<()> = Mutex::new(());
-    thread_local! {
-        static HELD: RefCell<Option<MutexGuard<'static, ()>>> = const { RefCell::new(None) };
-    }
-    HELD.with(|held| {
+/// may run every test on one thread). Only [`window`] calls it, and
+/// [`wait_for`] checks it was called.
+fn one_window_at_a_time() {
+    static WINDOW_TURN: Mutex<()> = Mutex::new(());
+    TURN.with(|held| {
         let mut held = held.borrow_mut();
         if held.is_none() {
-            *held = Some(TURN.lock().unwrap_or_else(PoisonError::into_inner));
+            *held = Some(WINDOW_TURN.lock().unwrap_or_else(PoisonError::into_inner));
         }
     });
+}
+
+/// Every test's window, built here only: it takes its turn
+/// ([`one_window_at_a_time`]), times what it times itself (a notice's
+/// fade, undo merging, the observer's animation) by a stopped clock the
+/// test moves ([`Clock::advance`] through [`WorkbenchApp::clock`]), and
+/// counts its scene list at normal priority, so that no assertion depends
+/// on how fast frames come or on an idle thread getting a core. `storage`
+/// stands for eframe's saved state.
+pub fn window(
+    builder: HarnessBuilder<WorkbenchApp>,
+    storage: Option<Box<dyn eframe::Storage>>,
+    initial: Option<SceneSource>,
+) -> Harness<'static, WorkbenchApp> {
+    one_window_at_a_time();
+    builder.build_eframe(move |cc| {
+        let mut app =
+            WorkbenchApp::with_clock(&cc.egui_ctx, storage.as_deref(), initial, Clock::stopped());
+        app.count_scenes_at_normal_priority();
+        app
+    })
+}
+
+/// Draws the window with wgpu (a harness built `.wgpu()`). Mesa's
+/// software rasterizer beside a build on two cores may miss
+/// egui_kittest's fixed 10 s wait for a draw (`PollError`); the draw is
+/// then tried again, within [`PATIENCE`], as the GPU work it waited for
+/// goes on regardless.
+pub fn drawn(harness: &mut Harness<'static, WorkbenchApp>) -> image::RgbaImage {
+    let start = Instant::now();
+    loop {
+        match harness.render() {
+            Ok(image) => return image,
+            Err(e) if e.contains("PollError") && start.elapsed() < PATIENCE => {
+                eprintln!("the draw timed out ({e}); drawing again");
+            }
+            Err(e) => panic!("the window does not draw: {e}"),
+        }
+    }
 }
 
 /// The window's usual size in these tests.
@@ -55,14 +94,11 @@ pub fn small_window_sized(
     builder: HarnessBuilder<WorkbenchApp>,
     size: [f32; 2],
 ) -> Harness<'static, WorkbenchApp> {
-    one_window_at_a_time();
-    let mut harness = builder.with_size(size).build_eframe(|cc| {
-        WorkbenchApp::new(
-            &cc.egui_ctx,
-            None,
-            Some(SceneSource::Bundled("balls_low".into())),
-        )
-    });
+    let mut harness = window(
+        builder.with_size(size),
+        None,
+        Some(SceneSource::Bundled("balls_low".into())),
+    );
     harness.state_mut().controls_mut().resolution_scale = 0.125;
     harness
 }
@@ -105,21 +141,22 @@ pub fn drag(harness: &mut Harness<'static, WorkbenchApp>, label: &str) {
     harness.step();
 }
 
-/// Steps the window until `done` holds (the render runs on other threads).
+/// Steps the window until `done` holds (the render runs on other
+/// threads), within the workspace's one bound ([`PATIENCE`]); `done` may
+/// also assert what must hold on the way.
 pub fn wait_for(
     harness: &mut Harness<'static, WorkbenchApp>,
     what: &str,
     done: impl Fn(&WorkbenchApp) -> bool,
 ) {
-    let start = Instant::now();
-    loop {
+    assert!(
+        TURN.with(|held| held.borrow().is_some()),
+        "a window built outside harness::window: it would not take its turn"
+    );
+    tracer::waiting::wait_until(what, || {
         harness.step();
-        if done(harness.state()) {
-            return;
-        }
-        assert!(start.elapsed() < PATIENCE, "gave up waiting for {what}");
-        sleep(Duration::from_millis(5));
-    }
+        done(harness.state())
+    });
 }
 
 /// Steps the window until its scene is loaded and rendering with its

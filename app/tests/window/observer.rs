@@ -3,6 +3,8 @@
 //! pixel's rays fly through it generation by generation, compare mode
 //! shows both sides' trees.
 
+use std::time::Duration;
+
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use workbench::gui::WorkbenchApp;
@@ -93,7 +95,24 @@ fn a_pinned_pixels_rays_grow_generation_by_generation() {
     );
     harness.get_by_label("Play").click();
     harness.run_steps(2);
-    assert!(harness.state().observer().animation.is_playing());
+    let animation = &harness.state().observer().animation;
+    assert!(animation.is_playing());
+    assert_eq!(
+        animation.phase(),
+        Some(0),
+        "the window's clock stands still"
+    );
+    // One phase a second: past the first, then past the last, at rest.
+    harness.state().clock().advance(Duration::from_millis(1500));
+    harness.step();
+    assert_eq!(harness.state().observer().animation.phase(), Some(1));
+    harness
+        .state()
+        .clock()
+        .advance(Duration::from_secs(u64::from(phases)));
+    harness.step();
+    let animation = &harness.state().observer().animation;
+    assert!(!animation.is_playing() && animation.phase().is_none());
     // A row of pixels: their trees too.
     harness.state_mut().observer_pattern_row(40);
     wait_for(&mut harness, "the row's trees", |app| {
@@ -128,5 +147,28 @@ fn compare_mode_draws_both_sides_trees() {
     assert!(
         shadows(1) >= shadows(0),
         "B's soft shadows sample the light"
+    );
+}
+
+/// The observer's own view is traced with a BVH whatever structure side A
+/// renders with (the scene's `accel 0` over a large mesh took minutes):
+/// here A uses the grid, and the observer builds and keeps its own BVH.
+#[test]
+fn the_observer_traces_its_view_with_a_bvh_whatever_a_uses() {
+    let mut harness = ready_window(TALL);
+    harness.state_mut().controls_mut().render.accel = tracer::accel::AccelKind::Grid;
+    wait_for(&mut harness, "A's render on the grid", |app| {
+        is_done(app) && app.engine().settings().unwrap().accel == tracer::accel::AccelKind::Grid
+    });
+    harness.key_press(egui::Key::O);
+    wait_for(&mut harness, "the observer's render", observer_done);
+    let observer = harness.state().observer().engine();
+    assert_eq!(
+        observer.settings().unwrap().accel,
+        tracer::accel::AccelKind::Bvh
+    );
+    assert_eq!(
+        observer.index().unwrap().kind(),
+        tracer::accel::AccelKind::Bvh
     );
 }

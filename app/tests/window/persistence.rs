@@ -5,6 +5,7 @@
 
 use std::collections::HashMap;
 use std::path::PathBuf;
+use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -12,13 +13,13 @@ use tracer::accel::AccelKind;
 use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
-use crate::harness::{WINDOW, one_window_at_a_time, wait_for, wait_for_scene};
+use crate::harness::{WINDOW, wait_for, wait_for_scene, window};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
 
 /// eframe's storage as a map, as the native one is a file of such pairs.
 #[derive(Default)]
-struct MemoryStorage(HashMap<String, String>);
+pub struct MemoryStorage(HashMap<String, String>);
 
 impl eframe::Storage for MemoryStorage {
     fn get_string(&self, key: &str) -> Option<String> {
@@ -38,18 +39,12 @@ impl eframe::Storage for MemoryStorage {
 
 /// The window as eframe starts it: with what `storage` holds, opening
 /// `initial` (or, without one, what the storage says).
-fn start(
+pub fn start(
     storage: Option<&MemoryStorage>,
     initial: Option<SceneSource>,
 ) -> Harness<'static, WorkbenchApp> {
-    let storage = storage.map(|s| MemoryStorage(s.0.clone()));
-    one_window_at_a_time();
-    Harness::builder()
-        .with_size(WINDOW)
-        .build_eframe(move |cc| {
-            let storage = storage.as_ref().map(|s| s as &dyn eframe::Storage);
-            WorkbenchApp::new(&cc.egui_ctx, storage, initial)
-        })
+    let storage = storage.map(|s| Box::new(MemoryStorage(s.0.clone())) as Box<dyn eframe::Storage>);
+    window(Harness::builder().with_size(WINDOW), storage, initial)
 }
 
 /// What the engine of side A was last asked to render.
@@ -145,4 +140,11 @@ fn a_last_scene_deleted_since_opens_the_default_and_says_so() {
         harness.query_by_label_contains(&notice).is_some(),
         "a notice says why another scene opened"
     );
+    // It fades after its five seconds, on the window's clock.
+    harness.state().clock().advance(Duration::from_secs(4));
+    harness.step();
+    assert!(harness.query_by_label_contains(&notice).is_some());
+    harness.state().clock().advance(Duration::from_secs(1));
+    harness.step();
+    assert!(harness.query_by_label_contains(&notice).is_none(), "faded");
 }

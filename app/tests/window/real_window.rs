@@ -7,21 +7,20 @@ use std::path::Path;
 use std::process::{Command, Output};
 use std::time::Duration;
 
-use crate::support::{Scratch, output_within};
+use crate::support::{RUN_TIMEOUT, Scratch, output_within};
 use image::RgbImage;
 
 /// The viewport's background where no image is drawn (see `gui::viewport`).
 const BACKGROUND: [u8; 3] = [24, 24, 24];
-/// Only a guard against a window that never finishes, not a measure of
-/// speed: the window takes its screenshot as soon as the render is done.
-const PATIENCE: Duration = Duration::from_secs(300);
 /// The scene both the window and the headless render show.
 const SCENE: &str = "../scenes/balls_low.p3f";
 
-/// Runs `command` (killed if it outlives [`PATIENCE`]), which must succeed.
+/// Runs `command` (killed if it outlives [`RUN_TIMEOUT`]: only a guard
+/// against a window that never finishes, as the window takes its
+/// screenshot as soon as the render is done), which must succeed.
 fn run_bounded(command: Command) -> Output {
     let shown = format!("{command:?}");
-    let output = output_within(command, PATIENCE).unwrap_or_else(|e| panic!("{shown}: {e}"));
+    let output = output_within(command, RUN_TIMEOUT).unwrap_or_else(|e| panic!("{shown}: {e}"));
     assert!(
         output.status.success(),
         "{shown} failed: {}",
@@ -197,4 +196,43 @@ fn the_window_opens_with_the_observer_on_when_asked() {
     let probe = |shot: &RgbImage| shot.get_pixel(400, 20).0;
     assert_ne!(probe(&plain), BACKGROUND, "the plain window's image");
     assert_eq!(probe(&observed), BACKGROUND, "the halved image's margin");
+}
+
+/// `--lesson FILE`: the window opens with the lesson's first step set up,
+/// its scene rendered at the lesson's own resolution.
+#[test]
+#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
+fn the_window_opens_a_lesson_set_up() {
+    let dir = Scratch::new("window-lesson");
+    let lesson = dir.join("eye_rays.toml");
+    std::fs::write(
+        &lesson,
+        r#"title = "Eye rays"
+chapter = 1
+
+[scene]
+p3f = """
+v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 40 30
+l 0 5 5 1 1 1
+f 1 0 0 1 0 0 0 0 1 0 1
+s 0 0 0 1
+"""
+
+[[step]]
+title = "Pin a pixel"
+text = "Pin a pixel on the sphere."
+check = { kind = "value", of = "tree eye-object", is = 0 }
+solution = { pixel = [20, 15] }
+"#,
+    )
+    .unwrap();
+    let shot = dir.join("window.png");
+    let mut window = workbench(&dir);
+    window
+        .arg("--lesson")
+        .arg(&lesson)
+        .arg("--screenshot")
+        .arg(&shot);
+    let said = String::from_utf8_lossy(&run_bounded(window).stdout).into_owned();
+    assert!(said.contains("of 40 x 30"), "{said}");
 }

@@ -257,3 +257,58 @@ fn a_cost_view_in_compare_mode_compares_values_not_colours() {
     assert!(harness.query_by_label("MSE").is_none());
     assert!(harness.query_by_label("FLIP").is_none());
 }
+
+/// Adaptive sampling from the side panel: the samples view shows flat
+/// pixels at the minimum and edges refined up to the maximum, and the
+/// statistics panel says how many pixels are done.
+#[test]
+fn the_samples_view_shows_where_adaptive_sampling_spent_them() {
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the first render", is_done);
+    // balls_low asks for 2 x 2 anti-aliasing: adaptive spends its samples.
+    harness.get_by_label("adaptive").click();
+    wait_for(&mut harness, "the adaptive render", |app| {
+        app.engine()
+            .settings()
+            .is_some_and(|s| s.adaptive().is_some())
+    });
+    let adaptive = *harness
+        .state()
+        .engine()
+        .settings()
+        .and_then(|s| s.adaptive())
+        .expect("adaptive sampling is on");
+    harness
+        .get_by_role_and_label(Role::Button, "samples")
+        .click();
+    wait_for(&mut harness, "the adaptive render with views", |app| {
+        is_done(app)
+            && app.views().view == View::Samples
+            && app
+                .engine()
+                .settings()
+                .is_some_and(|s| s.adaptive().is_some())
+            && app.engine().view_values(View::Samples).is_some()
+    });
+    let samples: Vec<f32> = harness
+        .state()
+        .engine()
+        .view_values(View::Samples)
+        .unwrap()
+        .into_iter()
+        .map(|v| v.expect("every pixel sampled"))
+        .collect();
+    let (min_spp, max_spp) = (adaptive.min_spp as f32, adaptive.max_spp as f32);
+    assert!(samples.iter().all(|&n| (min_spp..=max_spp).contains(&n)));
+    assert!(
+        samples.contains(&min_spp),
+        "no pixel stopped at the minimum"
+    );
+    assert!(
+        samples.iter().any(|&n| n > min_spp),
+        "no pixel refined past the minimum"
+    );
+    harness.run_steps(2);
+    harness.get_by_label("Pixels done");
+    harness.get_by_label("100.0%");
+}

@@ -171,9 +171,9 @@ const TAG: u32 = 1 << 30;
 /// number (at least 2), not a subnormal one. Vector arithmetic on the three
 /// coordinates computes the fourth lane too, and on x86 each subnormal
 /// operand costs a microcode assist of some hundred cycles: with the raw
-/// bits a lone triangle's test (balls_medium's floor) was 73% of all
-/// closest-hit time. Masking the lane at each test does not help: the
-/// compiler drops the mask from lanes whose result is not used.
+/// bits a lone triangle's test took most of the closest-hit time
+/// (`docs/PERFORMANCE.md`). Masking the lane at each test does not help:
+/// the compiler drops the mask from lanes whose result is not used.
 #[inline(always)]
 fn tag(n: u32) -> f32 {
     f32::from_bits(n ^ TAG)
@@ -205,7 +205,7 @@ trait Group {
 
 /// Spheres, four to two records: radii in the header, then the centres'
 /// x, y and z. A lone sphere keeps a record of its own: a group of one
-/// costs more than the scalar test (3% more time on `balls_medium`, whose
+/// costs more than the scalar test (measured on `balls_medium`, whose
 /// leaves are all single spheres).
 struct Spheres;
 
@@ -242,8 +242,8 @@ impl Group for Spheres {
 
 /// Triangles, four to four records: `parallel_eps` in the header, then
 /// `v0`, `e1` and `e2`. Only leaves of four or more are grouped: a group
-/// of four pays (`mesh_large`, whose leaves all hold four triangles: frames
-/// 0.84x), a half-full one does not (`mount_high`'s leaves of two: 6% more
+/// of four pays (`mesh_large`, whose leaves all hold four triangles), a
+/// half-full one does not (`mount_high`'s leaves of two: more
 /// instructions, no faster).
 struct Triangles;
 
@@ -358,8 +358,8 @@ fn grouping(shapes: &[Shape], ids: &[u32]) -> [usize; 2] {
 
 /// Set in a leaf's `first` when its records start with groups, so a leaf
 /// without any is told without reading its first record: the scalar leaf
-/// then costs what it did before groups (3% of all instructions on
-/// `balls_high`, whose leaves are single spheres, went to reading it).
+/// then costs what it did before groups (`balls_high`, whose leaves are
+/// single spheres, spent a measurable share of its instructions reading it).
 const GROUPED: usize = 1 << 31;
 
 /// The records a leaf holding the shapes `ids` takes up, and whether it
@@ -546,8 +546,7 @@ pub(super) fn offer_leaf(
 ///
 /// Out of line: inlined, it left the 8-wide any-hit traversal too few
 /// registers, which then kept the ray and its stack's length in memory
-/// (shadow rays 1.07x to 1.14x faster out of line on mount_high and
-/// sombrero).
+/// (shadow rays are faster out of line on mount_high and sombrero).
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn leaf_occluder(
@@ -573,8 +572,7 @@ pub(super) fn leaf_occluder(
 
 /// Offers the primitives of `groups` the ray meets to `nearest`, four at
 /// a time. Out of line: inlined, the compiler splats the ray's coordinates
-/// into lanes on every traversal, groups or not (3% more instructions on
-/// triangle scenes).
+/// into lanes on every traversal, groups or not.
 #[inline(never)]
 fn offer_groups<G: Group>(groups: &[PackedShape], ray: &Ray, t_min: f32, nearest: &mut Nearest) {
     if groups.is_empty() {

@@ -160,8 +160,7 @@ pub(crate) fn intersect_edges(
 /// distance. One triangle gives up (`None`) as soon as it cannot be hit;
 /// four go through to the end: whether any lane is still in play is a
 /// branch the CPU mostly guesses wrong on shadow rays, which pass close
-/// to the triangles they miss, and the arithmetic it skipped cost less
-/// (shadow rays 1.03-1.23x on the triangle scenes of `bench --rays`).
+/// to the triangles they miss, and the arithmetic it skipped cost less.
 #[inline(always)]
 pub(crate) fn intersect_triangles<L: Lanes>(
     [v0, e1, e2]: [L::Vector; 3],

@@ -70,6 +70,10 @@ pub struct Film {
     height: u32,
     sum: Vec<Vec3A>,
     samples: Vec<u32>,
+    /// Per pixel, the sums of the samples' display values and of their
+    /// squares, for the error estimate adaptive sampling steers by; empty
+    /// unless made with [`Film::with_error_estimate`].
+    spread: Vec<[Vec3A; 2]>,
 }
 
 impl Film {
@@ -83,19 +87,29 @@ impl Film {
             height,
             sum: bytemuck::allocation::zeroed_vec(n),
             samples: vec![0; n],
+            spread: Vec::new(),
+        }
+    }
+
+    /// A film that also estimates each pixel's error ([`Film::error`]).
+    pub fn with_error_estimate(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        Self {
+            spread: bytemuck::allocation::zeroed_vec(n),
+            ..Self::new(width, height)
         }
     }
 
     /// Writes the film's zeros into its pages, so that the render's adds,
     /// which read before they write, find real pages. A lazily zeroed page
     /// faults twice under an add, the second time copying the shared zero
-    /// page and flushing the other cores' TLBs by interrupt (5% of the
-    /// render threads' time on mount_high, perf: `do_wp_page`,
-    /// `flush_tlb_mm_range`). Done once, by whoever has a spare core: a
-    /// job does it while its structure builds (5 MB at 512 x 512: 2 ms).
+    /// page and flushing the other cores' TLBs by interrupt (perf:
+    /// `do_wp_page`, `flush_tlb_mm_range`). Done once, by whoever has a
+    /// spare core: a job does it while its structure builds.
     pub fn prefault(&mut self) {
         self.sum.fill(Vec3A::ZERO);
         self.samples.fill(0);
+        self.spread.fill([Vec3A::ZERO; 2]);
     }
 
     pub fn width(&self) -> u32 {
@@ -110,13 +124,61 @@ impl Film {
     /// within the tile.
     pub fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
         for (start, chunk) in tile.rows(self.width, values) {
-            let sums = &mut self.sum[start..start + chunk.len()];
-            for (s, v) in sums.iter_mut().zip(chunk) {
-                *s += *v;
+            if self.spread.is_empty() {
+                let sums = &mut self.sum[start..start + chunk.len()];
+                for (s, v) in sums.iter_mut().zip(chunk) {
+                    *s += *v;
+                }
+                for n in &mut self.samples[start..start + chunk.len()] {
+                    *n += 1;
+                }
+            } else {
+                for (i, v) in (start..).zip(chunk) {
+                    self.add(i, *v);
+                }
             }
-            for n in &mut self.samples[start..start + chunk.len()] {
-                *n += 1;
+        }
+    }
+
+    /// Adds samples to the pixels of `tile`: `counts` says how many each
+    /// pixel (row-major within the tile) takes, `values` holds them pixel
+    /// after pixel, each pixel's in the order they were taken.
+    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], values: &[Vec3A]) {
+        let mut values = values.iter();
+        for (start, row) in tile.rows(self.width, counts) {
+            for (i, &count) in (start..).zip(row) {
+                for v in values.by_ref().take(count as usize) {
+                    self.add(i, *v);
+                }
             }
+        }
+    }
+
+    /// Adds one sample to pixel `i`.
+    #[inline]
+    fn add(&mut self, i: usize, v: Vec3A) {
+        self.sum[i] += v;
+        self.samples[i] += 1;
+        if let Some([sum, squares]) = self.spread.get_mut(i) {
+            let shown = super::adaptive::display_value(v);
+            *sum += shown;
+            *squares += shown * shown;
+        }
+    }
+
+    /// Samples pixel `(x, y)` has taken.
+    pub fn samples(&self, x: u32, y: u32) -> u32 {
+        self.samples[y as usize * self.width as usize + x as usize]
+    }
+
+    /// The standard error of pixel `(x, y)`'s mean estimated from its
+    /// samples, in display units (see [`super::adaptive::error_estimate`]);
+    /// infinite when the film does not estimate it or before two samples.
+    pub fn error(&self, x: u32, y: u32) -> f32 {
+        let i = y as usize * self.width as usize + x as usize;
+        match self.spread.get(i) {
+            Some(&[sum, squares]) => super::adaptive::error_estimate(self.samples[i], sum, squares),
+            None => f32::INFINITY,
         }
     }
 

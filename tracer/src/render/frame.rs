@@ -9,10 +9,11 @@ use glam::{Vec2, Vec3A};
 use crate::accel::SceneIndex;
 use crate::camera::{Camera, CameraError};
 use crate::geometry::Ray;
-use crate::sampling::{SampleStream, concentric_disk, jittered, stratum_order};
+use crate::sampling::{SampleStream, concentric_disk, jittered, pixel_digits, stratum_order};
 use crate::stats::Counters;
 use crate::world::World;
 
+use super::adaptive::RoundOrder;
 use super::trace::{NoRecord, TraceRecorder};
 use super::view::{ViewRecorder, ViewSample};
 use super::{RenderSettings, Tile, Tracer};
@@ -31,6 +32,9 @@ pub struct Frame {
     pub tiles: Vec<Tile>,
     /// Stratum visited by each pass within one round of N x N passes.
     order: Vec<u32>,
+    /// With adaptive sampling, the order of a pixel's samples over its
+    /// strata.
+    adaptive_order: Option<RoundOrder>,
 }
 
 impl Frame {
@@ -41,10 +45,11 @@ impl Frame {
     ) -> Result<Self, CameraError> {
         let camera = Self::camera(&world, &settings)?;
         let spp = settings.samples_per_pixel();
-        let n = (spp as f32).sqrt() as u32;
+        let n = settings.strata();
         Ok(Self {
             tiles: Tile::grid(settings.width, settings.height, TILE_SIZE),
             order: if spp > 1 { stratum_order(n) } else { vec![0] },
+            adaptive_order: settings.adaptive().map(|_| RoundOrder::new(n)),
             world,
             index,
             settings,
@@ -68,9 +73,64 @@ impl Frame {
         Camera::new(&view, settings.width, settings.height, aperture, focal)
     }
 
-    /// Passes that reach the target of N x N samples per pixel (or one).
+    /// Passes that reach the target of N x N samples per pixel (or one);
+    /// with adaptive sampling, the most passes the render may take.
     pub fn passes_target(&self) -> u32 {
-        self.order.len() as u32
+        match self.settings.adaptive() {
+            Some(a) => super::adaptive::passes(a),
+            None => self.order.len() as u32,
+        }
+    }
+
+    /// The uniform pass whose random numbers and stratum sample `sample` of
+    /// a pixel takes: the sample itself for uniform sampling; for adaptive
+    /// sampling, the round's lattice order (so each round of `m * m`
+    /// samples takes the very samples of `m * m` uniform passes).
+    #[inline]
+    fn pass_of(&self, sample: u32, pixel: u32) -> u32 {
+        let Some(order) = &self.adaptive_order else {
+            return sample;
+        };
+        let round = order.len();
+        let shift = pixel_digits(self.settings.seed, pixel);
+        sample / round * round + order.pass(sample % round, shift)
+    }
+
+    /// Renders the samples `plan` asks of the pixels of `tile` (row-major:
+    /// pixel `i` takes samples `plan[i]`), with their view samples when
+    /// `views`: the values pixel after pixel, as [`Film::add_samples`]
+    /// takes them.
+    ///
+    /// [`Film::add_samples`]: super::Film::add_samples
+    pub fn render_samples(
+        &self,
+        tile: &Tile,
+        plan: &[std::ops::Range<u32>],
+        views: bool,
+        counters: &mut Counters,
+    ) -> (Vec<Vec3A>, Option<Vec<ViewSample>>) {
+        let tracer = Tracer::new(&self.world, &self.index, &self.settings);
+        let total: usize = plan.iter().map(|r| r.len()).sum();
+        let mut values = Vec::with_capacity(total);
+        let mut samples = views.then(|| Vec::with_capacity(total));
+        let pixels = (tile.y..tile.y + tile.height)
+            .flat_map(|y| (tile.x..tile.x + tile.width).map(move |x| (x, y)));
+        for ((x, y), range) in pixels.zip(plan) {
+            for sample in range.clone() {
+                let value = match &mut samples {
+                    Some(samples) => {
+                        let before = *counters;
+                        let mut recorder = ViewRecorder::default();
+                        let value = self.sample(&tracer, x, y, sample, counters, &mut recorder);
+                        samples.push(recorder.finish(&self.world, &before, counters));
+                        value
+                    }
+                    None => self.sample(&tracer, x, y, sample, counters, &mut NoRecord),
+                };
+                values.push(value);
+            }
+        }
+        (values, samples)
     }
 
     /// Renders pass `pass` over `tile`: one sample per pixel, row-major.
@@ -123,9 +183,10 @@ impl Frame {
         (values, samples)
     }
 
-    /// Traces sample `pass` of pixel `(x, y)` and tells `recorder` every
-    /// ray: the one place the render, the views and the inspector draw a
-    /// pixel sample's random numbers, so they all trace the same rays.
+    /// Traces sample `pass` of pixel `(x, y)` (its `pass`-th sample, from
+    /// 0) and tells `recorder` every ray: the one place the render, the
+    /// views and the inspector draw a pixel sample's random numbers, so
+    /// they all trace the same rays.
     #[inline(always)]
     pub fn sample<R: TraceRecorder>(
         &self,
@@ -143,11 +204,12 @@ impl Frame {
     /// The eye ray of sample `pass` of pixel `(x, y)`, and the pixel
     /// sample's random numbers past those the camera drew, for the trace.
     #[inline(always)]
-    fn eye_ray(&self, x: u32, y: u32, pass: u32) -> (Ray, SampleStream) {
-        let stratum = self.order[(pass % self.passes_target()) as usize];
-        let n = self.settings.samples.max(1);
-        let aa = self.settings.antialiasing;
+    fn eye_ray(&self, x: u32, y: u32, sample: u32) -> (Ray, SampleStream) {
         let pixel = y * self.settings.width + x;
+        let pass = self.pass_of(sample, pixel);
+        let stratum = self.order[pass as usize % self.order.len()];
+        let n = self.settings.strata();
+        let aa = self.settings.antialiasing;
         let mut rng = SampleStream::new(self.settings.seed, pixel, pass);
         let offset = if aa {
             jittered(stratum, n, rng.next_2d())

@@ -11,12 +11,15 @@ use rayon::prelude::*;
 
 use crate::accel::SceneIndex;
 use crate::camera::CameraError;
-use crate::stats::{Counters, RenderStats};
+use crate::stats::{AdaptiveStats, Counters, RenderStats};
 use crate::world::World;
 
+use glam::Vec3A;
+
+use super::adaptive;
 use super::film::encode_values;
 use super::settings::SettingsError;
-use super::view::{View, ViewFilm, ViewHeatmap, view_rgba8};
+use super::view::{View, ViewFilm, ViewHeatmap, ViewSample, view_rgba8};
 use super::{Encoding, Film, Frame, RenderSettings};
 
 /// Why a render could not start.
@@ -99,16 +102,15 @@ pub struct JobOptions {
     /// tile's bytes by the render thread that lands its last pass, while
     /// they are in its cache ([`RenderJob::wait_with_image`]). For a caller
     /// that saves the image once it is done: resolving the whole film after
-    /// the render was 1.5 ms of a 40 ms `workbench render`, on one thread.
+    /// the render is serial work on the command line's critical path.
     pub finished_image: Option<Encoding>,
     /// With [`JobOptions::finished_image`] and a target of one pass: the
     /// tiles' values go straight into the finished image and the film gets
     /// no sample (its pages are never touched, so the job's film, its
     /// snapshots and [`Finished::film`] stay empty). For a caller that only
     /// saves the image: adding into the film under the job's lock, and
-    /// first writing its 5 MB at 512 x 512, made a `workbench render` of
-    /// balls_medium take 99 ms instead of 86 (nine alternated rounds, 2
-    /// cores). Ignored when the job refines, renders several passes or
+    /// first writing its 5 MB at 512 x 512, made a `workbench render`
+    /// measurably slower (`docs/PERFORMANCE.md`). Ignored when the job refines, renders several passes or
     /// observes them.
     pub image_only: bool,
 }
@@ -233,7 +235,11 @@ impl RenderJob {
             paused: Mutex::new(options.paused),
             resumed: Condvar::new(),
             progress: Mutex::new(Progress {
-                film: Film::new(settings.width, settings.height),
+                film: if settings.adaptive().is_some() {
+                    Film::with_error_estimate(settings.width, settings.height)
+                } else {
+                    Film::new(settings.width, settings.height)
+                },
                 views: options
                     .views
                     .then(|| ViewFilm::new(settings.width, settings.height)),
@@ -244,8 +250,22 @@ impl RenderJob {
                 stats: RenderStats {
                     width: settings.width,
                     height: settings.height,
-                    passes_target: settings.samples_per_pixel(),
+                    passes_target: match settings.adaptive() {
+                        Some(a) => adaptive::passes(a),
+                        None => settings.samples_per_pixel(),
+                    },
                     build_time: index.as_ref().map(|i| i.build_time()).unwrap_or_default(),
+                    // Every pixel active, nothing known yet: a viewer lays
+                    // its rows out once, from the start.
+                    adaptive: settings.adaptive().map(|_| {
+                        let pixels = u64::from(settings.width) * u64::from(settings.height);
+                        AdaptiveStats {
+                            pixels,
+                            active_pixels: pixels,
+                            error: f32::INFINITY,
+                            ..AdaptiveStats::default()
+                        }
+                    }),
                     ..RenderStats::default()
                 },
                 state: if index.is_some() {
@@ -477,12 +497,15 @@ impl Drop for RenderJob {
     }
 }
 
-/// Runs passes until the target (or forever when refining) or cancellation.
+/// Runs passes until the target (or forever when refining) or cancellation;
+/// an adaptive render also ends once no pixel is active.
 fn run_passes(frame: &Frame, shared: &Shared) {
     let target = frame.passes_target();
+    let adaptive = frame.settings.adaptive().copied();
+    let refine = frame.settings.keep_refining && adaptive.is_none();
     let mut rendered = Duration::ZERO;
     for pass in 0.. {
-        if shared.cancelled() || (pass >= target && !frame.settings.keep_refining) {
+        if shared.cancelled() || (pass >= target && !refine) {
             return;
         }
         let start = Instant::now();
@@ -493,17 +516,35 @@ fn run_passes(frame: &Frame, shared: &Shared) {
                 return;
             }
             let mut counters = Counters::default();
-            let (values, views) = if shared.views {
-                let (values, views) = frame.render_tile_with_views(pass, tile, &mut counters);
-                (values, Some(views))
-            } else {
-                (frame.render_tile(pass, tile, &mut counters), None)
+            let rendered_tile = match &adaptive {
+                Some(a) => {
+                    let plan = adaptive::plan(&shared.progress().film, tile, a);
+                    if plan.iter().all(|samples| samples.is_empty()) {
+                        return;
+                    }
+                    let (values, views) =
+                        frame.render_samples(tile, &plan, shared.views, &mut counters);
+                    let counts = plan.iter().map(|samples| samples.len() as u32).collect();
+                    TileSamples::Some {
+                        counts,
+                        values,
+                        views,
+                    }
+                }
+                None if shared.views => {
+                    let (values, views) = frame.render_tile_with_views(pass, tile, &mut counters);
+                    TileSamples::One(values, Some(views))
+                }
+                None => TileSamples::One(frame.render_tile(pass, tile, &mut counters), None),
             };
             // Left out of the film, a tile's bytes are made before taking
             // the lock: only their copy waits for the other threads.
-            let tile_bytes = shared
-                .image_only
-                .map(|encoding| encode_values(&values, encoding));
+            let tile_bytes = match (&rendered_tile, shared.image_only) {
+                (TileSamples::One(values, _), Some(encoding)) => {
+                    Some(encode_values(values, encoding))
+                }
+                _ => None,
+            };
             {
                 let mut p = shared.progress();
                 let p = &mut *p;
@@ -512,15 +553,34 @@ fn run_passes(frame: &Frame, shared: &Shared) {
                         tile.copy_rgb_into(frame.settings.width, tile_bytes, image);
                     }
                     _ => {
-                        p.film.add_tile(tile, &values);
-                        let last = pass + 1 == target && !frame.settings.keep_refining;
+                        let last = match (&rendered_tile, &adaptive) {
+                            (TileSamples::Some { counts, values, .. }, Some(a)) => {
+                                p.film.add_samples(tile, counts, values);
+                                !adaptive::tile_active(&p.film, tile, a)
+                            }
+                            (TileSamples::One(values, _), _) => {
+                                p.film.add_tile(tile, values);
+                                pass + 1 == target && !refine
+                            }
+                            (TileSamples::Some { .. }, None) => {
+                                unreachable!("only adaptive passes plan samples")
+                            }
+                        };
                         if let (true, Some((encoding, bytes))) = (last, &mut p.finished) {
                             p.film.resolve_tile(tile, *encoding, bytes);
                         }
                     }
                 }
-                if let (Some(film), Some(views)) = (&mut p.views, &views) {
-                    film.add_tile(tile, views);
+                if let Some(film) = &mut p.views {
+                    match &rendered_tile {
+                        TileSamples::One(_, Some(views)) => film.add_tile(tile, views),
+                        TileSamples::Some {
+                            counts,
+                            views: Some(views),
+                            ..
+                        } => film.add_samples(tile, counts, views),
+                        _ => {}
+                    }
                 }
                 p.stats.counters += counters;
                 p.stats.render_time = rendered + start.elapsed();
@@ -536,19 +596,45 @@ fn run_passes(frame: &Frame, shared: &Shared) {
         }
         let elapsed = start.elapsed();
         rendered += elapsed;
-        {
+        let converged = {
             let mut p = shared.progress();
             p.stats.passes_done = pass + 1;
             p.stats.pass_times.push(elapsed);
             let rays = p.stats.counters.total_rays() - rays_before;
             p.stats.pass_rays.push(rays);
             p.stats.render_time = rendered;
+            let converged = adaptive.map(|a| {
+                let summary = adaptive::summary(&p.film, &a);
+                p.stats.adaptive = Some(summary);
+                summary.active_pixels == 0
+            });
+            if converged == Some(true) {
+                // Done before the most passes it might have taken.
+                p.stats.passes_target = pass + 1;
+            }
             if let Some(observe) = &shared.on_pass {
                 observe(pass + 1, &p.film);
             }
-        }
+            converged == Some(true)
+        };
         shared.notify();
+        if converged {
+            return;
+        }
     }
+}
+
+/// What a render thread made of a tile in a pass.
+enum TileSamples {
+    /// One sample per pixel (uniform passes), and its view samples.
+    One(Vec<Vec3A>, Option<Vec<ViewSample>>),
+    /// Adaptive passes: `counts[i]` samples of pixel `i`, pixel after
+    /// pixel in `values` (and `views`).
+    Some {
+        counts: Vec<u32>,
+        values: Vec<Vec3A>,
+        views: Option<Vec<ViewSample>>,
+    },
 }
 
 /// Marks the calling render thread as batch work. The lowest priority

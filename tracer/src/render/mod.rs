@@ -2,6 +2,7 @@
 //! progressive passes in the background; [`render`] is the one-shot form,
 //! the same passes run to completion, so both give the same bits.
 
+pub mod adaptive;
 mod film;
 mod frame;
 mod job;
@@ -11,6 +12,8 @@ mod settings;
 mod tests;
 #[cfg(test)]
 mod tests_aa;
+#[cfg(test)]
+mod tests_adaptive;
 #[cfg(test)]
 mod tests_lens;
 #[cfg(test)]
@@ -25,13 +28,13 @@ pub use frame::{Frame, TILE_SIZE};
 pub use job::{Finished, JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
-    Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES,
-    RenderSettings, SettingsError,
+    AdaptiveSampling, Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    MAX_SAMPLES, RenderSettings, Sampling, SettingsError,
 };
 pub use trace::{NoRecord, RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
 pub use view::{
     EyeHit, HEAT_PALETTE, HeatScale, NO_VALUE, View, ViewFilm, ViewHeatmap, ViewRecorder,
-    ViewSample, ViewSummary, object_colour,
+    ViewSample, ViewSummary, ViewTotals, object_colour,
 };
 
 use crate::accel::SceneIndex;

@@ -47,7 +47,11 @@ pub struct RenderSettings {
     pub grid_multiplier: f32,
     /// Seed of every random number (jitter, lens, light samples).
     pub seed: u64,
-    /// Keep adding fresh samples after the N x N target is reached.
+    /// How the samples of anti-aliasing (or depth of field) are spent:
+    /// N x N in every pixel, or adaptively where the image is still noisy.
+    pub sampling: Sampling,
+    /// Keep adding fresh samples after the N x N target is reached
+    /// (uniform sampling; an adaptive render ends when it converges).
     pub keep_refining: bool,
     /// Where the camera is when the user has moved it; `None` keeps the
     /// scene's own view.
@@ -71,8 +75,64 @@ impl Default for RenderSettings {
             accel: AccelKind::Bvh,
             grid_multiplier: 2.0,
             seed: 0,
+            sampling: Sampling::Uniform,
             keep_refining: false,
             camera: None,
+        }
+    }
+}
+
+/// How a render that takes several samples per pixel spends them.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Sampling {
+    /// Every pixel gets the same N x N jittered samples.
+    #[default]
+    Uniform,
+    /// Pixels get samples until their estimated error falls under a
+    /// threshold: flat sky stops early, edges, penumbrae and lens blur
+    /// keep refining (Cycles' adaptive sampling).
+    Adaptive(AdaptiveSampling),
+}
+
+/// The knobs of [`Sampling::Adaptive`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default)
+)]
+pub struct AdaptiveSampling {
+    /// A pixel stops once the standard error of its mean, estimated from
+    /// the variance of its samples, is below this, in display units (the
+    /// linear value clamped to 0..1, as the image is written: 0.01 is 2.55
+    /// levels of 255). 0 never stops a pixel before `max_spp`.
+    pub noise_threshold: f32,
+    /// Samples every pixel takes before its error is trusted.
+    pub min_spp: u32,
+    /// Samples no pixel goes beyond. Its square root (rounded down) is the
+    /// side of the strata the samples fill, for the pixel, the lens and
+    /// soft shadows alike.
+    pub max_spp: u32,
+}
+
+impl Default for AdaptiveSampling {
+    fn default() -> Self {
+        Self::for_samples(4, 0.01)
+    }
+}
+
+impl AdaptiveSampling {
+    /// Adaptive sampling in place of uniform N x N: at most (2N)^2 samples,
+    /// so a small threshold can reach any error N x N reaches, and at least
+    /// 8 (or N^2 / 4 when larger), enough for a first variance.
+    pub fn for_samples(n: u32, noise_threshold: f32) -> Self {
+        let n = n.clamp(1, MAX_SAMPLES);
+        let max_spp = (2 * n).min(MAX_SAMPLES).pow(2);
+        Self {
+            noise_threshold,
+            min_spp: (n * n / 4).max(8).min(max_spp),
+            max_spp,
         }
     }
 }
@@ -111,12 +171,35 @@ impl RenderSettings {
     }
 
     /// Samples per pixel to reach the target: N x N when anti-aliasing or
-    /// depth of field spread samples over the pixel or the lens, else one.
+    /// depth of field spread samples over the pixel or the lens, else one;
+    /// adaptive sampling's maximum (the most a pixel may take).
     pub fn samples_per_pixel(&self) -> u32 {
-        if self.antialiasing || self.depth_of_field {
+        if let Some(adaptive) = self.adaptive() {
+            adaptive.max_spp
+        } else if self.antialiasing || self.depth_of_field {
             self.samples.max(1).pow(2)
         } else {
             1
+        }
+    }
+
+    /// The adaptive sampling in force: chosen, and with anti-aliasing or
+    /// depth of field asking for several samples.
+    pub fn adaptive(&self) -> Option<&AdaptiveSampling> {
+        match &self.sampling {
+            Sampling::Adaptive(a) if self.antialiasing || self.depth_of_field => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The side of the strata a pixel's samples fill (pixel, lens and
+    /// soft-shadow patterns): N, or the square root of adaptive sampling's
+    /// maximum, so that a pixel taking every sample fills them as N x N
+    /// uniform sampling with that N does.
+    pub fn strata(&self) -> u32 {
+        match self.adaptive() {
+            Some(a) => (a.max_spp.max(1) as f32).sqrt() as u32,
+            None => self.samples.max(1),
         }
     }
 }
@@ -182,6 +265,26 @@ impl RenderSettings {
                 format!("1 to {MAX_SAMPLES}"),
             );
         }
+        if let Sampling::Adaptive(a) = &self.sampling {
+            let most = MAX_SAMPLES * MAX_SAMPLES;
+            if !(1..=most).contains(&a.max_spp) {
+                return fail("max spp", a.max_spp.to_string(), format!("1 to {most}"));
+            }
+            if !(1..=a.max_spp).contains(&a.min_spp) {
+                return fail(
+                    "min spp",
+                    a.min_spp.to_string(),
+                    format!("1 to the max spp, {}", a.max_spp),
+                );
+            }
+            if !(a.noise_threshold >= 0.0 && a.noise_threshold.is_finite()) {
+                return fail(
+                    "noise threshold",
+                    a.noise_threshold.to_string(),
+                    "a number >= 0".into(),
+                );
+            }
+        }
         if self.max_depth > MAX_DEPTH {
             return fail(
                 "depth",
@@ -241,8 +344,8 @@ impl Encoding {
 
     /// The 8-bit values of a linear colour, the same as [`Encoding::encode`]
     /// on each component: the linear encoding takes all three at once
-    /// (turning a 512 x 512 film into bytes was 1.9 ms, a twentieth of a
-    /// whole `workbench render`).
+    /// (turning a film into bytes is a visible part of a whole `workbench
+    /// render`).
     #[inline]
     pub fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
         match self {
@@ -348,6 +451,29 @@ mod tests {
                 grid_multiplier: 0.0,
                 ..Default::default()
             },
+            RenderSettings {
+                sampling: Sampling::Adaptive(AdaptiveSampling {
+                    min_spp: 65,
+                    max_spp: 64,
+                    ..Default::default()
+                }),
+                ..Default::default()
+            },
+            RenderSettings {
+                sampling: Sampling::Adaptive(AdaptiveSampling {
+                    max_spp: 0,
+                    min_spp: 0,
+                    ..Default::default()
+                }),
+                ..Default::default()
+            },
+            RenderSettings {
+                sampling: Sampling::Adaptive(AdaptiveSampling {
+                    noise_threshold: f32::NAN,
+                    ..Default::default()
+                }),
+                ..Default::default()
+            },
         ];
         for s in bad {
             assert!(s.validate().is_err(), "{s:?}");
@@ -366,5 +492,10 @@ mod tests {
         s.depth_of_field = false;
         s.antialiasing = true;
         assert_eq!(s.samples_per_pixel(), 9);
+        assert_eq!(s.strata(), 3);
+        s.sampling = Sampling::Adaptive(AdaptiveSampling::for_samples(3, 0.01));
+        assert_eq!((s.samples_per_pixel(), s.strata()), (36, 6));
+        s.antialiasing = false;
+        assert_eq!(s.samples_per_pixel(), 1, "adaptive spends AA's samples");
     }
 }

@@ -2,7 +2,7 @@
 
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex, mpsc};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use glam::Vec3A;
 
@@ -10,6 +10,7 @@ use super::{Encoding, Film, Frame, JobOptions, JobState, RenderJob, RenderSettin
 use crate::accel::{AccelKind, SceneIndex};
 use crate::scene::{Limits, parse_scene};
 use crate::stats::Counters;
+use crate::waiting::{PATIENCE, wait_until};
 use crate::world::World;
 
 pub(super) fn world(text: &str) -> Arc<World> {
@@ -35,19 +36,6 @@ s -1 0 0.7 0.7
 f 1 1 1 0.1 1 1 1 0.1 100 0.9 1.5
 s 1 -0.5 0.6 0.6
 ";
-
-/// Waits until `condition` holds, failing the test (not hanging it) after
-/// a minute: a job that never gets there is a bug to report.
-fn wait_for(what: &str, condition: impl Fn() -> bool) {
-    let start = Instant::now();
-    while !condition() {
-        assert!(
-            start.elapsed() < Duration::from_secs(60),
-            "gave up waiting for {what}"
-        );
-        std::thread::sleep(Duration::from_millis(1));
-    }
-}
 
 fn settings(width: u32, height: u32) -> RenderSettings {
     RenderSettings {
@@ -296,7 +284,7 @@ fn cancellation_stops_a_long_render() {
         },
     )
     .unwrap();
-    wait_for("the first tile", || tiles_done.load(Ordering::Relaxed) > 0);
+    wait_until("the first tile", || tiles_done.load(Ordering::Relaxed) > 0);
     job.cancel();
     let at_cancel = job.stats().counters.eye_rays;
     let (_, stats, state) = job.wait();
@@ -336,8 +324,7 @@ fn pause_holds_the_render_until_resumed() {
         },
     )
     .unwrap();
-    let minute = Duration::from_secs(60);
-    tiles.recv_timeout(minute).expect("the first tile");
+    tiles.recv_timeout(PATIENCE).expect("the first tile");
     job.set_paused(true);
     open_gate.send(()).unwrap();
     // Paused between tiles: no further tile may finish. A broken pause
@@ -352,7 +339,7 @@ fn pause_holds_the_render_until_resumed() {
     assert_eq!(job.stats().counters.eye_rays, 32 * 32);
     job.set_paused(false);
     drop(open_gate);
-    tiles.recv_timeout(minute).expect("a tile after resuming");
+    tiles.recv_timeout(PATIENCE).expect("a tile after resuming");
     let (_, stats, state) = job.wait();
     assert_eq!(state, JobState::Done);
     assert_eq!(stats.passes_done, 9);
@@ -398,7 +385,7 @@ fn a_panic_inside_a_job_is_reported_and_what_was_rendered_stays() {
         },
     )
     .unwrap();
-    wait_for("the job to stop", || job.is_finished());
+    wait_until("the job to stop", || job.is_finished());
     let snapshot = job.snapshot(super::Encoding::Linear);
     assert_eq!(snapshot.rgba.len(), 64 * 64 * 4);
     let (_, stats, state) = job.wait();

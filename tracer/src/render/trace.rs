@@ -142,8 +142,8 @@ pub struct Tracer<'a> {
 /// A value alone on its cache line. The shadow cache is written on every
 /// shadow ray, and a tracer's small allocation could share a line with
 /// data the other render threads read on every ray (false sharing: with
-/// some heap layouts, which the length of an argument shifts, mount_high's
-/// frames were 9% slower).
+/// some heap layouts, which the length of an argument shifts, frames were
+/// slower).
 #[derive(Debug, Default)]
 #[repr(align(64))]
 struct OwnLine<T>(T);
@@ -153,7 +153,7 @@ impl<'a> Tracer<'a> {
         let shadow_mode = match (settings.soft_shadows, settings.samples_per_pixel()) {
             (false, _) => ShadowMode::Hard,
             (true, 1) => ShadowMode::Stratified(settings.samples.max(1)),
-            (true, _) => ShadowMode::OnePerSample(settings.samples.max(1)),
+            (true, _) => ShadowMode::OnePerSample(settings.strata()),
         };
         let size = if world.bounds.is_empty() {
             1.0

@@ -39,11 +39,14 @@ pub enum View {
     Normals,
     /// A stable false colour per scene object the eye ray hit.
     Objects,
+    /// Samples the pixel took: N x N everywhere with uniform sampling;
+    /// with adaptive sampling, where the image needed them.
+    Samples,
 }
 
 impl View {
     /// Every view, in the order the selector cycles through them.
-    pub const ALL: [View; 10] = [
+    pub const ALL: [View; 11] = [
         View::Shaded,
         View::Tests,
         View::Steps,
@@ -54,6 +57,7 @@ impl View {
         View::Distance,
         View::Normals,
         View::Objects,
+        View::Samples,
     ];
 
     /// The name the command line and reports use.
@@ -69,6 +73,7 @@ impl View {
             View::Distance => "distance",
             View::Normals => "normals",
             View::Objects => "objects",
+            View::Samples => "samples",
         }
     }
 
@@ -87,6 +92,7 @@ impl View {
             View::Blocked => "fraction of shadow rays blocked",
             View::Depth => "bounces",
             View::Distance => "scene units",
+            View::Samples => "samples per pixel",
             View::Shaded | View::Normals | View::Objects => "",
         }
     }
@@ -190,10 +196,22 @@ struct PixelSums {
     shadow_rays: f32,
     blocked: f32,
     depth: f32,
+    /// The deepest bounce of any of the pixel's samples.
+    deepest: u32,
     eye_hits: u32,
     distance: f32,
     normal: Vec3A,
     object_colour: Vec3A,
+}
+
+/// What [`ViewFilm::totals`] sums over a film.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ViewTotals {
+    pub shadow_rays: f64,
+    /// Shadow rays that met an occluder.
+    pub blocked: f64,
+    /// The deepest bounce of any sample (the eye ray is depth 0).
+    pub deepest: u32,
 }
 
 /// Per-pixel sums of view samples, the views' counterpart of [`Film`].
@@ -229,29 +247,64 @@ impl ViewFilm {
                 .iter_mut()
                 .zip(chunk)
             {
-                sums.samples += 1;
-                sums.tests += s.tests as f32;
-                sums.steps += s.steps as f32;
-                sums.rays += s.rays as f32;
-                sums.shadow_rays += s.shadow_rays as f32;
-                sums.blocked += s.blocked as f32;
-                sums.depth += s.depth as f32;
-                if let Some(hit) = s.eye_hit {
-                    sums.eye_hits += 1;
-                    sums.distance += hit.distance;
-                    sums.normal += hit.normal;
-                    sums.object_colour += object_colour(hit.object);
-                }
+                sums.add(s);
             }
         }
     }
 
+    /// Adds samples to the pixels of `tile` as [`Film::add_samples`] does:
+    /// `counts[i]` samples of pixel `i`, pixel after pixel in `samples`.
+    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], samples: &[ViewSample]) {
+        let mut samples = samples.iter();
+        for (start, row) in tile.rows(self.width, counts) {
+            for (sums, &count) in self.pixels[start..start + row.len()].iter_mut().zip(row) {
+                for s in samples.by_ref().take(count as usize) {
+                    sums.add(s);
+                }
+            }
+        }
+    }
+}
+
+impl PixelSums {
+    /// Adds one view sample.
+    fn add(&mut self, s: &ViewSample) {
+        self.samples += 1;
+        self.tests += s.tests as f32;
+        self.steps += s.steps as f32;
+        self.rays += s.rays as f32;
+        self.shadow_rays += s.shadow_rays as f32;
+        self.blocked += s.blocked as f32;
+        self.depth += s.depth as f32;
+        self.deepest = self.deepest.max(s.depth);
+        if let Some(hit) = s.eye_hit {
+            self.eye_hits += 1;
+            self.distance += hit.distance;
+            self.normal += hit.normal;
+            self.object_colour += object_colour(hit.object);
+        }
+    }
+}
+
+impl ViewFilm {
     /// The value of a scalar view at every pixel, row-major: the mean over
     /// the pixel's samples; `None` before the first sample, and where the
     /// view has no value (distance on the background, blocked without
     /// shadow rays). Colour views have no numbers: all `None`.
     pub fn values(&self, view: View) -> Vec<Option<f32>> {
         self.pixels.iter().map(|p| scalar(p, view)).collect()
+    }
+
+    /// Shadow rays, blocked shadow rays and the deepest bounce over the
+    /// whole film: a frame's statistics that the counters do not keep.
+    pub fn totals(&self) -> ViewTotals {
+        let mut totals = ViewTotals::default();
+        for p in &self.pixels {
+            totals.shadow_rays += f64::from(p.shadow_rays);
+            totals.blocked += f64::from(p.blocked);
+            totals.deepest = totals.deepest.max(p.deepest);
+        }
+        totals
     }
 
     /// The value of a scalar view at one pixel (see [`ViewFilm::values`]).
@@ -304,6 +357,7 @@ fn scalar(p: &PixelSums, view: View) -> Option<f32> {
         View::Blocked => (p.shadow_rays > 0.0).then(|| p.blocked / p.shadow_rays),
         View::Depth => Some(p.depth / n),
         View::Distance => (p.eye_hits > 0).then(|| p.distance / p.eye_hits as f32),
+        View::Samples => Some(n),
         View::Shaded | View::Normals | View::Objects => None,
     }
 }
@@ -579,6 +633,26 @@ s 0 0 0 1
         assert_eq!(v.value(View::Depth, 4, 4), Some(1.0));
         assert_eq!(v.value(View::Rays, 4, 4), Some(3.0));
         assert_eq!(v.value(View::Depth, 0, 0), Some(0.0));
+        assert_eq!(v.totals().deepest, 1);
+    }
+
+    #[test]
+    fn totals_count_blocked_shadow_rays_over_the_film() {
+        // A small ball: it shadows part of the sphere, not all of it.
+        let blocked = format!("{ONE_SPHERE}s 0 -3 3 0.15\n");
+        let (v, _) = views_of(&blocked, AccelKind::None, plain(9, 9));
+        let totals = v.totals();
+        let sum = |view| v.values(view).iter().flatten().sum::<f32>();
+        assert_eq!(totals.shadow_rays, f64::from(sum(View::Shadow)));
+        let per_pixel: f32 = (0..81)
+            .filter_map(|i| {
+                let (x, y) = (i % 9, i / 9);
+                Some(v.value(View::Blocked, x, y)? * v.value(View::Shadow, x, y)?)
+            })
+            .sum();
+        assert!(totals.blocked >= 1.0 && totals.blocked < totals.shadow_rays);
+        assert_eq!(totals.blocked, f64::from(per_pixel));
+        assert_eq!(totals.deepest, 0, "a matte scene does not bounce");
     }
 
     #[test]

@@ -57,8 +57,13 @@ fn assert_round_trip(scene: &Scene) {
     assert_eq!(again, original, "--- written ---\n{text}");
 }
 
-/// The shared corpus of real scene files, if this checkout has it.
+/// The shared corpus of real scene files, if this checkout has it (under
+/// `CI` its absence fails the test: [`crate::optional_input::missing`]).
 fn corpus_dir() -> Option<&'static Path> {
     let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/corpus"));
-    dir.is_dir().then_some(dir)
+    if !dir.is_dir() {
+        crate::optional_input::missing(&format!("the shared corpus {}", dir.display()));
+        return None;
+    }
+    Some(dir)
 }

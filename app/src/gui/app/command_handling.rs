@@ -39,8 +39,10 @@ impl WorkbenchApp {
                 self.comparison = Comparison::default();
             }
             Command::ToggleBenchmark => self.tools.bench.open ^= true,
+            Command::ExportReport => self.tools.report.choose_file(),
             Command::ToggleStudies => self.tools.studies.open ^= true,
             Command::ToggleObserver => self.observer.on ^= true,
+            Command::ToggleLessons => self.lessons.open ^= true,
             Command::SwapSides => {
                 if !self.sides.swap() {
                     self.messages.notify("swap: turn compare mode on first (B)");

@@ -3,7 +3,7 @@
 //! and after the commands ran, planning each side's settings and keeping
 //! the engines rendering them.
 
-use tracer::render::JobState;
+use tracer::render::{JobState, RenderSettings};
 
 use crate::load::SceneSource;
 
@@ -11,6 +11,10 @@ use super::WorkbenchApp;
 use super::saving::Reply;
 use crate::gui::panels::scene_list;
 use crate::gui::sides::Activity;
+
+/// Frames per timed configuration of a report exported from the window:
+/// the benchmark window's default, a full report in a few minutes.
+const REPORT_RUNS: usize = 3;
 
 impl WorkbenchApp {
     /// Takes finished loads, dialogs, saves and dropped files, uploads the
@@ -69,12 +73,13 @@ impl WorkbenchApp {
             self.session.remember(path.clone());
         }
         self.session.last_scene = Some(loaded.source.clone());
+        self.finish_lesson_setup(&loaded.source);
         if !loaded.world.warnings.is_empty() {
             self.messages.notify(loaded.world.warnings.join("; "));
         }
     }
 
-    /// Opens scene files dropped on the window.
+    /// Opens scene files and lessons dropped on the window.
     fn take_dropped_files(&mut self, ctx: &egui::Context) {
         let dropped = ctx.input(|i| i.raw.dropped_files.clone());
         for file in dropped {
@@ -83,8 +88,12 @@ impl WorkbenchApp {
                 self.open(SceneSource::File(path.to_path_buf()));
                 return;
             }
+            if path.extension().is_some_and(|e| e == "toml") {
+                self.open_lesson(path);
+                return;
+            }
             self.messages.notify(format!(
-                "{} is not a scene or mesh file (.p3f, .nff, .obj, .ply)",
+                "{} is not a scene, mesh or lesson file (.p3f, .nff, .obj, .ply, .toml)",
                 path.display()
             ));
         }
@@ -189,7 +198,7 @@ impl WorkbenchApp {
         if self
             .observer
             .animation
-            .advance(std::time::Instant::now(), self.observer.phases())
+            .advance(self.clock.now(), self.observer.phases())
         {
             ctx.request_repaint();
         }
@@ -214,6 +223,50 @@ impl WorkbenchApp {
             let wake = ctx.clone();
             bench.start(scene.world.clone(), base, move || wake.request_repaint());
         }
+    }
+
+    /// Export report...: once a file is chosen, the lab report of side A's
+    /// scene (with its edits), camera and settings, measured in the
+    /// background; its progress and Cancel in a window.
+    pub(super) fn report_window(&mut self, ctx: &egui::Context) {
+        let report = &mut self.tools.report;
+        report.receive();
+        if let Some(path) = report.chosen() {
+            match self.report_request() {
+                Some(request) => {
+                    let wake = ctx.clone();
+                    self.tools
+                        .report
+                        .start(request, path, move || wake.request_repaint());
+                }
+                None => {
+                    self.tools.report.message = Some("report not exported: no scene is open".into())
+                }
+            }
+        }
+        self.tools.report.show(ctx);
+    }
+
+    /// The lab report's request for side A as it is now: its scene with
+    /// the edits made, its camera and settings (N the course's 4).
+    pub fn report_request(&self) -> Option<crate::reports::lab::Request> {
+        let a = &self.sides.a;
+        let (scene, settings) = (a.engine.scene()?, a.settings()?);
+        Some(crate::reports::lab::Request {
+            scene_name: scene.source.label(),
+            scene: std::sync::Arc::new(scene.scene.clone()),
+            world: scene.world.clone(),
+            base: RenderSettings {
+                samples: crate::measure::benchmark::MATRIX_SAMPLES,
+                ..settings.clone()
+            },
+            edits: a.history.describe(&scene.scene),
+            runs: REPORT_RUNS,
+            threads: None,
+            encoding: tracer::render::Encoding::Srgb,
+            pixel: None,
+            quick: false,
+        })
     }
 
     /// The Studies window, started on the current scene, camera and size;

@@ -3,20 +3,31 @@
 
 use std::time::{Duration, Instant};
 
+use crate::gui::platform::clock::Clock;
+
 /// How long a notice stays on screen.
 const NOTICE_TIME: Duration = Duration::from_secs(5);
 
-#[derive(Default)]
 pub struct Messages {
     /// Shown above the image until dismissed.
     pub error: Option<String>,
     notice: Option<(String, Instant)>,
+    /// Times the notice's fade.
+    clock: Clock,
 }
 
 impl Messages {
+    pub fn new(clock: Clock) -> Self {
+        Self {
+            error: None,
+            notice: None,
+            clock,
+        }
+    }
+
     /// Shows `text` for a few seconds.
     pub fn notify(&mut self, text: impl Into<String>) {
-        self.notice = Some((text.into(), Instant::now()));
+        self.notice = Some((text.into(), self.clock.now()));
     }
 
     /// Draws the notice while it lasts, at the top of the window.
@@ -24,7 +35,8 @@ impl Messages {
         let Some((text, since)) = &self.notice else {
             return;
         };
-        if since.elapsed() >= NOTICE_TIME {
+        let shown_for = self.clock.now() - *since;
+        if shown_for >= NOTICE_TIME {
             self.notice = None;
             return;
         }
@@ -34,6 +46,6 @@ impl Messages {
             .show(ctx, |ui| {
                 egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(text));
             });
-        ctx.request_repaint_after(NOTICE_TIME - since.elapsed());
+        ctx.request_repaint_after(NOTICE_TIME - shown_for);
     }
 }

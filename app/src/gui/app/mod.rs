@@ -6,6 +6,7 @@
 
 mod command_handling;
 mod editing;
+mod lessons;
 mod logic;
 mod messages;
 mod navigation;
@@ -13,16 +14,20 @@ mod persisted;
 mod saving;
 mod testing;
 
+pub use saving::{FileDialog, FileQuestion};
+
 use crate::bundled;
 use crate::load::SceneSource;
 
 use super::commands::Command;
 use super::comparison::Comparison;
 use super::editor;
+use super::lessons::Lessons;
 use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
 use super::panels::{central, stats, unfilled};
+use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
 use super::sides::{SideId, Sides, Wakes};
@@ -49,6 +54,13 @@ pub struct WorkbenchApp {
     /// (every viewport command asks for one more frame).
     title: String,
     screenshot: Option<ScreenshotRequest>,
+    /// Times what the window times itself (notices, undo steps, the
+    /// observer's animation).
+    clock: Clock,
+    /// The Lessons window: lessons, steps, checks, progress.
+    lessons: Lessons,
+    /// A lesson step being set up, waiting for its scene.
+    pending_setup: Option<lessons::PendingSetup>,
 }
 
 impl WorkbenchApp {
@@ -60,23 +72,38 @@ impl WorkbenchApp {
         storage: Option<&dyn eframe::Storage>,
         initial: Option<SceneSource>,
     ) -> Self {
-        let (controls, session) = persisted::restore(storage);
+        Self::with_clock(ctx, storage, initial, Clock::wall())
+    }
+
+    /// [`WorkbenchApp::new`] timing what it times itself by `clock`: a
+    /// test gives it a stopped clock and moves it.
+    pub fn with_clock(
+        ctx: &egui::Context,
+        storage: Option<&dyn eframe::Storage>,
+        initial: Option<SceneSource>,
+        clock: Clock,
+    ) -> Self {
+        let (controls, session, progress) = persisted::restore(storage);
         let pacing = Pacing::default();
         let wakes = Wakes::of(ctx, &pacing.progress_pace);
         let mut app = Self {
             observer: Observer::new(&wakes),
-            sides: Sides::new(controls, wakes),
+            sides: Sides::new(controls, wakes, clock.clone()),
             comparison: Comparison::default(),
             navigation: Navigation::default(),
             tools: Tools::default(),
             session,
-            scene_list: SceneList::default(),
-            messages: Messages::default(),
+            scene_list: SceneList::new(clock.clone()),
+            messages: Messages::new(clock.clone()),
             dialogs: Dialogs::default(),
             pacing,
             title: String::new(),
             screenshot: None,
+            clock,
+            lessons: Lessons::default(),
+            pending_setup: None,
         };
+        app.lessons.progress = progress;
         let last_scene = match app.session.last_scene.clone() {
             Some(SceneSource::File(path)) if initial.is_none() && !path.exists() => {
                 app.messages.notify(format!(
@@ -210,12 +237,15 @@ impl WorkbenchApp {
         }
     }
 
-    /// The windows over the image: help, the editor, benchmark, studies.
+    /// The windows over the image: help, the editor, benchmark, studies,
+    /// lessons.
     fn tool_windows(&mut self, ctx: &egui::Context, commands: &mut Vec<Command>) {
         help::window(ctx, &mut self.tools.help_open);
         self.editor_window(ctx, commands);
         self.benchmark_window(ctx);
+        self.report_window(ctx);
         self.studies_window(ctx);
+        self.lessons_window(ctx);
     }
 }
 
@@ -255,7 +285,12 @@ impl eframe::App for WorkbenchApp {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        persisted::save(storage, &self.sides.a.controls, &self.session);
+        persisted::save(
+            storage,
+            &self.sides.a.controls,
+            &self.session,
+            &self.lessons.progress,
+        );
     }
 }
 

@@ -8,6 +8,7 @@ use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
 use tracer::render::RenderSettings;
 
+use crate::gui::lessons::Progress;
 use crate::gui::sides::Controls;
 use crate::load::SceneSource;
 
@@ -52,6 +53,8 @@ struct Saved {
     last_scene: Option<SceneSource>,
     recent: Vec<PathBuf>,
     show_stats: bool,
+    /// The lesson steps done, per lesson.
+    lessons: Progress,
 }
 
 impl Default for Saved {
@@ -62,12 +65,14 @@ impl Default for Saved {
             last_scene: session.last_scene,
             recent: session.recent,
             show_stats: session.show_stats,
+            lessons: Progress::new(),
         }
     }
 }
 
-/// The controls and session `storage` holds, or the defaults.
-pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session) {
+/// The controls, session and lesson progress `storage` holds, or the
+/// defaults.
+pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Progress) {
     let saved = storage
         .and_then(|s| s.get_string(eframe::APP_KEY))
         .and_then(|text| read(&text));
@@ -79,18 +84,25 @@ pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session) {
                 recent: saved.recent,
                 show_stats: saved.show_stats,
             },
+            saved.lessons,
         ),
-        None => (Controls::default(), Session::default()),
+        None => (Controls::default(), Session::default(), Progress::new()),
     }
 }
 
-/// Writes `controls` and `session` into `storage`.
-pub fn save(storage: &mut dyn eframe::Storage, controls: &Controls, session: &Session) {
+/// Writes `controls`, `session` and the lessons' `progress` into `storage`.
+pub fn save(
+    storage: &mut dyn eframe::Storage,
+    controls: &Controls,
+    session: &Session,
+    progress: &Progress,
+) {
     let saved = Saved {
         controls: controls.clone(),
         last_scene: session.last_scene.clone(),
         recent: session.recent.clone(),
         show_stats: session.show_stats,
+        lessons: progress.clone(),
     };
     eframe::set_value(storage, eframe::APP_KEY, &saved);
 }
@@ -142,8 +154,10 @@ mod tests {
             last_scene: Some(SceneSource::Bundled("glass".into())),
             recent: session.recent.clone(),
             show_stats: false,
+            lessons: Progress::from([("camera".to_string(), [0, 2].into())]),
         };
         let back = read(&ron::to_string(&saved).unwrap()).unwrap();
+        assert_eq!(back.lessons, saved.lessons);
         assert_eq!(back.controls, controls);
         assert_eq!(back.last_scene, saved.last_scene);
         assert_eq!((back.recent, back.show_stats), (session.recent, false));

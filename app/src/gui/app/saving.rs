@@ -1,9 +1,10 @@
-//! Files in and out: the native open and save dialogs on threads of their
-//! own (the UI keeps drawing), the PNG, EXR and edited-scene writes, and
+//! Files in and out: the open and save dialogs on threads of their own
+//! (the UI keeps drawing), behind [`FileDialog`] so a test can answer them, the PNG, EXR and edited-scene writes, and
 //! `--screenshot`.
 //! Their results come back to the UI thread as [`Reply`]s.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
 
@@ -13,8 +14,8 @@ use tracer::scene::{Scene, write_p3f_in};
 
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use crate::gui::sides::{Activity, Side, SideId};
+use crate::image_file::{save_exr, save_png};
 use crate::load::SceneSource;
-use crate::output::{save_exr, save_png};
 
 /// Results of background dialogs and saves, delivered to the UI thread.
 pub enum Reply {
@@ -69,7 +70,9 @@ impl SceneSave {
 
 /// What a save writes: the shown render (PNG) or the linear film (EXR).
 pub enum SaveImage {
-    Shown(Snapshot),
+    /// Boxed: a snapshot's statistics are far larger than the film's
+    /// handle.
+    Shown(Box<Snapshot>),
     Linear(image::Rgb32FImage),
 }
 
@@ -79,7 +82,10 @@ impl SaveImage {
         let image = if exr {
             side.engine.linear_image().map(SaveImage::Linear)
         } else {
-            side.image.shown().cloned().map(SaveImage::Shown)
+            side.image
+                .shown()
+                .cloned()
+                .map(|s| SaveImage::Shown(Box::new(s)))
         };
         image.ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))
     }
@@ -96,16 +102,63 @@ impl SaveImage {
     }
 }
 
-/// The channel the dialog threads answer on.
+/// What a file dialog asks: a file to open, or a name to write under.
+#[derive(Debug, Clone)]
+pub struct FileQuestion {
+    /// A name to write under; otherwise an existing file to open.
+    pub save: bool,
+    /// The filter's name ("PNG image") and its extensions.
+    pub filter: (&'static str, &'static [&'static str]),
+    /// Where the dialog opens.
+    pub folder: Option<PathBuf>,
+    /// The name it offers.
+    pub name: Option<String>,
+}
+
+/// Answers the window's file dialogs: the desktop's native dialog in the
+/// window, a double that answers as a test says in the tests. `None`: the
+/// user cancelled (or no dialog could be shown).
+pub trait FileDialog: Send + Sync {
+    fn ask(&self, question: &FileQuestion) -> Option<PathBuf>;
+}
+
+/// The desktop's own dialog (rfd).
+struct NativeDialog;
+
+impl FileDialog for NativeDialog {
+    fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
+        let (filter, extensions) = question.filter;
+        let mut dialog = rfd::FileDialog::new().add_filter(filter, extensions);
+        if let Some(folder) = &question.folder {
+            dialog = dialog.set_directory(folder);
+        }
+        if let Some(name) = &question.name {
+            dialog = dialog.set_file_name(name);
+        }
+        if question.save {
+            dialog.save_file()
+        } else {
+            dialog.pick_file()
+        }
+    }
+}
+
+/// The file dialogs, each asked on a thread of its own, and the channel
+/// their threads answer on.
 pub struct Dialogs {
     sender: Sender<Reply>,
     replies: Receiver<Reply>,
+    pub dialog: Arc<dyn FileDialog>,
 }
 
 impl Default for Dialogs {
     fn default() -> Self {
         let (sender, replies) = channel();
-        Self { sender, replies }
+        Self {
+            sender,
+            replies,
+            dialog: Arc::new(NativeDialog),
+        }
     }
 }
 
@@ -117,14 +170,16 @@ impl Dialogs {
 
     /// The native open dialog; false when no thread could be started.
     pub fn open(&self) -> bool {
-        let reply = self.sender.clone();
+        let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
         std::thread::Builder::new()
             .name("open-dialog".into())
             .spawn(move || {
-                let picked = rfd::FileDialog::new()
-                    .add_filter("Scenes and meshes", &["p3f", "nff", "obj", "ply"])
-                    .set_directory("scenes")
-                    .pick_file();
+                let picked = dialog.ask(&FileQuestion {
+                    save: false,
+                    filter: ("Scenes and meshes", &["p3f", "nff", "obj", "ply"]),
+                    folder: Some("scenes".into()),
+                    name: None,
+                });
                 let _ = reply.send(match picked {
                     Some(path) => Reply::Open(path),
                     None => Reply::Notice(
@@ -143,19 +198,21 @@ impl Dialogs {
         let stem = Path::new(scene)
             .file_stem()
             .map_or_else(|| "render".into(), |s| s.to_string_lossy().into_owned());
-        let (filter, extension) = match image {
-            SaveImage::Linear(_) => ("OpenEXR image", "exr"),
-            SaveImage::Shown(_) => ("PNG image", "png"),
+        let filter: (&str, &[&str]) = match image {
+            SaveImage::Linear(_) => ("OpenEXR image", &["exr"]),
+            SaveImage::Shown(_) => ("PNG image", &["png"]),
         };
-        let reply = self.sender.clone();
+        let question = FileQuestion {
+            save: true,
+            filter,
+            folder: None,
+            name: Some(format!("{stem}.{}", filter.1[0])),
+        };
+        let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
         std::thread::Builder::new()
             .name("save-dialog".into())
             .spawn(move || {
-                let Some(path) = rfd::FileDialog::new()
-                    .add_filter(filter, &[extension])
-                    .set_file_name(format!("{stem}.{extension}"))
-                    .save_file()
-                else {
+                let Some(path) = dialog.ask(&question) else {
                     let _ = reply.send(Reply::Notice(
                         "not saved (cancelled, or no file dialog on this desktop)".into(),
                     ));
@@ -175,16 +232,17 @@ impl Dialogs {
     /// write; false when no thread could be started.
     pub fn save_scene(&self, save: SceneSave, source: &SceneSource) -> bool {
         let (folder, name) = save.suggested(source);
-        let reply = self.sender.clone();
+        let question = FileQuestion {
+            save: true,
+            filter: ("P3F scene", &["p3f"]),
+            folder: Some(folder),
+            name: Some(name),
+        };
+        let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
         std::thread::Builder::new()
             .name("save-scene-dialog".into())
             .spawn(move || {
-                let Some(path) = rfd::FileDialog::new()
-                    .add_filter("P3F scene", &["p3f"])
-                    .set_directory(folder)
-                    .set_file_name(name)
-                    .save_file()
-                else {
+                let Some(path) = dialog.ask(&question) else {
                     let _ = reply.send(Reply::Notice(
                         "scene not saved (cancelled, or no file dialog on this desktop)".into(),
                     ));

@@ -8,15 +8,19 @@ use tracer::render::Snapshot;
 use tracer::scene::edit::{Edit, Effect};
 
 use super::WorkbenchApp;
-use super::saving::SaveImage;
+use super::saving::FileDialog;
+use crate::gui::Clock;
 use crate::gui::comparison::Comparison;
 use crate::gui::editor::Editor;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
+use crate::gui::image::viewport::Zoom;
+use crate::gui::lessons::Lessons;
 use crate::gui::observer::Observer;
 use crate::gui::sides::{Controls, Engine, Side};
 use crate::gui::windows::benchmark::BenchWindow;
 use crate::gui::windows::ray_tree::Inspector;
+use crate::gui::windows::report::ReportExport;
 use crate::gui::windows::studies::StudiesWindow;
 
 impl WorkbenchApp {
@@ -50,10 +54,20 @@ impl WorkbenchApp {
         &self.observer
     }
 
+    /// The Lessons window: the lesson, step, verdict and progress.
+    pub fn lessons(&self) -> &Lessons {
+        &self.lessons
+    }
+
+    /// The Lessons window, as typing in it changes it.
+    pub fn lessons_mut(&mut self) -> &mut Lessons {
+        &mut self.lessons
+    }
+
     /// The observer also draws the rays of row `y`'s pixels, as its
     /// panel's "More pixels" does.
     pub fn observer_pattern_row(&mut self, y: u32) {
-        self.observer.pattern = Some(crate::measure::observer::PixelPattern::Row(y));
+        self.observer.pattern = Some(crate::figures::observer::PixelPattern::Row(y));
     }
 
     /// The per-pixel view the images show.
@@ -74,6 +88,16 @@ impl WorkbenchApp {
     /// The structure overlay.
     pub fn overlay(&self) -> &StructureOverlay {
         &self.tools.overlay
+    }
+
+    /// Export report...'s state: its progress and what it last did.
+    pub fn report_export(&self) -> &ReportExport {
+        &self.tools.report
+    }
+
+    /// Export report... with `path` chosen in its file dialog.
+    pub fn export_report_to(&mut self, path: PathBuf) {
+        self.tools.report.choose(path);
     }
 
     /// The benchmark matrix window.
@@ -112,6 +136,33 @@ impl WorkbenchApp {
         self.scene_list.catalog.is_complete()
     }
 
+    /// The image's zoom: screen pixels per image pixel, `None` when it
+    /// fits the view.
+    pub fn zoom_scale(&self) -> Option<f32> {
+        match self.navigation.placement.zoom {
+            Zoom::Fit => None,
+            Zoom::Scale(scale) => Some(scale),
+        }
+    }
+
+    /// Answers the window's file dialogs (Open, Save PNG, Save EXR, Save
+    /// scene) with `dialog` instead of the desktop's.
+    pub fn answer_file_dialogs_with(&mut self, dialog: std::sync::Arc<dyn FileDialog>) {
+        self.dialogs.dialog = dialog;
+    }
+
+    /// Counts the scene list at normal priority: a test waiting for the
+    /// counts must not depend on an idle thread getting a core.
+    pub fn count_scenes_at_normal_priority(&mut self) {
+        self.scene_list.catalog.lowest_priority = false;
+    }
+
+    /// The clock the window times itself by (a test's stopped clock moves
+    /// only when the test moves it).
+    pub fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
     /// How long after opening the scene list is counted even while the
     /// first render runs (3 s unless a test says otherwise).
     pub fn set_catalog_delay(&mut self, delay: Duration) {
@@ -132,17 +183,6 @@ impl WorkbenchApp {
     /// Shows or hides the statistics panel, as Tab does.
     pub fn set_statistics_shown(&mut self, shown: bool) {
         self.session.show_stats = shown;
-    }
-
-    /// Writes side A's render on screen, at full resolution, to `path`, as
-    /// Save PNG does with the file picked.
-    pub fn save_png_to(&self, path: &Path) -> anyhow::Result<()> {
-        SaveImage::of(&self.sides.a, false)?.write(path)
-    }
-
-    /// Writes side A's linear film to `path` (OpenEXR), as Save as EXR does.
-    pub fn save_exr_to(&self, path: &Path) -> anyhow::Result<()> {
-        SaveImage::of(&self.sides.a, true)?.write(path)
     }
 
     /// Side B shows the image at `path`, as "Compare with image..." does

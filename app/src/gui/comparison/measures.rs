@@ -12,7 +12,7 @@ use tracer::render::{JobState, Snapshot, View};
 use crate::measure::ab::{Heatmap, Metrics, measure};
 use crate::measure::value_difference::ValueDifference;
 
-use super::{Comparison, Layout, ValuesKey};
+use super::{CompareLayout, Comparison, ValuesKey};
 use crate::gui::sides::{Activity, Engine, Side};
 
 impl Comparison {
@@ -38,7 +38,7 @@ impl Comparison {
         if let Some(sa) = image_a.shown() {
             let b_done =
                 self.reference.is_some() || (is_done(&b.engine) && b.image.is_current(&b.engine));
-            let redraw_difference = self.layout == Layout::Difference
+            let redraw_difference = self.layout == CompareLayout::Difference
                 && self.difference_of != Some((versions.0, versions.1, self.gain, None));
             let measure_now = b_done
                 && is_done(engine_a)
@@ -89,7 +89,7 @@ impl Comparison {
             self.values = ValueDifference::of(&a, &b).map(|d| (key, d));
         }
         let shown = (version_a, version_b, self.gain, Some(view));
-        if self.layout == Layout::Difference
+        if self.layout == CompareLayout::Difference
             && self.difference_of != Some(shown)
             && let Some((of, d)) = &self.values
             && *of == key
@@ -170,22 +170,19 @@ fn upload(ctx: &egui::Context, image: ColorImage, texture: Option<TextureHandle>
 
 #[cfg(test)]
 mod tests {
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
 
     use tracer::render::{Encoding, RenderSettings};
 
     use super::*;
     use crate::gui::comparison::ReferenceImage;
+    use crate::gui::platform::clock::Clock;
     use crate::gui::platform::frame_meter::ProgressPace;
     use crate::gui::sides::{Controls, Sides, Wakes};
     use crate::load::SceneSource;
 
-    fn wait_until(mut done: impl FnMut() -> bool) {
-        let start = Instant::now();
-        while !done() {
-            assert!(start.elapsed() < Duration::from_secs(120), "gave up");
-            std::thread::sleep(Duration::from_millis(5));
-        }
+    fn wait_until(done: impl FnMut() -> bool) {
+        tracer::waiting::wait_until("the sides", done);
     }
 
     /// Sides whose A is a finished 32 x 24 render of a bundled scene,
@@ -194,6 +191,7 @@ mod tests {
         let mut sides = Sides::new(
             Controls::default(),
             Wakes::of(ctx, &ProgressPace::default()),
+            Clock::stopped(),
         );
         let a = &mut sides.a;
         a.engine.load(SceneSource::Bundled("balls_low".into()));

@@ -23,7 +23,7 @@ use super::sides::{Side, Version};
 
 /// How the two renders are shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Layout {
+pub enum CompareLayout {
     SideBySide,
     /// A left of a draggable divider, B right of it.
     Split,
@@ -33,20 +33,20 @@ pub enum Layout {
     Difference,
 }
 
-impl Layout {
-    pub const ALL: [Layout; 4] = [
-        Layout::SideBySide,
-        Layout::Split,
-        Layout::Flip,
-        Layout::Difference,
+impl CompareLayout {
+    pub const ALL: [CompareLayout; 4] = [
+        CompareLayout::SideBySide,
+        CompareLayout::Split,
+        CompareLayout::Flip,
+        CompareLayout::Difference,
     ];
 
     pub fn label(self) -> &'static str {
         match self {
-            Layout::SideBySide => "Side by side",
-            Layout::Split => "Split",
-            Layout::Flip => "Flip",
-            Layout::Difference => "Difference",
+            CompareLayout::SideBySide => "Side by side",
+            CompareLayout::Split => "Split",
+            CompareLayout::Flip => "Flip",
+            CompareLayout::Difference => "Difference",
         }
     }
 }
@@ -56,7 +56,7 @@ type ValuesKey = (Version, Version, View);
 
 /// The comparison's choices and results; reset when compare mode ends.
 pub struct Comparison {
-    pub layout: Layout,
+    pub layout: CompareLayout,
     /// Divider of the split view, as a fraction of the image width.
     pub split: f32,
     /// Amplification of the difference heat map.
@@ -84,7 +84,7 @@ pub struct Comparison {
 impl Default for Comparison {
     fn default() -> Self {
         Self {
-            layout: Layout::SideBySide,
+            layout: CompareLayout::SideBySide,
             split: 0.5,
             gain: 8.0,
             difference: None,

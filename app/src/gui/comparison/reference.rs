@@ -10,7 +10,7 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use image::RgbImage;
 use tracer::render::Encoding;
 
-use crate::measure::ab::{Reference, fit_reference, read_reference};
+use crate::measure::ab::{FittedReference, fit_reference, read_reference};
 
 /// The image side B shows.
 pub struct ReferenceImage {
@@ -27,7 +27,7 @@ pub struct ReferenceImage {
 struct Fitted {
     size: (u32, u32),
     fit: bool,
-    result: Result<Reference, String>,
+    result: Result<FittedReference, String>,
 }
 
 /// What the dialog thread sends: nothing picked, or the file read.
@@ -95,7 +95,7 @@ impl ReferenceImage {
     }
 
     /// The image at A's `size`, or why it cannot be compared at it.
-    pub fn at_size(&mut self, size: (u32, u32)) -> &Result<Reference, String> {
+    pub fn at_size(&mut self, size: (u32, u32)) -> &Result<FittedReference, String> {
         let stale = !matches!(&self.fitted, Some(f) if f.size == size && f.fit == self.fit);
         if stale {
             self.fitted = None;

@@ -11,10 +11,10 @@ use tracer::camera::Camera;
 use tracer::scene::edit::{Edit, LightChange};
 
 use super::{Editor, SELECTION_COLOUR, drag_shift, object_at, to_screen};
+use crate::figures::projection::Projector;
 use crate::gui::image::viewport::ViewportResponse;
 use crate::gui::observer::Observer;
 use crate::gui::sides::Side;
-use crate::measure::projection::Projector;
 
 /// How near a light's marker, in screen points, a press takes hold of it.
 const GRAB_RADIUS: f32 = 12.0;

@@ -21,9 +21,9 @@ use tracer::world::World;
 
 use super::image::viewport::Gesture;
 use super::sides::{Engine, Side};
+use crate::figures::projection::Projector;
 use crate::load::SceneSource;
-use crate::measure::projection::Projector;
-use crate::measure::ray_tree_report;
+use crate::reports::ray_tree;
 
 pub use panel::window;
 
@@ -195,7 +195,7 @@ impl Editor {
 /// first, if any.
 pub fn object_at(engine: &Engine, pixel: (u32, u32)) -> Option<usize> {
     let (scene, settings) = (engine.scene()?, engine.settings()?);
-    let tree = ray_tree_report::inspect(&scene.world, engine.index(), settings, pixel, 0).ok()?;
+    let tree = ray_tree::inspect(&scene.world, engine.index(), settings, pixel, 0).ok()?;
     match &tree.nodes.first()?.outcome {
         Outcome::Surface(surface) => Some(surface.object as usize),
         _ => None,

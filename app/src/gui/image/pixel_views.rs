@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 use egui::{Color32, Ui};
 use tracer::render::{HEAT_PALETTE, HeatScale, View, ViewHeatmap, ViewSummary};
 
+use crate::figures::heat_map::format_number;
 use crate::gui::sides::{Engine, Version};
-use crate::measure::heatmap_image::format_number;
 
 /// What the user chose, and the scale fitted to what the engines measured.
 #[derive(Debug, Clone, Default)]
@@ -220,6 +220,7 @@ fn describe(view: View) -> &'static str {
         View::Distance => "Distance to the eye ray's hit",
         View::Normals => "The eye hit's shading normal as a colour",
         View::Objects => "A false colour per scene object",
+        View::Samples => "Samples the pixel took: where adaptive sampling spent them",
     }
 }
 

@@ -9,9 +9,9 @@ use glam::Vec3A;
 use tracer::accel::{AccelKind, StructureLayer, Visit};
 use tracer::render::Frame;
 
+use crate::figures::overlay;
+use crate::figures::projection::Projector;
 use crate::gui::sides::Engine;
-use crate::measure::overlay_image;
-use crate::measure::projection::Projector;
 
 /// The overlay's controls and the segments of the structure it draws.
 #[derive(Default)]
@@ -115,7 +115,7 @@ impl StructureOverlay {
             .filter(|v| matches!(v, Visit::Cell { .. }) == grid)
             .collect();
         for (i, visit) in visits.iter().enumerate() {
-            let [r, g, b] = overlay_image::visit_colour(i, visits.len());
+            let [r, g, b] = overlay::visit_colour(i, visits.len());
             let stroke = Stroke::new(2.0, Color32::from_rgb(r, g, b));
             for segment in visit.edges() {
                 line(segment, stroke);

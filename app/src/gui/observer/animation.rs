@@ -11,8 +11,10 @@ pub struct Animation {
     pub speed: f32,
     /// How far it got, in phases; `None` at rest (everything drawn).
     time: Option<f32>,
-    /// When it last advanced, while playing.
-    playing_since: Option<Instant>,
+    playing: bool,
+    /// When it last advanced, while playing (`None` until the first
+    /// [`Animation::advance`] after play or resume).
+    advanced_at: Option<Instant>,
 }
 
 impl Default for Animation {
@@ -20,7 +22,8 @@ impl Default for Animation {
         Self {
             speed: 1.0,
             time: None,
-            playing_since: None,
+            playing: false,
+            advanced_at: None,
         }
     }
 }
@@ -29,29 +32,31 @@ impl Animation {
     /// Starts again from the eye rays.
     pub fn play(&mut self) {
         self.time = Some(0.0);
-        self.playing_since = Some(Instant::now());
+        self.playing = true;
+        self.advanced_at = None;
     }
 
     /// Holds where it is (or, at rest, stays at rest).
     pub fn pause(&mut self) {
-        self.playing_since = None;
+        self.playing = false;
     }
 
     /// Goes on from where it was paused.
     pub fn resume(&mut self) {
         if self.time.is_some() {
-            self.playing_since = Some(Instant::now());
+            self.playing = true;
+            self.advanced_at = None;
         }
     }
 
     pub fn is_playing(&self) -> bool {
-        self.playing_since.is_some()
+        self.playing
     }
 
     /// Shows the next generation whole, paused; after the last, the whole
     /// tree at rest.
     pub fn step(&mut self, phases: u32) {
-        self.playing_since = None;
+        self.playing = false;
         let next = self.time.map_or(1.0, |t| t.floor() + 1.0);
         self.time = (next < phases as f32).then_some(next);
     }
@@ -59,17 +64,20 @@ impl Animation {
     /// The animation at rest: every ray whole.
     pub fn rest(&mut self) {
         self.time = None;
-        self.playing_since = None;
+        self.playing = false;
     }
 
-    /// Moves time on to `now`; at the end of `phases` it comes to rest.
-    /// True while it still plays (the window asks for another frame).
+    /// Moves time on to `now` (the window's clock; the first call after
+    /// play or resume starts counting from it); at the end of `phases` it
+    /// comes to rest. True while it still plays (the window asks for
+    /// another frame).
     pub fn advance(&mut self, now: Instant, phases: u32) -> bool {
-        let (Some(since), Some(time)) = (self.playing_since, self.time) else {
+        let (true, Some(time)) = (self.playing, self.time) else {
             return false;
         };
+        let since = *self.advanced_at.get_or_insert(now);
         let time = time + (now - since).as_secs_f32() * self.speed;
-        self.playing_since = Some(now);
+        self.advanced_at = Some(now);
         if time >= phases as f32 {
             self.rest();
             return false;
@@ -107,7 +115,8 @@ mod tests {
         animation.play();
         assert_eq!((animation.fraction(0), animation.fraction(1)), (0.0, 0.0));
         let start = Instant::now();
-        animation.playing_since = Some(start);
+        assert!(animation.advance(start, 3), "playing from here");
+        assert_eq!(animation.fraction(0), 0.0);
         // Half a second at two phases a second: the eye rays are whole,
         // the first bounce has not started.
         assert!(animation.advance(start + Duration::from_millis(500), 3));

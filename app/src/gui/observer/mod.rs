@@ -13,9 +13,9 @@ use tracer::camera::{Camera, CameraPose};
 use tracer::render::{Frame, JobState, RayTree, RenderSettings, View};
 use tracer::world::World;
 
-use crate::measure::observer::{self, PixelPattern};
-use crate::measure::projection::DepthMap;
-use crate::measure::ray_tree_report;
+use crate::figures::observer::{self, PixelPattern};
+use crate::figures::projection::DepthMap;
+use crate::reports::ray_tree;
 
 use super::image::viewport::{Gesture, Placement, ViewportResponse};
 use super::sides::{Activity, Engine, LiveImage, Side, Version, Wakes};
@@ -152,16 +152,23 @@ impl Observer {
         let Some(target) = a.settings() else {
             return Ok(());
         };
-        if self.pose.is_none() {
-            let camera = Frame::camera(&scene.world, target).map_err(|e| e.to_string())?;
-            self.pose = Some(observer::framing(
-                &scene.world,
-                &camera,
-                scene.world.view.angle,
-                self.aspect,
-            ));
-        }
-        if let Some(index) = a.engine.index() {
+        let pose = match self.pose {
+            Some(pose) => pose,
+            None => {
+                let camera = Frame::camera(&scene.world, target).map_err(|e| e.to_string())?;
+                *self.pose.insert(observer::framing(
+                    &scene.world,
+                    &camera,
+                    scene.world.view.angle,
+                    self.aspect,
+                ))
+            }
+        };
+        // A's structure serves when it is the one the observer's view is
+        // traced with; otherwise the observer's engine keeps its own.
+        if let Some(index) = a.engine.index()
+            && index.matches(observer::VIEW_ACCEL, target.grid_multiplier)
+        {
             self.engine.share_index(index);
         }
         let width = if self.dragging {
@@ -170,16 +177,7 @@ impl Observer {
             self.resolution.max(32)
         };
         let height = ((width as f32 * self.aspect).round() as u32).max(16);
-        let settings = RenderSettings {
-            width,
-            height,
-            camera: self.pose,
-            antialiasing: false,
-            depth_of_field: false,
-            soft_shadows: false,
-            keep_refining: false,
-            ..target.clone()
-        };
+        let settings = observer::render_settings(target, pose, width, height);
         self.engine.set_views(true);
         let moved = self.engine.settings().map(|s| s.camera) != Some(settings.camera);
         let result = if moved || self.may_render_beside(a) {
@@ -295,7 +293,7 @@ impl Observer {
                 continue;
             };
             for &pixel in &key.1 {
-                if let Ok(tree) = ray_tree_report::inspect(
+                if let Ok(tree) = ray_tree::inspect(
                     &scene.world,
                     engine_side.engine.index(),
                     settings,

@@ -9,10 +9,10 @@ use glam::Vec2;
 use tracer::render::Frame;
 
 use super::Observer;
+use crate::figures::observer::{self, Part};
+use crate::figures::projection::Projector;
 use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::sides::Side;
-use crate::measure::observer::{self, Part};
-use crate::measure::projection::Projector;
 
 /// Pieces a segment is cut into to find where it is hidden.
 const PIECES: usize = 16;

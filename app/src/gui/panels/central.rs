@@ -7,7 +7,7 @@ use tracer::render::JobState;
 use tracer::scene::edit::Edit;
 
 use super::banners;
-use crate::gui::comparison::{Comparison, Layout};
+use crate::gui::comparison::{CompareLayout, Comparison};
 use crate::gui::image::viewport::{self, Layers, Placement, SplitWith, ViewportResponse};
 use crate::gui::image::{pixel_views, ray_paths};
 use crate::gui::observer::{self, Observer, ObserverLayout};
@@ -228,7 +228,7 @@ impl Images<'_> {
             opaque: comparison.b_is_opaque(b),
         };
         match comparison.layout {
-            Layout::SideBySide => {
+            CompareLayout::SideBySide => {
                 let half = egui::vec2(ui.available_width() / 2.0 - 2.0, ui.available_height());
                 let (placement, size, full) = (self.placement, self.size, self.full);
                 ui.horizontal(|ui| {
@@ -246,14 +246,14 @@ impl Images<'_> {
                 })
                 .inner
             }
-            Layout::Split => {
+            CompareLayout::Split => {
                 let split = b_textures.last().map(|texture| SplitWith {
                     texture,
                     at: &mut comparison.split,
                 });
                 self.show(ui, &a.image.layers(), split)
             }
-            Layout::Flip => {
+            CompareLayout::Flip => {
                 let layers = if flip_held {
                     b_layers
                 } else {
@@ -261,7 +261,7 @@ impl Images<'_> {
                 };
                 self.show(ui, &layers, None)
             }
-            Layout::Difference => {
+            CompareLayout::Difference => {
                 // A heat map of every pixel: opaque.
                 let textures: Vec<_> = comparison.difference().into_iter().collect();
                 let difference = Layers {

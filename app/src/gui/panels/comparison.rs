@@ -7,12 +7,12 @@ use egui::{Color32, RichText, Ui};
 use tracer::metrics::Palette;
 use tracer::render::{Encoding, Snapshot, View};
 
-use crate::gui::comparison::{Comparison, Layout};
+use crate::figures::heat_map::format_number;
+use crate::gui::comparison::{CompareLayout, Comparison};
 use crate::gui::image::pixel_views::colour_bar;
 use crate::gui::sides::Side;
-use crate::measure::describe::{describe, side_labels};
-use crate::measure::heatmap_image::format_number;
 use crate::measure::value_difference::{ValueStats, diverging_colour};
+use crate::reports::describe::{describe, side_labels};
 
 /// "A: grid off", "B: grid on, m = 4": what differs between the sides
 /// (or what A is, beside B's image), and the scene edits one side has and
@@ -66,10 +66,10 @@ fn with_edits(settings: String, edits: &[String]) -> String {
 /// side is, and the difference view's gain and legend.
 pub fn header(ui: &mut Ui, comparison: &mut Comparison, a: &Side, b: &Side) {
     ui.horizontal(|ui| {
-        for layout in Layout::ALL {
+        for layout in CompareLayout::ALL {
             ui.selectable_value(&mut comparison.layout, layout, layout.label());
         }
-        if comparison.layout == Layout::Flip {
+        if comparison.layout == CompareLayout::Flip {
             ui.weak("hold X to see B");
         }
     });
@@ -81,7 +81,7 @@ pub fn header(ui: &mut Ui, comparison: &mut Comparison, a: &Side, b: &Side) {
             ui.label(RichText::new(label_b).strong());
         });
     }
-    if comparison.layout == Layout::Difference {
+    if comparison.layout == CompareLayout::Difference {
         difference_controls(ui, comparison);
     }
 }
@@ -148,10 +148,10 @@ pub fn numbers(ui: &mut Ui, comparison: &Comparison, a: &Side, b: &Side) {
                 format!("{} / {}", s.stats.passes_done, s.stats.passes_target)
             });
             row(ui, "Rays", &|s| {
-                crate::report::si(s.stats.counters.total_rays() as f64)
+                crate::reports::render_stats::si(s.stats.counters.total_rays() as f64)
             });
             row(ui, "Rays per second", &|s| {
-                crate::report::si(s.stats.rays_per_second())
+                crate::reports::render_stats::si(s.stats.rays_per_second())
             });
         });
     if let (Some(a), Some(b)) = (a, b) {

@@ -5,9 +5,9 @@
 use egui::{Slider, Ui};
 
 use super::settings::command_toggle;
+use crate::figures::observer::PixelPattern;
 use crate::gui::commands::Command;
 use crate::gui::observer::{Observer, ObserverLayout};
-use crate::measure::observer::PixelPattern;
 
 pub fn show(ui: &mut Ui, observer: &mut Observer, commands: &mut Vec<Command>) {
     command_toggle(ui, observer.on, Command::ToggleObserver, commands);

@@ -6,12 +6,14 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use crate::gui::platform::clock::Clock;
+
 use egui::{RichText, Ui};
 use tracer::scene::{Limits, Primitive, Scene, parse_scene};
 
 use crate::bundled;
 use crate::load::SceneSource;
-use crate::report::si;
+use crate::reports::render_stats::si;
 
 use super::settings::command_button;
 use crate::gui::commands::Command;
@@ -28,27 +30,29 @@ pub struct SceneList {
     /// Counting starts this long after opening even if the first render
     /// still runs.
     pub delay: Duration,
-}
-
-impl Default for SceneList {
-    fn default() -> Self {
-        Self {
-            catalog: Catalog::default(),
-            disk_scenes: scene_files(Path::new("scenes")),
-            opened_at: Instant::now(),
-            delay: CATALOG_DELAY,
-        }
-    }
+    /// Times the delay.
+    clock: Clock,
 }
 
 impl SceneList {
+    /// The list as the window opens, `clock` timing its counting's delay.
+    pub fn new(clock: Clock) -> Self {
+        Self {
+            catalog: Catalog::default(),
+            disk_scenes: scene_files(Path::new("scenes")),
+            opened_at: clock.now(),
+            delay: CATALOG_DELAY,
+            clock,
+        }
+    }
+
     /// Starts counting the bundled scenes once the first render no longer
     /// needs the machine (`busy` false), or `delay` ([`CATALOG_DELAY`]) after opening
-    /// at the latest: parsing them took 30-100 ms of CPU during
-    /// balls_medium's 0.4 s first render on two cores, its thread's lowest
-    /// priority notwithstanding. `wake` redraws as counts arrive.
+    /// at the latest: parsing them took a noticeable share of a short first
+    /// render's CPU on two cores, its thread's lowest priority
+    /// notwithstanding. `wake` redraws as counts arrive.
     pub fn count_when_due(&mut self, busy: bool, wake: impl Fn() + Send + 'static) {
-        if self.catalog.is_started() || (busy && self.opened_at.elapsed() < self.delay) {
+        if self.catalog.is_started() || (busy && self.clock.now() - self.opened_at < self.delay) {
             return;
         }
         self.catalog.start(wake);
@@ -57,11 +61,24 @@ impl SceneList {
 
 /// Object counts of the bundled scenes, parsed once on a background thread
 /// so the list opens at once even with a 262k-triangle mesh among them.
-#[derive(Default)]
 pub struct Catalog {
     /// A size summary per scene name; `None` for a scene that does not parse.
     summaries: Arc<Mutex<HashMap<&'static str, Option<String>>>>,
     started: bool,
+    /// Whether the counting thread yields to everything else (the
+    /// window's default); tests waiting for the counts turn it off, as
+    /// beside a build on two cores the lowest priority gets almost nothing.
+    pub lowest_priority: bool,
+}
+
+impl Default for Catalog {
+    fn default() -> Self {
+        Self {
+            summaries: Arc::default(),
+            started: false,
+            lowest_priority: true,
+        }
+    }
 }
 
 impl Catalog {
@@ -72,14 +89,17 @@ impl Catalog {
             return;
         }
         let summaries = self.summaries.clone();
+        let lowest_priority = self.lowest_priority;
         // Without the thread the list simply shows no counts.
         let _ = std::thread::Builder::new()
             .name("scene-catalog".into())
             .spawn(move || {
                 // Counting can wait: a render must not.
-                let _ = thread_priority::set_current_thread_priority(
-                    thread_priority::ThreadPriority::Min,
-                );
+                if lowest_priority {
+                    let _ = thread_priority::set_current_thread_priority(
+                        thread_priority::ThreadPriority::Min,
+                    );
+                }
                 for scene in bundled::SCENES {
                     let parsed =
                         parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());

@@ -3,13 +3,62 @@
 
 use egui::{Slider, Ui};
 use tracer::accel::AccelKind;
-use tracer::render::{MAX_DEPTH, MAX_GRID_MULTIPLIER};
+use tracer::render::{
+    AdaptiveSampling, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_SAMPLES, RenderSettings, Sampling,
+};
 
 use crate::gui::commands::Command;
 use crate::gui::sides::Controls;
 
 /// Largest N offered by the slider (N x N samples per pixel).
 const SLIDER_MAX_SAMPLES: u32 = 16;
+
+/// Uniform or adaptive sampling.
+fn adaptive_switch(ui: &mut Ui, render: &mut RenderSettings) {
+    let mut adaptive = matches!(render.sampling, Sampling::Adaptive(_));
+    if ui
+        .checkbox(&mut adaptive, "adaptive")
+        .on_hover_text(
+            "Spend anti-aliasing's samples where each pixel's estimated error is above the \
+             noise threshold, up to (2N)^2; flat pixels stop at the minimum",
+        )
+        .changed()
+    {
+        render.sampling = if adaptive {
+            Sampling::Adaptive(AdaptiveSampling::for_samples(
+                render.samples,
+                AdaptiveSampling::default().noise_threshold,
+            ))
+        } else {
+            Sampling::Uniform
+        };
+    }
+}
+
+/// Adaptive sampling's threshold, maximum and minimum, when it is on.
+fn adaptive_knobs(ui: &mut Ui, render: &mut RenderSettings) {
+    if let Sampling::Adaptive(a) = &mut render.sampling {
+        ui.add(
+            Slider::new(&mut a.noise_threshold, 0.0005..=0.1)
+                .logarithmic(true)
+                .text("Noise threshold"),
+        )
+        .on_hover_text(
+            "A pixel stops once the standard error of its mean is below this (display units: \
+             0.01 is 2.55 levels of 255)",
+        );
+        let most = MAX_SAMPLES * MAX_SAMPLES;
+        ui.add(
+            Slider::new(&mut a.max_spp, 1..=most)
+                .logarithmic(true)
+                .text("Max spp"),
+        )
+        .on_hover_text("Samples no pixel exceeds; its square root stratifies the pixel");
+        a.min_spp = a.min_spp.min(a.max_spp);
+        ui.add(Slider::new(&mut a.min_spp, 1..=a.max_spp).text("Min spp"))
+            .on_hover_text("Samples every pixel takes before its error is trusted");
+    }
+}
 
 /// A structure's name in the window.
 fn accel_label(kind: AccelKind) -> &'static str {
@@ -96,8 +145,14 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
     });
 
     ui.separator();
-    ui.add(Slider::new(&mut controls.render.samples, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
-        .on_hover_text("N x N samples per pixel (and strata of the lens and of soft shadows)");
+    // N and the switch to adaptive sampling share a row: the panel keeps
+    // its height (the overlay's options below stay on screen).
+    ui.horizontal(|ui| {
+        ui.add(Slider::new(&mut controls.render.samples, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
+            .on_hover_text("N x N samples per pixel (and strata of the lens and of soft shadows)");
+        adaptive_switch(ui, &mut controls.render);
+    });
+    adaptive_knobs(ui, &mut controls.render);
     ui.add(Slider::new(&mut controls.render.aperture, 0.0..=64.0).text("Aperture (px)"))
         .on_hover_text("Lens diameter in pixels; depth of field must be on");
     ui.add(
@@ -160,6 +215,7 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
     ui.horizontal_wrapped(|ui| {
         command_button(ui, Command::Save, commands);
         command_button(ui, Command::SaveExr, commands);
+        command_button(ui, Command::ExportReport, commands);
         command_button(ui, Command::ZoomFit, commands);
         command_button(ui, Command::ZoomActualSize, commands);
     });

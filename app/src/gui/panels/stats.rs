@@ -6,7 +6,7 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 use tracer::accel::AccelInfo;
 use tracer::stats::{RenderStats, SceneCounts};
 
-use crate::report::si;
+use crate::reports::render_stats::si;
 
 use crate::gui::comparison::Comparison;
 use crate::gui::platform::frame_meter::FrameMeter;
@@ -68,11 +68,46 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
         .striped(true)
         .show(ui, |ui| {
             row(ui, "Resolution", format!("{} x {}", s.width, s.height));
-            row(
-                ui,
-                "Samples per pixel",
-                format!("{} / {}", s.passes_done, s.passes_target),
-            );
+            match &s.adaptive {
+                None => {
+                    row(
+                        ui,
+                        "Samples per pixel",
+                        format!("{} / {}", s.passes_done, s.passes_target),
+                    );
+                }
+                Some(a) => {
+                    row(
+                        ui,
+                        "Passes",
+                        format!("{} / at most {}", s.passes_done, s.passes_target),
+                    );
+                    row(
+                        ui,
+                        "Samples per pixel",
+                        format!("{:.1} mean, {} max", a.mean_spp(), a.max_spp),
+                    );
+                    row(
+                        ui,
+                        "Pixels done",
+                        format!("{:.1}%", 100.0 * (1.0 - a.active_share())),
+                    )
+                    .on_hover_text("Pixels whose estimated error is below the noise threshold");
+                    row(
+                        ui,
+                        "Estimated error",
+                        if a.error.is_finite() {
+                            format!("{:.4} ({:.1} levels)", a.error, a.error * 255.0)
+                        } else {
+                            "-".into()
+                        },
+                    )
+                    .on_hover_text(
+                        "RMS of the pixels' standard errors, in display units: about the RMS \
+                         distance to the converged image",
+                    );
+                }
+            }
             row(
                 ui,
                 "Render time",

@@ -21,7 +21,7 @@ pub const MIN_PROGRESS_INTERVAL: Duration = Duration::from_millis(33);
 /// Slowest refresh of the progressive image, however costly drawing is.
 const MAX_PROGRESS_INTERVAL: Duration = Duration::from_secs(2);
 /// Progress redraws may take at most 1 / PAINT_SHARE of the CPU the render
-/// gets: the window then renders at about 90% of a headless render's speed.
+/// gets, so the window renders nearly as fast as a headless render.
 const PAINT_SHARE: u32 = 10;
 /// The span over which the CPU cost of frames is averaged: a software
 /// rasterizer finishes a frame well after the UI thread handed it over.

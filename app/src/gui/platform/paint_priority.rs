@@ -3,15 +3,12 @@
 //!
 //! Without a GPU, Mesa paints the window on threads of its own (`llvmpipe-N`,
 //! for GL and for Vulkan's lavapipe alike), one per core. At the same
-//! priority as the render threads they took 40% of a two-core machine
-//! during balls_medium's 0.35 s first render, and the window rendered at
-//! 0.70 of a headless render's rays/s. At [`NICENESS`] more than the
-//! process, the scheduler gives them about a quarter of a core's time next
-//! to a busy render thread and all of it otherwise. Measured under Xvfb on
-//! two cores: window/headless 0.70 -> 0.79-0.87 alone; with the patched
-//! egui-wgpu (frames a third of the cost, `vendor/`) 0.80 at the usual
-//! priority and 0.81-0.85 at this one, the window keeping 42-44 frames a
-//! second while a render runs (43-53 at the usual priority).
+//! priority as the render threads they took a large share of a two-core
+//! machine during a first render, and the window rendered well below a
+//! headless render's rays/s. At [`NICENESS`] more than the process, the
+//! scheduler gives them about a quarter of a core's time next to a busy
+//! render thread and all of it otherwise, and the window keeps its frame
+//! rate (`docs/PERFORMANCE.md` has the figures).
 //!
 //! A GPU driver has no such threads; then nothing changes.
 

@@ -2,25 +2,17 @@
 //! after a delay) and closes, so CI can check the real window under Xvfb and
 //! the README's picture is made by the project's own tooling.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::{Arc, Mutex};
-use std::time::Duration;
 
 use anyhow::Result;
 
 use tracer::render::Snapshot;
 
-use crate::output::save_png;
-use crate::report::si;
+use crate::image_file::save_png;
+use crate::reports::render_stats::si;
 
-/// When and where to take the screenshot.
-#[derive(Debug, Clone)]
-pub struct ScreenshotPlan {
-    pub path: PathBuf,
-    /// Take it this long after the window opened; `None`: once the render
-    /// is finished and on screen (or an error is shown).
-    pub after: Option<Duration>,
-}
+pub use crate::cli::ScreenshotPlan;
 
 /// What became of the screenshot, for the process's exit status: the line
 /// to print, or why it failed.

@@ -7,6 +7,8 @@ use std::time::{Duration, Instant};
 use tracer::scene::Scene;
 use tracer::scene::edit::Edit;
 
+use crate::gui::platform::clock::Clock;
+
 /// Changes of one field closer together than this are one step of undo: a
 /// slider's drag, a colour picked in its popup.
 const MERGE_WITHIN: Duration = Duration::from_millis(600);
@@ -33,18 +35,8 @@ pub struct History {
     saved: Option<u64>,
     /// The last step id given out.
     last_id: u64,
-}
-
-/// A freshly opened scene: no edits, as on disk.
-impl Default for History {
-    fn default() -> Self {
-        Self {
-            done: Vec::new(),
-            undone: Vec::new(),
-            saved: Some(0),
-            last_id: 0,
-        }
-    }
+    /// Times how close together two changes of one field come.
+    clock: Clock,
 }
 
 /// What two edits of one field in a row amount to: the later value, but
@@ -82,11 +74,23 @@ fn slot(edit: &Edit) -> String {
 }
 
 impl History {
+    /// A freshly opened scene: no edits, as on disk; `clock` times the
+    /// merging of changes into one step.
+    pub fn new(clock: Clock) -> Self {
+        Self {
+            done: Vec::new(),
+            undone: Vec::new(),
+            saved: Some(0),
+            last_id: 0,
+            clock,
+        }
+    }
+
     /// Records `edit`, applied, with its `inverse`. A change of the same
     /// field right after the last one joins its step.
     pub fn push(&mut self, edit: Edit, inverse: Edit) {
         let slot = slot(&edit);
-        let now = Instant::now();
+        let now = self.clock.now();
         self.undone.clear();
         let saved_here = self.saved == Some(self.state());
         if let Some(last) = self.done.last_mut()
@@ -164,7 +168,7 @@ impl History {
 
     /// A freshly opened scene: no edits, as on disk.
     pub fn reset(&mut self) {
-        *self = History::default();
+        *self = History::new(self.clock.clone());
     }
 
     /// The edits made, in order, as `--set` arguments for the command line.
@@ -207,7 +211,7 @@ mod tests {
 
     #[test]
     fn a_drag_of_one_field_is_one_step_and_saves_count() {
-        let mut history = History::default();
+        let mut history = History::new(Clock::stopped());
         assert!(!history.is_modified());
         history.push(ior(5, 1.4), ior(5, 1.5));
         history.push(ior(5, 1.33), ior(5, 1.4));
@@ -238,5 +242,19 @@ mod tests {
             history.is_modified(),
             "as many steps as saved, another scene"
         );
+    }
+
+    #[test]
+    fn a_pause_between_changes_of_one_field_makes_two_steps() {
+        let clock = Clock::stopped();
+        let mut history = History::new(clock.clone());
+        history.push(ior(5, 1.4), ior(5, 1.5));
+        clock.advance(MERGE_WITHIN - Duration::from_millis(1));
+        history.push(ior(5, 1.33), ior(5, 1.4));
+        assert_eq!(history.len(), 1, "just within: one step");
+        clock.advance(MERGE_WITHIN);
+        history.push(ior(5, 1.2), ior(5, 1.33));
+        assert_eq!(history.len(), 2, "a pause: a step of its own");
+        assert_eq!(history.undo(), Some(ior(5, 1.33)));
     }
 }

@@ -20,6 +20,7 @@ pub use engine::{Activity, Engine, LoadedScene, Version, Wake};
 pub use history::History;
 pub use live_image::LiveImage;
 
+use super::platform::clock::Clock;
 use super::platform::frame_meter::ProgressPace;
 
 /// Which side.
@@ -84,7 +85,7 @@ struct Plan {
 }
 
 impl Side {
-    fn new(id: SideId, controls: Controls, wakes: &Wakes) -> Self {
+    fn new(id: SideId, controls: Controls, wakes: &Wakes, clock: &Clock) -> Self {
         Self {
             id,
             engine: wakes.engine(),
@@ -93,7 +94,7 @@ impl Side {
                 SideId::B => "render B",
             }),
             controls,
-            history: History::default(),
+            history: History::new(clock.clone()),
             plan: None,
         }
     }
@@ -218,17 +219,20 @@ pub struct Sides {
     /// keeps the saved ones.
     pub adopt_loaded_scene: bool,
     wakes: Wakes,
+    /// Times the merging of edits into undo steps.
+    clock: Clock,
 }
 
 impl Sides {
     /// Side A alone, with `controls`.
-    pub fn new(controls: Controls, wakes: Wakes) -> Self {
+    pub fn new(controls: Controls, wakes: Wakes, clock: Clock) -> Self {
         Self {
-            a: Side::new(SideId::A, controls, &wakes),
+            a: Side::new(SideId::A, controls, &wakes, &clock),
             b: None,
             editing: SideId::A,
             adopt_loaded_scene: true,
             wakes,
+            clock,
         }
     }
 
@@ -265,7 +269,7 @@ impl Sides {
             self.editing = SideId::A;
             return;
         }
-        let mut b = Side::new(SideId::B, self.a.controls.clone(), &self.wakes);
+        let mut b = Side::new(SideId::B, self.a.controls.clone(), &self.wakes, &self.clock);
         if let Some(scene) = self.a.engine.scene() {
             b.engine.show(scene.clone());
         }

@@ -1,8 +1,8 @@
-//! The benchmark matrix in the window: the seed's timing table (every
-//! structure x shadows x sampling) on the current scene and camera, run on a
-//! thread of its own, filling a table with a thumbnail per row and a bar
-//! chart as results come in; cancellable; exported as Markdown, CSV and
-//! images.
+//! The benchmark matrix in the window: the course report's timing table
+//! (every structure x shadows x sampling) on the current scene and camera,
+//! run on a thread of its own, filling a table with a thumbnail per row and
+//! a bar chart as results come in; cancellable; exported as Markdown, CSV
+//! and images.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -15,10 +15,10 @@ use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
-use crate::measure::bench_report::{self, Format, Layout};
+use crate::image_file::save_png;
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
-use crate::output::save_png;
-use crate::report::si;
+use crate::reports::bench_table::{self, Columns, Format};
+use crate::reports::render_stats::si;
 
 use super::background::{self, Background};
 
@@ -82,8 +82,8 @@ impl BenchWindow {
     }
 
     /// Starts the matrix over `world` with `base` settings (the current
-    /// scene, camera and sizes; N is the seed's 4); `wake` asks the window
-    /// to redraw.
+    /// scene, camera and sizes; N is the course report's 4); `wake` asks
+    /// the window to redraw.
     pub fn start(
         &mut self,
         world: Arc<World>,
@@ -273,7 +273,7 @@ pub fn write_export(dir: &Path, measurements: &[Measurement]) -> anyhow::Result<
         let path = dir.join(name);
         std::fs::write(
             &path,
-            bench_report::table(measurements, Layout::Matrix, format),
+            bench_table::table(measurements, Columns::Matrix, format),
         )
         .with_context(|| format!("cannot write {}", path.display()))?;
     }

@@ -1,15 +1,17 @@
 //! The windows over the image: the ray tree of a pinned pixel, the
-//! benchmark matrix, the studies, the help; and what the two measuring
-//! windows share ([`background`]).
+//! benchmark matrix, the studies, the report's export, the help; and what
+//! the measuring windows share ([`background`]).
 
 pub mod background;
 pub mod benchmark;
 pub mod help;
 pub mod ray_tree;
+pub mod report;
 pub mod studies;
 
 use benchmark::BenchWindow;
 use ray_tree::Inspector;
+use report::ReportExport;
 use studies::StudiesWindow;
 
 use super::editor::Editor;
@@ -21,6 +23,8 @@ use super::image::structure_overlay::StructureOverlay;
 pub struct Tools {
     pub bench: BenchWindow,
     pub studies: StudiesWindow,
+    /// Export report...: the lab report measured in the background.
+    pub report: ReportExport,
     /// The pinned pixel's ray tree.
     pub inspector: Inspector,
     /// The acceleration structure drawn over the image.

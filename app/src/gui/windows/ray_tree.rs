@@ -8,7 +8,7 @@ use tracer::accel::Visit;
 use tracer::render::{RayTree, RenderSettings};
 
 use crate::gui::sides::Engine;
-use crate::measure::ray_tree_report::{
+use crate::reports::ray_tree::{
     self, describe_node, describe_visit, headline, triple, visits_heading,
 };
 
@@ -74,14 +74,9 @@ impl Inspector {
             if slot.as_ref().is_some_and(|s| s.of == of) {
                 continue;
             }
-            let tree = ray_tree_report::inspect(
-                &scene.world,
-                engine.index(),
-                settings,
-                pixel,
-                self.sample,
-            )
-            .map_err(|e| format!("{e:#}"));
+            let tree =
+                ray_tree::inspect(&scene.world, engine.index(), settings, pixel, self.sample)
+                    .map_err(|e| format!("{e:#}"));
             *slot = Some(Inspected { of, tree });
         }
     }

@@ -48,8 +48,8 @@ pub enum Best {
 }
 
 /// The best point of each structure (indices into `points`): for grid-m
-/// the grid's fastest m (m changes nothing else), for `spp` the knee of
-/// error against time. Other parameters have none: their fastest value is
+/// the grid's fastest m (m changes nothing else), for `spp` and
+/// `noise-threshold` the knee of error against time. Other parameters have none: their fastest value is
 /// the cheapest image (no bounce, a pinhole), not a choice to recommend;
 /// the level study has its slopes instead (see [`slope`]).
 pub fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
@@ -66,7 +66,7 @@ pub fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
                 Param::GridM if accel == AccelKind::Grid => mine()
                     .min_by(|(_, a), (_, b)| a.frame_ms().total_cmp(&b.frame_ms()))
                     .map(|(i, _)| (i, Best::Fastest)),
-                Param::Spp => {
+                Param::Spp | Param::NoiseThreshold => {
                     let curve: Vec<(usize, f64, f64)> = mine()
                         .filter_map(|(i, p)| Some((i, p.frame_ms(), p.error?.mse)))
                         .collect();

@@ -7,8 +7,6 @@
 
 pub mod analysis;
 mod material;
-pub mod plot;
-pub mod report;
 pub mod values;
 
 use std::fmt;
@@ -20,7 +18,9 @@ use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use tracer::accel::AccelKind;
 use tracer::generate::{self, GenerateOptions, GeneratorName};
-use tracer::render::{Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings};
+use tracer::render::{
+    AdaptiveSampling, Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling,
+};
 use tracer::scene::Scene;
 use tracer::scene::edit::{Edit, ObjectChange};
 use tracer::world::World;
@@ -47,13 +47,15 @@ pub enum Param {
     Resolution,
     /// The level of a generated scene (its size).
     Level,
+    /// Adaptive sampling's noise threshold, with anti-aliasing on.
+    NoiseThreshold,
     /// A numeric field of one object's material (`object:5:ior`), edited
     /// as `--set 'object 5 ior V'` would; the structure is built once.
     Material { object: u32, field: Knob },
 }
 
 impl Param {
-    pub const ALL: [Param; 7] = [
+    pub const ALL: [Param; 8] = [
         Param::GridM,
         Param::Spp,
         Param::Depth,
@@ -61,6 +63,7 @@ impl Param {
         Param::Aperture,
         Param::Resolution,
         Param::Level,
+        Param::NoiseThreshold,
     ];
 
     /// The name on the command line (`--param grid-m`).
@@ -73,6 +76,7 @@ impl Param {
             Param::Aperture => "aperture",
             Param::Resolution => "resolution",
             Param::Level => "level",
+            Param::NoiseThreshold => "noise-threshold",
             Param::Material { field, .. } => field.name(),
         }
     }
@@ -87,6 +91,7 @@ impl Param {
             Param::Aperture => "aperture (pixels)",
             Param::Resolution => "image width (pixels)",
             Param::Level => "primitives",
+            Param::NoiseThreshold => "noise threshold (display units)",
             Param::Material { field, .. } => field.axis(),
         }
     }
@@ -113,6 +118,7 @@ impl Param {
             Param::LightSize | Param::Aperture => (0.0, f64::from(f32::MAX)),
             Param::Resolution => (1.0, f64::from(MAX_IMAGE_SIDE)),
             Param::Level => (0.0, f64::from(u32::MAX)),
+            Param::NoiseThreshold => (0.0, 1.0),
             // The edit checks its value against the material it changes.
             Param::Material { .. } => (f64::MIN, f64::MAX),
         };
@@ -152,8 +158,25 @@ impl Param {
                 settings.width = value as u32;
                 settings.height = ((value * aspect).round() as u32).max(1);
             }
+            Param::NoiseThreshold => {
+                let knobs = match settings.sampling {
+                    Sampling::Adaptive(a) => a,
+                    Sampling::Uniform => AdaptiveSampling::for_samples(settings.samples, 0.0),
+                };
+                settings.antialiasing = true;
+                settings.sampling = Sampling::Adaptive(AdaptiveSampling {
+                    noise_threshold: value as f32,
+                    ..knobs
+                });
+            }
             Param::Level | Param::Material { .. } => {}
         }
+    }
+
+    /// Whether the study measures each image's error against a uniform
+    /// reference with many samples.
+    pub fn has_reference(self) -> bool {
+        matches!(self, Param::Spp | Param::NoiseThreshold)
     }
 
     /// The scene edit of a material study's point (none for the others,
@@ -181,6 +204,7 @@ impl Param {
             Param::Aperture => "0..16:4".into(),
             Param::Resolution => "64..512:x2".into(),
             Param::Level => "1..4".into(),
+            Param::NoiseThreshold => "0.0025..0.04:x2".into(),
             Param::Material { field, .. } => field.default_values().into(),
         }
     }
@@ -260,7 +284,8 @@ pub struct Study {
     pub structures: Vec<AccelKind>,
     pub options: RunOptions,
     pub encoding: Encoding,
-    /// N of the `spp` study's reference; `None`: twice the largest N.
+    /// N of the reference of the `spp` and `noise-threshold` studies;
+    /// `None`: twice the largest N (the adaptive maximum's strata).
     pub reference_samples: Option<u32>,
 }
 
@@ -291,10 +316,14 @@ impl Study {
         plan
     }
 
-    /// N of the reference image of the `spp` study.
-    pub fn reference_samples(&self) -> u32 {
+    /// N of the reference image of the `spp` and `noise-threshold`
+    /// studies over `base`.
+    pub fn reference_samples(&self, base: &RenderSettings) -> u32 {
         self.reference_samples.unwrap_or_else(|| {
-            let largest = self.values.iter().copied().fold(1.0, f64::max) as u32;
+            let largest = match self.param {
+                Param::NoiseThreshold => point_settings(base, self.param, base.accel, 0.0).strata(),
+                _ => self.values.iter().copied().fold(1.0, f64::max) as u32,
+            };
             (2 * largest).min(MAX_SAMPLES)
         })
     }
@@ -411,7 +440,7 @@ impl Point {
 
 /// The `spp` study's reference image.
 #[derive(Debug, Clone)]
-pub struct Reference {
+pub struct ReferenceRender {
     pub samples: u32,
     pub image: RgbImage,
 }
@@ -438,7 +467,7 @@ pub enum StudyEvent<'a> {
 pub struct StudyOutcome {
     pub points: Vec<Point>,
     pub cancelled: bool,
-    pub reference: Option<Reference>,
+    pub reference: Option<ReferenceRender>,
 }
 
 /// Measures every point of `study` on `subject`, in [`Study::plan`] order,
@@ -526,12 +555,22 @@ fn run_scene(
         runs: 1,
         ..study.options
     };
-    if study.param == Param::Spp {
-        let samples = study.reference_samples();
+    if study.param.has_reference() {
+        let samples = study.reference_samples(base);
         let what = format!("reference image, N = {samples}");
         // The image does not depend on the structure: use the first one,
         // so it is built once for the reference and the points.
-        let case = point_case(study, base, study.structures[0], f64::from(samples));
+        let case = Case {
+            label: what.clone(),
+            settings: RenderSettings {
+                accel: study.structures[0],
+                antialiasing: true,
+                samples,
+                sampling: Sampling::Uniform,
+                ..base.clone()
+            },
+            encoding: study.encoding,
+        };
         let reference = benchmark::run_with(
             world,
             &[case],
@@ -549,7 +588,7 @@ fn run_scene(
         )?;
         match reference.measurements.into_iter().next() {
             Some(m) if !reference.cancelled => {
-                outcome.reference = Some(Reference {
+                outcome.reference = Some(ReferenceRender {
                     samples,
                     image: m.image,
                 })

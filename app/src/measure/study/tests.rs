@@ -3,6 +3,7 @@
 use std::sync::atomic::AtomicBool;
 
 use super::*;
+use crate::figures::study_plot;
 
 fn world() -> Arc<World> {
     let text = "v\nfrom 0 -5 1\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0.01\n\
@@ -270,15 +271,18 @@ fn the_chart_is_drawn_with_a_panel_per_view() {
         after_frame: &after,
     };
     let outcome = run(&study, &scene(), stop, &mut |_| {}).unwrap();
-    let image = plot::chart(Param::Spp, &outcome.points, "tiny").unwrap();
-    assert_eq!(image.dimensions(), (2 * plot::PANEL.0, plot::PANEL.1));
+    let image = study_plot::chart(Param::Spp, &outcome.points, "tiny").unwrap();
+    assert_eq!(
+        image.dimensions(),
+        (2 * study_plot::PANEL.0, study_plot::PANEL.1)
+    );
     // Lines in each structure's colour were drawn.
     for accel in [AccelKind::Grid, AccelKind::Bvh] {
-        let colour = image::Rgb(plot::colour(accel));
+        let colour = image::Rgb(study_plot::colour(accel));
         assert!(image.pixels().any(|p| *p == colour), "{accel:?}");
     }
     let mut timed_only = outcome.points[..1].to_vec();
     timed_only[0].error = None;
-    let single = plot::chart(Param::Depth, &timed_only, "tiny").unwrap();
-    assert_eq!(single.dimensions(), plot::PANEL);
+    let single = study_plot::chart(Param::Depth, &timed_only, "tiny").unwrap();
+    assert_eq!(single.dimensions(), study_plot::PANEL);
 }

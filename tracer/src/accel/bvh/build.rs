@@ -100,8 +100,8 @@ impl NodeRef {
 
 /// The binary tree in a few arrays (blocks), one per subtree built on its
 /// own rayon task, nodes in depth-first order: no allocation per node, and
-/// nothing to free node by node (that took 14% of a large mesh's build,
-/// on one core). The root is the first node of block 0; an empty tree has
+/// nothing to free node by node (a large share of a large mesh's build).
+/// The root is the first node of block 0; an empty tree has
 /// no node.
 pub(super) struct BuildTree {
     blocks: Vec<Vec<BuildNode>>,
@@ -280,7 +280,7 @@ impl Builder<'_> {
 
 /// What one rayon task of the build writes to: its block of nodes, and the
 /// bins it reuses from node to node (filling 3.4 KB of empty bins for
-/// each node was 6% of a large mesh's build).
+/// each node showed in a large mesh's build).
 struct Task {
     nodes: Vec<BuildNode>,
     block: u32,
@@ -472,8 +472,8 @@ fn best_split(
 
 /// Reorders `prims` so those satisfying `left` come first, each swapped
 /// with the first of those that do not; returns how many, and the extents
-/// of both sides. Serial even at the root: one cheap pass (about 1% of the
-/// build's instructions), where an exact parallel version costs 18% more.
+/// of both sides. Serial even at the root: one cheap pass, which an exact
+/// parallel version made dearer.
 fn partition(
     prims: &mut [BuildPrim],
     left: impl Fn(&BuildPrim) -> bool,

@@ -112,8 +112,7 @@ pub(super) trait NodeCode: Copy {
     /// the axis and by its `max` plane when it goes down ([`Slabs`] picks
     /// them once per ray): the entry distance only raises `near`, the exit
     /// distance only lowers `far`, six operations a slab instead of the twelve
-    /// of sorting the two planes and clamping each (frames 1-8% shorter on six
-    /// scenes). It is the arithmetic of [`Aabb::intersect`] rearranged:
+    /// of sorting the two planes and clamping each. It is the arithmetic of [`Aabb::intersect`] rearranged:
     /// there `min(max(t0, t_min), max(t1, t_min))` is `max(min(t0, t1),
     /// t_min)`, and `min(t0, t1)` is the entry plane's distance. A ray
     /// parallel to a slab whose origin lies on one of its planes gives
@@ -168,7 +167,7 @@ impl NodeCode for Baseline {
 
     /// Written out lane by lane: built with `[0, 1, 2].map`, the compiler
     /// left a call per ray to an outlined `try_map` with bounds-checked
-    /// `Vec3A` indexing (4% of balls_medium's instructions, callgrind).
+    /// `Vec3A` indexing.
     #[inline(always)]
     fn ray(self, ray: &Ray) -> WideRay {
         let (o, d) = (ray.origin, ray.inv_dir);
@@ -341,8 +340,8 @@ pub(super) const NODE_VISIT_COST: f32 = 2.0;
 /// both leaves' primitives at once is cheaper: `(first, count)`. The
 /// build's binary SAH split them for a binary node's cost, but in the
 /// 8-wide tree such a node is a whole node for two boxes (the Sierpinski
-/// tetrahedron's tree was mostly those: `mesh_large`'s rays 1.4x faster
-/// merged). Its primitives are contiguous: the right leaf's follow the
+/// tetrahedron's tree was mostly those, and `mesh_large`'s rays are much
+/// faster merged). Its primitives are contiguous: the right leaf's follow the
 /// left one's.
 fn merged_leaves(tree: &BuildTree, at: NodeRef, traversal_cost: f32) -> Option<(u32, u32)> {
     let node = tree.node(at);

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use tracer::accel::SceneIndex;
-use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
+use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings, adaptive};
 use tracer::world::ShapeChange;
 
 use crate::load::SceneSource;
@@ -136,8 +136,7 @@ impl Engine {
     /// serve: as it is when the edit left the shapes as they were (a
     /// material, a light, the camera), refitted around the shapes `shapes`
     /// says moved in place ([`SceneIndex::refit`]: no Building phase; on
-    /// this thread, 0.1 ms for a sphere of balls_high, 6-10 ms for a
-    /// 131k-triangle mesh, where a build takes 35-55 ms), and built anew by
+    /// this thread, as a refit costs a fraction of a build), and built anew by
     /// the next job when the refit refuses or the shapes were renumbered.
     pub fn edit_scene(&mut self, scene: LoadedScene, shapes: ShapeChange) {
         let index = self.index();
@@ -215,6 +214,7 @@ impl Engine {
         self.restart_waiting.store(false, Ordering::Relaxed);
         let waiting = self.restart_waiting.clone();
         let last_pass = (!settings.keep_refining).then(|| settings.samples_per_pixel());
+        let adaptive = settings.adaptive().copied();
         let job = RenderJob::start(
             world,
             self.index.clone(),
@@ -229,8 +229,14 @@ impl Engine {
                         wake();
                     }
                 })),
-                on_pass: Some(Box::new(move |pass, _| {
-                    if Some(pass) == last_pass {
+                on_pass: Some(Box::new(move |pass, film| {
+                    // An adaptive render's last pass is the one that leaves
+                    // no pixel active.
+                    let last = match &adaptive {
+                        Some(a) => adaptive::summary(film, a).active_pixels == 0,
+                        None => Some(pass) == last_pass,
+                    };
+                    if last {
                         last_pass_in.store(true, Ordering::Relaxed);
                     }
                 })),

@@ -2,19 +2,15 @@
 //! progress, wakes, and settings held back during a build.
 
 use std::sync::atomic::{AtomicU32, Ordering};
-use std::time::{Duration, Instant};
 
 use tracer::accel::AccelKind;
 use tracer::render::Encoding;
 
 use super::*;
 
+/// Polls the engine until `done` holds ([`tracer::waiting::wait_until`]).
 fn wait_until(engine: &mut Engine, done: impl Fn(&mut Engine) -> bool) {
-    let start = Instant::now();
-    while !done(engine) {
-        assert!(start.elapsed() < Duration::from_secs(120), "gave up");
-        std::thread::sleep(Duration::from_millis(2));
-    }
+    tracer::waiting::wait_until("the engine", || done(engine));
 }
 
 #[test]
@@ -215,15 +211,19 @@ fn a_move_refits_the_structure_and_the_next_job_builds_nothing() {
     let built = engine.index().expect("the job's structure");
 
     // A sphere nudged: the structure is refitted, and the next job renders
-    // over it at once, with no Building phase.
+    // over it at once, with no Building phase. Held before its first tile
+    // (a job that had to build would hold in Building), so a fast job
+    // cannot be Done before the test looks.
     let (scene, change) = edited(&engine, "object 2 translate 0.01 0 0");
     assert!(matches!(change, ShapeChange::InPlace(_)), "{change:?}");
     engine.edit_scene(scene, change);
     let refit = engine.index().expect("refitted");
     assert!(!Arc::ptr_eq(&refit, &built));
+    engine.set_paused(true);
     engine.render(&settings).unwrap();
     assert_eq!(engine.activity(), Activity::Job(JobState::Rendering));
     assert!(Arc::ptr_eq(&engine.index().unwrap(), &refit));
+    engine.set_paused(false);
     wait_until(&mut engine, |e| {
         e.activity() == Activity::Job(JobState::Done)
     });

@@ -14,7 +14,8 @@ use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
 use crate::measure::benchmark::RunOptions;
-use crate::measure::study::{Param, Point, Study, Subject, report, values};
+use crate::measure::study::{Param, Point, Study, Subject, values};
+use crate::reports::study_table;
 
 use crate::gui::sides::Controls;
 use crate::gui::windows::background::{self, Background};
@@ -255,7 +256,7 @@ impl StudiesWindow {
             return None;
         }
         let points: Vec<Point> = self.points().cloned().collect();
-        for line in report::summary(param, &points) {
+        for line in study_table::summary(param, &points) {
             ui.label(line);
         }
         let has_error = points.iter().any(|p| p.error.is_some());

@@ -5,7 +5,9 @@
 use egui::{Color32, TextureHandle, Ui};
 use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points};
 
-use crate::measure::study::{Param, Point, analysis, plot, report, values};
+use crate::figures::study_plot;
+use crate::measure::study::{Param, Point, analysis, values};
+use crate::reports::study_table;
 
 use super::StudiesWindow;
 
@@ -25,7 +27,7 @@ impl StudiesWindow {
         let (log_x, log_y) = if error_view {
             (false, true)
         } else {
-            plot::log_axes(param, points)
+            study_plot::log_axes(param, points)
         };
         let axis = |log: bool, v: f64| if log { v.max(1e-12).log10() } else { v };
         let at = |p: &Point| -> [f64; 2] {
@@ -63,7 +65,7 @@ impl StudiesWindow {
             .legend(egui_plot::Legend::default().position(egui_plot::Corner::LeftTop))
             .show(ui, |plot_ui| {
                 for accel in analysis::structures(points) {
-                    let [r, g, b] = plot::colour(accel);
+                    let [r, g, b] = study_plot::colour(accel);
                     let colour = Color32::from_rgb(r, g, b);
                     let mut series: Vec<[f64; 2]> = analysis::series(points, accel)
                         .into_iter()
@@ -75,7 +77,7 @@ impl StudiesWindow {
                     plot_ui.points(Points::new(accel.name(), series).radius(3.5).color(colour));
                 }
                 for &(i, _) in &best {
-                    let [r, g, b] = plot::colour(points[i].accel());
+                    let [r, g, b] = study_plot::colour(points[i].accel());
                     plot_ui.points(
                         // Unnamed: ringed in its line's colour, not in the legend.
                         Points::new("", vec![at(&points[i])])
@@ -119,7 +121,7 @@ impl StudiesWindow {
     /// The table under the chart, as the command line prints it, with a
     /// thumbnail and an Apply button per row; returns the row applied.
     pub(super) fn table(&self, ui: &mut Ui, param: Param, points: &[Point]) -> Option<usize> {
-        let (headers, cells) = report::rows(param, points);
+        let (headers, cells) = study_table::rows(param, points);
         let mut applied = None;
         egui::ScrollArea::both().show(ui, |ui| {
             egui::Grid::new("study_rows")
@@ -159,7 +161,7 @@ impl StudiesWindow {
 
 /// A point's numbers (the table's row, one per line) and its image.
 fn point_details(ui: &mut Ui, param: Param, points: &[Point], i: usize, image: &TextureHandle) {
-    let (headers, cells) = report::rows(param, points);
+    let (headers, cells) = study_table::rows(param, points);
     egui::Grid::new("study_point")
         .num_columns(2)
         .show(ui, |ui| {

@@ -7,10 +7,12 @@ use std::sync::mpsc::Sender;
 
 use anyhow::Context;
 
-use crate::measure::bench_report::Format;
+use crate::figures::study_plot;
+use crate::image_file::save_png;
 use crate::measure::benchmark::Stop;
-use crate::measure::study::{self, Param, Point, Study, StudyEvent, Subject, plot, report};
-use crate::output::save_png;
+use crate::measure::study::{self, Param, Point, Study, StudyEvent, Subject};
+use crate::reports::bench_table::Format;
+use crate::reports::study_table;
 
 use super::Update;
 
@@ -29,10 +31,13 @@ pub fn write_export(
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for (name, format) in [("table.md", Format::Markdown), ("table.csv", Format::Csv)] {
         let path = dir.join(name);
-        std::fs::write(&path, report::table(param, points, format))
+        std::fs::write(&path, study_table::table(param, points, format))
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
-    save_png(&plot::chart(param, points, &stem)?, &dir.join("chart.png"))?;
+    save_png(
+        &study_plot::chart(param, points, &stem)?,
+        &dir.join("chart.png"),
+    )?;
     Ok(dir)
 }
 

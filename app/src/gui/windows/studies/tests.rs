@@ -10,8 +10,9 @@ use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
 use super::*;
+use crate::figures::study_plot;
 use crate::measure::benchmark::{RunOptions, Stop};
-use crate::measure::study::{self, Param, Study, Subject, plot};
+use crate::measure::study::{self, Param, Study, Subject};
 
 #[test]
 fn a_point_sets_its_structure_and_value_in_the_controls() {
@@ -112,5 +113,5 @@ fn the_export_writes_the_tables_and_the_chart() {
             .contains("| bvh | 1 |")
     );
     let chart = image::open(written.join("chart.png")).unwrap();
-    assert_eq!((chart.width(), chart.height()), plot::PANEL);
+    assert_eq!((chart.width(), chart.height()), study_plot::PANEL);
 }

@@ -1,0 +1,175 @@
+//! The Lessons window's part of the frame: the current step's check kept
+//! evaluated against the window's real state (both sides' scenes and
+//! settings, the pinned pixel, the layout), and "Set up this step", which
+//! opens the step's scene, settings and layout as `lesson check` replays
+//! them.
+
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{Context, Result};
+use tracer::render::{RenderSettings, View};
+
+use super::WorkbenchApp;
+use crate::gui::comparison::Comparison;
+use crate::gui::lessons;
+use crate::gui::sides::{Controls, Side, Sides};
+use crate::lessons::format::read_lesson_file;
+use crate::lessons::replay::{open_scene, state_at_step};
+use crate::lessons::state::Layout;
+use crate::lessons::{LessonState, SideState};
+use crate::load::SceneSource;
+
+/// A step set up, waiting for its scene to load.
+pub(super) struct PendingSetup {
+    path: PathBuf,
+    state: LessonState,
+}
+
+impl WorkbenchApp {
+    /// Opens the lesson file `path` in the Lessons window and sets up its
+    /// first step (`workbench --lesson FILE`).
+    pub fn open_lesson(&mut self, path: &Path) {
+        match read_lesson_file(path) {
+            Ok(lesson) => {
+                self.lessons.add(lesson);
+                self.lessons.open = true;
+                self.set_up_lesson_step();
+            }
+            Err(e) => self.messages.error = Some(e.to_string()),
+        }
+    }
+
+    /// The Lessons window, what it asked for, and the check kept current.
+    pub(super) fn lessons_window(&mut self, ctx: &egui::Context) {
+        if !self.lessons.open {
+            return;
+        }
+        let asked = lessons::show(ctx, &mut self.lessons);
+        if asked.set_up {
+            self.set_up_lesson_step();
+        }
+        let looked_at = self.looked_at();
+        let (sides, tools, observer) = (&self.sides, &self.tools, &self.observer);
+        let layout = Layout {
+            view: (tools.views.view != View::Shaded).then_some(tools.views.view),
+            observer: observer.on,
+        };
+        let wake = ctx.clone();
+        self.lessons.keep_checking(
+            looked_at,
+            || window_state(sides, tools.inspector.pinned, layout),
+            move || wake.request_repaint(),
+        );
+    }
+
+    /// What a check may look at, fingerprinted: each side's settings and
+    /// scene (its world's address: an edit or a load makes another), the
+    /// pinned pixel, the view, the observer.
+    fn looked_at(&self) -> u64 {
+        let mut hasher = DefaultHasher::new();
+        for side in self.sides.each() {
+            format!("{:?}", side.settings()).hash(&mut hasher);
+            side.engine
+                .scene()
+                .map(|s| Arc::as_ptr(&s.world) as usize)
+                .hash(&mut hasher);
+        }
+        (self.tools.inspector.pinned, self.observer.on).hash(&mut hasher);
+        self.tools.views.view.name().hash(&mut hasher);
+        hasher.finish()
+    }
+
+    /// Replays the lesson up to the current step and opens the result: its
+    /// scene (written to a P3F file of the lesson's name, edits included),
+    /// then, once loaded, its settings, compare mode, pixel and layout.
+    pub(super) fn set_up_lesson_step(&mut self) {
+        let Some(lesson) = self.lessons.lesson().cloned() else {
+            return;
+        };
+        let step = self.lessons.step();
+        let prepared = (|| -> Result<PendingSetup> {
+            let (scene, world) = open_scene(&lesson)?;
+            let state = state_at_step(&lesson, &scene, &world, step)?;
+            let mut written = state.a.scene.clone();
+            written.view.width = state.a.settings.width;
+            written.view.height = state.a.settings.height;
+            let dir = std::env::temp_dir().join("whitted-workbench-lessons");
+            std::fs::create_dir_all(&dir).with_context(|| format!("{}", dir.display()))?;
+            let path = dir.join(format!("{}.p3f", lesson.name));
+            let text = tracer::scene::write_p3f_in(&written, &dir);
+            std::fs::write(&path, text).with_context(|| format!("{}", path.display()))?;
+            Ok(PendingSetup { path, state })
+        })();
+        match prepared {
+            Ok(setup) => {
+                let source = SceneSource::File(setup.path.clone());
+                self.pending_setup = Some(setup);
+                self.open(source);
+            }
+            Err(e) => self.messages.error = Some(format!("{e:#}")),
+        }
+    }
+
+    /// Once the set-up step's scene has loaded: its settings on each side
+    /// (at full scale: the lesson's pixels are the image's), compare mode
+    /// on or off, the pinned pixel, the view and the observer. The lesson's
+    /// scene file is not a recent file of the user's.
+    pub(super) fn finish_lesson_setup(&mut self, loaded: &SceneSource) {
+        let Some(setup) = self.pending_setup.take() else {
+            return;
+        };
+        if *loaded != SceneSource::File(setup.path.clone()) {
+            return;
+        }
+        self.session.recent.retain(|p| p != &setup.path);
+        let state = setup.state;
+        adopt(&mut self.sides.a.controls, &state.a.settings);
+        if state.b.is_some() != self.sides.b.is_some() {
+            self.sides.toggle_b();
+            self.comparison = Comparison::default();
+        }
+        if let (Some(b), Some(side)) = (&state.b, &mut self.sides.b) {
+            adopt(&mut side.controls, &b.settings);
+        }
+        self.tools.inspector.pinned = state.pixel;
+        self.tools.views.view = state.layout.view.unwrap_or(View::Shaded);
+        self.observer.on = state.layout.observer;
+        self.navigation.camera = None;
+    }
+}
+
+/// `settings` as a side's controls, at full resolution.
+fn adopt(controls: &mut Controls, settings: &RenderSettings) {
+    controls.render = RenderSettings {
+        camera: None,
+        ..settings.clone()
+    };
+    controls.resolution_scale = 1.0;
+    controls.set_accel(settings.accel);
+}
+
+/// The window's state as a check sees it; `None` until A's scene is loaded
+/// and planned (and B's, in compare mode).
+fn window_state(sides: &Sides, pixel: Option<(u32, u32)>, layout: Layout) -> Option<LessonState> {
+    let side = |s: &Side| -> Option<SideState> {
+        let loaded = s.engine.scene()?;
+        Some(SideState {
+            scene: loaded.scene.clone(),
+            world: loaded.world.clone(),
+            settings: s.settings()?.clone(),
+        })
+    };
+    let b = match &sides.b {
+        Some(b) => Some(side(b)?),
+        None => None,
+    };
+    Some(LessonState {
+        a: side(&sides.a)?,
+        b,
+        pixel,
+        answer: None,
+        layout,
+    })
+}

@@ -1,0 +1,202 @@
+//! Checks that render: how much faster B is than A, how far apart their
+//! images are (FLIP), and whether side A's grid multiplier is near the best
+//! of a sweep. They use the measuring code the `compare`, `bench` and
+//! `sweep` commands use.
+
+use std::sync::atomic::AtomicBool;
+
+use serde::Deserialize;
+use tracer::accel::AccelKind;
+use tracer::render::{Encoding, RenderSettings};
+
+use crate::measure::ab::{self, Heatmap, SideOptions};
+use crate::measure::benchmark::{self, Case, Measurement, RunOptions};
+
+use super::super::state::{LessonState, SideState};
+use super::expect::number;
+
+/// What a measurement compares by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum By {
+    /// Ray-primitive tests plus cells or nodes visited in one frame:
+    /// exact, the same on every machine and every run.
+    #[default]
+    Work,
+    /// The median frame time of three frames each, the sides
+    /// alternated: what the course's timing table measures, noisy on a
+    /// shared machine.
+    Time,
+}
+
+/// Frames per side for a timed measurement.
+const TIMED_ROUNDS: usize = 3;
+
+/// What a measurement reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Metric {
+    /// A's cost over B's: above 1 when B is faster.
+    Speedup,
+    /// Mean FLIP error between A's and B's images, 0 to 1.
+    Flip,
+    /// How many percent side A's grid multiplier costs above the cheapest
+    /// of a sweep (10: 10% slower than the best).
+    GridSweep,
+}
+
+/// A figure measured, with words saying what it came from.
+pub struct Measured {
+    pub value: f64,
+    pub detail: String,
+}
+
+/// Measures `metric` on `state`; `values` are the sweep's multipliers.
+pub fn measure(
+    metric: Metric,
+    by: By,
+    values: &[f32],
+    state: &LessonState,
+) -> Result<Measured, String> {
+    match metric {
+        Metric::Speedup => {
+            let b = state.side(super::super::state::Which::B)?;
+            let (a_cost, b_cost) = match by {
+                By::Work => (work(&frame(&state.a)?), work(&frame(b)?)),
+                By::Time => timed_pair(&state.a, b)?,
+            };
+            let value = a_cost / b_cost.max(f64::MIN_POSITIVE);
+            Ok(Measured {
+                value,
+                detail: format!(
+                    "A {} and B {}: B is {}x faster",
+                    cost_words(a_cost, by),
+                    cost_words(b_cost, by),
+                    number(value)
+                ),
+            })
+        }
+        Metric::Flip => {
+            let b = state.side(super::super::state::Which::B)?;
+            let cancel = AtomicBool::new(false);
+            let comparison = ab::run(
+                [&state.a.world, &b.world],
+                case(state.a.settings.clone()),
+                case(b.settings.clone()),
+                SideOptions::default(),
+                Heatmap::Flip,
+                &cancel,
+                &mut |_| {},
+            )
+            .map_err(|e| format!("{e:#}"))?
+            .ok_or("the comparison was cancelled")?;
+            let value = f64::from(comparison.metrics.flip);
+            Ok(Measured {
+                value,
+                detail: format!("FLIP between A and B is {}", number(value)),
+            })
+        }
+        Metric::GridSweep => grid_sweep(&state.a, by, values),
+    }
+}
+
+/// A case measured once, labelled as the reports label it.
+fn case(settings: RenderSettings) -> Case {
+    Case::new(settings, Encoding::Linear)
+}
+
+/// One frame of `side`.
+fn frame(side: &SideState) -> Result<Measurement, String> {
+    frames(side, &side.settings, 1)
+}
+
+/// `runs` frames of `side` under `settings`.
+fn frames(side: &SideState, settings: &RenderSettings, runs: usize) -> Result<Measurement, String> {
+    let cancel = AtomicBool::new(false);
+    let outcome = benchmark::run(
+        &side.world,
+        &[case(settings.clone())],
+        RunOptions {
+            runs,
+            threads: None,
+        },
+        &cancel,
+        &mut |_| {},
+    )
+    .map_err(|e| format!("{e:#}"))?;
+    outcome
+        .measurements
+        .into_iter()
+        .next()
+        .ok_or_else(|| "the render was cancelled".to_string())
+}
+
+/// Tests and steps of one frame: the work a structure did.
+fn work(m: &Measurement) -> f64 {
+    let c = &m.stats.counters;
+    (c.intersection_tests + c.nodes_visited) as f64
+}
+
+fn cost_words(cost: f64, by: By) -> String {
+    match by {
+        By::Work => format!("{} tests and steps", number(cost)),
+        By::Time => format!("{} ms", number((cost * 1e3).round())),
+    }
+}
+
+/// Median frame times of A and B, their frames alternated so a change of
+/// load on the machine falls on both.
+fn timed_pair(a: &SideState, b: &SideState) -> Result<(f64, f64), String> {
+    let mut times = [Vec::new(), Vec::new()];
+    for _ in 0..TIMED_ROUNDS {
+        for (i, side) in [a, b].into_iter().enumerate() {
+            times[i].push(frame(side)?.median().as_secs_f64());
+        }
+    }
+    Ok((median(&mut times[0]), median(&mut times[1])))
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values.get(values.len() / 2).copied().unwrap_or(0.0)
+}
+
+/// Side A's multiplier against each of `values`, with a grid: the cost of
+/// A's over the cheapest, minus one.
+fn grid_sweep(side: &SideState, by: By, values: &[f32]) -> Result<Measured, String> {
+    let cost_at = |m: f32| -> Result<f64, String> {
+        let mut settings = side.settings.clone();
+        settings.accel = AccelKind::Grid;
+        settings.grid_multiplier = m;
+        let measured = frames(
+            side,
+            &settings,
+            if by == By::Time { TIMED_ROUNDS } else { 1 },
+        )?;
+        Ok(match by {
+            By::Work => work(&measured),
+            By::Time => measured.median().as_secs_f64(),
+        })
+    };
+    let chosen_m = side.settings.grid_multiplier;
+    let chosen = cost_at(chosen_m)?;
+    let mut best = (chosen_m, chosen);
+    for &m in values {
+        let cost = cost_at(m)?;
+        if cost < best.1 {
+            best = (m, cost);
+        }
+    }
+    let value = (chosen / best.1.max(f64::MIN_POSITIVE) - 1.0) * 100.0;
+    Ok(Measured {
+        value,
+        detail: format!(
+            "m = {} costs {}; the sweep's best, m = {}, costs {} ({}% more)",
+            number(f64::from(chosen_m)),
+            cost_words(chosen, by),
+            number(f64::from(best.0)),
+            cost_words(best.1, by),
+            number(value.round())
+        ),
+    })
+}

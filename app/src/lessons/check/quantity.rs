@@ -1,0 +1,540 @@
+//! What a check can read from the workbench, by a name a teacher writes:
+//! a setting (`spp`), a scene value in the words of `--set` (`object 3
+//! ior`), the pinned pixel's recorded ray tree (`tree blocked-shadow-rays`),
+//! the acceleration structure (`grid cells`, `eye tests`). Each is computed
+//! from the state when the check runs, never written in the lesson.
+
+use std::fmt::{self, Display, Formatter};
+use std::sync::Arc;
+
+use serde::Deserialize;
+use tracer::accel::{AccelKind, SceneIndex};
+use tracer::geometry::Ray;
+use tracer::render::{Frame, Outcome, RayKind, RayTree, View};
+use tracer::scene::{Primitive, Scene};
+
+use crate::reports::ray_tree;
+
+use super::super::state::{LessonState, SideState, Which};
+use super::expect::Value;
+
+/// A render setting, by its `workbench render` flag's name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    Width,
+    Height,
+    Depth,
+    Aa,
+    Spp,
+    SamplesPerPixel,
+    SoftShadows,
+    LightSize,
+    Dof,
+    Aperture,
+    Focal,
+    Ambient,
+    Accel,
+    GridM,
+    Seed,
+}
+
+const SETTINGS: [(&str, Setting); 15] = [
+    ("width", Setting::Width),
+    ("height", Setting::Height),
+    ("depth", Setting::Depth),
+    ("aa", Setting::Aa),
+    ("spp", Setting::Spp),
+    ("samples-per-pixel", Setting::SamplesPerPixel),
+    ("soft-shadows", Setting::SoftShadows),
+    ("light-size", Setting::LightSize),
+    ("dof", Setting::Dof),
+    ("aperture", Setting::Aperture),
+    ("focal", Setting::Focal),
+    ("ambient", Setting::Ambient),
+    ("accel", Setting::Accel),
+    ("grid-m", Setting::GridM),
+    ("seed", Setting::Seed),
+];
+
+/// A field of an object or a material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Field {
+    Kd,
+    Ks,
+    Shine,
+    Transmittance,
+    Ior,
+    /// A sphere's radius.
+    Radius,
+    /// What it is: sphere, plane, triangle, polygon, box, ...
+    Kind,
+}
+
+const FIELDS: [(&str, Field); 7] = [
+    ("kd", Field::Kd),
+    ("ks", Field::Ks),
+    ("shine", Field::Shine),
+    ("t", Field::Transmittance),
+    ("ior", Field::Ior),
+    ("radius", Field::Radius),
+    ("kind", Field::Kind),
+];
+
+/// A figure of the pinned pixel's ray tree (sample 0).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TreeFigure {
+    /// Rays of every kind.
+    Rays,
+    ShadowRays,
+    BlockedShadowRays,
+    Reflections,
+    Refractions,
+    /// Rays that left the scene.
+    Misses,
+    /// The deepest bounce (0: the eye ray alone).
+    Depth,
+    /// Whether a refraction was lost to total internal reflection.
+    Tir,
+    /// The object the eye ray hit, by index (`none` on a miss).
+    EyeObject,
+    /// Its kind (`triangle` for a three-sided polygon).
+    EyeKind,
+    /// The eye ray's distance to its hit.
+    EyeT,
+    /// Whether the eye ray arrived from outside the surface it hit.
+    EyeOutside,
+}
+
+const TREE_FIGURES: [(&str, TreeFigure); 12] = [
+    ("rays", TreeFigure::Rays),
+    ("shadow-rays", TreeFigure::ShadowRays),
+    ("blocked-shadow-rays", TreeFigure::BlockedShadowRays),
+    ("reflections", TreeFigure::Reflections),
+    ("refractions", TreeFigure::Refractions),
+    ("misses", TreeFigure::Misses),
+    ("depth", TreeFigure::Depth),
+    ("tir", TreeFigure::Tir),
+    ("eye-object", TreeFigure::EyeObject),
+    ("eye-kind", TreeFigure::EyeKind),
+    ("eye-t", TreeFigure::EyeT),
+    ("eye-outside", TreeFigure::EyeOutside),
+];
+
+/// Something a check reads.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(try_from = "String")]
+pub enum Quantity {
+    Setting(Setting),
+    /// `object N FIELD`.
+    Object(usize, Field),
+    /// `material M FIELD`.
+    Material(usize, Field),
+    /// `objects`: how many the scene has.
+    Objects,
+    /// `lights`.
+    Lights,
+    /// `camera distance`: from the eye to `at`, the view-plane distance.
+    CameraDistance,
+    /// `camera angle`: the vertical field of view in degrees.
+    CameraAngle,
+    /// `observer`: whether the observer view is open (the window's layout).
+    Observer,
+    /// `view`: the image view shown (`shaded`, `tests`, `shadow`, ...).
+    View,
+    /// `focus-error N`: how far the plane in focus is from object N's
+    /// centre, as a fraction of the object's distance along the view.
+    FocusError(usize),
+    /// `tree FIGURE`.
+    Tree(TreeFigure),
+    /// `tree blocker L`: the object blocking the first shadow ray towards
+    /// light L (`none` when all of them are lit).
+    Blocker(usize),
+    /// `grid cells`: nx * ny * nz of the grid side A's m builds.
+    GridCells,
+    /// `grid nx`, `grid ny`, `grid nz`.
+    GridAxis(usize),
+    /// `eye steps`: cells or nodes the pinned pixel's eye ray walked with
+    /// the side's structure.
+    EyeSteps,
+    /// `eye tests`: its ray-primitive tests with the side's structure.
+    EyeTests,
+    /// `brute-force tests`: what one ray tests with no structure (every
+    /// shape).
+    BruteForceTests,
+}
+
+impl TryFrom<String> for Quantity {
+    type Error = String;
+
+    fn try_from(text: String) -> Result<Self, String> {
+        Quantity::parse(&text)
+    }
+}
+
+fn lookup<T: Copy>(table: &[(&str, T)], word: &str, what: &str) -> Result<T, String> {
+    table
+        .iter()
+        .find(|(name, _)| *name == word)
+        .map(|&(_, v)| v)
+        .ok_or_else(|| {
+            let names: Vec<&str> = table.iter().map(|(n, _)| *n).collect();
+            format!("no {what} `{word}`; expected one of {}", names.join(", "))
+        })
+}
+
+fn index(word: Option<&str>, what: &str) -> Result<usize, String> {
+    word.and_then(|w| w.parse().ok())
+        .ok_or_else(|| format!("expected {what} number (from 0)"))
+}
+
+impl Quantity {
+    /// Reads a quantity's name; the error lists what exists.
+    pub fn parse(text: &str) -> Result<Quantity, String> {
+        let words: Vec<&str> = text.split_whitespace().collect();
+        let quantity = match words.as_slice() {
+            ["objects"] => Quantity::Objects,
+            ["lights"] => Quantity::Lights,
+            ["camera", "distance"] => Quantity::CameraDistance,
+            ["camera", "angle"] => Quantity::CameraAngle,
+            ["observer"] => Quantity::Observer,
+            ["view"] => Quantity::View,
+            ["focus-error", n] => Quantity::FocusError(index(Some(n), "an object")?),
+            ["object", n, field] => {
+                Quantity::Object(index(Some(n), "an object")?, lookup(&FIELDS, field, "field")?)
+            }
+            ["material", n, field] => {
+                let field = lookup(&FIELDS, field, "field")?;
+                if matches!(field, Field::Radius | Field::Kind) {
+                    return Err(format!("a material has no `{text}`; objects have it"));
+                }
+                Quantity::Material(index(Some(n), "a material")?, field)
+            }
+            ["tree", "blocker", light] => Quantity::Blocker(index(Some(light), "a light")?),
+            ["tree", figure] => Quantity::Tree(lookup(&TREE_FIGURES, figure, "tree figure")?),
+            ["grid", "cells"] => Quantity::GridCells,
+            ["grid", axis] => Quantity::GridAxis(lookup(
+                &[("nx", 0), ("ny", 1), ("nz", 2)],
+                axis,
+                "grid figure (cells, nx, ny, nz)",
+            )?),
+            ["eye", "steps"] => Quantity::EyeSteps,
+            ["eye", "tests"] => Quantity::EyeTests,
+            ["brute-force", "tests"] => Quantity::BruteForceTests,
+            [setting] => Quantity::Setting(lookup(&SETTINGS, setting, "setting").map_err(|e| {
+                format!(
+                    "{e}; or objects, lights, camera distance, camera angle, observer, view, focus-error N, object N FIELD, \
+                     material M FIELD, tree FIGURE, tree blocker L, grid cells, eye steps, \
+                     eye tests, brute-force tests"
+                )
+            })?),
+            _ => {
+                return Err(format!(
+                    "`{text}` names nothing to read; expected a setting (spp, accel, ...), \
+                     objects, lights, camera distance, camera angle, observer, view, focus-error N, object N FIELD, \
+                     material M FIELD, tree FIGURE, tree blocker L, grid cells, eye steps, \
+                     eye tests or brute-force tests"
+                ));
+            }
+        };
+        Ok(quantity)
+    }
+
+    /// Whether reading it needs a pinned pixel.
+    pub fn needs_pixel(&self) -> bool {
+        matches!(
+            self,
+            Quantity::Tree(_) | Quantity::Blocker(_) | Quantity::EyeSteps | Quantity::EyeTests
+        )
+    }
+
+    /// Its value in `state`, on side `which`; why it cannot be read
+    /// otherwise (no side B, no pixel pinned, no such object).
+    pub fn read(&self, state: &LessonState, which: Which) -> Result<Value, String> {
+        let side = state.side(which)?;
+        let pixel = || state.pixel.ok_or_else(|| "no pixel is pinned".to_string());
+        match *self {
+            Quantity::Observer => Ok(Value::Bool(state.layout.observer)),
+            Quantity::View => Ok(Value::Word(
+                state.layout.view.unwrap_or(View::Shaded).name().to_string(),
+            )),
+            Quantity::CameraAngle => Ok(Value::Number(f64::from(side.scene.view.angle))),
+            Quantity::Setting(setting) => Ok(read_setting(side, setting)),
+            Quantity::Object(n, field) => read_object(&side.scene, n, field),
+            Quantity::Material(n, field) => {
+                let material = side.scene.materials.get(n).ok_or_else(|| {
+                    format!(
+                        "the scene has {} materials, no material {n}",
+                        side.scene.materials.len()
+                    )
+                })?;
+                material_field(material, field)
+            }
+            Quantity::Objects => Ok(count(side.scene.objects.len())),
+            Quantity::Lights => Ok(count(side.scene.lights.len())),
+            Quantity::CameraDistance => {
+                let view = &side.scene.view;
+                Ok(Value::Number(f64::from((view.at - view.from).length())))
+            }
+            Quantity::FocusError(n) => focus_error(side, n),
+            Quantity::Tree(figure) => {
+                let tree = record_tree(side, pixel()?)?;
+                Ok(tree_figure(&side.scene, &tree, figure))
+            }
+            Quantity::Blocker(light) => {
+                let tree = record_tree(side, pixel()?)?;
+                Ok(blocker(&tree, light))
+            }
+            Quantity::GridCells | Quantity::GridAxis(_) => {
+                let grid = SceneIndex::build(
+                    &side.world.shapes,
+                    AccelKind::Grid,
+                    side.settings.grid_multiplier,
+                );
+                let cells = grid.info().grid.map_or([0; 3], |g| g.cells);
+                Ok(match *self {
+                    Quantity::GridAxis(axis) => count(cells[axis] as usize),
+                    _ => Value::Number(cells.iter().map(|&c| f64::from(c)).product()),
+                })
+            }
+            Quantity::EyeSteps | Quantity::EyeTests => {
+                let tree = record_tree(side, pixel()?)?;
+                let eye = tree
+                    .nodes
+                    .first()
+                    .filter(|n| n.kind == RayKind::Eye)
+                    .ok_or("the pinned pixel has no eye ray")?;
+                let index = SceneIndex::build(
+                    &side.world.shapes,
+                    side.settings.accel,
+                    side.settings.grid_multiplier,
+                );
+                let hither = Frame::camera(&side.world, &side.settings)
+                    .map_err(|e| e.to_string())?
+                    .hither();
+                let ray = Ray::new(eye.origin, eye.dir);
+                let walk =
+                    index.closest_hit_visits(&side.world.shapes, &ray, hither, f32::INFINITY);
+                Ok(match self {
+                    Quantity::EyeSteps => count(walk.visits.len()),
+                    _ => Value::Number(walk.counters.intersection_tests as f64),
+                })
+            }
+            Quantity::BruteForceTests => Ok(count(side.world.shapes.len())),
+        }
+    }
+}
+
+impl Display for Quantity {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        match *self {
+            Quantity::Setting(s) => f.write_str(name(&SETTINGS, s)),
+            Quantity::Object(n, field) => write!(f, "object {n} {}", name(&FIELDS, field)),
+            Quantity::Material(n, field) => write!(f, "material {n} {}", name(&FIELDS, field)),
+            Quantity::Objects => f.write_str("objects"),
+            Quantity::Lights => f.write_str("lights"),
+            Quantity::CameraDistance => f.write_str("camera distance"),
+            Quantity::CameraAngle => f.write_str("camera angle"),
+            Quantity::Observer => f.write_str("observer"),
+            Quantity::View => f.write_str("view"),
+            Quantity::FocusError(n) => write!(f, "focus-error {n}"),
+            Quantity::Tree(figure) => write!(f, "tree {}", name(&TREE_FIGURES, figure)),
+            Quantity::Blocker(light) => write!(f, "tree blocker {light}"),
+            Quantity::GridCells => f.write_str("grid cells"),
+            Quantity::GridAxis(axis) => write!(f, "grid n{}", ["x", "y", "z"][axis]),
+            Quantity::EyeSteps => f.write_str("eye steps"),
+            Quantity::EyeTests => f.write_str("eye tests"),
+            Quantity::BruteForceTests => f.write_str("brute-force tests"),
+        }
+    }
+}
+
+/// The name `v` has in `table`.
+fn name<T: PartialEq>(table: &[(&'static str, T)], v: T) -> &'static str {
+    table.iter().find(|(_, x)| *x == v).map_or("?", |(n, _)| *n)
+}
+
+fn count(n: usize) -> Value {
+    Value::Number(n as f64)
+}
+
+fn read_setting(side: &SideState, setting: Setting) -> Value {
+    let s = &side.settings;
+    let number = |v: f32| Value::Number(f64::from(v));
+    match setting {
+        Setting::Width => count(s.width as usize),
+        Setting::Height => count(s.height as usize),
+        Setting::Depth => count(s.max_depth as usize),
+        Setting::Aa => Value::Bool(s.antialiasing),
+        Setting::Spp => count(s.samples as usize),
+        Setting::SamplesPerPixel => count(s.samples_per_pixel() as usize),
+        Setting::SoftShadows => Value::Bool(s.soft_shadows),
+        Setting::LightSize => number(s.light_size),
+        Setting::Dof => Value::Bool(s.depth_of_field),
+        Setting::Aperture => number(s.aperture),
+        Setting::Focal => number(s.focal),
+        Setting::Ambient => number(s.ambient),
+        Setting::Accel => Value::Word(s.accel.name().to_string()),
+        Setting::GridM => number(s.grid_multiplier),
+        Setting::Seed => Value::Number(s.seed as f64),
+    }
+}
+
+/// An object's kind as a student names it: a three-sided polygon is a
+/// triangle.
+fn kind_of(primitive: &Primitive) -> &'static str {
+    match primitive {
+        Primitive::Polygon { vertices } | Primitive::Patch { vertices, .. }
+            if vertices.len() == 3 =>
+        {
+            "triangle"
+        }
+        other => other.kind(),
+    }
+}
+
+fn read_object(scene: &Scene, n: usize, field: Field) -> Result<Value, String> {
+    let object = scene.objects.get(n).ok_or_else(|| {
+        format!(
+            "the scene has {} objects, no object {n}",
+            scene.objects.len()
+        )
+    })?;
+    match (field, &object.primitive) {
+        (Field::Kind, primitive) => Ok(Value::Word(kind_of(primitive).to_string())),
+        (Field::Radius, Primitive::Sphere { radius, .. }) => Ok(Value::Number(f64::from(*radius))),
+        (Field::Radius, other) => Err(format!(
+            "object {n} is a {}: it has no radius",
+            other.kind()
+        )),
+        (field, _) => {
+            let material = scene
+                .materials
+                .get(object.material as usize)
+                .ok_or_else(|| format!("object {n} has no material"))?;
+            material_field(material, field)
+        }
+    }
+}
+
+fn material_field(material: &tracer::scene::Material, field: Field) -> Result<Value, String> {
+    let v = match field {
+        Field::Kd => material.kd,
+        Field::Ks => material.ks,
+        Field::Shine => material.shine,
+        Field::Transmittance => material.transmittance,
+        Field::Ior => material.ior,
+        Field::Radius | Field::Kind => return Err("not a material field".into()),
+    };
+    Ok(Value::Number(f64::from(v)))
+}
+
+/// |plane in focus - object's depth| / object's depth, depths measured
+/// along the view direction from the eye: the plane in focus lies at
+/// `focal` times the view-plane distance `|at - from|`.
+fn focus_error(side: &SideState, n: usize) -> Result<Value, String> {
+    let scene = &side.scene;
+    let object = scene.objects.get(n).ok_or_else(|| {
+        format!(
+            "the scene has {} objects, no object {n}",
+            scene.objects.len()
+        )
+    })?;
+    let centre = match &object.primitive {
+        Primitive::Sphere { centre, .. } => *centre,
+        Primitive::Box { min, max } => (*min + *max) * 0.5,
+        other => {
+            return Err(format!(
+                "object {n} is a {}: focus on a sphere or box",
+                other.kind()
+            ));
+        }
+    };
+    let view = &scene.view;
+    let axis = (view.at - view.from).normalize_or_zero();
+    let depth = (centre - view.from).dot(axis);
+    if depth <= 0.0 {
+        return Err(format!("object {n} is behind the camera"));
+    }
+    let in_focus = side.settings.focal * (view.at - view.from).length();
+    Ok(Value::Number(f64::from((in_focus - depth).abs() / depth)))
+}
+
+/// The pinned pixel's tree, sample 0, under the side's settings.
+fn record_tree(side: &SideState, (x, y): (u32, u32)) -> Result<RayTree, String> {
+    ray_tree::inspect(
+        &side.world,
+        None::<Arc<SceneIndex>>,
+        &side.settings,
+        (x, y),
+        0,
+    )
+    .map_err(|e| format!("{e:#}"))
+}
+
+fn tree_figure(scene: &Scene, tree: &RayTree, figure: TreeFigure) -> Value {
+    let nodes = &tree.nodes;
+    let of_kind = |kind: RayKind| count(nodes.iter().filter(|n| n.kind == kind).count());
+    let eye_hit = nodes
+        .first()
+        .filter(|n| n.kind == RayKind::Eye)
+        .and_then(|n| match &n.outcome {
+            Outcome::Surface(s) => Some(s),
+            _ => None,
+        });
+    let none = || Value::Word("none".into());
+    match figure {
+        TreeFigure::Rays => count(nodes.len()),
+        TreeFigure::ShadowRays => of_kind(RayKind::Shadow),
+        TreeFigure::BlockedShadowRays => count(
+            nodes
+                .iter()
+                .filter(|n| {
+                    matches!(
+                        n.outcome,
+                        Outcome::Light {
+                            occluder: Some(_),
+                            ..
+                        }
+                    )
+                })
+                .count(),
+        ),
+        TreeFigure::Reflections => of_kind(RayKind::Reflection),
+        TreeFigure::Refractions => of_kind(RayKind::Refraction),
+        TreeFigure::Misses => count(
+            nodes
+                .iter()
+                .filter(|n| n.outcome == Outcome::Background)
+                .count(),
+        ),
+        TreeFigure::Depth => count(nodes.iter().map(|n| n.depth).max().unwrap_or(0) as usize),
+        TreeFigure::Tir => Value::Bool(nodes.iter().any(
+            |n| matches!(&n.outcome, Outcome::Surface(s) if s.fresnel.is_some_and(|(_, tir)| tir)),
+        )),
+        TreeFigure::EyeObject => eye_hit.map_or_else(none, |s| count(s.object as usize)),
+        TreeFigure::EyeKind => eye_hit.map_or_else(none, |s| {
+            let kind = scene
+                .objects
+                .get(s.object as usize)
+                .map_or(s.object_kind, |o| kind_of(&o.primitive));
+            Value::Word(kind.to_string())
+        }),
+        TreeFigure::EyeT => eye_hit.map_or_else(none, |s| Value::Number(f64::from(s.t))),
+        TreeFigure::EyeOutside => eye_hit.map_or_else(none, |s| Value::Bool(s.outside)),
+    }
+}
+
+/// The object blocking the first blocked shadow ray towards `light` from
+/// the eye ray's hit, `none` when all of them are lit (or there are none).
+fn blocker(tree: &RayTree, light: usize) -> Value {
+    tree.children(Some(0))
+        .find_map(|i| match &tree.nodes[i].outcome {
+            Outcome::Light {
+                light: l,
+                occluder: Some(o),
+                ..
+            } if *l == light => Some(count(o.object as usize)),
+            _ => None,
+        })
+        .unwrap_or_else(|| Value::Word("none".into()))
+}

@@ -1,0 +1,352 @@
+//! Each kind of check, on small scenes whose answers are known by
+//! construction, passing when it should and failing when it should.
+
+use std::sync::Arc;
+
+use tracer::accel::AccelKind;
+use tracer::scene::{Limits, parse_scene};
+
+use super::*;
+use crate::lessons::state::{LessonState, SideState};
+use crate::load::{self, SceneSource};
+
+/// A triangle at z = 0 facing a camera on the z axis, a light above and
+/// in front, and a small sphere on the segment from the triangle's centre
+/// to the light: the centre pixel's eye ray hits the triangle (object 0)
+/// and its one shadow ray is blocked by the sphere (object 1).
+const SHADOWED: &str = "
+v
+from 0 0 10
+at 0 0 0
+up 0 1 0
+angle 30
+hither 0.01
+resolution 32 32
+l 0 10 5 1 1 1
+f 0.8 0.8 0.8 1 0 0 0 0 1 0 1
+p 3
+-2 -2 0
+2 -2 0
+0 2 0
+f 0.9 0.1 0.1 1 0 0 0 0 1 0 1
+s 0 4 2 0.5
+";
+
+/// A camera inside a glass sphere, off its centre and looking across it:
+/// the eye ray meets the surface from inside at 64 degrees, beyond glass's
+/// critical angle of 42: total internal reflection.
+const INSIDE_GLASS: &str = "
+v
+from 0 0 0.9
+at 1 0 0.9
+up 0 0 1
+angle 20
+hither 0.001
+resolution 9 9
+l 0 0 0 1 1 1
+f 1 1 1 0 1 1 1 0.1 100 0.9 1.5
+s 0 0 0 1
+";
+
+fn state_of(p3f: &str) -> LessonState {
+    let scene = parse_scene(p3f, None, &Limits::default()).unwrap();
+    let world = Arc::new(load::build_with_sky(&scene));
+    LessonState::new(scene, world)
+}
+
+fn value(of: &str, is: &str) -> Check {
+    Check::Value {
+        of: Quantity::parse(of).unwrap(),
+        is: Expect::parse(is).unwrap(),
+        side: Which::A,
+    }
+}
+
+fn done(check: &Check, state: &LessonState) -> bool {
+    evaluate(check, state).is_done()
+}
+
+#[test]
+fn a_setting_check_reads_the_settings_as_they_are() {
+    let mut state = state_of(SHADOWED);
+    let check = value("spp", ">= 4");
+    state.a.settings.samples = 2;
+    let verdict = evaluate(&check, &state);
+    assert_eq!(
+        verdict,
+        Verdict::NotYet("spp is 2, expected >= 4".into()),
+        "{verdict:?}"
+    );
+    state.a.settings.samples = 4;
+    assert!(done(&check, &state));
+    let accel = value("accel", "grid");
+    state.a.settings.accel = AccelKind::Bvh;
+    assert!(!done(&accel, &state));
+    state.a.settings.accel = AccelKind::Grid;
+    assert!(done(&accel, &state));
+}
+
+#[test]
+fn a_scene_check_reads_the_edited_scene() {
+    let mut state = state_of(SHADOWED);
+    let check = value("object 1 radius", "0.5");
+    assert!(done(&check, &state));
+    let ior = value("object 1 ior", "1.33 +- 1%");
+    assert!(!done(&ior, &state));
+    let edit = |line: &str| crate::lessons::format::Actions {
+        edits: vec![crate::lessons::format::Located {
+            value: line.to_string(),
+            line: 1,
+            column: 1,
+        }],
+        ..Default::default()
+    };
+    state.apply(&edit("object 1 t 0.5"), "test").unwrap();
+    state.apply(&edit("object 1 ior 1.33"), "test").unwrap();
+    assert!(done(&ior, &state));
+    assert!(done(&value("object 0 kind", "triangle"), &state));
+    let missing = evaluate(&value("object 7 ior", "1"), &state);
+    assert!(missing.reason().contains("no object 7"), "{missing:?}");
+}
+
+#[test]
+fn the_focus_error_is_the_plane_in_focus_against_an_object() {
+    let mut state = state_of(SHADOWED);
+    // The sphere's centre is 8 along the view from the eye; the view-plane
+    // distance is 10.
+    let check = value("focus-error 1", "<= 0.05");
+    state.a.settings.focal = 1.0;
+    assert!(!done(&check, &state));
+    state.a.settings.focal = 0.8;
+    assert!(done(&check, &state));
+}
+
+#[test]
+fn a_ray_tree_check_reads_the_pinned_pixels_tree() {
+    let mut state = state_of(SHADOWED);
+    let blocked = Check::All {
+        checks: vec![
+            value("tree eye-kind", "triangle"),
+            value("tree blocked-shadow-rays", "1"),
+            value("tree blocker 0", "1"),
+        ],
+    };
+    let verdict = evaluate(&blocked, &state);
+    assert_eq!(verdict, Verdict::NotYet("no pixel is pinned".into()));
+    state.pixel = Some((16, 16));
+    let verdict = evaluate(&blocked, &state);
+    assert!(verdict.is_done(), "{verdict:?}");
+    // A second light straight above the camera: each light has its own
+    // shadow ray, and only light 0's is blocked.
+    let mut two_lights = state.clone();
+    two_lights.a = edited(&state, "light 1 add l 0 0 20");
+    assert!(done(&value("tree blocker 1", "none"), &two_lights));
+    assert!(done(&value("tree blocker 0", "1"), &two_lights));
+    // Move the sphere out of the light's way: lit, blocked by nothing.
+    state.a = edited(&state, "object 1 centre 5 -4 2");
+    let verdict = evaluate(&blocked, &state);
+    assert_eq!(
+        verdict,
+        Verdict::NotYet("tree blocked-shadow-rays is 0, expected 1".into())
+    );
+    assert!(done(&value("tree blocker 0", "none"), &state));
+}
+
+fn edited(state: &LessonState, line: &str) -> SideState {
+    let mut copy = state.clone();
+    copy.apply(
+        &crate::lessons::format::Actions {
+            edits: vec![crate::lessons::format::Located {
+                value: line.into(),
+                line: 1,
+                column: 1,
+            }],
+            ..Default::default()
+        },
+        "test",
+    )
+    .unwrap();
+    copy.a
+}
+
+#[test]
+fn total_internal_reflection_shows_in_the_tree() {
+    let mut state = state_of(INSIDE_GLASS);
+    state.pixel = Some((4, 4));
+    let tir = value("tree tir", "on");
+    assert!(done(&tir, &state), "{:?}", evaluate(&tir, &state));
+    assert!(done(&value("tree eye-outside", "off"), &state));
+    // Water's critical angle (49 degrees) is still below 64; at ior 1.1 it
+    // is 65 degrees and the ray gets out.
+    state.a = edited(&state, "object 0 ior 1.1");
+    assert!(!done(&tir, &state));
+}
+
+#[test]
+fn an_answer_is_checked_against_a_value_computed_now() {
+    let mut state = state_of(SHADOWED);
+    state.pixel = Some((16, 16));
+    let check = Check::Answer {
+        question: "How many shadow rays does this pixel spawn?".into(),
+        of: Quantity::parse("tree shadow-rays").unwrap(),
+        tolerance: None,
+        choices: vec![],
+        side: Which::A,
+    };
+    assert_eq!(
+        evaluate(&check, &state),
+        Verdict::NotYet("no answer yet".into())
+    );
+    state.answer = Some("4".into());
+    assert_eq!(
+        evaluate(&check, &state),
+        Verdict::Wrong("4 is not right".into())
+    );
+    state.answer = Some(" 1 ".into());
+    assert!(done(&check, &state));
+    // With soft shadows at N = 3 the same pixel spawns 3 x 3: the right
+    // answer follows the state, the lesson never states it.
+    state.a.settings.soft_shadows = true;
+    state.a.settings.samples = 3;
+    assert!(!done(&check, &state));
+    state.answer = Some("9".into());
+    assert!(done(&check, &state), "{:?}", evaluate(&check, &state));
+}
+
+#[test]
+fn a_picked_answer_must_be_one_of_the_choices() {
+    let mut state = state_of(SHADOWED);
+    state.pixel = Some((16, 16));
+    let check = Check::Answer {
+        question: "Which object blocks the light?".into(),
+        of: Quantity::parse("tree blocker 0").unwrap(),
+        tolerance: None,
+        choices: vec!["0".into(), "1".into(), "none".into()],
+        side: Which::A,
+    };
+    state.answer = Some("2".into());
+    assert!(matches!(evaluate(&check, &state), Verdict::NotYet(_)));
+    state.answer = Some("none".into());
+    assert!(matches!(evaluate(&check, &state), Verdict::Wrong(_)));
+    state.answer = Some("1".into());
+    assert!(done(&check, &state));
+}
+
+/// The bundled ten-sphere flake at 24 x 24: enough objects for structures
+/// to matter.
+fn balls() -> LessonState {
+    let (scene, world) = load::load_source(&SceneSource::Bundled("balls_low".into())).unwrap();
+    let mut state = LessonState::new(scene, Arc::new(world));
+    state.a.settings.width = 24;
+    state.a.settings.height = 24;
+    state
+}
+
+#[test]
+fn a_speedup_is_measured_between_the_sides() {
+    let mut state = balls();
+    let check = Check::Measure {
+        metric: Metric::Speedup,
+        is: Expect::parse(">= 2").unwrap(),
+        by: By::Work,
+        values: vec![],
+    };
+    let verdict = evaluate(&check, &state);
+    assert!(verdict.reason().contains("no side B"), "{verdict:?}");
+    state.a.settings.accel = AccelKind::None;
+    let mut b = state.a.clone();
+    state.b = Some(b.clone());
+    let same = evaluate(&check, &state);
+    assert!(same.reason().contains("B is 1x faster"), "{same:?}");
+    b.settings.accel = AccelKind::Bvh;
+    state.b = Some(b);
+    assert!(done(&check, &state), "{:?}", evaluate(&check, &state));
+}
+
+#[test]
+fn flip_between_the_sides_is_measured() {
+    let mut state = balls();
+    let check = Check::Measure {
+        metric: Metric::Flip,
+        is: Expect::parse("< 0.01").unwrap(),
+        by: By::Work,
+        values: vec![],
+    };
+    let mut b = state.a.clone();
+    b.settings.accel = AccelKind::Grid;
+    state.b = Some(b.clone());
+    assert!(done(&check, &state), "the structure changes no pixel");
+    b.settings.ambient = 0.6;
+    state.b = Some(b);
+    assert!(!done(&check, &state));
+}
+
+#[test]
+fn a_grid_sweep_finds_the_cheapest_multiplier() {
+    let mut state = balls();
+    let values = vec![0.25, 1.0, 4.0];
+    let check = Check::Measure {
+        metric: Metric::GridSweep,
+        is: Expect::parse("<= 0").unwrap(),
+        by: By::Work,
+        values: values.clone(),
+    };
+    let passing: Vec<f32> = values
+        .iter()
+        .copied()
+        .filter(|&m| {
+            state.a.settings.grid_multiplier = m;
+            done(&check, &state)
+        })
+        .collect();
+    assert_eq!(
+        passing.len(),
+        1,
+        "exactly one of {values:?} is the cheapest"
+    );
+}
+
+#[test]
+fn malformed_checks_are_refused() {
+    let sweep = Check::Measure {
+        metric: Metric::GridSweep,
+        is: Expect::parse("<= 20").unwrap(),
+        by: By::Work,
+        values: vec![],
+    };
+    assert!(sweep.validate().unwrap_err().contains("needs `values`"));
+    let twice = Check::Answer {
+        question: "?".into(),
+        of: Quantity::Lights,
+        tolerance: None,
+        choices: vec!["1".into(), "1.0".into()],
+        side: Which::A,
+    };
+    assert!(twice.validate().unwrap_err().contains("twice"));
+    assert!(
+        Quantity::parse("tree colour")
+            .unwrap_err()
+            .contains("shadow-rays")
+    );
+    assert!(Quantity::parse("material 0 radius").is_err());
+}
+
+/// Timed measurements read frame times (never compared with a bound here:
+/// timings vary with the machine's load).
+#[test]
+fn a_timed_speedup_reads_frame_times() {
+    let mut state = balls();
+    state.b = Some(state.a.clone());
+    let check = Check::Measure {
+        metric: Metric::Speedup,
+        is: Expect::parse("> 0").unwrap(),
+        by: By::Time,
+        values: vec![],
+    };
+    let verdict = evaluate(&check, &state);
+    assert!(verdict.is_done(), "{verdict:?}");
+    assert!(
+        verdict.reason().starts_with("A ") && verdict.reason().contains(" ms and B "),
+        "{verdict:?}"
+    );
+}

@@ -1,0 +1,574 @@
+//! The lesson file: TOML read with serde, then checked, every error
+//! located by file, line and column (toml's byte spans turned into lines
+//! and columns) and saying what was expected, as scene files' errors do.
+//! `docs/LESSONS.md` documents the format for teachers.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+use tracer::render::View;
+
+use crate::bundled;
+use crate::cli::SettingsArgs;
+
+use super::check::Check;
+
+/// Where a lesson file could not be read, and why.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{file}:{line}:{column}: {message}")]
+pub struct LessonError {
+    /// The file's path, or `lessons/NAME.toml` for a bundled lesson.
+    pub file: String,
+    /// 1-based line; 1 when the whole file is at fault.
+    pub line: usize,
+    /// 1-based column, in characters.
+    pub column: usize,
+    pub message: String,
+}
+
+/// A value with the place in the lesson file it was read from, so a
+/// problem found later (an edit the scene refuses) still names its line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Located<T> {
+    pub value: T,
+    pub line: usize,
+    pub column: usize,
+}
+
+/// One lesson: a scene, where it starts, and its ordered steps.
+#[derive(Debug, Clone)]
+pub struct Lesson {
+    /// The file stem: what `workbench lesson check NAME` takes.
+    pub name: String,
+    /// The file as errors name it.
+    pub file: String,
+    pub title: String,
+    /// The course report's chapter it follows (1 = the camera).
+    pub chapter: u32,
+    /// What the lesson is about, in a sentence or two.
+    pub summary: String,
+    pub scene: LessonScene,
+    /// Settings, edits and layout before the first step.
+    pub start: Actions,
+    pub steps: Vec<Step>,
+}
+
+/// Where a lesson's scene comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LessonScene {
+    /// One of the scenes embedded in the binary, by name.
+    Bundled(String),
+    /// A scene file, its path made from the lesson file's folder.
+    File(PathBuf),
+    /// P3F written in the lesson; `first_line` is the lesson file's line
+    /// holding the scene's line 1, so its errors name the lesson's lines.
+    Inline { text: String, first_line: usize },
+}
+
+/// One step: what to read, what to do, and the check that says it is done.
+#[derive(Debug, Clone)]
+pub struct Step {
+    pub title: String,
+    /// The why, with the formula where the course gives one (Markdown).
+    pub text: String,
+    /// Shown one at a time, on request.
+    pub hints: Vec<String>,
+    /// Optional steps may be skipped; the lesson's summary counts them apart.
+    pub required: bool,
+    /// Applied over the earlier steps' solutions when the step is set up.
+    pub setup: Actions,
+    pub check: Located<Check>,
+    /// What a student who solved the step did: `lesson check` applies it
+    /// and expects the check to pass.
+    pub solution: Actions,
+    /// Where the step's `[[step]]` table starts.
+    pub line: usize,
+}
+
+/// What a lesson's start, a step's setup or a solution does to the state.
+#[derive(Debug, Clone, Default)]
+pub struct Actions {
+    /// Side A's settings, as `workbench render` flags; their `--set` lines
+    /// edit A's scene.
+    pub settings: Option<Located<SettingsArgs>>,
+    /// Scene edits of side A in the `--set` language, in order.
+    pub edits: Vec<Located<String>>,
+    /// Compare mode on, side B being A with these flags over it.
+    pub compare: Option<Located<SettingsArgs>>,
+    /// The pixel pinned for the ray tree and the observer.
+    pub pixel: Option<(u32, u32)>,
+    /// The answer typed or picked (solutions only).
+    pub answer: Option<String>,
+    /// The image view to show (window layout).
+    pub view: Option<View>,
+    /// The observer view on or off (window layout).
+    pub observer: Option<bool>,
+}
+
+impl Actions {
+    /// Whether it does nothing at all.
+    pub fn is_empty(&self) -> bool {
+        self.settings.is_none()
+            && self.edits.is_empty()
+            && self.compare.is_none()
+            && self.pixel.is_none()
+            && self.answer.is_none()
+            && self.view.is_none()
+            && self.observer.is_none()
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLesson {
+    title: Spanned<String>,
+    chapter: Spanned<u32>,
+    #[serde(default)]
+    summary: String,
+    scene: Spanned<RawScene>,
+    #[serde(default)]
+    start: Option<Spanned<RawActions>>,
+    #[serde(default, rename = "step")]
+    steps: Vec<Spanned<RawStep>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    bundled: Option<Spanned<String>>,
+    file: Option<Spanned<String>>,
+    p3f: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawActions {
+    settings: Option<Spanned<String>>,
+    #[serde(default)]
+    edits: Vec<Spanned<String>>,
+    compare: Option<Spanned<String>>,
+    pixel: Option<[u32; 2]>,
+    answer: Option<Spanned<RawAnswer>>,
+    view: Option<Spanned<String>>,
+    observer: Option<bool>,
+}
+
+/// An answer as a teacher writes it: `answer = 3`, `answer = "sphere"`.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum RawAnswer {
+    Integer(i64),
+    Float(f64),
+    Bool(bool),
+    Text(String),
+}
+
+impl RawAnswer {
+    fn into_text(self) -> String {
+        match self {
+            RawAnswer::Integer(i) => i.to_string(),
+            RawAnswer::Float(f) => f.to_string(),
+            RawAnswer::Bool(b) => b.to_string(),
+            RawAnswer::Text(t) => t,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStep {
+    title: Spanned<String>,
+    text: Spanned<String>,
+    #[serde(default)]
+    hints: Vec<String>,
+    #[serde(default = "required_by_default")]
+    required: bool,
+    setup: Option<Spanned<RawActions>>,
+    check: Spanned<Check>,
+    solution: Spanned<RawActions>,
+}
+
+fn required_by_default() -> bool {
+    true
+}
+
+/// Reads a lesson file from disk.
+pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| LessonError {
+        file: file.clone(),
+        line: 1,
+        column: 1,
+        message: format!("cannot read the lesson: {e}"),
+    })?;
+    let name = path
+        .file_stem()
+        .map_or_else(|| "lesson".into(), |s| s.to_string_lossy().into_owned());
+    parse_lesson(&text, &name, &file, path.parent())
+}
+
+/// The bundled lesson `name`, read.
+pub fn read_bundled(lesson: &bundled::BundledLesson) -> Result<Lesson, LessonError> {
+    let file = format!("lessons/{}.toml", lesson.name);
+    parse_lesson(lesson.text, lesson.name, &file, None)
+}
+
+/// Reads lesson `text`, named `name`, from `file` (as errors name it);
+/// a scene `file = ...` is found from `dir`.
+pub fn parse_lesson(
+    text: &str,
+    name: &str,
+    file: &str,
+    dir: Option<&Path>,
+) -> Result<Lesson, LessonError> {
+    let source = Source { file, text };
+    let raw: RawLesson = toml::from_str(text)
+        .map_err(|e| source.error(e.span().unwrap_or(0..0), e.message().trim_end().to_string()))?;
+    let title = nonempty(&source, raw.title, "the lesson's `title`")?;
+    let chapter = *raw.chapter.get_ref();
+    if !(1..=99).contains(&chapter) {
+        return Err(source.error(
+            raw.chapter.span(),
+            format!("expected a chapter from 1 to 99, found {chapter}"),
+        ));
+    }
+    let scene = source.scene(raw.scene, dir)?;
+    let start = match raw.start {
+        Some(actions) => source.actions(actions, Role::Setup)?,
+        None => Actions::default(),
+    };
+    if raw.steps.is_empty() {
+        return Err(source.error(0..0, "expected at least one `[[step]]` table".to_string()));
+    }
+    let steps = raw
+        .steps
+        .into_iter()
+        .map(|step| source.step(step))
+        .collect::<Result<_, _>>()?;
+    Ok(Lesson {
+        name: name.to_string(),
+        file: file.to_string(),
+        title,
+        chapter,
+        summary: raw.summary.trim().to_string(),
+        scene,
+        start,
+        steps,
+    })
+}
+
+/// The text of `value`, trimmed; an error when it is empty.
+fn nonempty(source: &Source, value: Spanned<String>, what: &str) -> Result<String, LessonError> {
+    let span = value.span();
+    let text = value.into_inner().trim().to_string();
+    if text.is_empty() {
+        return Err(source.error(span, format!("{what} is empty")));
+    }
+    Ok(text)
+}
+
+/// What a block of actions is for: a solution may answer, a setup may not.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Role {
+    Setup,
+    Solution,
+}
+
+/// The file being read, to turn byte spans into lines and columns.
+struct Source<'a> {
+    file: &'a str,
+    text: &'a str,
+}
+
+impl Source<'_> {
+    /// The 1-based line and column (in characters) of byte `offset`.
+    fn locate(&self, offset: usize) -> (usize, usize) {
+        let offset = offset.min(self.text.len());
+        let before = self.text.get(..offset).unwrap_or(self.text);
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count() + 1;
+        (line, column)
+    }
+
+    fn error(&self, span: Range<usize>, message: String) -> LessonError {
+        let (line, column) = self.locate(span.start);
+        LessonError {
+            file: self.file.to_string(),
+            line,
+            column,
+            message,
+        }
+    }
+
+    fn located<T>(&self, span: Range<usize>, value: T) -> Located<T> {
+        let (line, column) = self.locate(span.start);
+        Located {
+            value,
+            line,
+            column,
+        }
+    }
+
+    fn scene(
+        &self,
+        raw: Spanned<RawScene>,
+        dir: Option<&Path>,
+    ) -> Result<LessonScene, LessonError> {
+        let span = raw.span();
+        let raw = raw.into_inner();
+        let mut given = Vec::new();
+        if let Some(name) = raw.bundled {
+            let known = bundled::find(name.get_ref()).is_some();
+            if !known {
+                let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
+                return Err(self.error(
+                    name.span(),
+                    format!(
+                        "no bundled scene called `{}`; expected one of {}",
+                        name.get_ref(),
+                        names.join(", ")
+                    ),
+                ));
+            }
+            given.push(LessonScene::Bundled(name.into_inner()));
+        }
+        if let Some(file) = raw.file {
+            let path = dir.unwrap_or(Path::new(".")).join(file.get_ref());
+            if dir.is_none() {
+                return Err(self.error(
+                    file.span(),
+                    "a bundled lesson cannot name a scene file; use `bundled` or `p3f`".into(),
+                ));
+            }
+            given.push(LessonScene::File(path));
+        }
+        if let Some(p3f) = raw.p3f {
+            let span = p3f.span();
+            // A `"""` string drops the line break right after its quotes,
+            // so its first line is the next one.
+            let quotes = self.text.get(span.start..).unwrap_or_default();
+            let (line, _) = self.locate(span.start);
+            let first_line = if quotes.starts_with("\"\"\"\n") || quotes.starts_with("'''\n") {
+                line + 1
+            } else {
+                line
+            };
+            given.push(LessonScene::Inline {
+                text: p3f.into_inner(),
+                first_line,
+            });
+        }
+        match given.len() {
+            1 => Ok(given.remove(0)),
+            found => Err(self.error(
+                span,
+                format!(
+                    "expected exactly one of `bundled`, `file` or `p3f` in [scene], found {found}"
+                ),
+            )),
+        }
+    }
+
+    fn step(&self, raw: Spanned<RawStep>) -> Result<Step, LessonError> {
+        let (line, _) = self.locate(raw.span().start);
+        let raw = raw.into_inner();
+        let check_span = raw.check.span();
+        let check = raw.check.into_inner();
+        check
+            .validate()
+            .map_err(|message| self.error(check_span.clone(), message))?;
+        let solution_span = raw.solution.span();
+        let solution = self.actions(raw.solution, Role::Solution)?;
+        if solution.is_empty() {
+            return Err(self.error(
+                solution_span,
+                "the solution is empty: expected what a student does to pass the check".into(),
+            ));
+        }
+        Ok(Step {
+            title: nonempty(self, raw.title, "the step's `title`")?,
+            text: nonempty(self, raw.text, "the step's `text`")?,
+            hints: raw.hints,
+            required: raw.required,
+            setup: match raw.setup {
+                Some(setup) => self.actions(setup, Role::Setup)?,
+                None => Actions::default(),
+            },
+            check: self.located(check_span, check),
+            solution,
+            line,
+        })
+    }
+
+    fn actions(&self, raw: Spanned<RawActions>, role: Role) -> Result<Actions, LessonError> {
+        let raw = raw.into_inner();
+        let flags = |text: Spanned<String>| -> Result<Located<SettingsArgs>, LessonError> {
+            let span = text.span();
+            let (args, _) = SettingsArgs::parse_str(text.get_ref()).map_err(|e| {
+                self.error(
+                    span.clone(),
+                    format!("expected `workbench render` flags: {e}"),
+                )
+            })?;
+            Ok(self.located(span, args))
+        };
+        let answer = match raw.answer {
+            Some(answer) if role == Role::Setup => {
+                return Err(self.error(
+                    answer.span(),
+                    "only a step's `solution` may give an `answer`".into(),
+                ));
+            }
+            Some(answer) => Some(answer.into_inner().into_text()),
+            None => None,
+        };
+        let view = match raw.view {
+            Some(name) => Some(View::from_name(name.get_ref()).ok_or_else(|| {
+                let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
+                self.error(
+                    name.span(),
+                    format!(
+                        "no view `{}`; expected one of {}",
+                        name.get_ref(),
+                        names.join(", ")
+                    ),
+                )
+            })?),
+            None => None,
+        };
+        Ok(Actions {
+            settings: raw.settings.map(flags).transpose()?,
+            edits: raw
+                .edits
+                .into_iter()
+                .map(|e| {
+                    let span = e.span();
+                    self.located(span, e.into_inner())
+                })
+                .collect(),
+            compare: raw.compare.map(flags).transpose()?,
+            pixel: raw.pixel.map(|[x, y]| (x, y)),
+            answer,
+            view,
+            observer: raw.observer,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = r#"title = "Eye rays"
+chapter = 1
+
+[scene]
+bundled = "glass"
+
+[start]
+settings = "--width 32 --height 32"
+pixel = [3, 4]
+
+[[step]]
+title = "Anti-aliasing"
+text = "Turn it on."
+check = { kind = "value", of = "aa", is = "on" }
+solution = { settings = "--aa" }
+"#;
+
+    fn parse(text: &str) -> Result<Lesson, LessonError> {
+        parse_lesson(text, "test", "test.toml", None)
+    }
+
+    #[test]
+    fn a_minimal_lesson_reads() {
+        let lesson = parse(MINIMAL).unwrap();
+        assert_eq!(lesson.title, "Eye rays");
+        assert_eq!(lesson.scene, LessonScene::Bundled("glass".into()));
+        assert_eq!(lesson.start.pixel, Some((3, 4)));
+        assert_eq!(lesson.steps.len(), 1);
+        let step = &lesson.steps[0];
+        assert!(step.required);
+        assert_eq!(step.line, 11);
+        assert_eq!((step.check.line, step.check.column), (14, 9));
+        assert!(step.solution.settings.as_ref().unwrap().value.aa);
+    }
+
+    #[test]
+    fn a_syntax_error_names_its_line_and_column() {
+        let broken = MINIMAL.replace("chapter = 1", "chapter = = 1");
+        let e = parse(&broken).unwrap_err();
+        assert_eq!(
+            (e.file.as_str(), e.line, e.column),
+            ("test.toml", 2, 11),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_bad_flag_is_located_at_its_string() {
+        let broken = MINIMAL.replace("--aa\" }", "--fast\" }");
+        let e = parse(&broken).unwrap_err();
+        assert_eq!((e.line, e.column), (15, 25), "{e}");
+        assert!(e.message.contains("'--fast'"), "{e}");
+    }
+
+    #[test]
+    fn an_unknown_field_says_what_was_expected() {
+        let broken = MINIMAL.replace("pixel = [3, 4]", "pixle = [3, 4]");
+        let e = parse(&broken).unwrap_err();
+        assert_eq!(e.line, 9, "{e}");
+        assert!(
+            e.message.contains("pixle") && e.message.contains("pixel"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_scene_must_be_given_once() {
+        let both = MINIMAL.replace(
+            "bundled = \"glass\"",
+            "bundled = \"glass\"\np3f = \"s 0 0 0 1\"",
+        );
+        let e = parse(&both).unwrap_err();
+        assert!(e.message.contains("exactly one"), "{e}");
+        let unknown = MINIMAL.replace("\"glass\"", "\"glas\"");
+        let e = parse(&unknown).unwrap_err();
+        assert_eq!((e.line, e.column), (5, 11), "{e}");
+    }
+
+    #[test]
+    fn an_inline_scene_knows_its_first_line() {
+        let inline = MINIMAL.replace(
+            "bundled = \"glass\"",
+            "p3f = \"\"\"\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n\"\"\"",
+        );
+        let lesson = parse(&inline).unwrap();
+        let LessonScene::Inline { first_line, .. } = lesson.scene else {
+            panic!("{:?}", lesson.scene)
+        };
+        assert_eq!(first_line, 6);
+    }
+
+    #[test]
+    fn only_a_solution_answers() {
+        let broken = MINIMAL.replace("pixel = [3, 4]", "answer = 3");
+        let e = parse(&broken).unwrap_err();
+        assert!(e.message.contains("only a step's `solution`"), "{e}");
+    }
+
+    #[test]
+    fn byte_offsets_become_character_columns() {
+        let source = Source {
+            file: "f",
+            text: "ab\nçé x",
+        };
+        assert_eq!(source.locate(0), (1, 1));
+        assert_eq!(source.locate(3), (2, 1));
+        // "çé " is 5 bytes and 3 characters.
+        assert_eq!(source.locate(8), (2, 4));
+    }
+}

@@ -1,0 +1,134 @@
+//! A lesson walked as a student walks it: its scene opened, its start
+//! applied, then for each step its setup, the check before the student
+//! acts, the step's solution, the check after. `lesson check` asks that
+//! every step fails before and passes after; the window sets a step up
+//! with [`state_at_step`].
+
+use std::path::Path;
+use std::sync::Arc;
+
+use anyhow::{Context, Result};
+use tracer::scene::{Limits, Scene, parse_scene};
+use tracer::world::World;
+
+use crate::load::{self, SceneSource};
+
+use super::check::{Verdict, evaluate};
+use super::format::{Lesson, LessonError, LessonScene, Step};
+use super::state::LessonState;
+
+/// The lesson's scene and the world built from it. An inline scene's
+/// parse error names the lesson file's line.
+pub fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
+    let (scene, world) = match &lesson.scene {
+        LessonScene::Bundled(name) => load::load_source(&SceneSource::Bundled(name.clone()))?,
+        LessonScene::File(path) => load::load_source(&SceneSource::File(path.clone()))
+            .with_context(|| format!("{}: the lesson's scene", lesson.file))?,
+        LessonScene::Inline { text, first_line } => {
+            let dir = Path::new(&lesson.file).parent();
+            let mut scene = parse_scene(text, None, &Limits::default()).map_err(|e| {
+                let command = e
+                    .command
+                    .as_ref()
+                    .map_or_else(String::new, |c| format!("in `{c}`: "));
+                LessonError {
+                    file: lesson.file.clone(),
+                    line: first_line + e.line.max(1) as usize - 1,
+                    column: e.column.max(1) as usize,
+                    message: format!("in the scene: {command}{}", e.kind),
+                }
+            })?;
+            scene.base_dir = dir.map(Path::to_path_buf);
+            let world = load::build_with_sky(&scene);
+            (scene, world)
+        }
+    };
+    Ok((scene, Arc::new(world)))
+}
+
+/// The state before step `step` is done: the start, every earlier step's
+/// setup and solution, this step's setup; no answer given.
+pub fn state_at_step(
+    lesson: &Lesson,
+    scene: &Scene,
+    world: &Arc<World>,
+    step: usize,
+) -> Result<LessonState> {
+    let mut state = start(lesson, scene.clone(), world.clone())?;
+    for done in lesson.steps.iter().take(step) {
+        enter(&mut state, done, &lesson.file)?;
+        state.apply(&done.solution, &lesson.file)?;
+    }
+    if let Some(current) = lesson.steps.get(step) {
+        enter(&mut state, current, &lesson.file)?;
+    }
+    Ok(state)
+}
+
+/// The lesson's scene with its `[start]` applied.
+fn start(lesson: &Lesson, scene: Scene, world: Arc<World>) -> Result<LessonState> {
+    let mut state = LessonState::new(scene, world);
+    state.apply(&lesson.start, &lesson.file)?;
+    Ok(state)
+}
+
+/// A step begins: its setup applied, the last step's answer forgotten.
+fn enter(state: &mut LessonState, step: &Step, file: &str) -> Result<()> {
+    state.answer = None;
+    state.apply(&step.setup, file)
+}
+
+/// One step replayed.
+#[derive(Debug, Clone)]
+pub struct StepReplay {
+    pub title: String,
+    /// The check on the step's starting state: it must not hold.
+    pub before: Verdict,
+    /// The check once the solution is applied: it must hold.
+    pub after: Verdict,
+}
+
+impl StepReplay {
+    /// `None` when the step is sound, else what is wrong with it.
+    pub fn failure(&self) -> Option<String> {
+        if self.before.is_done() {
+            Some(format!(
+                "the check already holds before the student acts ({})",
+                self.before.reason()
+            ))
+        } else if !self.after.is_done() {
+            Some(format!(
+                "the solution does not pass the check: {}",
+                self.after.reason()
+            ))
+        } else {
+            None
+        }
+    }
+}
+
+/// Replays every step of `lesson`, calling `on_step` as each is done. An
+/// error is a lesson that cannot be walked at all (its scene does not load,
+/// an edit is refused).
+pub fn replay(
+    lesson: &Lesson,
+    on_step: &mut dyn FnMut(usize, &StepReplay),
+) -> Result<Vec<StepReplay>> {
+    let (scene, world) = open_scene(lesson)?;
+    let mut state = start(lesson, scene, world)?;
+    let mut replays = Vec::with_capacity(lesson.steps.len());
+    for (i, step) in lesson.steps.iter().enumerate() {
+        enter(&mut state, step, &lesson.file)?;
+        let before = evaluate(&step.check.value, &state);
+        state.apply(&step.solution, &lesson.file)?;
+        let after = evaluate(&step.check.value, &state);
+        let replay = StepReplay {
+            title: step.title.clone(),
+            before,
+            after,
+        };
+        on_step(i, &replay);
+        replays.push(replay);
+    }
+    Ok(replays)
+}

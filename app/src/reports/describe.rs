@@ -1,0 +1,289 @@
+//! Render settings in human words: a one-line label for a benchmark row,
+//! and what differs between two settings to label the sides of an A/B
+//! comparison ("grid on, m = 4" against "no acceleration").
+
+use tracer::accel::AccelKind;
+use tracer::render::RenderSettings;
+
+/// One thing the settings control, said briefly and in detail. The detail
+/// is shown only when two settings agree briefly but still differ (two soft
+/// shadows of different light sizes), so labels stay short.
+struct Aspect {
+    brief: String,
+    detailed: String,
+}
+
+impl Aspect {
+    fn plain(text: String) -> Self {
+        Self {
+            brief: text.clone(),
+            detailed: text,
+        }
+    }
+}
+
+/// Whether N changes the image: it stratifies pixels with AA, the lens
+/// with DOF and area lights with soft shadows; one hard-shadowed sample per
+/// pixel ignores it.
+fn samples_matter(s: &RenderSettings) -> bool {
+    s.antialiasing || s.depth_of_field || s.soft_shadows
+}
+
+/// The aspects of `s` in a fixed order, the same for any settings, so two
+/// lists compare element by element. The first four are the features the
+/// workbench is about (see [`describe`]). `show_n` asks to mention N even
+/// without AA (when it matters to either side of a comparison).
+fn aspects(s: &RenderSettings, show_n: bool) -> Vec<Aspect> {
+    let n = s.samples;
+    let accel = match s.accel {
+        AccelKind::None => "no acceleration".to_string(),
+        AccelKind::Grid => format!("grid on, m = {}", s.grid_multiplier),
+        AccelKind::Bvh => "BVH".to_string(),
+    };
+    let sampling = if let Some(a) = s.adaptive().filter(|_| s.antialiasing) {
+        Aspect {
+            brief: format!("adaptive AA, threshold {}", a.noise_threshold),
+            detailed: format!(
+                "adaptive AA, threshold {}, {} to {} spp",
+                a.noise_threshold, a.min_spp, a.max_spp
+            ),
+        }
+    } else if s.antialiasing {
+        Aspect::plain(format!("AA {n}x{n}"))
+    } else {
+        Aspect {
+            brief: "no AA".into(),
+            detailed: if show_n {
+                format!("no AA, N = {n}")
+            } else {
+                "no AA".into()
+            },
+        }
+    };
+    let shadows = if s.soft_shadows {
+        Aspect {
+            brief: "soft shadows on".into(),
+            detailed: format!("soft shadows on, light size {}", s.light_size),
+        }
+    } else {
+        Aspect::plain("hard shadows".into())
+    };
+    let dof = if s.depth_of_field {
+        format!("DOF aperture {} focal {}", s.aperture, s.focal)
+    } else {
+        "no DOF".into()
+    };
+    let camera = match &s.camera {
+        None => Aspect::plain("scene camera".into()),
+        Some(pose) => Aspect {
+            brief: "moved camera".into(),
+            detailed: format!(
+                "camera at ({}, {}, {})",
+                pose.from.x, pose.from.y, pose.from.z
+            ),
+        },
+    };
+    vec![
+        Aspect::plain(accel),
+        sampling,
+        shadows,
+        Aspect::plain(dof),
+        Aspect::plain(format!("{}x{}", s.width, s.height)),
+        Aspect::plain(format!("depth {}", s.max_depth)),
+        Aspect::plain(format!("ambient {}", s.ambient)),
+        Aspect::plain(format!("seed {}", s.seed)),
+        camera,
+        Aspect::plain(
+            if s.keep_refining {
+                "refining past N x N"
+            } else {
+                "stops at N x N"
+            }
+            .into(),
+        ),
+    ]
+}
+
+/// The features of `s` the workbench compares (structure, anti-aliasing,
+/// shadows, depth of field) in one line, e.g. "BVH, AA 4x4, hard shadows,
+/// no DOF".
+pub fn describe(s: &RenderSettings) -> String {
+    aspects(s, false)
+        .into_iter()
+        .take(4)
+        .map(|a| a.brief)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// One aspect on which two settings differ, as each side has it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Difference {
+    pub a: String,
+    pub b: String,
+}
+
+/// What differs between `a` and `b`, in the order of the settings panel;
+/// empty when they render the same image.
+pub fn differences(a: &RenderSettings, b: &RenderSettings) -> Vec<Difference> {
+    let show_n = samples_matter(a) || samples_matter(b);
+    aspects(a, show_n)
+        .into_iter()
+        .zip(aspects(b, show_n))
+        .filter_map(|(x, y)| {
+            if x.brief != y.brief {
+                Some(Difference {
+                    a: x.brief,
+                    b: y.brief,
+                })
+            } else if x.detailed != y.detailed {
+                Some(Difference {
+                    a: x.detailed,
+                    b: y.detailed,
+                })
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
+/// Labels for the two sides of a comparison: each side's differences
+/// joined, or "same settings" for both when nothing differs.
+pub fn side_labels(a: &RenderSettings, b: &RenderSettings) -> (String, String) {
+    let diffs = differences(a, b);
+    if diffs.is_empty() {
+        return ("same settings".into(), "same settings".into());
+    }
+    let join =
+        |side: fn(&Difference) -> &str| diffs.iter().map(side).collect::<Vec<_>>().join(", ");
+    (join(|d| &d.a), join(|d| &d.b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn base() -> RenderSettings {
+        RenderSettings {
+            accel: AccelKind::None,
+            ..RenderSettings::default()
+        }
+    }
+
+    #[test]
+    fn identical_settings_have_no_differences() {
+        assert!(differences(&base(), &base()).is_empty());
+        assert_eq!(
+            side_labels(&base(), &base()),
+            ("same settings".into(), "same settings".into())
+        );
+    }
+
+    #[test]
+    fn each_feature_is_named_in_words() {
+        let b = RenderSettings {
+            accel: AccelKind::Grid,
+            grid_multiplier: 4.0,
+            antialiasing: true,
+            samples: 4,
+            soft_shadows: true,
+            depth_of_field: true,
+            aperture: 8.0,
+            focal: 1.5,
+            ..base()
+        };
+        let (la, lb) = side_labels(&base(), &b);
+        assert_eq!(la, "no acceleration, no AA, hard shadows, no DOF");
+        assert_eq!(
+            lb,
+            "grid on, m = 4, AA 4x4, soft shadows on, DOF aperture 8 focal 1.5"
+        );
+        assert_eq!(describe(&b), lb);
+        let adaptive = RenderSettings {
+            sampling: tracer::render::Sampling::Adaptive(
+                tracer::render::AdaptiveSampling::for_samples(4, 0.02),
+            ),
+            ..b.clone()
+        };
+        let (_, la) = side_labels(&b, &adaptive);
+        assert_eq!(la, "adaptive AA, threshold 0.02");
+        let (_, detailed) = side_labels(
+            &adaptive,
+            &RenderSettings {
+                sampling: tracer::render::Sampling::Adaptive(
+                    tracer::render::AdaptiveSampling::for_samples(5, 0.02),
+                ),
+                ..adaptive.clone()
+            },
+        );
+        assert_eq!(detailed, "adaptive AA, threshold 0.02, 8 to 100 spp");
+    }
+
+    #[test]
+    fn details_appear_only_when_the_brief_words_agree() {
+        let soft = RenderSettings {
+            soft_shadows: true,
+            light_size: 0.5,
+            ..base()
+        };
+        let softer = RenderSettings {
+            light_size: 2.0,
+            ..soft.clone()
+        };
+        assert_eq!(
+            differences(&soft, &softer),
+            vec![Difference {
+                a: "soft shadows on, light size 0.5".into(),
+                b: "soft shadows on, light size 2".into(),
+            }]
+        );
+        // N matters without AA when it stratifies soft shadows...
+        let n3 = RenderSettings {
+            samples: 3,
+            ..soft.clone()
+        };
+        assert_eq!(differences(&soft, &n3)[0].b, "no AA, N = 3");
+        // ...but not for one hard-shadowed sample per pixel.
+        let hard_n3 = RenderSettings {
+            samples: 3,
+            ..base()
+        };
+        assert!(differences(&base(), &hard_n3).is_empty());
+        // Turning DOF on with the same N says only that.
+        let dof = RenderSettings {
+            depth_of_field: true,
+            aperture: 4.0,
+            ..base()
+        };
+        assert_eq!(
+            differences(&base(), &dof),
+            vec![Difference {
+                a: "no DOF".into(),
+                b: "DOF aperture 4 focal 1".into(),
+            }]
+        );
+        // A BVH ignores the grid multiplier.
+        let bvh = |m| RenderSettings {
+            accel: AccelKind::Bvh,
+            grid_multiplier: m,
+            ..base()
+        };
+        assert!(differences(&bvh(1.0), &bvh(3.0)).is_empty());
+    }
+
+    #[test]
+    fn other_settings_are_listed_too() {
+        let b = RenderSettings {
+            width: 64,
+            height: 32,
+            max_depth: 2,
+            seed: 9,
+            ..base()
+        };
+        let diffs = differences(&base(), &b);
+        let words: Vec<&str> = diffs.iter().map(|d| d.b.as_str()).collect();
+        assert_eq!(words, ["64x32", "depth 2", "seed 9"]);
+        assert_eq!(diffs[0].a, "512x512");
+    }
+}

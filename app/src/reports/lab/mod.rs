@@ -1,0 +1,505 @@
+//! The lab report: the course's experiments on one scene, measured with the
+//! workbench's runners and written as one self-contained HTML page. The
+//! command line (`workbench report`) and the window both call [`measure`]
+//! then [`page`]; one module per section writes its part of the page.
+
+mod acceleration;
+pub mod course;
+mod html;
+pub mod machine;
+mod pixel;
+mod run;
+mod sampling;
+mod statistics;
+mod svg;
+mod whitted;
+
+use std::path::Path;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use anyhow::{Context, Result};
+use tracer::accel::AccelKind;
+use tracer::render::{Encoding, RenderSettings};
+use tracer::scene::Scene;
+use tracer::world::World;
+
+use crate::measure::benchmark::{
+    self, Case, Event, Measurement, RunOptions, Sampling, Stop, Structures,
+};
+use crate::measure::study::{self, Param, Study, StudyEvent, StudyOutcome, Subject, values};
+use crate::reports::bench_table::{self, Columns, Format};
+
+pub use machine::Machine;
+pub use pixel::PixelExplained;
+
+/// What to report on and how to measure it.
+#[derive(Clone)]
+pub struct Request {
+    /// The scene's name as the user gave it (a path, or the window's label).
+    pub scene_name: String,
+    pub scene: Arc<Scene>,
+    pub world: Arc<World>,
+    /// The settings every experiment starts from: the scene's, with the
+    /// user's changes; N is the matrix's (the course's 4 unless chosen).
+    pub base: RenderSettings,
+    /// The `--set` edits applied to the scene, in words.
+    pub edits: Vec<String>,
+    /// Frames per timed configuration.
+    pub runs: usize,
+    pub threads: Option<usize>,
+    pub encoding: Encoding,
+    /// The pixel to explain; `None` lets the report choose one.
+    pub pixel: Option<(u32, u32)>,
+    /// Lower resolution and fewer runs (see [`QUICK_SIDE`], [`QUICK_RUNS`]).
+    pub quick: bool,
+}
+
+/// The longer side of a quick report's images, in pixels.
+pub const QUICK_SIDE: u32 = 128;
+/// Frames per timed configuration in a quick report (at most).
+pub const QUICK_RUNS: usize = 3;
+
+impl Request {
+    /// The settings and runs actually measured: the quick report's lower
+    /// resolution and fewer runs applied.
+    pub fn measured(&self) -> (RenderSettings, usize) {
+        // A report's frames stop at N x N, whatever a window was doing.
+        let mut base = RenderSettings {
+            keep_refining: false,
+            ..self.base.clone()
+        };
+        let mut runs = self.runs.max(1);
+        if self.quick {
+            let longer = base.width.max(base.height);
+            if longer > QUICK_SIDE {
+                let scale = |v: u32| {
+                    ((u64::from(v) * u64::from(QUICK_SIDE) / u64::from(longer)) as u32).max(1)
+                };
+                base.width = scale(base.width);
+                base.height = scale(base.height);
+                // The lens is in pixels: keep its blur the same share of the image.
+                base.aperture *= QUICK_SIDE as f32 / longer as f32;
+            }
+            runs = runs.min(QUICK_RUNS);
+        }
+        (base, runs)
+    }
+
+    /// The worker threads the frames run on.
+    pub fn threads_used(&self) -> usize {
+        match self.threads {
+            Some(n) if n > 0 => n,
+            _ => rayon::current_num_threads(),
+        }
+    }
+}
+
+/// The settings of one plain frame: `base` with `accel`, hard shadows and
+/// one sample per pixel, the Whitted image the others are compared with.
+fn plain(base: &RenderSettings, accel: AccelKind) -> RenderSettings {
+    RenderSettings {
+        accel,
+        soft_shadows: false,
+        antialiasing: false,
+        depth_of_field: false,
+        keep_refining: false,
+        ..base.clone()
+    }
+}
+
+/// Everything measured for the page.
+pub struct Lab {
+    pub request: Request,
+    /// The settings measured (quick ones lowered) and runs per timing.
+    pub base: RenderSettings,
+    pub runs: usize,
+    pub threads: usize,
+    pub machine: Machine,
+    /// The course's timing matrix with a BVH row for each of its rows, in
+    /// [`benchmark::matrix`]'s order.
+    pub matrix: Vec<Measurement>,
+    /// One frame of each matrix configuration over the BVH, and the plain
+    /// frame over none and the grid, with per-pixel views: blocked shadow
+    /// rays, the deepest bounce, tests per pixel.
+    pub views: Vec<Measurement>,
+    /// Plain frames at depth 0, 1 and the scene's, timed as the matrix.
+    pub whitted: Vec<Measurement>,
+    /// The scene's depth with every transmittance set to 0, when something
+    /// refracts: reflection without refraction, timed as the others.
+    pub opaque: Option<Measurement>,
+    /// Error against samples: the `spp` study with its reference.
+    pub samples: StudyOutcome,
+    /// The grid multiplier study.
+    pub grid: StudyOutcome,
+    pub pixel: PixelExplained,
+}
+
+impl Lab {
+    /// The timing matrix's row of `accel` with or without soft shadows,
+    /// sampled as `sampling`.
+    pub fn row(&self, accel: AccelKind, soft: bool, sampling: Sampling) -> Option<&Measurement> {
+        self.matrix.iter().find(|m| {
+            let s = &m.case.settings;
+            s.accel == accel && s.soft_shadows == soft && Sampling::of(s) == sampling
+        })
+    }
+}
+
+/// How far the measuring has come, for a progress bar.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Progress {
+    /// 0..=1 of the whole report's work (estimated as samples traced).
+    pub fraction: f32,
+    /// What is being measured, in words.
+    pub doing: String,
+}
+
+/// The report's stages, each with its estimated work (samples traced).
+struct Plan {
+    matrix: Vec<Case>,
+    views: Vec<Case>,
+    whitted: Vec<Case>,
+    samples: Study,
+    grid: Study,
+}
+
+fn work(cases: &[Case], runs: usize) -> f64 {
+    cases
+        .iter()
+        .map(|c| {
+            let s = &c.settings;
+            f64::from(s.width) * f64::from(s.height) * f64::from(s.samples_per_pixel())
+        })
+        .sum::<f64>()
+        * runs as f64
+}
+
+fn study_work(study: &Study, base: &RenderSettings) -> f64 {
+    let pixels = f64::from(base.width) * f64::from(base.height);
+    let per_point: f64 = study
+        .values
+        .iter()
+        .map(|&v| match study.param {
+            Param::Spp => v * v,
+            _ => 1.0,
+        })
+        .sum();
+    let reference = match study.param {
+        Param::Spp => f64::from(study.reference_samples(base)).powi(2),
+        _ => 0.0,
+    };
+    pixels * (per_point * study.options.runs as f64 * study.structures.len() as f64 + reference)
+}
+
+impl Plan {
+    fn new(request: &Request, base: &RenderSettings, runs: usize) -> Result<Plan> {
+        let options = RunOptions {
+            runs,
+            threads: request.threads,
+        };
+        let encoding = request.encoding;
+        let matrix = benchmark::matrix(base, &AccelKind::ALL, encoding);
+        // Blocked shadow rays and bounces do not depend on the structure:
+        // the BVH's frames give them; none and the grid add their tests.
+        let mut views: Vec<Case> = matrix
+            .iter()
+            .filter(|c| c.settings.accel == AccelKind::Bvh)
+            .cloned()
+            .collect();
+        for accel in [AccelKind::None, AccelKind::Grid] {
+            views.push(Case::new(plain(base, accel), encoding));
+        }
+        let mut depths = vec![0, 1, base.max_depth];
+        depths.retain(|&d| d <= base.max_depth);
+        depths.dedup();
+        let whitted = depths
+            .into_iter()
+            .map(|max_depth| Case {
+                label: format!("depth {max_depth}"),
+                settings: RenderSettings {
+                    max_depth,
+                    ..plain(base, AccelKind::Bvh)
+                },
+                encoding,
+            })
+            .collect();
+        let (spp_values, grid_values) = if request.quick {
+            ("1..3", "0.5..4:x2")
+        } else {
+            ("1..6", "0.25..8:x2")
+        };
+        let samples = Study {
+            param: Param::Spp,
+            values: values::parse(spp_values)?,
+            structures: vec![AccelKind::Bvh],
+            options,
+            encoding,
+            reference_samples: None,
+        };
+        let grid = Study {
+            param: Param::GridM,
+            values: values::parse(grid_values)?,
+            structures: vec![AccelKind::Grid],
+            options,
+            encoding,
+            reference_samples: None,
+        };
+        Ok(Plan {
+            matrix,
+            views,
+            whitted,
+            samples,
+            grid,
+        })
+    }
+}
+
+/// Reports stage fractions as fractions of the whole.
+struct Tracker<'a> {
+    weights: Vec<f64>,
+    stage: usize,
+    on_progress: &'a mut dyn FnMut(&Progress),
+}
+
+impl Tracker<'_> {
+    fn report(&mut self, fraction: f32, doing: &str) {
+        let total: f64 = self.weights.iter().sum::<f64>().max(1.0);
+        let before: f64 = self.weights[..self.stage].iter().sum();
+        let now = before + self.weights[self.stage] * f64::from(fraction.clamp(0.0, 1.0));
+        (self.on_progress)(&Progress {
+            fraction: (now / total) as f32,
+            doing: doing.to_string(),
+        });
+    }
+
+    /// The runner's events of `cases`, `runs` frames each, as progress.
+    fn cases(&mut self, cases: &[Case], runs: usize, event: Event) {
+        if let Event::Rendering {
+            case,
+            run,
+            fraction,
+        } = event
+        {
+            let done = (case * runs + run) as f32 + fraction;
+            let label = format!("{} (run {}/{runs})", cases[case].label, run + 1);
+            self.report(done / (cases.len() * runs).max(1) as f32, &label);
+        }
+    }
+
+    fn study(&mut self, study: &Study, event: StudyEvent) {
+        let points = study.len().max(1) as f32;
+        match event {
+            StudyEvent::Preparing { what, fraction } => self.report(fraction / points, what),
+            StudyEvent::Rendering {
+                point, fraction, ..
+            } => self.report(
+                (point as f32 + fraction) / points,
+                &format!("{} study, point {}/{}", study.param, point + 1, points),
+            ),
+            StudyEvent::Measured { .. } => {}
+        }
+    }
+}
+
+/// Measures everything the page shows. `cancel` stops it between tiles:
+/// the result is then `None` and nothing is kept. Blocks: a window runs it
+/// on a thread of its own.
+pub fn measure(
+    request: &Request,
+    cancel: &AtomicBool,
+    on_progress: &mut dyn FnMut(&Progress),
+) -> Result<Option<Lab>> {
+    let (base, runs) = request.measured();
+    base.validate()?;
+    let plan = Plan::new(request, &base, runs)?;
+    let world = &request.world;
+    let options = RunOptions {
+        runs,
+        threads: request.threads,
+    };
+    let single = RunOptions { runs: 1, ..options };
+    let mut tracker = Tracker {
+        weights: vec![
+            work(&plan.matrix, runs),
+            work(&plan.views, 1),
+            work(&plan.whitted, runs),
+            // The scene made opaque: one more plain frame.
+            f64::from(base.width) * f64::from(base.height) * runs as f64,
+            study_work(&plan.samples, &base),
+            study_work(&plan.grid, &base),
+            // The chosen pixel and the observer figure: about one frame.
+            f64::from(base.width) * f64::from(base.height),
+        ],
+        stage: 0,
+        on_progress,
+    };
+    let stop = Stop {
+        now: cancel,
+        after_frame: &AtomicBool::new(false),
+    };
+    let structures = &mut Structures::default();
+    let timed = |cases: &[Case],
+                 options: RunOptions,
+                 views: bool,
+                 tracker: &mut Tracker,
+                 structures: &mut Structures|
+     -> Result<Option<Vec<Measurement>>> {
+        let outcome =
+            benchmark::run_cases(world, cases, options, structures, stop, views, &mut |e| {
+                tracker.cases(cases, options.runs, e)
+            })?;
+        Ok((!outcome.cancelled).then_some(outcome.measurements))
+    };
+    let Some(matrix) = timed(&plan.matrix, options, false, &mut tracker, structures)? else {
+        return Ok(None);
+    };
+    tracker.stage += 1;
+    let Some(views) = timed(&plan.views, single, true, &mut tracker, structures)? else {
+        return Ok(None);
+    };
+    tracker.stage += 1;
+    let Some(whitted) = timed(&plan.whitted, options, false, &mut tracker, structures)? else {
+        return Ok(None);
+    };
+    tracker.stage += 1;
+    let opaque = match opaque_world(request)? {
+        None => None,
+        Some(world) => {
+            let cases = [Case {
+                label: format!("depth {} without refraction", base.max_depth),
+                settings: plain(&base, AccelKind::Bvh),
+                encoding: request.encoding,
+            }];
+            let outcome = benchmark::run_cases(
+                &world,
+                &cases,
+                options,
+                &mut Structures::default(),
+                stop,
+                false,
+                &mut |e| tracker.cases(&cases, runs, e),
+            )?;
+            if outcome.cancelled {
+                return Ok(None);
+            }
+            outcome.measurements.into_iter().next()
+        }
+    };
+    let subject = Subject::Scene {
+        world: world.clone(),
+        base: plain(&base, AccelKind::Bvh),
+    };
+    let mut studies = Vec::new();
+    for study in [&plan.samples, &plan.grid] {
+        tracker.stage += 1;
+        let outcome = study::run(study, &subject, stop, &mut |e| tracker.study(study, e))
+            .with_context(|| format!("the {} study", study.param))?;
+        if outcome.cancelled {
+            return Ok(None);
+        }
+        studies.push(outcome);
+    }
+    let grid = studies.pop().context("the grid study is missing")?;
+    let samples = studies.pop().context("the samples study is missing")?;
+    tracker.stage += 1;
+    tracker.report(0.0, "choosing and drawing one pixel");
+    let pixel = pixel::explain(request, &plain(&base, AccelKind::Bvh), structures)?;
+    tracker.report(1.0, "writing the page");
+    Ok(Some(Lab {
+        request: request.clone(),
+        base,
+        runs,
+        threads: request.threads_used(),
+        machine: Machine::this(),
+        matrix,
+        views,
+        whitted,
+        opaque,
+        samples,
+        grid,
+        pixel,
+    }))
+}
+
+/// The request's world with every transmitting object's `t` set to 0
+/// (as `--set 'object N t 0'` does), or `None` when nothing transmits.
+fn opaque_world(request: &Request) -> Result<Option<Arc<World>>> {
+    let scene = &request.scene;
+    let lines: Vec<String> = scene
+        .objects
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| {
+            scene
+                .materials
+                .get(o.material as usize)
+                .is_some_and(|m| m.transmittance > 0.0)
+        })
+        .map(|(i, _)| format!("object {i} t 0"))
+        .collect();
+    if lines.is_empty() {
+        return Ok(None);
+    }
+    let loaded = crate::load::Loaded {
+        scene: (**scene).clone(),
+        world: request.world.clone(),
+    };
+    let (opaque, _) = loaded
+        .edited(&lines)
+        .context("the scene without refraction")?;
+    Ok(Some(opaque.world))
+}
+
+/// The page: the seven sections in the course report's order.
+pub fn page(lab: &Lab) -> Result<String> {
+    let title = format!("Lab report: {}", lab.request.scene_name);
+    let sections = [
+        run::section(lab),
+        whitted::section(lab)?,
+        sampling::section(lab)?,
+        acceleration::section(lab)?,
+        statistics::section(lab),
+        pixel::section(lab)?,
+        course::section(lab),
+    ];
+    Ok(html::page(&title, &sections))
+}
+
+/// The timing matrix as `workbench bench --matrix --format json` writes
+/// it: the numbers of the page's timing table, for scripts and checks.
+pub fn matrix_json(lab: &Lab) -> String {
+    bench_table::table(&lab.matrix, Columns::Matrix, Format::Json)
+}
+
+/// Writes `text` to `path` whole or not at all: a temporary file beside it,
+/// renamed over it once complete.
+pub fn write_atomically(path: &Path, text: &str) -> Result<()> {
+    crate::image_file::write_atomically(path, |file| {
+        use std::io::Write as _;
+        file.write_all(text.as_bytes())?;
+        Ok(())
+    })
+    .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// How a timed number was measured, said once per table.
+fn how_measured(lab: &Lab) -> String {
+    format!(
+        "Each time is the median of {} frame(s) rendered in a row, with the spread as \
+         min..max and the median absolute deviation (MAD), on {} thread(s); build times \
+         apart. {}",
+        lab.runs,
+        lab.threads,
+        if lab.request.quick {
+            "Quick report: fewer runs and a lower resolution than a full one."
+        } else {
+            ""
+        }
+    )
+}
+
+/// Milliseconds with one decimal: the page's one format for frame times.
+fn ms(d: std::time::Duration) -> String {
+    format!("{:.1}", d.as_secs_f64() * 1e3)
+}

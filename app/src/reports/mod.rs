@@ -1,0 +1,15 @@
+//! What the workbench writes as words: a render's statistics, benchmark
+//! and study tables (text, Markdown, CSV, JSON), a pixel's ray tree,
+//! settings described in words, a view's summary, the time to a given
+//! error (`bench --to-error`), and the lab report (one HTML page of the
+//! course's experiments on a scene). The command line
+//! prints them, the window shows and exports them.
+
+pub mod bench_table;
+pub mod describe;
+pub mod lab;
+pub mod ray_tree;
+pub mod render_stats;
+pub mod study_table;
+pub mod to_error;
+pub mod view_summary;

@@ -1,0 +1,262 @@
+//! Adaptive anti-aliasing from the command line: its flags on `render`,
+//! `compare`, `bench` and `sweep`, what `render --stats json` says of the
+//! samples, and `bench --to-error`.
+
+use crate::support::scenes::spheres_on_a_floor;
+use crate::support::{Scratch, scratch, workbench_fails, workbench_ok, write};
+
+/// Spheres over a floor, 32 x 24, one sample per pixel unless told.
+fn scene(dir: &Scratch) -> String {
+    let path = write(dir, "scene.p3f", &spheres_on_a_floor(32, 24, "", ""));
+    path.to_str().unwrap().to_string()
+}
+
+/// `render --stats json` with `flags`: the statistics and the PNG's bytes.
+fn render(dir: &Scratch, scene: &str, flags: &[&str]) -> (serde_json::Value, Vec<u8>) {
+    let rendered = render_to(scene, &dir.join("out.png"), flags);
+    (rendered.stats, rendered.png)
+}
+
+fn spp(stats: &serde_json::Value) -> (f64, u64) {
+    let spp = &stats["samples_per_pixel"];
+    (spp["mean"].as_f64().unwrap(), spp["max"].as_u64().unwrap())
+}
+
+#[test]
+fn render_spends_adaptive_samples_where_the_flags_say() {
+    let dir = scratch("adaptive-render");
+    let scene = scene(&dir);
+    let (uniform, uniform_png) = render(&dir, &scene, &["--aa", "--spp", "4"]);
+    assert_eq!(spp(&uniform), (16.0, 16));
+    assert!(uniform["adaptive"].is_null(), "{uniform}");
+
+    // Adaptive turns anti-aliasing on: (2N)^2 = 64 at most, at least 8.
+    let (adaptive, adaptive_png) = render(&dir, &scene, &["--spp", "4", "--sampling", "adaptive"]);
+    let (mean, max) = spp(&adaptive);
+    assert!(mean > 8.0 && mean < 64.0, "{adaptive}");
+    assert!(max > 8 && max <= 64, "{adaptive}");
+    assert_ne!(adaptive_png, uniform_png);
+    let estimate = &adaptive["adaptive"];
+    assert_eq!(estimate["active_pixels"], 0, "{adaptive}");
+    let error = estimate["error_estimate"].as_f64().unwrap();
+    assert!(error > 0.0 && error < 0.02, "{adaptive}");
+
+    // A looser threshold takes fewer samples and leaves more error.
+    let (loose, _) = render(&dir, &scene, &["--spp", "4", "--noise-threshold", "0.05"]);
+    assert!(spp(&loose).0 < mean, "{loose}");
+    assert!(loose["adaptive"]["error_estimate"].as_f64().unwrap() > error);
+    // The minimum is every pixel's floor, the maximum every pixel's cap.
+    let (floor, _) = render(&dir, &scene, &["--noise-threshold", "1", "--min-spp", "5"]);
+    assert_eq!(spp(&floor), (5.0, 5));
+    let (capped, _) = render(&dir, &scene, &["--noise-threshold", "0", "--max-spp", "9"]);
+    assert_eq!(spp(&capped), (9.0, 9));
+    // `--sampling uniform` wins over the adaptive knobs.
+    let (back, back_png) = render(
+        &dir,
+        &scene,
+        &[
+            "--aa",
+            "--spp",
+            "4",
+            "--noise-threshold",
+            "0.05",
+            "--sampling",
+            "uniform",
+        ],
+    );
+    assert_eq!(spp(&back), (16.0, 16));
+    assert_eq!(back_png, uniform_png);
+    // Out of range values are refused, naming the setting.
+    let refused = workbench_fails(&["render", &scene, "--min-spp", "9", "--max-spp", "4"]);
+    assert!(refused.contains("min spp"), "{refused}");
+    let refused = workbench_fails(&["render", &scene, "--noise-threshold=-1"]);
+    assert!(refused.contains("noise threshold"), "{refused}");
+}
+
+#[test]
+fn adaptive_renders_are_the_same_on_any_thread_count() {
+    let dir = scratch("adaptive-threads");
+    let scene = scene(&dir);
+    let flags = [
+        "--sampling",
+        "adaptive",
+        "--soft-shadows",
+        "--aperture",
+        "3",
+    ];
+    let (one, one_png) = render(&dir, &scene, &[&flags[..], &["--threads", "1"]].concat());
+    let (four, four_png) = render(&dir, &scene, &[&flags[..], &["--threads", "4"]].concat());
+    assert_eq!(one_png, four_png);
+    assert_eq!(one["samples_per_pixel"], four["samples_per_pixel"]);
+    assert_eq!(one["adaptive"], four["adaptive"]);
+}
+
+#[test]
+fn compare_puts_uniform_against_adaptive() {
+    let dir = scratch("adaptive-compare");
+    let scene = scene(&dir);
+    let out = dir.join("compare.png");
+    let json = workbench_ok(&[
+        "compare",
+        &scene,
+        "-o",
+        out.to_str().unwrap(),
+        "--format",
+        "json",
+        "--spp",
+        "3",
+        "--a",
+        "--aa",
+        "--b",
+        "--sampling adaptive --noise-threshold 0.03",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let text = json.to_string();
+    assert!(text.contains("AA 3x3"), "{text}");
+    assert!(text.contains("adaptive AA, threshold 0.03"), "{text}");
+}
+
+#[test]
+fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
+    let dir = scratch("adaptive-to-error");
+    let scene = scene(&dir);
+    let measure = |flags: &[&str]| -> serde_json::Value {
+        let mut args = vec![
+            "bench",
+            &scene,
+            "--to-error",
+            "--runs",
+            "2",
+            "--format",
+            "json",
+        ];
+        args.extend(flags);
+        serde_json::from_str(&workbench_ok(&args)).unwrap()
+    };
+    let found = measure(&["--spp", "2", "--reference-spp", "6"]);
+    let (uniform, adaptive) = (&found["uniform"], &found["adaptive"]);
+    assert_eq!(found["reference_samples"], 6, "{found}");
+    // The target is uniform 2 x 2's own error; adaptive reaches it.
+    assert_eq!(uniform["samples"], 2);
+    assert_eq!(uniform["mse"], found["target_mse"]);
+    assert!(
+        adaptive["mse"].as_f64() <= found["target_mse"].as_f64(),
+        "{found}"
+    );
+    assert!(
+        adaptive["flip"].as_f64() <= found["target_flip"].as_f64(),
+        "{found}"
+    );
+    assert!(adaptive["noise_threshold"].as_f64().unwrap() > 0.0);
+    for side in [uniform, adaptive] {
+        assert_eq!(side["seconds"].as_array().map(Vec::len), Some(2), "{found}");
+    }
+    assert!(found["time_ratio"].as_f64().unwrap() > 0.0);
+    // Every render tried is listed, the last adaptive one reaching it.
+    let attempts = found["attempts"].as_array().unwrap();
+    assert!(attempts.len() >= 2, "{found}");
+
+    // An MSE asked for: the cheapest uniform N that reaches it.
+    let target = found["target_mse"].as_f64().unwrap() * 3.0;
+    let easier = measure(&["--reference-spp", "6", "--target-mse", &target.to_string()]);
+    assert!(
+        easier["uniform"]["mse"].as_f64().unwrap() <= target,
+        "{easier}"
+    );
+    assert!(
+        easier["uniform"]["samples"].as_u64().unwrap() <= 2,
+        "{easier}"
+    );
+    assert!(easier["target_flip"].is_null());
+
+    let refused = workbench_fails(&[
+        "bench",
+        &scene,
+        "--to-error",
+        "--spp",
+        "4",
+        "--reference-spp",
+        "4",
+    ]);
+    assert!(refused.contains("reference"), "{refused}");
+    let text = workbench_ok(&[
+        "bench",
+        &scene,
+        "--to-error",
+        "--spp",
+        "2",
+        "--reference-spp",
+        "4",
+        "--runs",
+        "1",
+    ]);
+    assert!(
+        text.contains("adaptive reaches the error of uniform 2 x 2 in"),
+        "{text}"
+    );
+}
+
+#[test]
+fn sweep_noise_threshold_gives_samples_and_error() {
+    let dir = scratch("adaptive-sweep");
+    let scene = scene(&dir);
+    let json = workbench_ok(&[
+        "sweep",
+        &scene,
+        "--param",
+        "noise-threshold",
+        "--values",
+        "0.005,0.08",
+        "--runs",
+        "1",
+        "--spp",
+        "2",
+        "--max-spp",
+        "36",
+        "--format",
+        "json",
+    ]);
+    let points: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let points = points.as_array().unwrap();
+    assert_eq!(points.len(), 2);
+    let (tight, loose) = (&points[0], &points[1]);
+    assert!(
+        tight["spp_mean"].as_f64() > loose["spp_mean"].as_f64(),
+        "{json}"
+    );
+    assert!(tight["spp_max"].as_u64().unwrap() <= 36, "{json}");
+    assert!(tight["mse"].as_f64() < loose["mse"].as_f64(), "{json}");
+}
+
+/// What a `render` run produced: the PNG's bytes, and the statistics that
+/// do not depend on time.
+struct Rendered {
+    png: Vec<u8>,
+    stats: serde_json::Value,
+}
+
+/// `render --stats json` of `scene` into `out` with `flags`.
+fn render_to(scene: &str, out: &std::path::Path, flags: &[&str]) -> Rendered {
+    let mut args = vec![
+        "render",
+        scene,
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+        "json",
+    ];
+    args.extend(flags);
+    let mut stats: serde_json::Value = serde_json::from_str(&workbench_ok(&args)).unwrap();
+    for timing in [
+        "build_seconds",
+        "pass_seconds",
+        "render_seconds",
+        "rays_per_second",
+    ] {
+        stats.as_object_mut().unwrap().remove(timing);
+    }
+    Rendered {
+        png: std::fs::read(out).unwrap(),
+        stats,
+    }
+}

@@ -1,0 +1,149 @@
+//! A student walking a lesson in the window: the lesson dropped on the
+//! window and its first step set up, the check turning done when the
+//! student acts, Next, a typed answer wrong then right, "Set up this step"
+//! restoring a step, and the progress surviving a restart.
+
+use std::sync::Arc;
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use workbench::gui::WorkbenchApp;
+use workbench::lessons::Verdict;
+
+use crate::harness::{DroppedPath, WINDOW, ready_window, wait_for};
+use crate::persistence::{MemoryStorage, start};
+use crate::support::Scratch;
+
+/// Two steps on a small inline scene: anti-aliasing on (a value check),
+/// then how many eye rays a pixel sends (a typed answer).
+const LESSON: &str = r#"title = "Two steps"
+chapter = 7
+
+[scene]
+p3f = """
+v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 24 24
+l 0 5 5 1 1 1
+f 1 0 0 1 0 0 0 0 1 0 1
+s 0 0 0 1
+"""
+
+[start]
+settings = "--no-aa --spp 4"
+pixel = [12, 12]
+
+[[step]]
+title = "Anti-aliasing"
+text = "Turn **anti-aliasing** on: `colour = sum / N^2`."
+check = { kind = "value", of = "aa", is = "on" }
+solution = { settings = "--aa" }
+
+[[step]]
+title = "Eye rays"
+text = "How many eye rays does each pixel send?"
+check = { kind = "answer", question = "Eye rays per pixel:", of = "samples-per-pixel" }
+solution = { answer = 16 }
+"#;
+
+type Window = Harness<'static, WorkbenchApp>;
+
+fn verdict(app: &WorkbenchApp) -> Option<&Verdict> {
+    app.lessons().verdict()
+}
+
+fn wait_for_verdict(harness: &mut Window, what: &str, wanted: fn(&Verdict) -> bool) {
+    wait_for(harness, what, |app| {
+        !app.lessons().is_checking() && verdict(app).is_some_and(wanted)
+    });
+}
+
+fn answer(harness: &mut Window, text: &str) {
+    harness.state_mut().lessons_mut().answer.clear();
+    harness
+        .get_by_role_and_label(Role::TextInput, "Eye rays per pixel:")
+        .focus();
+    harness.run_steps(2);
+    harness
+        .get_by_role_and_label(Role::TextInput, "Eye rays per pixel:")
+        .type_text(text);
+    harness.run_steps(2);
+    assert_eq!(harness.state().lessons().answer, text, "the answer typed");
+    harness.get_by_label("Check answer").click();
+    harness.run_steps(2);
+}
+
+#[test]
+fn a_student_walks_a_lesson_and_the_progress_stays() {
+    let dir = Scratch::new("window-lesson");
+    let path = dir.join("two_steps.toml");
+    std::fs::write(&path, LESSON).unwrap();
+    let mut harness = ready_window(WINDOW);
+    // A teacher's lesson opens as a scene does: dropped on the window.
+    harness
+        .input_mut()
+        .dropped_files
+        .push(Arc::new(DroppedPath(path.clone())));
+    wait_for(&mut harness, "the lesson's scene", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "two_steps.p3f")
+            && app.engine().settings().is_some()
+    });
+    // Set up as the lesson starts: the lesson's own resolution, no
+    // anti-aliasing, the pixel pinned.
+    let settings = harness.state().engine().settings().cloned().unwrap();
+    assert_eq!((settings.width, settings.height), (24, 24));
+    assert!(!settings.antialiasing);
+    assert_eq!(harness.state().inspector().pinned, Some((12, 12)));
+    wait_for_verdict(&mut harness, "step 1 not yet done", |v| {
+        matches!(v, Verdict::NotYet(_))
+    });
+
+    // The student acts: the check turns done and the step is recorded.
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Anti-aliasing (A)")
+        .click();
+    wait_for_verdict(&mut harness, "step 1 done", Verdict::is_done);
+    assert!(harness.state().lessons().done_steps().contains(&0));
+
+    harness.get_by_label("Next").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().lessons().step(), 1);
+    wait_for_verdict(&mut harness, "no answer yet", |v| {
+        *v == Verdict::NotYet("no answer yet".into())
+    });
+    answer(&mut harness, "4");
+    wait_for_verdict(&mut harness, "a wrong answer", |v| {
+        matches!(v, Verdict::Wrong(_))
+    });
+    answer(&mut harness, "16");
+    wait_for_verdict(&mut harness, "the right answer", Verdict::is_done);
+    assert_eq!(
+        harness.state().lessons().done_steps(),
+        [0, 1].into_iter().collect()
+    );
+
+    // Back to step 1 and set it up again: anti-aliasing off as the step
+    // starts; a done step stays done.
+    harness.get_by_label("Back").click();
+    harness.run_steps(2);
+    harness.get_by_label("Set up this step").click();
+    wait_for(&mut harness, "step 1 set up again", |app| {
+        app.engine().settings().is_some_and(|s| !s.antialiasing)
+    });
+    wait_for_verdict(&mut harness, "step 1's check not holding", |v| {
+        matches!(v, Verdict::NotYet(_))
+    });
+    assert!(harness.state().lessons().done_steps().contains(&0));
+
+    // A restart keeps what was done.
+    let mut storage = MemoryStorage::default();
+    eframe::App::save(harness.state_mut(), &mut storage);
+    drop(harness);
+    let restarted = start(Some(&storage), None);
+    let progress = &restarted.state().lessons().progress;
+    assert_eq!(
+        progress.get("two_steps"),
+        Some(&[0, 1].into_iter().collect())
+    );
+}

@@ -1,0 +1,216 @@
+//! Adaptive sampling in whole renders: where samples go, determinism, and
+//! agreement with uniform sampling.
+
+use std::sync::{Arc, Mutex};
+
+use super::adaptive;
+use super::tests::{index, world};
+use super::{
+    AdaptiveSampling, Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, Sampling,
+    render,
+};
+use crate::accel::AccelKind;
+use crate::stats::Counters;
+
+/// A sphere against a flat background and over a floor, lit by one light
+/// (soft shadows give it a penumbra).
+const SCENE: &str = "\
+bclr 0.2 0.3 0.5
+v from 0 -5 2 at 0 0 0.5 up 0 0 1 angle 45 hither 0.01 resolution 32 24
+l 3 -3 5 1 1 1
+f 0.8 0.8 0.8 1 1 1 1 0.2 20 0 1
+p 4 -4 -4 0 4 -4 0 4 4 0 -4 4 0
+f 0.9 0.2 0.1 0.7 1 1 1 0.3 30 0 1
+s 0 0 0.7 0.7
+";
+
+fn adaptive(threshold: f32, min_spp: u32, max_spp: u32) -> RenderSettings {
+    RenderSettings {
+        width: 32,
+        height: 24,
+        antialiasing: true,
+        soft_shadows: true,
+        light_size: 0.8,
+        depth_of_field: true,
+        aperture: 3.0,
+        focal: 1.2,
+        sampling: Sampling::Adaptive(AdaptiveSampling {
+            noise_threshold: threshold,
+            min_spp,
+            max_spp,
+        }),
+        ..RenderSettings::default()
+    }
+}
+
+fn render_film(settings: RenderSettings, threads: usize) -> Film {
+    let w = world(SCENE);
+    let idx = index(&w, settings.accel);
+    render(w, idx, settings, Some(threads)).unwrap().0
+}
+
+/// Every pixel's sample count, row-major.
+fn counts(film: &Film) -> Vec<u32> {
+    (0..film.height())
+        .flat_map(|y| (0..film.width()).map(move |x| film.samples(x, y)))
+        .collect()
+}
+
+#[test]
+fn flat_pixels_stop_at_the_minimum_while_edges_refine() {
+    let film = render_film(
+        RenderSettings {
+            depth_of_field: false,
+            soft_shadows: false,
+            ..adaptive(0.01, 8, 64)
+        },
+        2,
+    );
+    // The top corners see only the background.
+    assert_eq!(film.samples(0, 0), 8);
+    assert_eq!(film.samples(31, 0), 8);
+    let counts = counts(&film);
+    let refined = counts.iter().filter(|&&n| n > 8).count();
+    assert!(refined > 0, "no pixel refined: {counts:?}");
+    assert!(
+        refined < counts.len() / 2,
+        "most pixels refined: {counts:?}"
+    );
+    assert!(counts.iter().all(|&n| (8..=64).contains(&n)));
+}
+
+#[test]
+fn the_image_is_the_same_whatever_the_thread_count() {
+    // Twelve tiles, rendered in whatever order the threads take them.
+    let settings = RenderSettings {
+        width: 128,
+        height: 96,
+        ..adaptive(0.02, 4, 36)
+    };
+    let one = render_film(settings.clone(), 1);
+    // Scheduling races differ from run to run: give them several chances.
+    for threads in [2, 3, 4, 8, 3, 2] {
+        assert!(
+            render_film(settings.clone(), threads) == one,
+            "{threads} threads"
+        );
+    }
+}
+
+/// The adaptive passes run by hand, one tile after another on this thread.
+fn sequential(frame: &Frame) -> Film {
+    let a = *frame.settings.adaptive().expect("adaptive settings");
+    let mut film = Film::with_error_estimate(frame.settings.width, frame.settings.height);
+    let mut counters = Counters::default();
+    loop {
+        let plans: Vec<_> = frame
+            .tiles
+            .iter()
+            .map(|tile| adaptive::plan(&film, tile, &a))
+            .collect();
+        if plans.iter().flatten().all(|samples| samples.is_empty()) {
+            return film;
+        }
+        for (tile, plan) in frame.tiles.iter().zip(plans) {
+            let (values, _) = frame.render_samples(tile, &plan, false, &mut counters);
+            let counts: Vec<u32> = plan.iter().map(|s| s.len() as u32).collect();
+            film.add_samples(tile, &counts, &values);
+        }
+    }
+}
+
+#[test]
+fn progressive_passes_equal_a_sequential_render() {
+    let settings = adaptive(0.02, 4, 49);
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let frame = Frame::new(w.clone(), idx.clone(), settings.clone()).unwrap();
+    let job = RenderJob::start(
+        w,
+        Some(idx),
+        settings,
+        JobOptions {
+            threads: Some(3),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    let (film, stats, state) = job.wait();
+    assert_eq!(state, JobState::Done);
+    assert_eq!(film, sequential(&frame));
+    let summary = stats.adaptive.expect("adaptive statistics");
+    assert_eq!(summary.active_pixels, 0);
+    assert_eq!(
+        summary.samples,
+        counts(&film).iter().map(|&n| n as u64).sum()
+    );
+    assert_eq!(summary.max_spp, *counts(&film).iter().max().unwrap());
+    assert!(summary.error > 0.0 && summary.error < 0.02, "{summary:?}");
+    assert_eq!(stats.passes_done, stats.passes_target);
+}
+
+#[test]
+fn pixels_below_the_threshold_get_no_more_samples() {
+    let settings = adaptive(0.03, 2, 36);
+    let a = *settings.adaptive().unwrap();
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let passes: Arc<Mutex<Vec<Film>>> = Arc::default();
+    let record = passes.clone();
+    let job = RenderJob::start(
+        w,
+        Some(idx),
+        settings,
+        JobOptions {
+            threads: Some(2),
+            on_pass: Some(Box::new(move |_, film| {
+                record.lock().unwrap().push(film.clone())
+            })),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    job.wait();
+    let passes = passes.lock().unwrap();
+    assert!(passes.len() > 3, "{} passes", passes.len());
+    let mut stopped = 0;
+    for pair in passes.windows(2) {
+        let (before, after) = (&pair[0], &pair[1]);
+        for y in 0..before.height() {
+            for x in 0..before.width() {
+                let (n, error) = (before.samples(x, y), before.error(x, y));
+                if adaptive::is_active(n, error, &a) {
+                    assert_eq!(after.samples(x, y), adaptive::next_count(n, &a));
+                } else {
+                    stopped += 1;
+                    assert_eq!(after.samples(x, y), n, "pixel ({x}, {y}) sampled again");
+                    assert_eq!(after.pixel(x, y), before.pixel(x, y));
+                }
+            }
+        }
+    }
+    assert!(stopped > 0, "no pixel ever stopped");
+}
+
+#[test]
+fn threshold_zero_takes_the_samples_of_uniform_sampling_at_the_maximum() {
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let adaptive = render(w.clone(), idx.clone(), adaptive(0.0, 1, 16), Some(2))
+        .unwrap()
+        .0;
+    let uniform = RenderSettings {
+        sampling: Sampling::Uniform,
+        samples: 4,
+        ..self::adaptive(0.0, 1, 16)
+    };
+    let uniform = render(w, idx, uniform, Some(2)).unwrap().0;
+    assert!(counts(&adaptive).iter().all(|&n| n == 16));
+    // The same samples, summed in another order.
+    for y in 0..uniform.height() {
+        for x in 0..uniform.width() {
+            let (a, u) = (adaptive.pixel(x, y).unwrap(), uniform.pixel(x, y).unwrap());
+            assert!((a - u).abs().max_element() < 1e-5, "({x}, {y}): {a} vs {u}");
+        }
+    }
+}
