@@ -187,13 +187,15 @@ fn the_window_opens_with_the_observer_on_when_asked() {
     }
     let plain = image::open(&plain).unwrap().to_rgb8();
     let observed = image::open(&observed).unwrap().to_rgb8();
-    // Near the top left of the image area: the square render, which fills
-    // the area's height, in the plain window; with the observer beside it
-    // the render has half the width, and the background shows above it.
-    // A hundred points in, as the area's left edge moves with the side
-    // panel, which the scene list's counts widen when they arrive before
-    // the screenshot (x = 300 was the panel itself once, in CI).
-    let probe = |shot: &RgbImage| shot.get_pixel(400, 20).0;
+    // Near the top left of the image area: inside the square render in the
+    // plain window, where it fills the area's width or height; with the
+    // observer beside it the render has half the width, is centred
+    // vertically, and the background shows above it. A hundred points in
+    // and down, as the area's edges move with the side panels, which the
+    // scene list's counts and the sampling controls widen (x = 300 was the
+    // panel itself once, in CI; y = 20 fell in the margin once the left
+    // panel's width left the plain render narrower than the area's height).
+    let probe = |shot: &RgbImage| shot.get_pixel(400, 120).0;
     assert_ne!(probe(&plain), BACKGROUND, "the plain window's image");
     assert_eq!(probe(&observed), BACKGROUND, "the halved image's margin");
 }
