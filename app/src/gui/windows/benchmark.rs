@@ -7,9 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
-use std::sync::mpsc::Sender;
 
-use egui::{TextureHandle, Ui};
+use egui::Ui;
 use egui_plot::{Bar, BarChart, Plot};
 use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
@@ -20,27 +19,15 @@ use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
 use crate::reports::bench_table::{self, Columns, Format};
 use crate::reports::render_stats::si;
 
-use super::background::{self, Background};
+use super::background::Measuring;
 
 /// Side of the thumbnails in the table, in pixels.
 const THUMBNAIL: u32 = 64;
 
-/// What the benchmark thread tells the window.
-enum Update {
-    Progress {
-        case: usize,
-        run: usize,
-        fraction: f32,
-    },
-    Measured(Box<Measurement>),
-    Finished(Result<bool, String>),
-}
+/// How far the matrix is: case, run and the fraction of that run done.
+type Progress = (usize, usize, f32);
 
-/// A finished row: its measurement and thumbnail.
-struct Row {
-    measurement: Measurement,
-    thumbnail: TextureHandle,
-}
+type Update = super::background::Update<Progress, Measurement>;
 
 /// The window's state.
 pub struct BenchWindow {
@@ -48,12 +35,8 @@ pub struct BenchWindow {
     /// Frames per configuration.
     runs: usize,
     cases: Vec<Case>,
-    rows: Vec<Row>,
-    progress: Option<(usize, usize, f32)>,
-    task: Option<Background<Update>>,
-    message: Option<String>,
-    /// Where the last export went.
-    exported: background::Export,
+    /// The run and its finished rows.
+    measuring: Measuring<Progress, Measurement>,
 }
 
 impl Default for BenchWindow {
@@ -62,23 +45,19 @@ impl Default for BenchWindow {
             open: false,
             runs: 3,
             cases: Vec::new(),
-            rows: Vec::new(),
-            progress: None,
-            task: None,
-            message: None,
-            exported: background::Export::default(),
+            measuring: Measuring::default(),
         }
     }
 }
 
 impl BenchWindow {
     pub fn is_running(&self) -> bool {
-        self.task.is_some()
+        self.measuring.is_running()
     }
 
     /// The finished rows' measurements, in matrix order.
     pub fn measurements(&self) -> impl Iterator<Item = &Measurement> {
-        self.rows.iter().map(|r| &r.measurement)
+        self.measuring.rows.iter().map(|r| &r.measured)
     }
 
     /// Starts the matrix over `world` with `base` settings (the current
@@ -90,70 +69,38 @@ impl BenchWindow {
         base: &RenderSettings,
         wake: impl Fn() + Send + 'static,
     ) {
-        self.stop();
         let base = RenderSettings {
             samples: benchmark::MATRIX_SAMPLES,
             ..base.clone()
         };
         self.cases = benchmark::matrix(&base, &AccelKind::ALL, Encoding::Srgb);
-        self.rows.clear();
-        self.message = None;
         let cases = self.cases.clone();
         let options = RunOptions {
             runs: self.runs,
             threads: None,
         };
-        let spawned = Background::spawn("benchmark", move |cancel, tx| {
-            run(&world, &cases, options, cancel, tx, &wake)
-        });
-        match spawned {
-            Ok(task) => self.task = Some(task),
-            Err(e) => self.message = Some(format!("cannot start the benchmark: {e}")),
-        }
+        self.measuring
+            .start("benchmark", wake, move |cancel, send| {
+                run(&world, &cases, options, cancel, send)
+            });
     }
 
     /// Cancels a running matrix; the finished rows stay.
     pub fn stop(&mut self) {
-        if let Some(task) = &self.task {
-            task.cancel();
-        }
+        self.measuring.stop();
     }
 
     /// Takes the thread's updates; call once per frame.
     pub fn receive(&mut self, ctx: &egui::Context) {
-        while let Some(update) = self.task.as_ref().and_then(Background::try_recv) {
-            match update {
-                Update::Progress {
-                    case,
-                    run,
-                    fraction,
-                } => self.progress = Some((case, run, fraction)),
-                Update::Measured(measurement) => {
-                    let thumbnail = background::thumbnail(
-                        ctx,
-                        &measurement.image,
-                        THUMBNAIL,
-                        format!("bench {}", measurement.case.file_stem()),
-                    );
-                    self.rows.push(Row {
-                        measurement: *measurement,
-                        thumbnail,
-                    });
-                }
-                Update::Finished(result) => {
-                    self.message = Some(match result {
-                        Ok(false) => format!("{} configurations measured", self.rows.len()),
-                        Ok(true) => format!("cancelled after {} configurations", self.rows.len()),
-                        Err(e) => e,
-                    });
-                    self.task = None;
-                    self.progress = None;
-                }
-            }
-        }
-        if let Some(message) = self.exported.finished() {
-            self.message = Some(message);
-        }
+        self.measuring.receive(
+            ctx,
+            THUMBNAIL,
+            |m, _| (&m.image, format!("bench {}", m.case.file_stem())),
+            |cancelled, rows| match cancelled {
+                false => format!("{rows} configurations measured"),
+                true => format!("cancelled after {rows} configurations"),
+            },
+        );
     }
 
     /// Draws the window; `start` is called when the user asks for a run.
@@ -178,18 +125,11 @@ impl BenchWindow {
                 egui::Slider::new(&mut self.runs, 1..=9).text("runs each"),
             )
             .on_hover_text("Frames per configuration: the table shows their median and spread");
-            if self.is_running() {
-                if ui.button("Cancel").clicked() {
-                    self.stop();
-                }
-            } else if ui.button("Run").clicked() {
-                *start = true;
-            }
-            if !self.rows.is_empty() && !self.is_running() && ui.button("Export...").clicked() {
+            if self.measuring.buttons(ui, start) {
                 self.export(scene_name);
             }
         });
-        if let Some((case, run, fraction)) = self.progress {
+        if let Some((case, run, fraction)) = self.measuring.progress {
             let total = self.cases.len().max(1);
             let done = (case as f32 + (run as f32 + fraction) / self.runs as f32) / total as f32;
             ui.add(egui::ProgressBar::new(done).text(format!(
@@ -201,20 +141,16 @@ impl BenchWindow {
                 self.runs
             )));
         }
-        if let Some(message) = &self.message {
+        if let Some(message) = &self.measuring.message {
             ui.label(message);
         }
-        if self.rows.is_empty() {
+        if self.measuring.rows.is_empty() {
             return;
         }
         let bars: Vec<Bar> = self
-            .rows
-            .iter()
+            .measurements()
             .enumerate()
-            .map(|(i, r)| {
-                Bar::new(i as f64, r.measurement.median().as_secs_f64() * 1e3)
-                    .name(&r.measurement.case.label)
-            })
+            .map(|(i, m)| Bar::new(i as f64, m.median().as_secs_f64() * 1e3).name(&m.case.label))
             .collect();
         Plot::new("bench_bars")
             .height(140.0)
@@ -230,14 +166,9 @@ impl BenchWindow {
                         ui.strong(header);
                     }
                     ui.end_row();
-                    for row in &self.rows {
-                        let m = &row.measurement;
-                        let [w, h] = row.thumbnail.size();
-                        let fit = 48.0 / w.max(h).max(1) as f32;
-                        ui.image((
-                            row.thumbnail.id(),
-                            egui::vec2(w as f32 * fit, h as f32 * fit),
-                        ));
+                    for row in &self.measuring.rows {
+                        let m = &row.measured;
+                        row.show_thumbnail(ui, 48.0);
                         ui.label(&m.case.label);
                         ui.monospace(format!("{:.1} ms", m.median().as_secs_f64() * 1e3));
                         ui.monospace(format!(
@@ -259,9 +190,10 @@ impl BenchWindow {
         let stem = Path::new(scene_name)
             .file_stem()
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
-        self.exported.start("Export the benchmark to", move |dir| {
-            write_export(&dir.join(format!("bench-{stem}")), &measurements)
-        });
+        self.measuring
+            .export("Export the benchmark to", move |dir| {
+                write_export(&dir.join(format!("bench-{stem}")), &measurements)
+            });
     }
 }
 
@@ -283,35 +215,23 @@ pub fn write_export(dir: &Path, measurements: &[Measurement]) -> anyhow::Result<
     Ok(dir.to_path_buf())
 }
 
-/// Runs the matrix, forwarding progress (at most one message per case and
-/// run fraction step) and results.
+/// Runs the matrix, sending its progress and results.
 fn run(
     world: &Arc<World>,
     cases: &[Case],
     options: RunOptions,
     cancel: &AtomicBool,
-    tx: &Sender<Update>,
-    wake: &dyn Fn(),
-) {
+    send: &dyn Fn(Update),
+) -> anyhow::Result<bool> {
     let mut on_event = |event: Event| {
-        let update = match event {
+        send(match event {
             Event::Rendering {
                 case,
                 run,
                 fraction,
-            } => Update::Progress {
-                case,
-                run,
-                fraction,
-            },
+            } => Update::Progress((case, run, fraction)),
             Event::Measured { measurement, .. } => Update::Measured(Box::new(measurement.clone())),
-        };
-        let _ = tx.send(update);
-        wake();
+        })
     };
-    let result = benchmark::run(world, cases, options, cancel, &mut on_event)
-        .map(|outcome| outcome.cancelled)
-        .map_err(|e| format!("{e:#}"));
-    let _ = tx.send(Update::Finished(result));
-    wake();
+    benchmark::run(world, cases, options, cancel, &mut on_event).map(|outcome| outcome.cancelled)
 }

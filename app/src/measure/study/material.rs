@@ -12,8 +12,8 @@ use tracer::scene::Scene;
 use tracer::scene::edit::{Edit, MaterialField};
 use tracer::world::World;
 
-use super::{Forward, Param, Study, StudyEvent, StudyOutcome, point_case, values};
-use crate::measure::benchmark::{self, Stop, Structures};
+use super::{Batch, Param, Study, StudyEvent, StudyOutcome, point_case, values};
+use crate::measure::benchmark::{Stop, Structures};
 
 /// A numeric field of the P3F material line that a study can sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -126,24 +126,17 @@ pub(super) fn run(
         let (scene, edit) = edited(study.param, scene, value)?;
         let mut edited = (**world).clone();
         edited.update(&scene, &edit);
-        let mut forward = Forward {
+        let world = Arc::new(edited);
+        let batch = Batch {
+            world: &world,
+            cases: &[point_case(study, base, accel, value)],
             first: point,
             x: None,
-            primitives: edited.counts.primitives,
             values: vec![value],
             reference: None,
-            points: &mut outcome.points,
         };
-        let measured = benchmark::run_with(
-            &Arc::new(edited),
-            &[point_case(study, base, accel, value)],
-            study.options,
-            &mut structures,
-            stop,
-            &mut |event| forward.event(event, on_event),
-        )?;
-        if measured.cancelled {
-            outcome.cancelled = true;
+        batch.measure(study.options, &mut structures, stop, &mut outcome, on_event)?;
+        if outcome.cancelled {
             break;
         }
     }

@@ -495,19 +495,46 @@ pub fn run(
     }
 }
 
-/// Forwards the runner's events of `cases` (points `first..`) as study
-/// events, turning each measurement into a point.
-struct Forward<'a> {
+/// Some of a study's points (`first..`), measured in one call of the
+/// runner on `world`: its events forwarded as study events, each
+/// measurement turned into a point (with its error against `reference`).
+struct Batch<'a> {
+    world: &'a Arc<World>,
+    cases: &'a [Case],
     first: usize,
+    /// Where the points stand on the chart's x axis, if not at their value.
     x: Option<f64>,
-    primitives: usize,
+    /// Each case's value.
     values: Vec<f64>,
     reference: Option<&'a RgbImage>,
-    points: &'a mut Vec<Point>,
 }
 
-impl Forward<'_> {
-    fn event(&mut self, event: Event, on_event: &mut dyn FnMut(StudyEvent)) {
+impl Batch<'_> {
+    /// What every runner does in its loop: measures the cases with the
+    /// structures built so far, adds their points to `outcome` and marks
+    /// it cancelled when the study was stopped.
+    fn measure(
+        &self,
+        options: RunOptions,
+        structures: &mut Structures,
+        stop: Stop,
+        outcome: &mut StudyOutcome,
+        on_event: &mut dyn FnMut(StudyEvent),
+    ) -> Result<()> {
+        let points = &mut outcome.points;
+        let measured = benchmark::run_with(
+            self.world,
+            self.cases,
+            options,
+            structures,
+            stop,
+            &mut |event| self.event(event, points, on_event),
+        )?;
+        outcome.cancelled |= measured.cancelled;
+        Ok(())
+    }
+
+    fn event(&self, event: Event, points: &mut Vec<Point>, on_event: &mut dyn FnMut(StudyEvent)) {
         match event {
             Event::Rendering {
                 case,
@@ -528,7 +555,7 @@ impl Forward<'_> {
                 let point = Point {
                     value,
                     x: self.x.unwrap_or(value),
-                    primitives: self.primitives,
+                    primitives: self.world.counts.primitives,
                     measurement: measurement.clone(),
                     error,
                 };
@@ -536,7 +563,7 @@ impl Forward<'_> {
                     point: self.first + case,
                     result: &point,
                 });
-                self.points.push(point);
+                points.push(point);
             }
         }
     }
@@ -571,7 +598,7 @@ fn run_scene(
             },
             encoding: study.encoding,
         };
-        let reference = benchmark::run_with(
+        let rendered = benchmark::run_with(
             world,
             &[case],
             one_frame,
@@ -586,8 +613,8 @@ fn run_scene(
                 }
             },
         )?;
-        match reference.measurements.into_iter().next() {
-            Some(m) if !reference.cancelled => {
+        match rendered.measurements.into_iter().next() {
+            Some(m) if !rendered.cancelled => {
                 outcome.reference = Some(ReferenceRender {
                     samples,
                     image: m.image,
@@ -599,34 +626,28 @@ fn run_scene(
             }
         }
     }
-    let reference = outcome.reference.as_ref().map(|r| &r.image);
+    // Borrowed by the batches while they add to the outcome.
+    let reference = outcome.reference.take();
     for (i, &accel) in study.structures.iter().enumerate() {
         let cases: Vec<Case> = study
             .values
             .iter()
             .map(|&v| point_case(study, base, accel, v))
             .collect();
-        let mut forward = Forward {
+        let batch = Batch {
+            world,
+            cases: &cases,
             first: i * study.values.len(),
             x: None,
-            primitives: world.counts.primitives,
             values: study.values.clone(),
-            reference,
-            points: &mut outcome.points,
+            reference: reference.as_ref().map(|r| &r.image),
         };
-        let measured = benchmark::run_with(
-            world,
-            &cases,
-            study.options,
-            &mut structures,
-            stop,
-            &mut |event| forward.event(event, on_event),
-        )?;
-        if measured.cancelled {
-            outcome.cancelled = true;
+        batch.measure(study.options, &mut structures, stop, &mut outcome, on_event)?;
+        if outcome.cancelled {
             break;
         }
     }
+    outcome.reference = reference;
     Ok(outcome)
 }
 
@@ -661,26 +682,25 @@ fn run_levels(
             .iter()
             .map(|&accel| point_case(study, &base, accel, level))
             .collect();
-        let mut forward = Forward {
+        let batch = Batch {
+            world: &world,
+            cases: &cases,
             first: i * study.structures.len(),
             x: Some(world.counts.primitives as f64),
-            primitives: world.counts.primitives,
             values: vec![level; cases.len()],
             reference: None,
-            points: &mut outcome.points,
         };
         // A new world: its structures are built once each, here.
-        let measured = benchmark::run_with(
-            &world,
-            &cases,
-            study.options,
-            &mut Structures::default(),
-            stop,
-            &mut |event| forward.event(event, on_event),
-        )
-        .with_context(|| format!("{generator} level {}", values::format(level)))?;
-        if measured.cancelled {
-            outcome.cancelled = true;
+        batch
+            .measure(
+                study.options,
+                &mut Structures::default(),
+                stop,
+                &mut outcome,
+                on_event,
+            )
+            .with_context(|| format!("{generator} level {}", values::format(level)))?;
+        if outcome.cancelled {
             break;
         }
     }

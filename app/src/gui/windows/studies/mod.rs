@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use egui::{TextureHandle, Ui};
+use egui::Ui;
 use tracer::accel::AccelKind;
 use tracer::generate::GeneratorName;
 use tracer::render::{Encoding, RenderSettings};
@@ -18,28 +18,23 @@ use crate::measure::study::{Param, Point, Study, Subject, values};
 use crate::reports::study_table;
 
 use crate::gui::sides::Controls;
-use crate::gui::windows::background::{self, Background};
+use crate::gui::windows::background::Measuring;
 
 /// Side of the thumbnails, in pixels.
 const THUMBNAIL: u32 = 96;
 
-/// What the study thread tells the window.
-enum Update {
+/// How far the study is.
+enum Progress {
+    /// Work before the points, and the fraction of it done.
     Preparing(String, f32),
     Rendering {
         point: usize,
         run: usize,
         fraction: f32,
     },
-    Measured(Box<Point>),
-    Finished(Result<bool, String>),
 }
 
-/// A measured point and its thumbnail.
-struct Row {
-    point: Point,
-    thumbnail: TextureHandle,
-}
+type Update = crate::gui::windows::background::Update<Progress, Point>;
 
 /// The window's state.
 pub struct StudiesWindow {
@@ -52,11 +47,8 @@ pub struct StudiesWindow {
     /// The study running or last run.
     study: Option<Study>,
     subject: String,
-    rows: Vec<Row>,
-    progress: Option<Update>,
-    task: Option<Background<Update>>,
-    message: Option<String>,
-    exported: background::Export,
+    /// The run and its measured points.
+    measuring: Measuring<Progress, Point>,
     /// Show error against time instead of time against the value.
     error_view: bool,
 }
@@ -73,11 +65,7 @@ impl Default for StudiesWindow {
             runs: 3,
             study: None,
             subject: String::new(),
-            rows: Vec::new(),
-            progress: None,
-            task: None,
-            message: None,
-            exported: background::Export::default(),
+            measuring: Measuring::default(),
             error_view: false,
         }
     }
@@ -85,17 +73,17 @@ impl Default for StudiesWindow {
 
 impl StudiesWindow {
     pub fn is_running(&self) -> bool {
-        self.task.is_some()
+        self.measuring.is_running()
     }
 
     /// The points measured so far, in measuring order.
     pub fn points(&self) -> impl Iterator<Item = &Point> {
-        self.rows.iter().map(|r| &r.point)
+        self.measuring.rows.iter().map(|r| &r.measured)
     }
 
     /// The message under the buttons (a count, an error), if any.
     pub fn message(&self) -> Option<&str> {
-        self.message.as_deref()
+        self.measuring.message.as_deref()
     }
 
     /// Starts the study the window is set to: on `world` from `base` (the
@@ -112,11 +100,11 @@ impl StudiesWindow {
         wake: impl Fn() + Send + 'static,
     ) {
         self.stop();
-        self.message = None;
+        self.measuring.message = None;
         let values = match values::parse(&self.values) {
             Ok(values) => values,
             Err(e) => {
-                self.message = Some(format!("values: {e}"));
+                self.measuring.message = Some(format!("values: {e}"));
                 return;
             }
         };
@@ -141,72 +129,43 @@ impl StudiesWindow {
             (subject, self.generator.to_string())
         } else {
             let Some(world) = world else {
-                self.message = Some("open a scene first: this study renders it".into());
+                self.measuring.message = Some("open a scene first: this study renders it".into());
                 return;
             };
             let base = base.clone();
             (Subject::Scene { world, base }, scene_name.to_string())
         };
         if let Err(e) = study.check(&subject) {
-            self.message = Some(format!("{e:#}"));
+            self.measuring.message = Some(format!("{e:#}"));
             return;
         }
-        self.rows.clear();
         self.subject = name;
         let thread_study = study.clone();
-        let spawned = Background::spawn("study", move |cancel, tx| {
-            task::run(&thread_study, &subject, cancel, tx, &wake)
+        let started = self.measuring.start("study", wake, move |cancel, send| {
+            task::run(&thread_study, &subject, cancel, send)
         });
-        match spawned {
-            Ok(task) => {
-                self.study = Some(study);
-                self.task = Some(task);
-            }
-            Err(e) => self.message = Some(format!("cannot start the study: {e}")),
+        if started {
+            self.study = Some(study);
         }
     }
 
     /// Cancels a running study; the measured points stay.
     pub fn stop(&mut self) {
-        if let Some(task) = &self.task {
-            task.cancel();
-        }
+        self.measuring.stop();
     }
 
     /// Takes the thread's updates; call once per frame.
     pub fn receive(&mut self, ctx: &egui::Context) {
-        while let Some(update) = self.task.as_ref().and_then(Background::try_recv) {
-            match update {
-                Update::Measured(point) => {
-                    let thumbnail = background::thumbnail(
-                        ctx,
-                        &point.measurement.image,
-                        THUMBNAIL,
-                        format!("study point {}", self.rows.len()),
-                    );
-                    self.rows.push(Row {
-                        point: *point,
-                        thumbnail,
-                    });
-                }
-                Update::Finished(result) => {
-                    let total = self.study.as_ref().map_or(0, Study::len);
-                    self.message = Some(match result {
-                        Ok(false) => format!("{} points measured", self.rows.len()),
-                        Ok(true) => {
-                            format!("cancelled after {} of {total} points", self.rows.len())
-                        }
-                        Err(e) => e,
-                    });
-                    self.task = None;
-                    self.progress = None;
-                }
-                progress => self.progress = Some(progress),
-            }
-        }
-        if let Some(message) = self.exported.finished() {
-            self.message = Some(message);
-        }
+        let total = self.study.as_ref().map_or(0, Study::len);
+        self.measuring.receive(
+            ctx,
+            THUMBNAIL,
+            |point, row| (&point.measurement.image, format!("study point {row}")),
+            |cancelled, rows| match cancelled {
+                false => format!("{rows} points measured"),
+                true => format!("cancelled after {rows} of {total} points"),
+            },
+        );
     }
 
     /// Draws the window. `start` is set when the user asks for a run; the
@@ -236,23 +195,16 @@ impl StudiesWindow {
         let idle = !self.is_running();
         ui.add_enabled_ui(idle, |ui| self.settings(ui, base));
         ui.horizontal(|ui| {
-            if self.is_running() {
-                if ui.button("Cancel").clicked() {
-                    self.stop();
-                }
-            } else if ui.button("Run").clicked() {
-                *start = true;
-            }
-            if !self.rows.is_empty() && idle && ui.button("Export...").clicked() {
+            if self.measuring.buttons(ui, start) {
                 self.export();
             }
         });
         self.progress_bar(ui);
-        if let Some(message) = &self.message {
+        if let Some(message) = &self.measuring.message {
             ui.label(message);
         }
         let param = self.study.as_ref()?.param;
-        if self.rows.is_empty() {
+        if self.measuring.rows.is_empty() {
             return None;
         }
         let points: Vec<Point> = self.points().cloned().collect();
@@ -270,7 +222,7 @@ impl StudiesWindow {
         let from_table = self.table(ui, param, &points);
         picked
             .or(from_table)
-            .map(|i| self.applied(param, &self.rows[i].point))
+            .map(|i| self.applied(param, &self.measuring.rows[i].measured))
     }
 
     /// The parameter, values, generator, structures and runs.
@@ -327,13 +279,13 @@ impl StudiesWindow {
         let study = self.study.as_ref()?;
         let plan = study.plan();
         let runs = study.options.runs.max(1);
-        match &self.progress {
-            Some(Update::Preparing(what, fraction)) => Some((*fraction, what.clone())),
-            Some(Update::Rendering {
+        match self.measuring.progress.as_ref()? {
+            Progress::Preparing(what, fraction) => Some((*fraction, what.clone())),
+            Progress::Rendering {
                 point,
                 run,
                 fraction,
-            }) => {
+            } => {
                 let done = (*point as f32 + (*run as f32 + fraction) / runs as f32)
                     / plan.len().max(1) as f32;
                 let (accel, value) = *plan.get(*point)?;
@@ -348,7 +300,6 @@ impl StudiesWindow {
                 );
                 Some((done, what))
             }
-            _ => None,
         }
     }
 
@@ -376,7 +327,7 @@ impl StudiesWindow {
         let param = study.param;
         let points: Vec<Point> = self.points().cloned().collect();
         let subject = self.subject.clone();
-        self.exported.start("Export the study to", move |dir| {
+        self.measuring.export("Export the study to", move |dir| {
             write_export(dir, param, &points, &subject)
         });
     }

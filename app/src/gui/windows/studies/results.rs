@@ -105,7 +105,7 @@ impl StudiesWindow {
             return None;
         }
         let clicked = response.response.clicked();
-        let row = &self.rows[nearest];
+        let row = &self.measuring.rows[nearest];
         // Shown at once while the pointer is on a point (not after the
         // usual tooltip delay): the point was picked on purpose.
         egui::Tooltip::for_widget(&response.response)
@@ -134,13 +134,8 @@ impl StudiesWindow {
                         ui.strong(header);
                     }
                     ui.end_row();
-                    for (i, (row, cells)) in self.rows.iter().zip(&cells).enumerate() {
-                        let [w, h] = row.thumbnail.size();
-                        let fit = 32.0 / w.max(h).max(1) as f32;
-                        ui.image((
-                            row.thumbnail.id(),
-                            egui::vec2(w as f32 * fit, h as f32 * fit),
-                        ));
+                    for (i, (row, cells)) in self.measuring.rows.iter().zip(&cells).enumerate() {
+                        row.show_thumbnail(ui, 32.0);
                         if ui
                             .button("Apply")
                             .on_hover_text("Show this point's settings in the main view")

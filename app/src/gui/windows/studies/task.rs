@@ -3,7 +3,6 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
-use std::sync::mpsc::Sender;
 
 use anyhow::Context;
 
@@ -14,7 +13,7 @@ use crate::measure::study::{self, Param, Point, Study, StudyEvent, Subject};
 use crate::reports::bench_table::Format;
 use crate::reports::study_table;
 
-use super::Update;
+use super::{Progress, Update};
 
 /// The table as `table.md` and `table.csv` and the chart as `chart.png`
 /// in `dir/study-<param>-<subject>`; returns that folder.
@@ -41,41 +40,35 @@ pub fn write_export(
     Ok(dir)
 }
 
-/// Runs the study, forwarding its events and points.
+/// Runs the study, sending its progress and points; says whether it was
+/// cancelled.
 pub(super) fn run(
     study: &Study,
     subject: &Subject,
     stop: &AtomicBool,
-    tx: &Sender<Update>,
-    wake: &dyn Fn(),
-) {
+    send: &dyn Fn(Update),
+) -> anyhow::Result<bool> {
     let never = AtomicBool::new(false);
     let stop = Stop {
         now: stop,
         after_frame: &never,
     };
     let mut on_event = |event: StudyEvent| {
-        let update = match event {
+        send(match event {
             StudyEvent::Preparing { what, fraction } => {
-                Update::Preparing(what.to_string(), fraction)
+                Update::Progress(Progress::Preparing(what.to_string(), fraction))
             }
             StudyEvent::Rendering {
                 point,
                 run,
                 fraction,
-            } => Update::Rendering {
+            } => Update::Progress(Progress::Rendering {
                 point,
                 run,
                 fraction,
-            },
+            }),
             StudyEvent::Measured { result, .. } => Update::Measured(Box::new(result.clone())),
-        };
-        let _ = tx.send(update);
-        wake();
+        })
     };
-    let result = study::run(study, subject, stop, &mut on_event)
-        .map(|outcome| outcome.cancelled)
-        .map_err(|e| format!("{e:#}"));
-    let _ = tx.send(Update::Finished(result));
-    wake();
+    study::run(study, subject, stop, &mut on_event).map(|outcome| outcome.cancelled)
 }
