@@ -93,7 +93,7 @@ mod tests {
         assert!((r - Vec3A::new(1.0, 1.0, 0.0).normalize()).length() < EPS);
         // Either side of the normal gives the same reflection.
         assert!((reflect(d, Vec3A::NEG_Y) - r).length() < EPS);
-        // The seed's form r = 2 (L . n) n - L with L = -d.
+        // The course's form r = 2 (L . n) n - L with L = -d.
         let l = -d;
         assert!((r - (Vec3A::Y * 2.0 * l.dot(Vec3A::Y) - l)).length() < EPS);
     }

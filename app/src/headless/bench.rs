@@ -1,5 +1,5 @@
 //! `workbench bench`: time frames of a scene, one row per acceleration
-//! structure or the seed's whole timing matrix, as a table or JSON.
+//! structure or the course's whole timing matrix, as a table or JSON.
 
 use std::sync::atomic::AtomicBool;
 

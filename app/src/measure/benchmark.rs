@@ -1,5 +1,5 @@
 //! Measuring renders: a list of cases (settings), each rendered a number of
-//! times with progress reports and cancellation, and the seed report's
+//! times with progress reports and cancellation, and the course report's
 //! timing matrix (Figure 5.1) as such a list. The command line and the
 //! window share it; nothing here prints.
 
@@ -54,20 +54,20 @@ impl Case {
     }
 }
 
-/// The sampling column of the seed's matrix.
+/// The sampling column of the course's timing matrix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Sampling {
     /// One sample per pixel.
     Single,
     /// Jittered N x N anti-aliasing.
     Antialiasing,
-    /// Anti-aliasing and depth of field (the seed only measured DOF with AA).
+    /// Anti-aliasing and depth of field (the course only measured DOF with AA).
     AntialiasingDof,
 }
 
 impl Sampling {
     /// The column `settings` belong in (depth of field without
-    /// anti-aliasing, which the seed did not measure, counts as DOF).
+    /// anti-aliasing, which the course did not measure, counts as DOF).
     pub fn of(settings: &RenderSettings) -> Sampling {
         match (settings.antialiasing, settings.depth_of_field) {
             (_, true) => Sampling::AntialiasingDof,
@@ -77,19 +77,19 @@ impl Sampling {
     }
 }
 
-/// The seed measured its matrix with N = 4 (4 x 4 samples per pixel); a
+/// The course measured its matrix with N = 4 (4 x 4 samples per pixel); a
 /// scene's own `spp` is its everyday choice, not the benchmark's.
 pub const MATRIX_SAMPLES: u32 = 4;
 
 /// Aperture (pixels) of the matrix's depth-of-field rows when the scene
-/// has none, so those rows blur and sample a lens as the seed's did.
+/// has none, so those rows blur and sample a lens as the course's did.
 pub const MATRIX_APERTURE: f32 = 8.0;
 
-/// The seed's timing table (Figure 5.1) over `accels`: for each structure,
+/// The course report's timing table (Figure 5.1) over `accels`: for each structure,
 /// hard then soft shadows, each with one sample, AA, and AA with DOF; the
-/// seed measured none and grid (12 rows), the workbench adds BVH (18).
+/// course measured none and grid (12 rows), the workbench adds BVH (18).
 /// Everything else (size, N, light size, lens, depth, seed) comes from
-/// `base`: set its `samples` to [`MATRIX_SAMPLES`] for the seed's N.
+/// `base`: set its `samples` to [`MATRIX_SAMPLES`] for the course's N.
 pub fn matrix(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -> Vec<Case> {
     let mut cases = Vec::new();
     for &accel in accels {
@@ -466,7 +466,7 @@ mod tests {
         let base = RenderSettings::default();
         let cases = matrix(&base, &AccelKind::ALL, Encoding::Linear);
         assert_eq!(cases.len(), 18);
-        // The seed's order: structure, then shadows, then sampling.
+        // The course's order: structure, then shadows, then sampling.
         let first: Vec<String> = cases[..6].iter().map(Case::file_stem).collect();
         assert_eq!(
             first,

@@ -11,7 +11,7 @@ use crate::reports::render_stats::si;
 pub enum Columns {
     /// One row per structure: build cost and work per ray.
     Structures,
-    /// The seed's timing matrix: the features of each row, then its times.
+    /// The course's timing matrix: the features of each row, then its times.
     Matrix,
 }
 
@@ -134,7 +134,7 @@ fn columns(which: Columns) -> Vec<Column> {
     }
 }
 
-/// "N=4" with anti-aliasing, as the seed's column header has it.
+/// "N=4" with anti-aliasing, as the course report's column header has it.
 fn aa_cell(m: &Measurement) -> String {
     let s = &m.case.settings;
     if s.antialiasing {
@@ -144,8 +144,8 @@ fn aa_cell(m: &Measurement) -> String {
     }
 }
 
-/// "-" without anti-aliasing, as in the seed's table (DOF was only
-/// measured with AA).
+/// "-" without anti-aliasing, as in the course report's table (DOF
+/// was only measured with AA).
 fn dof_cell(m: &Measurement) -> String {
     let s = &m.case.settings;
     match (s.depth_of_field, s.antialiasing) {

@@ -1,5 +1,5 @@
 //! No acceleration: every ray is tested against every bounded shape. The
-//! seed's baseline, and the reference the other structures must match.
+//! course's baseline, and the reference the other structures must match.
 
 use crate::geometry::{Ray, Shape};
 use crate::stats::Counters;

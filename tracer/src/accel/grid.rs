@@ -1,4 +1,4 @@
-//! The seed's uniform grid: the scene's bounding box cut into equal cells,
+//! The course's uniform grid: the scene's bounding box cut into equal cells,
 //! `n = trunc(m * dim * s) + 1` per axis with `s = cbrt(objects / volume)`,
 //! each object listed in every cell its box overlaps, rays walked cell by
 //! cell with Amanatides and Woo's 3D-DDA.
@@ -276,7 +276,7 @@ fn cell_range(bounds: &Aabb, cells: IVec3, b: &Aabb) -> (IVec3, IVec3) {
     (to_cell(b.min), to_cell(b.max))
 }
 
-/// Cells per axis by the seed's formula, shrunk uniformly if the total would
+/// Cells per axis by the course's formula, shrunk uniformly if the total would
 /// exceed [`MAX_CELLS`].
 fn cell_counts(dim: Vec3A, objects: usize, m: f32) -> IVec3 {
     let volume = dim.x * dim.y * dim.z;

@@ -242,7 +242,7 @@ pub struct SceneIndex {
 
 impl SceneIndex {
     /// Builds the structure `kind` over `shapes`; `grid_multiplier` is the
-    /// seed's m, used by the grid only.
+    /// course's m, used by the grid only.
     pub fn build(shapes: &[Shape], kind: AccelKind, grid_multiplier: f32) -> SceneIndex {
         let start = Instant::now();
         let (bounded, unbounded): (Vec<u32>, Vec<u32>) =
@@ -299,9 +299,8 @@ impl SceneIndex {
         let structure = match &self.structure {
             Structure::None(b) => Structure::None(b.clone()),
             // Relisting the moved shapes' references is a pass over every
-            // cell, no faster than a build: 0.8-1.08x of one on
-            // balls_high, 2.3x slower on mount_very_high's 15 ms grid
-            // (docs/PERFORMANCE.md, "Scene edits"). A grid is built anew.
+            // cell, no faster than a build (measured in docs/PERFORMANCE.md,
+            // "Scene edits"). A grid is built anew.
             Structure::Grid(_) => return None,
             Structure::Bvh(b) => Structure::Bvh(b.refit(shapes, moved)?),
         };

@@ -82,8 +82,8 @@ pub(crate) fn intersect_spheres<L: Lanes>(
     let ordered = t0.le(t1);
     let (near, far) = (L::select(ordered, t0, t1), L::select(ordered, t1, t0));
     // The entry point from outside, the exit point from inside. A single
-    // sphere hit from outside returns at once (1.3% of all instructions on
-    // `balls_medium`); four rarely all are, not worth a branch.
+    // sphere hit from outside returns at once (see docs/PERFORMANCE.md);
+    // four rarely all are, not worth a branch.
     let near_in = t_min.lt(near) & near.lt(t_max);
     if L::LANES == 1 && L::all(near_in) {
         return Some((near_in, near));

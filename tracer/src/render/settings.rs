@@ -28,7 +28,7 @@ pub struct RenderSettings {
     /// Jittered stratified anti-aliasing with `samples` x `samples` samples.
     pub antialiasing: bool,
     /// N: the stratification of a pixel (N x N samples), of the lens and of
-    /// soft shadows. The seed's N.
+    /// soft shadows. The course's N.
     pub samples: u32,
     /// Lights have an area: point lights a square of `light_size`, `al`
     /// lights their own rectangle.

@@ -97,12 +97,12 @@ enum ShadowMode {
     /// One ray to the light's position (an area light's centre).
     Hard,
     /// N x N multi-jittered rays over the light's area, each weighted 1/N^2:
-    /// the seed's soft shadows without anti-aliasing, where a pixel takes
+    /// the course's soft shadows without anti-aliasing, where a pixel takes
     /// one sample. Multi-jittered rather than only stratified, so an
     /// occluder's edge along the light's side is met within one sample
     /// (jittered strata miss it by up to N samples).
     Stratified(u32),
-    /// One ray per pixel sample: the seed's soft shadows with anti-aliasing,
+    /// One ray per pixel sample: the course's soft shadows with anti-aliasing,
     /// where the pixel's samples average them. The pixel's N x N samples
     /// take the points of one multi-jittered pattern, so they too see the
     /// light's visible fraction within one sample (independent random points
@@ -365,8 +365,8 @@ impl<'a> Tracer<'a> {
                     // The shadow ray's unit direction is the light's: one
                     // normalisation, not a division by the distance and
                     // then the ray's own (a chain of two square roots and
-                    // three divisions on every shadow ray, 8% of
-                    // balls_medium's frame).
+                    // three divisions on every shadow ray, measured in
+                    // docs/PERFORMANCE.md).
                     let shadow = Ray::new(origin, to_light);
                     let l = shadow.dir;
                     // A sample point beyond f32's range (on a huge `al`
