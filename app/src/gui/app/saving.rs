@@ -168,28 +168,43 @@ impl Dialogs {
         self.replies.try_iter().collect()
     }
 
-    /// The native open dialog; false when no thread could be started.
-    pub fn open(&self) -> bool {
+    /// Asks `question` on a thread called `name` and replies with what
+    /// `answer` makes of the path chosen, or with the notice `unanswered`;
+    /// false when no thread could be started.
+    fn ask_on_thread(
+        &self,
+        name: &str,
+        question: FileQuestion,
+        unanswered: &'static str,
+        answer: impl FnOnce(PathBuf) -> Reply + Send + 'static,
+    ) -> bool {
         let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
         std::thread::Builder::new()
-            .name("open-dialog".into())
+            .name(name.into())
             .spawn(move || {
-                let picked = dialog.ask(&FileQuestion {
-                    save: false,
-                    filter: ("Scenes and meshes", &["p3f", "nff", "obj", "ply"]),
-                    folder: Some("scenes".into()),
-                    name: None,
-                });
-                let _ = reply.send(match picked {
-                    Some(path) => Reply::Open(path),
-                    None => Reply::Notice(
-                        "nothing opened (cancelled, or no file dialog on this desktop: \
-                         drop a file on the window instead)"
-                            .into(),
-                    ),
+                let _ = reply.send(match dialog.ask(&question) {
+                    Some(path) => answer(path),
+                    None => Reply::Notice(unanswered.into()),
                 });
             })
             .is_ok()
+    }
+
+    /// The native open dialog; false when no thread could be started.
+    pub fn open(&self) -> bool {
+        let question = FileQuestion {
+            save: false,
+            filter: ("Scenes and meshes", &["p3f", "nff", "obj", "ply"]),
+            folder: Some("scenes".into()),
+            name: None,
+        };
+        self.ask_on_thread(
+            "open-dialog",
+            question,
+            "nothing opened (cancelled, or no file dialog on this desktop: \
+             drop a file on the window instead)",
+            Reply::Open,
+        )
     }
 
     /// The native save dialog for `image`, named after `scene`, and the
@@ -208,22 +223,15 @@ impl Dialogs {
             folder: None,
             name: Some(format!("{stem}.{}", filter.1[0])),
         };
-        let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
-        std::thread::Builder::new()
-            .name("save-dialog".into())
-            .spawn(move || {
-                let Some(path) = dialog.ask(&question) else {
-                    let _ = reply.send(Reply::Notice(
-                        "not saved (cancelled, or no file dialog on this desktop)".into(),
-                    ));
-                    return;
-                };
-                let _ = reply.send(match image.write(&path) {
-                    Ok(()) => Reply::Notice(format!("saved {}", path.display())),
-                    Err(e) => Reply::Error(format!("{e:#}")),
-                });
-            })
-            .is_ok()
+        self.ask_on_thread(
+            "save-dialog",
+            question,
+            "not saved (cancelled, or no file dialog on this desktop)",
+            move |path| match image.write(&path) {
+                Ok(()) => Reply::Notice(format!("saved {}", path.display())),
+                Err(e) => Reply::Error(format!("{e:#}")),
+            },
+        )
     }
 }
 
@@ -238,26 +246,19 @@ impl Dialogs {
             folder: Some(folder),
             name: Some(name),
         };
-        let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
-        std::thread::Builder::new()
-            .name("save-scene-dialog".into())
-            .spawn(move || {
-                let Some(path) = dialog.ask(&question) else {
-                    let _ = reply.send(Reply::Notice(
-                        "scene not saved (cancelled, or no file dialog on this desktop)".into(),
-                    ));
-                    return;
-                };
-                let _ = reply.send(match save.write(&path) {
-                    Ok(()) => Reply::SceneSaved {
-                        side: save.side,
-                        path,
-                        state: save.state,
-                    },
-                    Err(e) => Reply::Error(format!("{e:#}")),
-                });
-            })
-            .is_ok()
+        self.ask_on_thread(
+            "save-scene-dialog",
+            question,
+            "scene not saved (cancelled, or no file dialog on this desktop)",
+            move |path| match save.write(&path) {
+                Ok(()) => Reply::SceneSaved {
+                    side: save.side,
+                    path,
+                    state: save.state,
+                },
+                Err(e) => Reply::Error(format!("{e:#}")),
+            },
+        )
     }
 }
 

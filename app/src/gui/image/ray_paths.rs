@@ -1,7 +1,7 @@
 //! The pinned pixel's rays drawn over the image through the camera: the
 //! same colours for each kind of ray wherever rays are drawn.
 
-use egui::{Color32, Rect, Stroke, Ui, pos2};
+use egui::{Color32, Pos2, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
 use tracer::render::{Frame, Outcome, RayKind, RayNode, RayTree};
 
@@ -35,15 +35,25 @@ pub fn paint(ui: &Ui, tree: &RayTree, engine: &Engine, image_rect: Rect) -> usiz
         let (Some(a), Some(b)) = (to_screen(node.origin), to_screen(end)) else {
             continue;
         };
-        let stroke = Stroke::new(2.0, kind_colour(node.kind));
-        if blocked {
-            painter.extend(egui::Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
-        } else {
-            painter.line_segment([a, b], stroke);
-        }
+        segment(
+            &painter,
+            [a, b],
+            Stroke::new(2.0, kind_colour(node.kind)),
+            blocked,
+        );
         drawn += 1;
     }
     drawn
+}
+
+/// A ray's segment on screen: dashed where it was blocked or hidden, the
+/// same dashes in the image and in the observer view.
+pub fn segment(painter: &egui::Painter, [a, b]: [Pos2; 2], stroke: Stroke, dashed: bool) {
+    if dashed {
+        painter.extend(egui::Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
+    } else {
+        painter.line_segment([a, b], stroke);
+    }
 }
 
 /// Where a ray's drawn path ends, and whether it was blocked.

@@ -11,6 +11,7 @@ use tracer::render::Frame;
 use super::Observer;
 use crate::figures::observer::{self, Part};
 use crate::figures::projection::Projector;
+use crate::gui::image::ray_paths;
 use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::sides::Side;
 
@@ -142,12 +143,7 @@ pub fn paint(
             let alpha = if hidden { 80 } else { 255 };
             let [r, g, bl] = colour;
             let stroke = Stroke::new(width, Color32::from_rgba_unmultiplied(r, g, bl, alpha));
-            let (p, q) = (to_screen(p), to_screen(q));
-            if dashed {
-                painter.extend(egui::Shape::dashed_line(&[p, q], stroke, 6.0, 4.0));
-            } else {
-                painter.line_segment([p, q], stroke);
-            }
+            ray_paths::segment(&painter, [to_screen(p), to_screen(q)], stroke, dashed);
         }
         painted += 1;
     }

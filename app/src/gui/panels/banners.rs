@@ -15,22 +15,28 @@ pub fn error(ui: &mut Ui, error: &mut Option<String>) {
     let Some(message) = error.clone() else {
         return;
     };
+    banner(ui, Color32::from_rgb(90, 20, 20), |ui| {
+        ui.horizontal(|ui| {
+            ui.label(RichText::new("Error").strong().color(Color32::WHITE));
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                if ui.small_button("Dismiss").clicked() {
+                    *error = None;
+                }
+            });
+        });
+        ui.add(egui::Label::new(RichText::new(&message).color(Color32::WHITE)).wrap());
+    });
+}
+
+/// A banner of colour `fill` as wide as the panel, so that long messages
+/// (paths, parser context) wrap inside it instead of widening it.
+fn banner(ui: &mut Ui, fill: Color32, contents: impl FnOnce(&mut Ui)) {
     egui::Frame::new()
-        .fill(Color32::from_rgb(90, 20, 20))
+        .fill(fill)
         .inner_margin(6.0)
         .show(ui, |ui| {
-            // Long messages (paths, parser context) wrap inside the panel
-            // instead of widening it.
             ui.set_width(ui.available_width());
-            ui.horizontal(|ui| {
-                ui.label(RichText::new("Error").strong().color(Color32::WHITE));
-                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                    if ui.small_button("Dismiss").clicked() {
-                        *error = None;
-                    }
-                });
-            });
-            ui.add(egui::Label::new(RichText::new(&message).color(Color32::WHITE)).wrap());
+            contents(ui);
         });
 }
 
@@ -47,21 +53,15 @@ pub fn brute_force(
         return false;
     };
     let mut switch = false;
-    egui::Frame::new()
-        .fill(Color32::from_rgb(90, 70, 10))
-        .inner_margin(6.0)
-        .show(ui, |ui| {
-            ui.set_width(ui.available_width());
-            ui.horizontal_wrapped(|ui| {
-                ui.label(RichText::new("Slow").strong().color(Color32::WHITE));
-                ui.label(
-                    RichText::new(format!("{side}{}.", cost.describe())).color(Color32::WHITE),
-                );
-                switch = ui
-                    .button("Switch to BVH")
-                    .on_hover_text("Render with a bounding volume hierarchy: seconds instead")
-                    .clicked();
-            });
+    banner(ui, Color32::from_rgb(90, 70, 10), |ui| {
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new("Slow").strong().color(Color32::WHITE));
+            ui.label(RichText::new(format!("{side}{}.", cost.describe())).color(Color32::WHITE));
+            switch = ui
+                .button("Switch to BVH")
+                .on_hover_text("Render with a bounding volume hierarchy: seconds instead")
+                .clicked();
         });
+    });
     switch
 }

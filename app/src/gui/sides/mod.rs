@@ -111,27 +111,26 @@ impl Side {
 
     /// Undoes the last step; `None` when there is none.
     pub fn undo(&mut self) -> Result<Option<Effect>, String> {
-        let Some(inverse) = self.history.undo() else {
-            return Ok(None);
-        };
-        match self.apply(&inverse) {
-            Ok(_) => Ok(Some(inverse.kind())),
-            Err(why) => {
-                self.history.refused(true);
-                Err(why)
-            }
-        }
+        let step = self.history.undo();
+        self.replay(step, true)
     }
 
     /// Redoes the last undone step; `None` when there is none.
     pub fn redo(&mut self) -> Result<Option<Effect>, String> {
-        let Some(edit) = self.history.redo() else {
+        let step = self.history.redo();
+        self.replay(step, false)
+    }
+
+    /// Applies the `step` the history gave for an undo (or a redo), and
+    /// tells the history when the scene refused it.
+    fn replay(&mut self, step: Option<Edit>, undo: bool) -> Result<Option<Effect>, String> {
+        let Some(edit) = step else {
             return Ok(None);
         };
         match self.apply(&edit) {
             Ok(_) => Ok(Some(edit.kind())),
             Err(why) => {
-                self.history.refused(false);
+                self.history.refused(undo);
                 Err(why)
             }
         }
