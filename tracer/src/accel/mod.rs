@@ -6,8 +6,6 @@ mod brute;
 mod bvh;
 mod grid;
 mod packed;
-#[cfg(test)]
-mod refit_tests;
 mod structure_view;
 #[cfg(test)]
 mod tests;

@@ -10,14 +10,6 @@ mod ray_tree;
 mod settings;
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod tests_aa;
-#[cfg(test)]
-mod tests_adaptive;
-#[cfg(test)]
-mod tests_lens;
-#[cfg(test)]
-mod tests_shadows;
 mod trace;
 mod view;
 

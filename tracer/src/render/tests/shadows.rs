@@ -7,9 +7,9 @@
 
 use glam::Vec2;
 
-use super::tests::{index, world};
-use super::{Film, Frame, RenderSettings, render};
+use super::{index, world};
 use crate::accel::AccelKind;
+use crate::render::{Film, Frame, RenderSettings, render};
 
 /// Light height, occluder height and light side.
 const H: f32 = 40.0;

@@ -11,8 +11,8 @@ use std::ops::Range;
 use glam::Vec3A;
 use proptest::prelude::*;
 
-use super::tests::{Rand, boxes_and_bounds, random_query, random_shapes};
-use super::{AccelKind, SceneIndex, Structure};
+use super::{Rand, boxes_and_bounds, random_query, random_shapes};
+use crate::accel::{AccelKind, SceneIndex, Structure};
 use crate::geometry::{AaBox, Cone, Shape, Sphere, Triangle};
 use crate::scene::edit::Edit;
 use crate::scene::{Limits, parse_scene};

@@ -1,5 +1,10 @@
 //! Behaviour of the progressive renderer and of stochastic sampling.
 
+mod aa;
+mod adaptive;
+mod lens;
+mod shadows;
+
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex, mpsc};
 use std::time::Duration;

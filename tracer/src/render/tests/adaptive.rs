@@ -3,13 +3,13 @@
 
 use std::sync::{Arc, Mutex};
 
-use super::adaptive;
-use super::tests::{index, world};
-use super::{
+use super::{index, world};
+use crate::accel::AccelKind;
+use crate::render::adaptive;
+use crate::render::{
     AdaptiveSampling, Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, Sampling,
     render,
 };
-use crate::accel::AccelKind;
 use crate::stats::Counters;
 
 /// A sphere against a flat background and over a floor, lit by one light

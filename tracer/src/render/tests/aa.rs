@@ -3,10 +3,10 @@
 
 use glam::Vec3A;
 
-use super::tests::{index, world};
-use super::{Frame, RayKind, RenderSettings, TraceRecorder, Tracer};
+use super::{index, world};
 use crate::accel::AccelKind;
 use crate::geometry::Ray;
+use crate::render::{Frame, RayKind, RenderSettings, TraceRecorder, Tracer};
 use crate::stats::Counters;
 
 /// Keeps the eye ray of a traced sample.

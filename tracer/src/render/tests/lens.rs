@@ -5,9 +5,9 @@
 
 use glam::{Vec2, Vec3A};
 
-use super::tests::{index, world};
-use super::{Encoding, Film, RenderSettings, render};
+use super::{index, world};
 use crate::accel::AccelKind;
+use crate::render::{Encoding, Film, RenderSettings, render};
 
 /// The camera of every scene here: 10 units above the origin looking down
 /// -z, 64 x 64 pixels, 30 degrees between the top and bottom row centres.

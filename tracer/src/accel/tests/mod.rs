@@ -7,6 +7,8 @@
 //! their interval at a `t_min` inside the scene, so the grid begins its
 //! walk mid-grid.
 
+mod refit;
+
 use glam::Vec3A;
 use proptest::prelude::*;
 
