@@ -82,8 +82,15 @@ impl Request {
                 };
                 base.width = scale(base.width);
                 base.height = scale(base.height);
-                // The lens is in pixels: keep its blur the same share of the image.
-                base.aperture *= QUICK_SIDE as f32 / longer as f32;
+                // The lens is in pixels: keep its blur the same share of the
+                // image, the timing table's own lens too when the scene has
+                // none (its depth-of-field rows are blurred all the same).
+                let lens = if base.aperture > 0.0 {
+                    base.aperture
+                } else {
+                    benchmark::MATRIX_APERTURE
+                };
+                base.aperture = lens * QUICK_SIDE as f32 / longer as f32;
             }
             runs = runs.min(QUICK_RUNS);
         }
