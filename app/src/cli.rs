@@ -112,13 +112,19 @@ pub enum Headless {
 #[derive(Args, Debug)]
 #[command(after_help = "\
 The page has seven sections, as the course's report: the run (scene,
-camera, settings, machine), Whitted ray tracing (depth 0, 1 and the
-scene's), stochastic sampling (anti-aliasing, depth of field, soft shadows
+camera, settings, machine), Whitted ray tracing (local shading only, hard
+shadows, depth 1 and the scene's), stochastic sampling (anti-aliasing, depth of field, soft shadows
 off and on, error against samples), acceleration (the course's timing table
 with a BVH row for each, the grid multiplier study, tests per pixel, build
 time and memory), statistics, one pixel explained, and the course's own
 times beside ours for balls_medium. Each time is the median of --runs
 frames on --threads threads, stated in the page.
+
+The report varies the structure, shadows, anti-aliasing and depth of field
+itself and samples uniformly, as the course did: --accel, --aa, --no-aa,
+--soft-shadows, --no-shadows, --dof and the adaptive sampling flags are
+refused. The other settings flags apply to every experiment (--spp sets
+the timing table's N, 4 by default; --aperture and --focal its lens).
 
 Images are inline PNG and charts inline SVG: the file opens in any browser
 without a network and prints to PDF. Ctrl-C stops and writes nothing.
@@ -697,6 +703,10 @@ pub struct SettingsArgs {
     /// Soft shadows: lights get an area.
     #[arg(long)]
     pub soft_shadows: bool,
+    /// Shadows off: no shadow rays, every light reaches every point that
+    /// faces it (local shading only).
+    #[arg(long)]
+    pub no_shadows: bool,
     /// Side of the square a point light becomes with soft shadows (scene units).
     #[arg(long, value_name = "SIZE")]
     pub light_size: Option<f32>,
@@ -799,6 +809,9 @@ impl SettingsArgs {
         }
         if self.soft_shadows {
             s.soft_shadows = true;
+        }
+        if self.no_shadows {
+            s.shadows = false;
         }
         if let Some(size) = self.light_size {
             s.light_size = size;

@@ -8,13 +8,40 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use tracer::render::RenderSettings;
 
-use crate::cli::ReportArgs;
+use crate::cli::{ReportArgs, SettingsArgs};
 use crate::load::load_scene_edited;
 use crate::measure::benchmark::MATRIX_SAMPLES;
 use crate::reports::lab::{self, Request};
 
+/// The settings flags a report refuses: it measures every structure, with
+/// and without shadows, soft shadows, anti-aliasing and depth of field,
+/// sampling uniformly as the course did, so these would change nothing.
+fn refused(settings: &SettingsArgs) -> Option<&'static str> {
+    [
+        ("--accel", settings.accel.is_some()),
+        ("--aa", settings.aa),
+        ("--no-aa", settings.no_aa),
+        ("--soft-shadows", settings.soft_shadows),
+        ("--no-shadows", settings.no_shadows),
+        ("--dof", settings.dof),
+        ("--sampling", settings.sampling.is_some()),
+        ("--noise-threshold", settings.noise_threshold.is_some()),
+        ("--min-spp", settings.min_spp.is_some()),
+        ("--max-spp", settings.max_spp.is_some()),
+    ]
+    .into_iter()
+    .find_map(|(flag, given)| given.then_some(flag))
+}
+
 pub fn run(args: &ReportArgs) -> Result<()> {
     let start = Instant::now();
+    if let Some(flag) = refused(&args.settings) {
+        bail!(
+            "report does not take {flag}: it measures every structure, with and without \
+             shadows, soft shadows, anti-aliasing and depth of field, sampling uniformly \
+             (--spp sets N, --aperture and --focal the lens)"
+        );
+    }
     let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
     let mut base = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut base);

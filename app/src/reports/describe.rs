@@ -60,7 +60,9 @@ fn aspects(s: &RenderSettings, show_n: bool) -> Vec<Aspect> {
             },
         }
     };
-    let shadows = if s.soft_shadows {
+    let shadows = if !s.shadows {
+        Aspect::plain("no shadows".into())
+    } else if s.soft_shadows {
         Aspect {
             brief: "soft shadows on".into(),
             detailed: format!("soft shadows on, light size {}", s.light_size),

@@ -459,16 +459,52 @@ fn taking(flag: &str) -> Vec<String> {
     };
     Cli::command()
         .get_subcommands()
-        // `report` runs the course's experiments over its own grid of
-        // settings and writes times into every file it makes; its flags'
-        // effects are checked in `report.rs` (`--set`, `--srgb`).
-        .filter(|c| c.get_name() != "report")
         .filter(|c| {
             needed
                 .iter()
                 .all(|&f| c.get_arguments().any(|a| a.get_long() == Some(f)))
         })
         .map(|c| c.get_name().to_string())
+        .collect()
+}
+
+/// The settings flags `report` refuses: it varies the structure, shadows,
+/// anti-aliasing and depth of field itself and samples uniformly, so these
+/// would change nothing. Each must fail naming itself.
+const REPORT_REFUSES: &[&str] = &[
+    "accel",
+    "aa",
+    "no-aa",
+    "soft-shadows",
+    "no-shadows",
+    "dof",
+    "sampling",
+    "noise-threshold",
+    "min-spp",
+    "max-spp",
+];
+
+/// `flags` without those `report` refuses (and their values): the report
+/// sets them itself for each experiment.
+fn report_takes<'a>(flags: &[&'a str]) -> Vec<&'a str> {
+    let mut kept = Vec::new();
+    let mut refusing = false;
+    for &word in flags {
+        if let Some(flag) = word.strip_prefix("--") {
+            refusing = REPORT_REFUSES.contains(&flag);
+        }
+        if !refusing {
+            kept.push(word);
+        }
+    }
+    kept
+}
+
+/// The inline PNG images of a report page, as their base64 text.
+fn page_images(page: &str) -> Vec<Vec<u8>> {
+    page.split("src=\"data:image/png;base64,")
+        .skip(1)
+        .map(|rest| rest[..rest.find('"').unwrap()].as_bytes().to_vec())
         .collect()
 }
 
@@ -583,7 +619,8 @@ fn scene_and_output(dir: &Scratch, name: &str) -> (String, String) {
 }
 
 /// What a run gives that does not depend on time: the files it wrote,
-/// and what it printed as JSON with every timing taken out.
+/// and what it printed as JSON with every timing taken out (a report: the
+/// images of its page and its `--json` timing table).
 #[derive(Debug, PartialEq)]
 struct Outcome {
     files: Vec<Vec<u8>>,
@@ -596,9 +633,13 @@ struct Outcome {
 /// `flag` is among those its N sets.
 fn outcome(subcommand: &str, flag: &str, scene: &str, dir: &Path, flags: &[&str]) -> Outcome {
     let (out, images) = (dir.join("out.png"), dir.join("images"));
-    let _ = std::fs::remove_file(&out);
+    let (page, table) = (dir.join("out.html"), dir.join("out.json"));
+    for file in [&out, &page, &table] {
+        let _ = std::fs::remove_file(file);
+    }
     let _ = std::fs::remove_dir_all(&images);
     let (out, images) = (out.to_str().unwrap(), images.to_str().unwrap());
+    let (page, table) = (page.to_str().unwrap(), table.to_str().unwrap());
     let pixel = ["--pixel", "12", "8"];
     let own: Vec<&str> = match subcommand {
         "render" => vec!["-o", out, "--stats", "json"],
@@ -625,15 +666,28 @@ fn outcome(subcommand: &str, flag: &str, scene: &str, dir: &Path, flags: &[&str]
             "--format",
             "json",
         ],
+        "report" => [
+            &["-o", page, "--json", table, "--quick", "--runs", "1"][..],
+            &pixel,
+        ]
+        .concat(),
         other => panic!("`{other}` takes the settings flags: say here how to run it"),
     };
     let args: Vec<&str> = [&[subcommand, scene][..], &own, flags].concat();
-    let mut printed: serde_json::Value = serde_json::from_str(&workbench_ok(&args))
-        .unwrap_or_else(|e| panic!("{args:?} printed no JSON: {e}"));
+    let said = workbench_ok(&args);
+    let json = match subcommand {
+        "report" => std::fs::read_to_string(table).unwrap(),
+        _ => said,
+    };
+    let mut printed: serde_json::Value =
+        serde_json::from_str(&json).unwrap_or_else(|e| panic!("{args:?} printed no JSON: {e}"));
     drop_timings(&mut printed);
     let mut files = Vec::new();
     if let Ok(image) = std::fs::read(out) {
         files.push(image);
+    }
+    if let Ok(page) = std::fs::read_to_string(page) {
+        files.extend(page_images(&page));
     }
     if let Ok(entries) = std::fs::read_dir(images) {
         let mut paths: Vec<_> = entries.map(|e| e.unwrap().path()).collect();
@@ -659,7 +713,8 @@ fn drop_timings(value: &mut serde_json::Value) {
 /// Each settings flag, through each subcommand that takes it (clap says
 /// which), changes what the run gives: its image or, for a flag that
 /// only changes the work, what it counts. A subcommand that parses a
-/// flag and never applies it fails here.
+/// flag and never applies it fails here. `report` refuses the flags it
+/// varies itself ([`REPORT_REFUSES`]), and they must fail, writing nothing.
 #[test]
 fn settings_flags_change_what_each_subcommand_does() {
     let dir = scratch("flags-shared");
@@ -692,6 +747,7 @@ fn settings_flags_change_what_each_subcommand_does() {
             &["--max-spp", "9"],
         ),
         (&plain, &[], &["--soft-shadows"]),
+        (&plain, &[], &["--no-shadows"]),
         (&plain, &["--soft-shadows"], &["--light-size", "2"]),
         // With the scene's aperture of 0 the lens is a point: the samples
         // spread over it, the image stays, the counts change.
@@ -761,7 +817,22 @@ fn settings_flags_change_what_each_subcommand_does() {
         let flag = case_flag(added);
         let flags: Vec<&str> = before.iter().chain(added.iter()).copied().collect();
         for subcommand in taking(&flag) {
-            let base = outcome(&subcommand, &flag, scene, &dir, before);
+            let (before, flags) = if subcommand == "report" {
+                if REPORT_REFUSES.contains(&flag.as_str()) {
+                    let out = dir.join("refused.html");
+                    let args =
+                        [&["report", scene, "-o", out.to_str().unwrap()][..], added].concat();
+                    let said = workbench_fails(&args);
+                    if !said.contains(&format!("report does not take --{flag}")) || out.exists() {
+                        wrong.push(format!("report {added:?} is not refused: {said}"));
+                    }
+                    continue;
+                }
+                (report_takes(before), report_takes(&flags))
+            } else {
+                (before.to_vec(), flags.clone())
+            };
+            let base = outcome(&subcommand, &flag, scene, &dir, &before);
             let changed = outcome(&subcommand, &flag, scene, &dir, &flags);
             let same = base == changed;
             let unchanged = flag == "threads"

@@ -246,19 +246,26 @@ fn quick_reports_of_two_scenes_have_every_section_and_the_json_numbers() {
         let (_, whitted) = table(&page, "whitted");
         let ids: Vec<&str> = whitted.iter().map(|(id, _)| id.as_str()).collect();
         let expected = if refracts {
-            vec!["depth0", "depth1", "depth4-opaque", "depth4"]
+            vec!["local", "depth0", "depth1", "depth4-opaque", "depth4"]
         } else {
-            vec!["depth0", "depth1", "depth4"]
+            vec!["local", "depth0", "depth1", "depth4"]
         };
         assert_eq!(ids, expected, "{}", scene.display());
+        // Local shading casts no shadow ray, hard shadows one per light
+        // faced; neither bounces.
+        let (shadow, reflection, refraction) = (3, 4, 5);
+        let count = |row: usize, column: usize| whitted[row].1[column].parse::<u64>().unwrap();
+        assert_eq!(count(0, shadow), 0, "local shading: no shadow ray");
+        assert!(count(1, shadow) > 0, "hard shadows: shadow rays");
+        for row in [0, 1] {
+            assert_eq!(count(row, reflection) + count(row, refraction), 0);
+        }
+        assert!(page.contains("local shading only"));
         if refracts {
-            let refraction = |row: &(String, Vec<String>)| row.1[5].clone();
-            assert_eq!(
-                refraction(&whitted[2]),
-                "0",
-                "made opaque, nothing refracts"
-            );
-            assert_ne!(refraction(&whitted[3]), "0");
+            assert_eq!(count(3, refraction), 0, "made opaque, nothing refracts");
+            assert_ne!(count(4, refraction), 0);
+        } else {
+            assert!(page.contains("nothing in it refracts"));
         }
         check_against_bench(&scene, &rows);
         assert!(page.contains("Quick report"), "a quick report says so");

@@ -55,8 +55,9 @@ pub struct RayNode {
     pub weight: Vec3A,
     pub outcome: Outcome,
     /// What this node itself adds to the pixel, after its weights: the
-    /// ambient term at a hit, the background on a miss, the light a shadow
-    /// ray lets through. The nodes' contributions sum to the sample's colour.
+    /// ambient term at a hit (with shadows off, its whole local shading),
+    /// the background on a miss, the light a shadow ray lets through. The
+    /// nodes' contributions sum to the sample's colour.
     pub contribution: Vec3A,
     /// The radiance the ray brought back, before its weight (shadow rays:
     /// the light sample's, zero when blocked).
@@ -442,6 +443,30 @@ s 2.5 0 1 1
                 }
             }
         }
+    }
+
+    /// Shadows off: the mirror pixel's tree has no shadow ray (its light
+    /// comes from its hits), and its parts still add up to the render's.
+    #[test]
+    fn without_shadows_the_tree_has_no_shadow_ray_and_still_adds_up() {
+        let shadowed = frame(AccelKind::Bvh);
+        let settings = RenderSettings {
+            shadows: false,
+            ..shadowed.settings.clone()
+        };
+        let frame = Frame::new(shadowed.world, shadowed.index, settings).unwrap();
+        let (film, _) = render(
+            frame.world.clone(),
+            frame.index.clone(),
+            frame.settings.clone(),
+            Some(1),
+        )
+        .unwrap();
+        let tree = frame.inspect(20, 20, 0).unwrap();
+        assert!(tree.nodes.iter().all(|n| n.kind != RayKind::Shadow));
+        assert!(tree.nodes.iter().any(|n| n.kind == RayKind::Reflection));
+        assert_eq!(Some(tree.colour), film.pixel(20, 20));
+        assert!(close(tree.contributions(), tree.colour));
     }
 
     #[test]

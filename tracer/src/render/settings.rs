@@ -33,6 +33,11 @@ pub struct RenderSettings {
     /// Lights have an area: point lights a square of `light_size`, `al`
     /// lights their own rectangle.
     pub soft_shadows: bool,
+    /// Shadow rays: off, every light reaches every point that faces it,
+    /// whatever lies between (local shading only, the first step of the
+    /// course's Whitted ray tracing before shadows); no shadow ray is cast
+    /// or counted, so what shadows cost and what they add can be measured.
+    pub shadows: bool,
     /// Side of the square a point light becomes with soft shadows, in scene
     /// units.
     pub light_size: f32,
@@ -68,6 +73,7 @@ impl Default for RenderSettings {
             antialiasing: false,
             samples: 4,
             soft_shadows: false,
+            shadows: true,
             light_size: 0.3,
             depth_of_field: false,
             aperture: 0.0,

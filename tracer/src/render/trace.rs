@@ -73,7 +73,9 @@ pub struct ShadowSample {
 pub trait TraceRecorder {
     /// A ray starts; its radiance reaches its parent times `weight`.
     fn ray(&mut self, _kind: RayKind, _depth: u32, _ray: &Ray, _weight: Vec3A) {}
-    /// The open ray hit a surface; `ambient` is the light it adds directly.
+    /// The open ray hit a surface; `ambient` is the light it adds directly:
+    /// the ambient term, and with shadows off the whole local shading (no
+    /// shadow ray carries it).
     fn hit(&mut self, _hit: &SurfaceHit, _ambient: Vec3A) {}
     /// The open ray hit a transmitter: Fresnel reflectance `kr`, and whether
     /// the refraction was lost to total internal reflection.
@@ -94,6 +96,9 @@ impl TraceRecorder for NoRecord {}
 /// How shadow rays sample a light.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ShadowMode {
+    /// No shadow ray: every light lights, from its position, every point
+    /// that faces it (shadows off, local shading only).
+    Off,
     /// One ray to the light's position (an area light's centre).
     Hard,
     /// N x N multi-jittered rays over the light's area, each weighted 1/N^2:
@@ -150,10 +155,15 @@ struct OwnLine<T>(T);
 
 impl<'a> Tracer<'a> {
     pub fn new(world: &'a World, index: &'a SceneIndex, settings: &'a RenderSettings) -> Self {
-        let shadow_mode = match (settings.soft_shadows, settings.samples_per_pixel()) {
-            (false, _) => ShadowMode::Hard,
-            (true, 1) => ShadowMode::Stratified(settings.samples.max(1)),
-            (true, _) => ShadowMode::OnePerSample(settings.strata()),
+        let shadow_mode = match (
+            settings.shadows,
+            settings.soft_shadows,
+            settings.samples_per_pixel(),
+        ) {
+            (false, _, _) => ShadowMode::Off,
+            (true, false, _) => ShadowMode::Hard,
+            (true, true, 1) => ShadowMode::Stratified(settings.samples.max(1)),
+            (true, true, _) => ShadowMode::OnePerSample(settings.strata()),
         };
         let size = if world.bounds.is_empty() {
             1.0
@@ -288,6 +298,13 @@ impl<'a> Tracer<'a> {
         let above = p + ng * offset;
 
         let mut color = surface.diffuse * self.ambient;
+        // Without shadows no ray leaves for the lights: the local shading is
+        // light the hit adds directly, as the ambient term is, so a ray
+        // tree's contributions still sum to the pixel's colour.
+        let shadows = self.shadow_mode != ShadowMode::Off;
+        if !shadows {
+            color += self.direct_light(above, ns, -ray.dir, surface, rng, counters, &mut NoRecord);
+        }
         recorder.hit(
             &SurfaceHit {
                 t: hit.t,
@@ -298,7 +315,9 @@ impl<'a> Tracer<'a> {
             },
             color,
         );
-        color += self.direct_light(above, ns, -ray.dir, surface, rng, counters, recorder);
+        if shadows {
+            color += self.direct_light(above, ns, -ray.dir, surface, rng, counters, recorder);
+        }
         if depth >= self.settings.max_depth {
             return color;
         }
@@ -339,7 +358,8 @@ impl<'a> Tracer<'a> {
     }
 
     /// Diffuse and specular light from every light the surface faces, with
-    /// shadow rays from `origin` (already lifted off the surface).
+    /// shadow rays from `origin` (already lifted off the surface), unless
+    /// shadows are off.
     #[allow(clippy::too_many_arguments)]
     fn direct_light<R: TraceRecorder>(
         &self,
@@ -375,7 +395,6 @@ impl<'a> Tracer<'a> {
                     if cos.is_nan() || cos <= 0.0 {
                         return;
                     }
-                    counters.shadow_rays += 1;
                     let mut sample = ShadowSample {
                         light: light_index,
                         ray: shadow,
@@ -383,9 +402,12 @@ impl<'a> Tracer<'a> {
                         blocked: true,
                         radiance: Vec3A::ZERO,
                     };
-                    if self.shadowed(light_index, &shadow, distance, counters) {
-                        recorder.shadow(&sample);
-                        return;
+                    if self.shadow_mode != ShadowMode::Off {
+                        counters.shadow_rays += 1;
+                        if self.shadowed(light_index, &shadow, distance, counters) {
+                            recorder.shadow(&sample);
+                            return;
+                        }
                     }
                     // The highlight's power is the costliest term: only lit
                     // points of specular surfaces pay for it.
@@ -401,7 +423,9 @@ impl<'a> Tracer<'a> {
                     from_light += lit;
                 };
             match self.shadow_mode {
-                ShadowMode::Hard => add_sample(light.position, 1.0, counters, recorder),
+                ShadowMode::Off | ShadowMode::Hard => {
+                    add_sample(light.position, 1.0, counters, recorder)
+                }
                 ShadowMode::Stratified(n) => {
                     let (u, v) = self.light_area(light, origin);
                     let weight = 1.0 / (n * n) as f32;

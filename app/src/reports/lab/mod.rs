@@ -64,9 +64,13 @@ impl Request {
     /// The settings and runs actually measured: the quick report's lower
     /// resolution and fewer runs applied.
     pub fn measured(&self) -> (RenderSettings, usize) {
-        // A report's frames stop at N x N, whatever a window was doing.
+        // A report's frames stop at N x N and sample uniformly, as the
+        // course's did, with shadows on but where section 2 turns them off,
+        // whatever a window was doing.
         let mut base = RenderSettings {
             keep_refining: false,
+            sampling: tracer::render::Sampling::Uniform,
+            shadows: true,
             ..self.base.clone()
         };
         let mut runs = self.runs.max(1);
@@ -78,8 +82,15 @@ impl Request {
                 };
                 base.width = scale(base.width);
                 base.height = scale(base.height);
-                // The lens is in pixels: keep its blur the same share of the image.
-                base.aperture *= QUICK_SIDE as f32 / longer as f32;
+                // The lens is in pixels: keep its blur the same share of the
+                // image, the timing table's own lens too when the scene has
+                // none (its depth-of-field rows are blurred all the same).
+                let lens = if base.aperture > 0.0 {
+                    base.aperture
+                } else {
+                    benchmark::MATRIX_APERTURE
+                };
+                base.aperture = lens * QUICK_SIDE as f32 / longer as f32;
             }
             runs = runs.min(QUICK_RUNS);
         }
@@ -100,6 +111,7 @@ impl Request {
 fn plain(base: &RenderSettings, accel: AccelKind) -> RenderSettings {
     RenderSettings {
         accel,
+        shadows: true,
         soft_shadows: false,
         antialiasing: false,
         depth_of_field: false,
@@ -123,7 +135,8 @@ pub struct Lab {
     /// frame over none and the grid, with per-pixel views: blocked shadow
     /// rays, the deepest bounce, tests per pixel.
     pub views: Vec<Measurement>,
-    /// Plain frames at depth 0, 1 and the scene's, timed as the matrix.
+    /// Plain frames at depth 0 without shadows (local shading only), then
+    /// with hard shadows at depth 0, 1 and the scene's, timed as the matrix.
     pub whitted: Vec<Measurement>,
     /// The scene's depth with every transmittance set to 0, when something
     /// refracts: reflection without refraction, timed as the others.
@@ -213,16 +226,24 @@ impl Plan {
         let mut depths = vec![0, 1, base.max_depth];
         depths.retain(|&d| d <= base.max_depth);
         depths.dedup();
-        let whitted = depths
-            .into_iter()
-            .map(|max_depth| Case {
+        let local = Case {
+            label: "local shading only".into(),
+            settings: RenderSettings {
+                max_depth: 0,
+                shadows: false,
+                ..plain(base, AccelKind::Bvh)
+            },
+            encoding,
+        };
+        let whitted = std::iter::once(local)
+            .chain(depths.into_iter().map(|max_depth| Case {
                 label: format!("depth {max_depth}"),
                 settings: RenderSettings {
                     max_depth,
                     ..plain(base, AccelKind::Bvh)
                 },
                 encoding,
-            })
+            }))
             .collect();
         let (spp_values, grid_values) = if request.quick {
             ("1..3", "0.5..4:x2")

@@ -1,8 +1,11 @@
 //! Section 1, the run: the scene, its camera, the settings, the machine and
 //! how every number of the page was measured.
 
+use tracer::accel::AccelKind;
+
 use super::html::{facts, titled_section};
 use super::{Lab, QUICK_RUNS, QUICK_SIDE};
+use crate::measure::benchmark::Sampling;
 use crate::reports::render_stats::describe_objects;
 
 fn triple(v: glam::Vec3) -> String {
@@ -35,14 +38,17 @@ pub fn section(lab: &Lab) -> String {
             },
         ),
     ]);
+    let lens = lab
+        .row(AccelKind::Bvh, false, Sampling::AntialiasingDof)
+        .map_or(s.aperture, |m| m.case.settings.aperture);
     let camera = facts(&[
         ("from", triple(from)),
         ("at", triple(at)),
         ("up", triple(up)),
         ("field of view", format!("{}°", view.angle)),
         (
-            "lens",
-            format!("aperture {} px, focal {}", s.aperture, s.focal),
+            "lens of the depth-of-field frames",
+            format!("aperture {} px, focal {}", lens, s.focal),
         ),
     ]);
     let settings = facts(&[

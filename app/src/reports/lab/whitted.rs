@@ -1,6 +1,6 @@
-//! Section 2, Whitted ray tracing: the image at each depth, so what local
-//! shading, one bounce and the scene's depth each add can be seen, with
-//! the rays of each kind each one traced.
+//! Section 2, Whitted ray tracing: local shading only, then hard shadows,
+//! one bounce and the scene's depth, so what each part adds can be seen,
+//! with the rays of each kind each one traced.
 
 use anyhow::Result;
 
@@ -26,15 +26,57 @@ pub fn rays_by_kind(m: &Measurement) -> Vec<String> {
 /// Headers of [`rays_by_kind`].
 pub const RAY_HEADERS: [&str; 5] = ["eye", "shadow", "reflection", "refraction", "all rays"];
 
-fn what_it_adds(m: &Measurement, deepest: u32, opaque: bool) -> String {
-    match m.case.settings.max_depth {
-        0 => "depth 0: local shading (Blinn-Phong, every light) with hard shadows".into(),
-        1 => "depth 1: one bounce of mirror reflection and refraction".into(),
-        d if opaque => {
-            format!("depth {d}, every transmittance set to 0: mirror reflection without refraction")
-        }
-        d if d == deepest => format!("depth {d}: the scene's depth, with refraction"),
-        d => format!("depth {d}"),
+/// A frame of the section: what its settings add to the one before, in
+/// words, and its row's name and id.
+struct Step {
+    adds: String,
+    name: String,
+    id: String,
+}
+
+/// `opaque`: the frame of the scene with every transmittance set to 0;
+/// `refracts`: whether anything in the scene transmits.
+fn step(m: &Measurement, deepest: u32, opaque: bool, refracts: bool) -> Step {
+    let depth = m.case.settings.max_depth;
+    let (name, id) = (format!("depth {depth}"), format!("depth{depth}"));
+    let said = |adds: String, name: String, id: String| Step { adds, name, id };
+    if !m.case.settings.shadows {
+        return said(
+            "local shading only: Blinn-Phong from every light the surface faces, no shadow \
+             rays, no bounce"
+                .into(),
+            "local shading".into(),
+            "local".into(),
+        );
+    }
+    let refraction = if refracts { " and refraction" } else { "" };
+    match depth {
+        0 => said(
+            "depth 0: with hard shadows, a shadow ray to every light".into(),
+            name,
+            id,
+        ),
+        1 => said(
+            format!("depth 1: one bounce of reflection{refraction}"),
+            name,
+            id,
+        ),
+        d if opaque => said(
+            format!("depth {d}, every transmittance set to 0: reflection without refraction"),
+            format!("{name}, no refraction"),
+            format!("{id}-opaque"),
+        ),
+        d if d == deepest && refracts => said(
+            format!("depth {d}: the scene's depth, with refraction"),
+            name,
+            id,
+        ),
+        d if d == deepest => said(
+            format!("depth {d}: the scene's depth (nothing in it refracts)"),
+            name,
+            id,
+        ),
+        d => said(format!("depth {d}"), name, id),
     }
 }
 
@@ -47,23 +89,11 @@ pub fn section(lab: &Lab) -> Result<String> {
     if let Some(opaque) = &lab.opaque {
         frames.insert(frames.len().saturating_sub(1), (opaque, true));
     }
+    let refracts = lab.opaque.is_some();
     for (m, opaque) in frames {
-        let depth = m.case.settings.max_depth;
-        let caption = format!(
-            "{}; {} ms, {} rays",
-            what_it_adds(m, deepest, opaque),
-            ms(m.median()),
-            m.rays()
-        );
+        let Step { adds, name, id } = step(m, deepest, opaque, refracts);
+        let caption = format!("{adds}; {} ms, {} rays", ms(m.median()), m.rays());
         figures += &figure(&image(&m.image, &caption, 340)?, &caption);
-        let (name, id) = if opaque {
-            (
-                format!("depth {depth}, no refraction"),
-                format!("depth{depth}-opaque"),
-            )
-        } else {
-            (format!("depth {depth}"), format!("depth{depth}"))
-        };
         let mut cells = vec![name, ms(m.median())];
         cells.extend(rays_by_kind(m));
         rows.push((id, cells));
@@ -71,11 +101,12 @@ pub fn section(lab: &Lab) -> Result<String> {
     let mut headers = vec!["image", "frame ms"];
     headers.extend(RAY_HEADERS);
     let body = format!(
-        "<p>Whitted's algorithm at increasing depth: each eye ray is shaded locally with a \
-         shadow ray to every light, then reflected and refracted rays are traced as deep as \
-         allowed. BVH, one sample per pixel, hard shadows. When something refracts, the \
-         scene's depth is shown once more with every transmittance set to 0, so what \
-         reflection and refraction each add can be told apart.</p>\n\
+        "<p>Whitted's algorithm one part at a time: each eye ray's hit shaded locally from \
+         every light it faces (no shadow rays), then with a shadow ray to every light (hard \
+         shadows), then reflected and refracted rays traced as deep as allowed. BVH, one \
+         sample per pixel. When something refracts, the scene's depth is shown once more \
+         with every transmittance set to 0, so what reflection and refraction each add can be \
+         told apart.</p>\n\
          <div class=\"figures\">{figures}</div>\n{}\
          <p class=\"how\">{}</p>\n",
         table("whitted", &headers, &rows),

@@ -181,3 +181,47 @@ fn hard_shadows_have_no_penumbra() {
         }
     }
 }
+
+/// Shadows off: no shadow ray is cast or counted, and the floor under the
+/// occluder is lit as the open floor is (with shadows on it is dark), for
+/// both lights, with hard or soft shadows asked for.
+#[test]
+fn without_shadows_no_shadow_ray_is_cast_and_the_occluded_floor_is_lit() {
+    let pixels = u64::from(WIDTH * HEIGHT);
+    for light in [POINT_LIGHT, AREA_LIGHT] {
+        let hard = RenderSettings {
+            soft_shadows: false,
+            ..settings(false, 4)
+        };
+        let open = film(&scene(light, false), &hard);
+        let shadowed = film(&scene(light, true), &hard);
+        let row = HEIGHT / 2;
+        assert!(
+            shadowed.pixel(0, row).unwrap().x < 0.01,
+            "with shadows the occluded floor is dark"
+        );
+        for soft_shadows in [false, true] {
+            let off = RenderSettings {
+                shadows: false,
+                soft_shadows,
+                ..hard.clone()
+            };
+            let w = world(&scene(light, true));
+            let (lit, stats) = render(w.clone(), index(&w, AccelKind::Bvh), off, Some(2)).unwrap();
+            let c = &stats.counters;
+            assert_eq!(c.shadow_rays, 0, "{light}, soft {soft_shadows}");
+            assert_eq!(c.total_rays(), pixels, "eye rays only");
+            for y in 0..HEIGHT {
+                for x in 0..WIDTH {
+                    // The occluder moves the ray origins' offset (a
+                    // millionth of the scene's size) by a hair.
+                    let (a, b) = (lit.pixel(x, y).unwrap(), open.pixel(x, y).unwrap());
+                    assert!(
+                        (a - b).abs().max_element() < 1e-5,
+                        "{light}, soft {soft_shadows}: ({x}, {y}) is {a}, the open floor {b}"
+                    );
+                }
+            }
+        }
+    }
+}
