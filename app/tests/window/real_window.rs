@@ -31,8 +31,11 @@ fn run_bounded(command: Command) -> Output {
 
 fn workbench(home: &Path) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_workbench"));
-    // A fresh home: no settings from an earlier session.
-    command.env("XDG_CONFIG_HOME", home).env("HOME", home);
+    // A fresh home: no settings from an earlier session, and none written
+    // anywhere else (eframe keeps its state in the data folder).
+    for folder in ["HOME", "XDG_CONFIG_HOME", "XDG_DATA_HOME", "XDG_CACHE_HOME"] {
+        command.env(folder, home);
+    }
     command
 }
 
@@ -237,4 +240,72 @@ solution = { pixel = [20, 15] }
         .arg(&shot);
     let said = String::from_utf8_lossy(&run_bounded(window).stdout).into_owned();
     assert!(said.contains("of 40 x 30"), "{said}");
+}
+
+/// Every file under `dir`, recursively.
+fn files_under(dir: &Path) -> Vec<std::path::PathBuf> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            found.extend(files_under(&path));
+        } else {
+            found.push(path);
+        }
+    }
+    found
+}
+
+/// eframe's on-disk storage across two runs of the real binary: the scene
+/// opened with `--scene` in the first run is the scene the second run,
+/// given none, opens (a fresh home opens the bundled showcase instead).
+/// The home is in the scratch folder ([`workbench`]), so the state is
+/// written there and nowhere else.
+#[test]
+#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
+fn the_last_scene_is_remembered_on_disk_across_two_runs() {
+    let dir = Scratch::new("window-persistence");
+    let home = dir.join("home");
+    std::fs::create_dir_all(&home).unwrap();
+    // A resolution no bundled scene has, so the second run's line can only
+    // come from this scene.
+    let scene = crate::support::write(
+        &dir,
+        "remembered.p3f",
+        &crate::support::scenes::spheres_on_a_floor(52, 36, "", ""),
+    );
+    let run = |home: &Path, scene: Option<&Path>, shot: &str| {
+        let mut window = workbench(home);
+        if let Some(scene) = scene {
+            window.arg("--scene").arg(scene);
+        }
+        window.arg("--screenshot").arg(dir.join(shot));
+        String::from_utf8_lossy(&run_bounded(window).stdout).into_owned()
+    };
+
+    let first = run(&home, Some(scene.as_path()), "first.png");
+    assert!(first.contains("of 52 x 36"), "first run: {first}");
+    let stored: Vec<_> = files_under(&home)
+        .into_iter()
+        .filter(|f| std::fs::read_to_string(f).is_ok_and(|t| t.contains("remembered.p3f")))
+        .collect();
+    assert!(
+        !stored.is_empty(),
+        "no file under {} names the scene after the first run",
+        home.display()
+    );
+    let second = run(&home, None, "second.png");
+    assert!(
+        second.contains("of 52 x 36"),
+        "the second run did not reopen the first run's scene: {second}"
+    );
+
+    // The control: the same run in a fresh home shows something else.
+    let fresh = dir.join("fresh");
+    std::fs::create_dir_all(&fresh).unwrap();
+    let control = run(&fresh, None, "control.png");
+    assert!(
+        control.contains("saved screenshot") && !control.contains("of 52 x 36"),
+        "a fresh home: {control}"
+    );
 }

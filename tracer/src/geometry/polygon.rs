@@ -109,6 +109,8 @@ struct Ring {
 impl Ring {
     /// Twice the signed area of the corner at `i`, positive when convex.
     fn turn(&self, i: usize) -> f32 {
+        #[cfg(test)]
+        tests::TURNS.with(|t| t.set(t.get() + 1));
         let (a, b, c) = (self.pts[self.prev[i]], self.pts[i], self.pts[self.next[i]]);
         self.orient * (b - a).perp_dot(c - b)
     }
@@ -352,9 +354,14 @@ mod tests {
         check(&vertices, &poly, &tris);
     }
 
-    #[test]
-    fn large_star_is_fast_enough() {
-        let n = 4000;
+    thread_local! {
+        /// Corner turns evaluated on this thread: the unit of work of the
+        /// ear clipping, counted so its growth is checked without a clock.
+        pub(super) static TURNS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    }
+
+    /// The turns `triangulate_polygon` evaluates on a star of `n` vertices.
+    fn star_work(n: usize) -> u64 {
         let pts: Vec<(f32, f32)> = (0..n)
             .map(|k| {
                 let angle = std::f32::consts::TAU * k as f32 / n as f32;
@@ -362,12 +369,29 @@ mod tests {
                 (r * angle.cos(), r * angle.sin())
             })
             .collect();
-        let start = std::time::Instant::now();
+        TURNS.with(|t| t.set(0));
         let tris = triangulate_polygon(&flat(&pts)).unwrap();
         assert_eq!(tris.len(), n - 2);
-        // O(n^2) is well under a second here even unoptimised; O(n^3)
-        // would take minutes.
-        assert!(start.elapsed().as_secs_f32() < 10.0);
+        TURNS.with(|t| t.get())
+    }
+
+    #[test]
+    fn large_star_takes_quadratic_work() {
+        // Doubling the vertices multiplies the work by 4 when it is O(n^2)
+        // (each clip re-examines two neighbours, each an O(n) scan) and by
+        // 8 when it is O(n^3) (every flag recomputed after each clip).
+        let (small, large) = (star_work(1000), star_work(2000));
+        let growth = large as f64 / small as f64;
+        assert!(
+            growth < 5.0,
+            "work grows {growth:.2}x when the vertices double ({small} -> {large} turns)"
+        );
+        // n first ear checks and two per clip, each at most n + 1 turns.
+        let bound = 3 * 2000 * 2001;
+        assert!(
+            large <= bound,
+            "{large} turns for 2000 vertices, over {bound}"
+        );
     }
 
     #[test]
