@@ -176,7 +176,10 @@ impl Dialogs {
             .spawn(move || {
                 let picked = dialog.ask(&FileQuestion {
                     save: false,
-                    filter: ("Scenes and meshes", &["p3f", "nff", "obj", "ply"]),
+                    filter: (
+                        "Scenes, meshes and lessons",
+                        &["p3f", "nff", "obj", "ply", "toml"],
+                    ),
                     folder: Some("scenes".into()),
                     name: None,
                 });
