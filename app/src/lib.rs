@@ -19,6 +19,9 @@ use clap::Parser;
 /// window when there is none.
 pub fn run() -> std::process::ExitCode {
     let cli = cli::Cli::parse();
+    if cli.command.is_some() {
+        headless::quiet_on_closed_stdout();
+    }
     let result = match cli.command {
         Some(cli::Headless::Render(args)) => headless::render::run(&args),
         Some(cli::Headless::Inspect(args)) => headless::inspect::run(&args),

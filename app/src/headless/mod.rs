@@ -18,6 +18,23 @@ use tracer::stats::SceneCounts;
 use crate::measure::benchmark::Event;
 use crate::measure::cost::BruteForceCost;
 
+/// Lets a closed stdout end a subcommand quietly, as it ends any Unix tool.
+/// Rust starts programs with SIGPIPE ignored, so once the reader of a pipe
+/// has gone (`workbench lesson check | head -1`) every `println!` fails and
+/// panics with "failed printing to stdout". With the signal's default
+/// action restored the process is simply ended by SIGPIPE (status 141 in a
+/// shell), once, for every subcommand and every line it prints. The window
+/// keeps SIGPIPE ignored: a socket it writes to closing (the display
+/// server, the file dialog's portal) is an error it handles, not its end.
+pub fn quiet_on_closed_stdout() {
+    #[cfg(unix)]
+    // SAFETY: `signal` with `SIG_DFL` only resets the disposition of
+    // SIGPIPE; it runs before any thread of ours is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 /// Warns on stderr, before rendering, when brute force over this scene
 /// would look like a hang; the scene's `accel` is respected all the same.
 fn warn_brute_force(settings: &RenderSettings, counts: &SceneCounts) {

@@ -95,8 +95,12 @@ pub struct Actions {
     pub settings: Option<Located<SettingsArgs>>,
     /// Scene edits of side A in the `--set` language, in order.
     pub edits: Vec<Located<String>>,
-    /// Compare mode on, side B being A with these flags over it.
+    /// Compare mode on, side B being A with these flags over it (their
+    /// `--set` lines edit B's scene).
     pub compare: Option<Located<SettingsArgs>>,
+    /// Scene edits of side B alone, in the `--set` language, after
+    /// `compare`: B's scene differs from A's, the point of the layout.
+    pub compare_edits: Vec<Located<String>>,
     /// The pixel pinned for the ray tree and the observer.
     pub pixel: Option<(u32, u32)>,
     /// The answer typed or picked (solutions only).
@@ -113,6 +117,7 @@ impl Actions {
         self.settings.is_none()
             && self.edits.is_empty()
             && self.compare.is_none()
+            && self.compare_edits.is_empty()
             && self.pixel.is_none()
             && self.answer.is_none()
             && self.view.is_none()
@@ -149,6 +154,8 @@ struct RawActions {
     #[serde(default)]
     edits: Vec<Spanned<String>>,
     compare: Option<Spanned<String>>,
+    #[serde(default, rename = "compare-edits")]
+    compare_edits: Vec<Spanned<String>>,
     pixel: Option<[u32; 2]>,
     answer: Option<Spanned<RawAnswer>>,
     view: Option<Spanned<String>>,
@@ -439,17 +446,20 @@ impl Source<'_> {
             })?),
             None => None,
         };
-        Ok(Actions {
-            settings: raw.settings.map(flags).transpose()?,
-            edits: raw
-                .edits
+        let lines = |edits: Vec<Spanned<String>>| -> Vec<Located<String>> {
+            edits
                 .into_iter()
                 .map(|e| {
                     let span = e.span();
                     self.located(span, e.into_inner())
                 })
-                .collect(),
+                .collect()
+        };
+        Ok(Actions {
+            settings: raw.settings.map(flags).transpose()?,
+            edits: lines(raw.edits),
             compare: raw.compare.map(flags).transpose()?,
+            compare_edits: lines(raw.compare_edits),
             pixel: raw.pixel.map(|[x, y]| (x, y)),
             answer,
             view,

@@ -84,22 +84,29 @@ impl LessonState {
     }
 
     /// Does what `actions` say: A's settings and edits, B from A with its
-    /// flags, the pixel, the answer, the layout. An edit the scene refuses
-    /// is an error naming the lesson file's line.
+    /// flags, B's own edits, the pixel, the answer, the layout. An edit the
+    /// scene refuses, or B's edits without compare mode, is an error naming
+    /// the lesson file's line.
     pub fn apply(&mut self, actions: &Actions, file: &str) -> Result<()> {
         if let Some(flags) = &actions.settings {
             apply_flags(&mut self.a, flags, file)?;
         }
-        if !actions.edits.is_empty() {
-            for edit in &actions.edits {
-                self.a = edited(&self.a, std::slice::from_ref(&edit.value))
-                    .with_context(|| format!("{file}:{}:{}", edit.line, edit.column))?;
-            }
-        }
+        edit_side(&mut self.a, &actions.edits, file)?;
         if let Some(flags) = &actions.compare {
             let mut b = self.a.clone();
             apply_flags(&mut b, flags, file)?;
             self.b = Some(b);
+        }
+        if let Some(first) = actions.compare_edits.first() {
+            let Some(b) = &mut self.b else {
+                return Err(anyhow!(
+                    "{file}:{}:{}: `compare-edits` edits side B, but compare mode is off: \
+                     add `compare` (for instance `compare = \"\"`)",
+                    first.line,
+                    first.column
+                ));
+            };
+            edit_side(b, &actions.compare_edits, file)?;
         }
         if let Some(pixel) = actions.pixel {
             let settings = &self.a.settings;
@@ -125,6 +132,16 @@ impl LessonState {
         }
         Ok(())
     }
+}
+
+/// `lines` (`--set` edits, each from the lesson file) applied to `side`
+/// in order; a refused one names its line.
+fn edit_side(side: &mut SideState, lines: &[Located<String>], file: &str) -> Result<()> {
+    for edit in lines {
+        *side = edited(side, std::slice::from_ref(&edit.value))
+            .with_context(|| format!("{file}:{}:{}", edit.line, edit.column))?;
+    }
+    Ok(())
 }
 
 /// `flags` over `side`: its settings, then its `--set` lines as edits.

@@ -180,3 +180,47 @@ fn the_documented_example_passes() {
     let out = workbench_ok(&["lesson", "check", &path.display().to_string()]);
     assert!(out.contains("all 3 steps pass"), "{out}");
 }
+
+/// Side B's own edits: `compare-edits` changes B's scene and leaves A's
+/// as it was (the check reads both); without compare mode it is a located
+/// error.
+#[test]
+fn compare_edits_change_side_b_alone() {
+    let dir = Scratch::new("lesson-compare-edits");
+    let text = TEMPLATE
+        .replace(
+            "settings = \"--no-aa --spp 2\"",
+            "settings = \"--no-aa --spp 2\"\ncompare = \"--aa\"",
+        )
+        .replace(
+            r#"check = { kind = "all", checks = [
+    { kind = "value", of = "aa", is = "on" },
+    { kind = "value", of = "spp", is = ">= 4" },
+] }
+solution = { settings = "{solution}" }"#,
+            r#"check = { kind = "all", checks = [
+    { kind = "value", of = "object 0 kd", side = "b", is = 0.25 },
+    { kind = "value", of = "object 0 kd", is = 1 },
+    { kind = "value", of = "aa", side = "b", is = "on" },
+] }
+solution = { compare-edits = ["object 0 kd 0.25"] }"#,
+        );
+    let path = dir.join("b.toml");
+    std::fs::write(&path, &text).unwrap();
+    let out = workbench_ok(&["lesson", "check", &path.display().to_string()]);
+    assert!(out.contains("step 1/1 Four by four: pass"), "{out}");
+
+    let without_b = text.replace("compare = \"--aa\"", "");
+    std::fs::write(&path, &without_b).unwrap();
+    let line = 1 + without_b
+        .lines()
+        .position(|l| l.starts_with("solution = { compare-edits"))
+        .unwrap();
+    let run = workbench(&["lesson", "check", &path.display().to_string()]);
+    assert!(!run.status.success());
+    let out = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        out.contains(&format!("b.toml:{line}:")) && out.contains("compare mode is off"),
+        "{out}"
+    );
+}

@@ -7,6 +7,8 @@ mod support;
 mod adaptive;
 mod bad_scenes;
 mod bench_rays;
+#[cfg(unix)]
+mod closed_stdout;
 mod compare;
 mod determinism;
 mod docs;

@@ -1,7 +1,8 @@
 //! What the window's commands do, each seen in the renderer or on disk:
 //! F5 reloads the file and keeps the user's settings, C puts the camera
 //! back, saving writes the shown render (PNG) and the linear film (EXR), a
-//! JPEG can be side B, and the slow brute-force banner switches to the BVH.
+//! JPEG can be side B, the slow brute-force banner switches to the BVH,
+//! and a lesson picked in the Open dialog opens in the Lessons window.
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
@@ -134,7 +135,10 @@ fn open_save_png_save_exr_and_save_scene_go_through_the_file_dialog() {
     harness.run_steps(2);
     assert!(harness.query_by_label_contains("nothing opened").is_some());
     let (filter, _, save) = answers.last();
-    assert_eq!((filter, save), (vec!["p3f", "nff", "obj", "ply"], false));
+    assert_eq!(
+        (filter, save),
+        (vec!["p3f", "nff", "obj", "ply", "toml"], false)
+    );
 
     answers.next(Some(&scene));
     harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::O);
@@ -309,4 +313,54 @@ fn the_slow_brute_force_banner_switches_to_the_bvh() {
     assert_eq!(settings(&harness).accel, AccelKind::Bvh);
     harness.run_steps(2);
     assert!(harness.query_by_label("Switch to BVH").is_none());
+}
+
+#[test]
+fn a_lesson_picked_in_the_open_dialog_opens_as_a_lesson() {
+    let dir = scratch("command-open-lesson");
+    let lesson = write(
+        &dir,
+        "picked.toml",
+        r#"title = "Picked"
+chapter = 7
+
+[scene]
+p3f = """
+v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 20 16
+l 0 5 5 1 1 1
+f 1 0 0 1 0 0 0 0 1 0 1
+s 0 0 0 1
+"""
+
+[[step]]
+title = "Anti-aliasing"
+text = "Turn it on."
+check = { kind = "value", of = "aa", is = "on" }
+solution = { settings = "--aa" }
+"#,
+    );
+    let mut harness = small_window_sized(Harness::builder(), WINDOW);
+    let answers = Arc::new(Answers::default());
+    harness
+        .state_mut()
+        .answer_file_dialogs_with(answers.clone());
+    wait_for_scene(&mut harness);
+    assert!(!harness.state().lessons().open);
+
+    answers.next(Some(&lesson));
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::O);
+    wait_for(&mut harness, "the lesson's scene, set up", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "picked.p3f")
+            && app.engine().settings().is_some()
+    });
+    let app = harness.state();
+    assert!(app.lessons().open, "the Lessons window opens");
+    assert_eq!(
+        app.lessons().lesson().map(|l| l.title.as_str()),
+        Some("Picked")
+    );
+    let settings = app.engine().settings().unwrap();
+    assert_eq!((settings.width, settings.height), (20, 16));
 }

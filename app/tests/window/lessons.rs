@@ -147,3 +147,40 @@ fn a_student_walks_a_lesson_and_the_progress_stays() {
         Some(&[0, 1].into_iter().collect())
     );
 }
+
+/// The kd of object 0's material in `scene`.
+fn kd_of_object_0(scene: &tracer::scene::Scene) -> f32 {
+    scene.materials[scene.objects[0].material as usize].kd
+}
+
+/// A lesson's compare layout with B's own edits: once set up, B shows its
+/// edited scene with its settings, A the scene as the lesson wrote it.
+#[test]
+fn a_lessons_side_b_gets_its_own_edits() {
+    let dir = Scratch::new("window-lesson-b-edits");
+    let path = dir.join("b_edits.toml");
+    let text = LESSON.replace(
+        "pixel = [12, 12]",
+        "pixel = [12, 12]\ncompare = \"--spp 2\"\ncompare-edits = [\"object 0 kd 0.25\"]",
+    );
+    std::fs::write(&path, text).unwrap();
+    let mut harness = ready_window(WINDOW);
+    harness
+        .input_mut()
+        .dropped_files
+        .push(Arc::new(DroppedPath(path.clone())));
+    wait_for(&mut harness, "the lesson set up, B edited", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "b_edits.p3f")
+            && app
+                .side_b()
+                .and_then(|b| b.engine.scene())
+                .is_some_and(|s| kd_of_object_0(&s.scene) == 0.25)
+            && app.side_b().and_then(|b| b.settings()).is_some()
+    });
+    let app = harness.state();
+    assert_eq!(kd_of_object_0(&app.engine().scene().unwrap().scene), 1.0);
+    let b = app.side_b().unwrap().settings().unwrap();
+    assert_eq!(b.samples, 2, "B keeps its own settings");
+}

@@ -1,7 +1,8 @@
 //! The observer view driven as a user would: O shows the scene from
 //! outside, drags move the observer (and never the render), a pinned
 //! pixel's rays fly through it generation by generation, compare mode
-//! shows both sides' trees.
+//! shows both sides' trees, and its filter hides misses and grows the
+//! trees one bounce at a time.
 
 use std::time::Duration;
 
@@ -171,4 +172,49 @@ fn the_observer_traces_its_view_with_a_bvh_whatever_a_uses() {
         observer.index().unwrap().kind(),
         tracer::accel::AccelKind::Bvh
     );
+}
+
+#[test]
+fn the_filter_hides_misses_and_grows_the_trees_one_bounce_at_a_time() {
+    let mut harness = observing();
+    harness.state_mut().observer_pattern_row(40);
+    wait_for(&mut harness, "the row's trees", |app| {
+        app.observer().trees().len() > 8
+    });
+    harness.run_steps(2);
+    let nodes = |app: &WorkbenchApp| -> Vec<tracer::render::RayNode> {
+        let trees = app.observer().trees();
+        trees.iter().flat_map(|(_, t)| t.nodes.clone()).collect()
+    };
+    let all_nodes = nodes(harness.state());
+    let misses = all_nodes
+        .iter()
+        .filter(|n| matches!(n.outcome, tracer::render::Outcome::Background))
+        .count();
+    let deeper = all_nodes.iter().filter(|n| n.depth > 0).count();
+    assert!(
+        misses > 0 && deeper > 0,
+        "{misses} misses, {deeper} bounces"
+    );
+    let all = harness.state().observer().segments_drawn;
+
+    harness.get_by_label("Hide misses").click();
+    harness.run_steps(2);
+    assert!(harness.state().observer().filter.hide_misses);
+    let hidden = harness.state().observer().segments_drawn;
+    assert!(hidden < all, "misses hidden: {hidden} of {all}");
+    harness.get_by_label("Hide misses").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().observer().segments_drawn, all);
+
+    harness.get_by_label("Bounces up to").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().observer().filter.max_depth, Some(0));
+    let first = harness.state().observer().segments_drawn;
+    assert!(first < all, "the eye rays' generation: {first} of {all}");
+    harness.get_by_label("Grow").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().observer().filter.max_depth, Some(1));
+    let grown = harness.state().observer().segments_drawn;
+    assert!(grown > first, "one bounce more: {grown} after {first}");
 }

@@ -78,6 +78,8 @@ pub struct Segment {
     pub phase: u32,
     /// A ray's bounces above it (the eye ray and its shadow rays: 0).
     pub depth: u32,
+    /// A ray's share of its pixel ([`ray_shares`]); 1 for the rest.
+    pub share: f32,
 }
 
 impl Segment {
@@ -88,8 +90,77 @@ impl Segment {
             side: 0,
             phase: 0,
             depth: 0,
+            share: 1.0,
         }
     }
+}
+
+/// Which recorded rays the observer draws: with many pixels' trees the
+/// rays that matter drown among those that add nothing, so a student
+/// hides what left the scene, what adds too little to its pixel, and the
+/// bounces not reached yet (growing the tree one depth at a time).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, Serialize)]
+#[serde(default)]
+pub struct RayFilter {
+    /// Hide the rays that hit nothing (they took the background).
+    pub hide_misses: bool,
+    /// Hide the rays whose share of their pixel ([`ray_shares`]) is below
+    /// this, from 0 (hide nothing) to 1.
+    pub min_share: f32,
+    /// The deepest bounce drawn (0: the eye rays and their shadow rays);
+    /// `None` draws every bounce.
+    pub max_depth: Option<u32>,
+}
+
+impl Default for RayFilter {
+    fn default() -> Self {
+        Self {
+            hide_misses: false,
+            min_share: 0.0,
+            max_depth: None,
+        }
+    }
+}
+
+impl RayFilter {
+    /// Whether it hides anything at all.
+    pub fn is_off(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// Each node's share of the pixel: the luminance of what it and the rays
+/// it spawned add to the sample's colour, over the colour's. The eye ray's
+/// is 1; a blocked shadow ray's is 0. A black sample gives every ray a
+/// share of 1, there being nothing to divide.
+pub fn ray_shares(tree: &RayTree) -> Vec<f32> {
+    let luminance = |c: Vec3A| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    let mut brought: Vec<Vec3A> = tree.nodes.iter().map(|n| n.contribution).collect();
+    // Parents come before their children: adding each node to its parent
+    // from the last makes every node hold its whole subtree.
+    for i in (0..tree.nodes.len()).rev() {
+        if let Some(parent) = tree.nodes[i].parent {
+            let subtree = brought[i];
+            brought[parent] += subtree;
+        }
+    }
+    let total: f32 = tree
+        .nodes
+        .iter()
+        .zip(&brought)
+        .filter(|(n, _)| n.parent.is_none())
+        .map(|(_, b)| luminance(*b))
+        .sum();
+    brought
+        .iter()
+        .map(|&b| {
+            if total > 0.0 {
+                (luminance(b) / total).clamp(0.0, 1.0)
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 /// Length of a ray that leaves the scene, and of markers, for a scene of
@@ -103,9 +174,28 @@ pub fn stub_length(world: &World) -> f32 {
 /// stub when it left the scene), and a normal tick at each hit. One ray
 /// segment per node of the tree, in its order.
 pub fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
+    filtered_ray_segments(tree, stub, side, &RayFilter::default())
+}
+
+/// [`ray_segments`] of the nodes `filter` lets through, each with its
+/// share of the pixel (the window fades rays by it).
+pub fn filtered_ray_segments(
+    tree: &RayTree,
+    stub: f32,
+    side: u8,
+    filter: &RayFilter,
+) -> Vec<Segment> {
     let last_bounce = tree.nodes.iter().map(|n| n.depth).max().unwrap_or(0);
+    let shares = ray_shares(tree);
     let mut segments = Vec::with_capacity(tree.nodes.len() * 2);
-    for node in &tree.nodes {
+    for (node, &share) in tree.nodes.iter().zip(&shares) {
+        let missed = matches!(node.outcome, Outcome::Background);
+        if (filter.hide_misses && missed)
+            || share < filter.min_share
+            || filter.max_depth.is_some_and(|d| node.depth > d)
+        {
+            continue;
+        }
         let phase = match node.kind {
             RayKind::Shadow => last_bounce + 1,
             _ => node.depth,
@@ -129,6 +219,7 @@ pub fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
             side,
             phase,
             depth: node.depth,
+            share,
         });
         if let Outcome::Surface(s) = &node.outcome {
             segments.push(Segment {
@@ -137,6 +228,7 @@ pub fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
                 side,
                 phase,
                 depth: node.depth,
+                share,
             });
         }
     }

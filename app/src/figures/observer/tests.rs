@@ -270,3 +270,107 @@ fn the_observer_renders_the_scenes_settings_sharp_from_its_pose() {
     );
     observer.validate().unwrap();
 }
+
+/// Every pixel's tree of [`SCENE`].
+fn every_tree() -> (Arc<World>, Vec<RayTree>) {
+    let (world, settings) = world_and_settings(0.0);
+    let trees = (0..40)
+        .flat_map(|x| (0..30).map(move |y| (x, y)))
+        .map(|p| tree_of(&world, &settings, p))
+        .collect();
+    (world, trees)
+}
+
+#[test]
+fn a_rays_share_is_what_it_and_its_children_add_to_the_pixel() {
+    let (_, trees) = every_tree();
+    let luminance = |c: Vec3A| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    let mut blocked = 0;
+    for tree in trees.iter().filter(|t| luminance(t.colour) > 1e-3) {
+        let shares = ray_shares(tree);
+        let total = luminance(tree.contributions());
+        for (i, node) in tree.nodes.iter().enumerate() {
+            let children: f32 = tree.children(Some(i)).map(|c| shares[c]).sum();
+            let own = luminance(node.contribution) / total;
+            assert!(
+                (shares[i] - (own + children)).abs() < 1e-4,
+                "pixel ({}, {}) node {i}: {} != {own} + {children}",
+                tree.x,
+                tree.y,
+                shares[i]
+            );
+            match node.parent {
+                None => assert!((shares[i] - 1.0).abs() < 1e-4, "the eye ray is the pixel"),
+                Some(p) => assert!(shares[i] <= shares[p] + 1e-6),
+            }
+            if matches!(
+                node.outcome,
+                Outcome::Light {
+                    occluder: Some(_),
+                    ..
+                }
+            ) {
+                assert_eq!(shares[i], 0.0, "a blocked shadow ray adds nothing");
+                blocked += 1;
+            }
+        }
+    }
+    assert!(blocked > 0, "the scene has shadows");
+}
+
+#[test]
+fn the_filter_hides_misses_thin_rays_and_deeper_bounces() {
+    let (world, trees) = every_tree();
+    let stub = stub_length(&world);
+    let rays = |tree: &RayTree, filter: RayFilter| -> Vec<Segment> {
+        filtered_ray_segments(tree, stub, 0, &filter)
+            .into_iter()
+            .filter(|s| s.part != Part::Normal)
+            .collect()
+    };
+    let (mut misses, mut deeper, mut thin) = (0, 0, 0);
+    for tree in &trees {
+        let shares = ray_shares(tree);
+        assert_eq!(
+            filtered_ray_segments(tree, stub, 0, &RayFilter::default()),
+            ray_segments(tree, stub, 0),
+            "the default filter hides nothing"
+        );
+        let hits = tree
+            .nodes
+            .iter()
+            .filter(|n| !matches!(n.outcome, Outcome::Background))
+            .count();
+        let no_misses = RayFilter {
+            hide_misses: true,
+            ..RayFilter::default()
+        };
+        assert_eq!(rays(tree, no_misses).len(), hits);
+        misses += tree.nodes.len() - hits;
+
+        let first = RayFilter {
+            max_depth: Some(0),
+            ..RayFilter::default()
+        };
+        let shown = rays(tree, first);
+        assert!(shown.iter().all(|s| s.depth == 0));
+        let at_0 = tree.nodes.iter().filter(|n| n.depth == 0).count();
+        assert_eq!(shown.len(), at_0);
+        deeper += tree.nodes.len() - at_0;
+
+        let thick = RayFilter {
+            min_share: 0.1,
+            ..RayFilter::default()
+        };
+        let shown = rays(tree, thick);
+        assert!(shown.iter().all(|s| s.share >= 0.1));
+        let enough = shares.iter().filter(|&&s| s >= 0.1).count();
+        assert_eq!(shown.len(), enough);
+        thin += tree.nodes.len() - enough;
+    }
+    // Each filter had something to hide.
+    assert!(
+        misses > 0 && deeper > 0 && thin > 0,
+        "{misses} {deeper} {thin}"
+    );
+}

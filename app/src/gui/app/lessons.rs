@@ -14,7 +14,7 @@ use tracer::render::{RenderSettings, View};
 use super::WorkbenchApp;
 use crate::gui::comparison::Comparison;
 use crate::gui::lessons;
-use crate::gui::sides::{Controls, Side, Sides};
+use crate::gui::sides::{Controls, LoadedScene, Side, Sides};
 use crate::lessons::format::read_lesson_file;
 use crate::lessons::replay::{open_scene, state_at_step};
 use crate::lessons::state::Layout;
@@ -114,7 +114,7 @@ impl WorkbenchApp {
 
     /// Once the set-up step's scene has loaded: its settings on each side
     /// (at full scale: the lesson's pixels are the image's), compare mode
-    /// on or off, the pinned pixel, the view and the observer. The lesson's
+    /// on or off, B's scene when the lesson made it differ from A's, the pinned pixel, the view and the observer. The lesson's
     /// scene file is not a recent file of the user's.
     pub(super) fn finish_lesson_setup(&mut self, loaded: &SceneSource) {
         let Some(setup) = self.pending_setup.take() else {
@@ -132,6 +132,20 @@ impl WorkbenchApp {
         }
         if let (Some(b), Some(side)) = (&state.b, &mut self.sides.b) {
             adopt(&mut side.controls, &b.settings);
+            // B's own edits, or A's since compare mode began, make B's scene
+            // another than A's: B shows it as the replay left it.
+            if !Arc::ptr_eq(&b.world, &state.a.world)
+                && let Some(shown) = side.engine.scene()
+            {
+                let scene = LoadedScene {
+                    source: shown.source.clone(),
+                    scene: b.scene.clone(),
+                    world: b.world.clone(),
+                    load_time: shown.load_time,
+                };
+                side.engine.show(scene);
+                side.image.forget();
+            }
         }
         self.tools.inspector.pinned = state.pixel;
         self.tools.views.view = state.layout.view.unwrap_or(View::Shaded);

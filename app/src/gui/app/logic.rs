@@ -26,7 +26,7 @@ impl WorkbenchApp {
         self.take_loaded_scene();
         for reply in self.dialogs.take() {
             match reply {
-                Reply::Open(path) => self.open(SceneSource::File(path)),
+                Reply::Open(path) => self.open_file(&path),
                 Reply::Notice(text) => self.messages.notify(text),
                 Reply::Error(text) => self.messages.error = Some(text),
                 Reply::SceneSaved { side, path, state } => self.scene_saved(side, &path, state),
@@ -79,17 +79,24 @@ impl WorkbenchApp {
         }
     }
 
+    /// Opens a file the user picked or dropped: a lesson in the Lessons
+    /// window (its first step set up), anything else as a scene, so a
+    /// teacher's lesson opens the way a scene does.
+    fn open_file(&mut self, path: &std::path::Path) {
+        if is_lesson_file(path) {
+            self.open_lesson(path);
+        } else {
+            self.open(SceneSource::File(path.to_path_buf()));
+        }
+    }
+
     /// Opens scene files and lessons dropped on the window.
     fn take_dropped_files(&mut self, ctx: &egui::Context) {
         let dropped = ctx.input(|i| i.raw.dropped_files.clone());
         for file in dropped {
             let path = file.path();
-            if scene_list::is_scene_file(path) {
-                self.open(SceneSource::File(path.to_path_buf()));
-                return;
-            }
-            if path.extension().is_some_and(|e| e == "toml") {
-                self.open_lesson(path);
+            if scene_list::is_scene_file(path) || is_lesson_file(path) {
+                self.open_file(path);
                 return;
             }
             self.messages.notify(format!(
@@ -297,4 +304,10 @@ impl WorkbenchApp {
             self.apply_study_point(&applied);
         }
     }
+}
+
+/// Whether `path` names a lesson file (docs/LESSONS.md): TOML.
+fn is_lesson_file(path: &std::path::Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }

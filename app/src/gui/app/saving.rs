@@ -194,7 +194,10 @@ impl Dialogs {
     pub fn open(&self) -> bool {
         let question = FileQuestion {
             save: false,
-            filter: ("Scenes and meshes", &["p3f", "nff", "obj", "ply"]),
+            filter: (
+                "Scenes, meshes and lessons",
+                &["p3f", "nff", "obj", "ply", "toml"],
+            ),
             folder: Some("scenes".into()),
             name: None,
         };

@@ -13,7 +13,7 @@ use tracer::camera::{Camera, CameraPose};
 use tracer::render::{Frame, JobState, RayTree, RenderSettings, View};
 use tracer::world::World;
 
-use crate::figures::observer::{self, PixelPattern};
+use crate::figures::observer::{self, PixelPattern, RayFilter};
 use crate::figures::projection::DepthMap;
 use crate::reports::ray_tree;
 
@@ -45,6 +45,11 @@ pub struct Observer {
     /// More pixels whose rays are drawn beside the pinned one.
     pub pattern: Option<PixelPattern>,
     pub animation: Animation,
+    /// Which recorded rays are drawn.
+    pub filter: RayFilter,
+    /// Fade each ray by its share of the pixel, so the rays that make the
+    /// colour stand out.
+    pub fade: bool,
     /// Zoom and pan of the observer's image.
     pub placement: Placement,
     /// `None` until framed on the scene (and after a reset).
@@ -82,6 +87,8 @@ impl Observer {
             resolution: 400,
             pattern: None,
             animation: Animation::default(),
+            filter: RayFilter::default(),
+            fade: false,
             placement: Placement::default(),
             pose: None,
             engine,

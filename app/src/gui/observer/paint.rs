@@ -110,7 +110,12 @@ pub fn paint(
         if segments.len() >= MAX_PAINTED {
             break;
         }
-        segments.extend(observer::ray_segments(tree, stub, *side));
+        segments.extend(observer::filtered_ray_segments(
+            tree,
+            stub,
+            *side,
+            &observer.filter,
+        ));
     }
     segments.truncate(MAX_PAINTED);
 
@@ -140,7 +145,12 @@ pub fn paint(
             let Some([p, q]) = projector.segment(along(t0), along(t1.min(grown))) else {
                 continue;
             };
-            let alpha = if hidden { 80 } else { 255 };
+            let mut alpha = if hidden { 80.0 } else { 255.0 };
+            if observer.fade && matches!(segment.part, Part::Ray { .. } | Part::BlockedShadow) {
+                // Never quite invisible: a faded ray still says it exists.
+                alpha *= 0.12 + 0.88 * segment.share.sqrt();
+            }
+            let alpha = alpha as u8;
             let [r, g, bl] = colour;
             let stroke = Stroke::new(width, Color32::from_rgba_unmultiplied(r, g, bl, alpha));
             ray_paths::segment(&painter, [to_screen(p), to_screen(q)], stroke, dashed);

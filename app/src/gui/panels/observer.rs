@@ -1,6 +1,7 @@
 //! The side panel's observer section: the view on or off, beside the image
 //! or instead of it, its resolution, more pixels' rays (a row, a column, a
-//! grid), the animation of the rays, and the observer camera's reset.
+//! grid), which rays are drawn and how strongly, the animation of the
+//! rays, and the observer camera's reset.
 
 use egui::{Slider, Ui};
 
@@ -30,6 +31,7 @@ pub fn show(ui: &mut Ui, observer: &mut Observer, commands: &mut Vec<Command>) {
     ui.add(Slider::new(&mut observer.resolution, 96..=960).text("Observer width (px)"))
         .on_hover_text("The observer's render: smaller follows moves faster");
     pattern(ui, observer);
+    filter(ui, observer);
     animation(ui, observer);
     ui.small(match observer.trees().len() {
         0 => "Click a pixel of the image: its rays fly through the scene here.".to_string(),
@@ -69,6 +71,51 @@ fn pattern(ui: &mut Ui, observer: &mut Observer) {
         3 => Some(PixelPattern::Grid(number.max(1))),
         _ => None,
     };
+}
+
+/// Which rays are drawn: misses hidden, rays adding little to their pixel
+/// hidden or faded, the tree grown one bounce at a time.
+fn filter(ui: &mut Ui, observer: &mut Observer) {
+    let deepest = observer.phases().saturating_sub(2);
+    let filter = &mut observer.filter;
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut filter.hide_misses, "Hide misses")
+            .on_hover_text("Hide the rays that hit nothing and took the background");
+        ui.checkbox(&mut observer.fade, "Fade by share")
+            .on_hover_text("Draw each ray as strongly as it adds to its pixel's colour");
+    });
+    let mut percent = filter.min_share * 100.0;
+    ui.add(
+        Slider::new(&mut percent, 0.0..=50.0)
+            .suffix(" %")
+            .text("Hide under"),
+    )
+    .on_hover_text(
+        "Hide the rays that, with the rays they spawn, add less than this share \
+         of their pixel's colour",
+    );
+    filter.min_share = percent / 100.0;
+    ui.horizontal(|ui| {
+        let mut limited = filter.max_depth.is_some();
+        ui.checkbox(&mut limited, "Bounces up to")
+            .on_hover_text("Grow the trees one recursion depth at a time");
+        match (limited, filter.max_depth) {
+            (false, _) => filter.max_depth = None,
+            (true, None) => filter.max_depth = Some(0),
+            (true, Some(_)) => {}
+        }
+        if let Some(depth) = &mut filter.max_depth {
+            let most = deepest.max(*depth);
+            ui.add(egui::DragValue::new(depth).range(0..=most));
+            if ui
+                .add_enabled(*depth < deepest, egui::Button::new("Grow"))
+                .on_hover_text("One bounce deeper")
+                .clicked()
+            {
+                *depth += 1;
+            }
+        }
+    });
 }
 
 /// Play, pause, step and speed of the rays growing out of the camera.
