@@ -16,6 +16,11 @@ pub struct SampleStream {
     pixel_key: u64,
     sample: u32,
     dimension: u32,
+    /// With adaptive sampling, the sample's place in its pixel's order:
+    /// [`SampleStream::next_2d_across_samples`] then takes that point of a
+    /// scrambled (0, 2)-sequence, so every prefix of the pixel's samples
+    /// is stratified, not only a whole round.
+    rank: Option<u32>,
 }
 
 impl SampleStream {
@@ -28,6 +33,17 @@ impl SampleStream {
             pixel_key,
             sample,
             dimension: 0,
+            rank: None,
+        }
+    }
+
+    /// This stream for the `rank`-th sample a pixel takes in adaptive
+    /// order: its patterns across samples become prefix-stratified (see
+    /// [`SampleStream::next_2d_across_samples`]).
+    pub fn ranked(self, rank: u32) -> Self {
+        Self {
+            rank: Some(rank),
+            ..self
         }
     }
 
@@ -47,7 +63,20 @@ impl SampleStream {
     /// points fill each of the `n x n` cells once and each of the `n * n`
     /// slabs along either axis once, so a straight edge along an axis is
     /// met within one sample. Takes two dimensions, as [`Self::next_2d`].
+    ///
+    /// A ranked stream ([`SampleStream::ranked`]) takes instead point
+    /// `rank` of Sobol's first two dimensions, its index shuffled and its
+    /// digits scrambled by the dimension (Burley's hash-based Owen
+    /// scrambling): any first 2^j samples of a pixel, where adaptive
+    /// sampling may stop, fall once in each of the 2^j boxes of every
+    /// elementary shape, as a whole multi-jittered round does, and the
+    /// dimensions (light samples, lens) stay independent of each other.
     pub fn next_2d_across_samples(&mut self, n: u32) -> Vec2 {
+        if let Some(rank) = self.rank {
+            let seed = mix64(self.pixel_key ^ (u64::from(self.dimension) << 40 | 0x50b0));
+            self.dimension += 2;
+            return scrambled_sobol(rank, seed);
+        }
         let n = n.clamp(1, MAX_N);
         let count = n * n;
         let round = self.sample / count;
@@ -78,6 +107,47 @@ impl SampleStream {
 /// samples: the digits that shift a pixel's adaptive sample pattern.
 pub fn pixel_digits(seed: u64, pixel: u32) -> u32 {
     (mix64(seed ^ 0x5ca1_ab1e_0000_0000 ^ u64::from(pixel)) >> 32) as u32
+}
+
+/// Point `index` of a shuffled and scrambled copy of Sobol's first two
+/// dimensions chosen by `seed`: the index by a nested uniform shuffle
+/// (aligned blocks of 2^j indices stay aligned blocks, and an aligned
+/// block of a (0, 2)-sequence is a (0, j, 2)-net), each coordinate by
+/// Owen scrambling, which keeps every net a net.
+pub fn scrambled_sobol(index: u32, seed: u64) -> Vec2 {
+    let index = nested_uniform_scramble(index, seed as u32);
+    let x = nested_uniform_scramble(index.reverse_bits(), (seed >> 32) as u32);
+    let y = nested_uniform_scramble(sobol_second(index), mix64(seed) as u32);
+    // 24 high bits, as `next_1d`: every value stays below 1.
+    let unit = |v: u32| (v >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
+    Vec2::new(unit(x), unit(y))
+}
+
+/// Point `k` of the second dimension of Sobol's sequence, as 32 bits of a
+/// fraction (its generator matrix is Pascal's triangle mod 2).
+pub(crate) fn sobol_second(mut k: u32) -> u32 {
+    let (mut direction, mut y) = (1u32 << 31, 0);
+    while k != 0 {
+        if k & 1 != 0 {
+            y ^= direction;
+        }
+        k >>= 1;
+        direction ^= direction >> 1;
+    }
+    y
+}
+
+/// Owen scrambling of a 32-bit fraction (first digit in the top bit) by
+/// `seed`: each digit flipped by a hash of the digits before it (Burley,
+/// "Practical Hash-based Owen Scrambling", 2020: Laine and Karras's
+/// permutation on the reversed bits).
+fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
+    let mut v = x.reverse_bits().wrapping_add(seed);
+    v ^= v.wrapping_mul(0x6c50_b47c);
+    v ^= v.wrapping_mul(0xb82f_1e52);
+    v ^= v.wrapping_mul(0xc7af_e638);
+    v ^= v.wrapping_mul(0x8d22_f6e6);
+    v.reverse_bits()
 }
 
 /// SplitMix64's finaliser: a bijective mix with good avalanche.
@@ -310,6 +380,48 @@ mod tests {
                 stream.next_2d_across_samples(n)
             };
             assert_ne!(first(42), first(43), "another pixel, another pattern");
+        }
+    }
+
+    #[test]
+    fn ranked_samples_are_stratified_in_every_power_of_two_prefix() {
+        for pixel in [0, 42, 1234] {
+            // Two dimensions of one stream (a light's, then a second
+            // light's): each on its own stratified and different.
+            let points = |skip: usize| -> Vec<Vec2> {
+                (0..64)
+                    .map(|k| {
+                        let mut stream = SampleStream::new(9, pixel, 1000 + k).ranked(k);
+                        for _ in 0..skip {
+                            stream.next_2d_across_samples(8);
+                        }
+                        stream.next_2d_across_samples(8)
+                    })
+                    .collect()
+            };
+            let (first, second) = (points(0), points(1));
+            assert_ne!(first, second);
+            for points in [first, second] {
+                for j in 0..=6u32 {
+                    for a in 0..=j {
+                        // 2^a columns by 2^(j - a) rows: one point each.
+                        let mut boxes: Vec<u32> = points[..1 << j]
+                            .iter()
+                            .map(|p| {
+                                let col = (p.x * (1u32 << a) as f32) as u32;
+                                let row = (p.y * (1u32 << (j - a)) as f32) as u32;
+                                row * (1 << a) + col
+                            })
+                            .collect();
+                        boxes.sort_unstable();
+                        assert_eq!(
+                            boxes,
+                            (0..1 << j).collect::<Vec<_>>(),
+                            "pixel {pixel}, j {j}, a {a}"
+                        );
+                    }
+                }
+            }
         }
     }
 

@@ -30,11 +30,11 @@ fn render_spends_adaptive_samples_where_the_flags_say() {
     assert_eq!(spp(&uniform), (16.0, 16));
     assert!(uniform["adaptive"].is_null(), "{uniform}");
 
-    // Adaptive turns anti-aliasing on: (2N)^2 = 64 at most, at least 8.
+    // Adaptive turns anti-aliasing on: (2N)^2 = 64 at most, at least 4.
     let (adaptive, adaptive_png) = render(&dir, &scene, &["--spp", "4", "--sampling", "adaptive"]);
     let (mean, max) = spp(&adaptive);
-    assert!(mean > 8.0 && mean < 64.0, "{adaptive}");
-    assert!(max > 8 && max <= 64, "{adaptive}");
+    assert!(mean > 4.0 && mean < 64.0, "{adaptive}");
+    assert!(max > 4 && max <= 64, "{adaptive}");
     assert_ne!(adaptive_png, uniform_png);
     let estimate = &adaptive["adaptive"];
     assert_eq!(estimate["active_pixels"], 0, "{adaptive}");

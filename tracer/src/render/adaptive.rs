@@ -1,30 +1,56 @@
 //! Adaptive sampling: which pixels take more samples in a pass, how many,
 //! and in which order of their strata.
 //!
-//! A pixel's error is estimated from its own samples only (the variance of
-//! their mean), and its samples are a pure function of (seed, pixel, sample
-//! index): so whether a pixel refines, and the image, never depend on the
-//! thread count or on when a viewer looked.
+//! A pixel's error is estimated from its own samples only: the samples
+//! of its last pass against those before it (two halves, as Cycles
+//! compares two interleaved half-buffers). Its samples are a pure
+//! function of (seed, pixel, sample index), and which pixels refine is
+//! decided between passes over the whole film: so the image never depends
+//! on the thread count or on when a viewer looked.
 
 use std::ops::Range;
 
 use glam::Vec3A;
 
-use crate::sampling::stratum_order;
+use crate::sampling::{sobol_second, stratum_order};
 use crate::stats::AdaptiveStats;
 
+use super::film::Spread;
 use super::{AdaptiveSampling, Film, Tile};
 
-/// The standard error of a pixel's mean estimated from `n` samples whose
-/// display values (clamped to 0..1) sum to `sum` and whose squares sum to
-/// `squares`: the square root of the channels' mean unbiased variance over
-/// `n`. Infinite before two samples (nothing is known yet).
-pub fn error_estimate(n: u32, sum: Vec3A, squares: Vec3A) -> f32 {
+/// The error of a pixel's mean, in display units (clamped to 0..1), from
+/// the difference between the mean of its last pass's samples and the
+/// mean of those before: with `a` and `b` samples in the two halves and
+/// `n = a + b`, the difference's variance is the mean's times n^2 / (a b)
+/// (4 for equal halves), whatever makes the samples vary. Unlike the
+/// samples' variance over n, it sees stratification: a pixel split by an
+/// edge whose stratified halves agree has converged, though its samples
+/// vary as much as ever (uniform 4 x 4's edge pixels are far better than
+/// the variance says, and adaptive sampling refined them to its maximum).
+/// The root mean square over the channels; infinite before two passes.
+pub fn error_estimate(n: u32, spread: &Spread) -> f32 {
+    let (a, b) = (
+        spread.earlier_samples,
+        n.saturating_sub(spread.earlier_samples),
+    );
+    if a == 0 || b == 0 {
+        return f32::INFINITY;
+    }
+    let difference = spread.earlier / a as f32 - (spread.sum - spread.earlier) / b as f32;
+    let scale = (a as f32 * b as f32).sqrt() / n as f32;
+    ((difference * difference).element_sum() / 3.0).sqrt() * scale
+}
+
+/// The standard error of a pixel's mean if its samples were independent:
+/// the channels' mean unbiased variance over `n`, in display units.
+/// Stratified samples do better, so it only says whether a pixel *may*
+/// still be noisy; infinite before two samples.
+pub fn variance_estimate(n: u32, spread: &Spread) -> f32 {
     if n < 2 {
         return f32::INFINITY;
     }
     let n = n as f32;
-    let variance = ((squares - sum * sum / n) / (n - 1.0)).max(Vec3A::ZERO);
+    let variance = ((spread.squares - spread.sum * spread.sum / n) / (n - 1.0)).max(Vec3A::ZERO);
     (variance.element_sum() / 3.0 / n).sqrt()
 }
 
@@ -35,30 +61,69 @@ pub(super) fn display_value(v: Vec3A) -> Vec3A {
     v.max(Vec3A::ZERO).min(Vec3A::ONE)
 }
 
-/// Whether a pixel with `samples` samples and error `error` takes more:
-/// always below the minimum, never at the maximum, else while the error is
-/// not below the threshold (so a threshold of 0 refines every pixel to the
-/// maximum).
+/// Whether a pixel with `samples` samples and error `error` takes more on
+/// its own account: always below the minimum, never at the maximum, else
+/// while the error is not below the threshold (so a threshold of 0
+/// refines every pixel to the maximum).
 pub fn is_active(samples: u32, error: f32, a: &AdaptiveSampling) -> bool {
     samples < a.min_spp || (samples < a.max_spp && error >= a.noise_threshold)
 }
 
+/// Which pixels of `film` the next pass refines, row-major: those active
+/// on their own account ([`is_active`]), and those whose samples still
+/// vary enough ([`variance_estimate`] at or above the threshold) next to
+/// a pixel whose error is above it. Two halves of a few samples can agree
+/// by chance on an edge; its neighbours along the edge rarely all do (the
+/// window Cycles widens its active pixels by).
+pub fn decide(film: &Film, a: &AdaptiveSampling) -> Vec<bool> {
+    let (width, height) = (film.width(), film.height());
+    let noisy: Vec<bool> = (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            film.spread(x, y).is_some_and(|spread| {
+                let n = film.samples(x, y);
+                let error = error_estimate(n, spread);
+                error.is_finite() && error >= a.noise_threshold
+            })
+        })
+        .collect();
+    let at = |x: u32, y: u32| y as usize * width as usize + x as usize;
+    (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let n = film.samples(x, y);
+            if is_active(n, film.error(x, y), a) {
+                return true;
+            }
+            let varies = film
+                .spread(x, y)
+                .is_some_and(|spread| variance_estimate(n, spread) >= a.noise_threshold);
+            varies
+                && n < a.max_spp
+                && (y.saturating_sub(1)..(y + 2).min(height))
+                    .any(|ny| (x.saturating_sub(1)..(x + 2).min(width)).any(|nx| noisy[at(nx, ny)]))
+        })
+        .collect()
+}
+
 /// The sample count an active pixel with `samples` samples reaches in the
-/// next pass: doubling up to the minimum (1, 2, 4, ...: a first image
-/// fast, then a first variance), then half as many again each pass, up to
-/// the maximum. Growing with the count keeps the passes few (a dozen to
-/// 256 samples) while a pixel overshoots its need by at most half.
+/// next pass: doubling (1, 2, 4, ...) up to the minimum, then doubling up
+/// to the maximum. Equal halves give the error estimate its two halves,
+/// and each half of a power of two samples in Sobol's order is a net of
+/// its own; and few passes keep their overhead small (the pass barrier,
+/// the decision over the whole film).
 pub fn next_count(samples: u32, a: &AdaptiveSampling) -> u32 {
     let next = if samples < a.min_spp {
         (2 * samples).clamp(1, a.min_spp)
     } else {
-        samples + (samples / 2).max(1)
+        2 * samples
     };
     next.min(a.max_spp)
 }
 
 /// Passes that take a pixel that never converges from no sample to the
-/// maximum: the most an adaptive render runs.
+/// maximum: what an adaptive render expects to run at most (a pixel that
+/// stopped and that a neighbour brings back takes longer).
 pub fn passes(a: &AdaptiveSampling) -> u32 {
     let mut samples = 0;
     let mut passes = 0;
@@ -155,20 +220,6 @@ fn sobol_point(k: u32, bits: u32) -> (u32, u32) {
     (k.reverse_bits() >> shift, sobol_second(k) >> shift)
 }
 
-/// Point `k` of the second dimension of Sobol's sequence, as 32 bits of a
-/// fraction (its generator matrix is Pascal's triangle mod 2).
-fn sobol_second(mut k: u32) -> u32 {
-    let (mut direction, mut y) = (1u32 << 31, 0);
-    while k != 0 {
-        if k & 1 != 0 {
-            y ^= direction;
-        }
-        k >>= 1;
-        direction ^= direction >> 1;
-    }
-    y
-}
-
 /// The samples each pixel of `tile` (row-major) takes in the next pass:
 /// from its count to [`next_count`] while active, none once done.
 pub(super) fn plan(film: &Film, tile: &Tile, a: &AdaptiveSampling) -> Vec<Range<u32>> {
@@ -176,8 +227,7 @@ pub(super) fn plan(film: &Film, tile: &Tile, a: &AdaptiveSampling) -> Vec<Range<
     for y in tile.y..tile.y + tile.height {
         for x in tile.x..tile.x + tile.width {
             let samples = film.samples(x, y);
-            let error = film.error(x, y);
-            plan.push(if is_active(samples, error, a) {
+            plan.push(if film.is_active(x, y) {
                 samples..next_count(samples, a)
             } else {
                 samples..samples
@@ -187,16 +237,10 @@ pub(super) fn plan(film: &Film, tile: &Tile, a: &AdaptiveSampling) -> Vec<Range<
     plan
 }
 
-/// Whether any pixel of `tile` is still active.
-pub(super) fn tile_active(film: &Film, tile: &Tile, a: &AdaptiveSampling) -> bool {
-    (tile.y..tile.y + tile.height).any(|y| {
-        (tile.x..tile.x + tile.width).any(|x| is_active(film.samples(x, y), film.error(x, y), a))
-    })
-}
-
-/// Where an adaptive render stands: active pixels, samples taken and the
-/// root mean square of the pixels' estimated errors.
-pub fn summary(film: &Film, a: &AdaptiveSampling) -> AdaptiveStats {
+/// Where an adaptive render stands: active pixels (as last decided),
+/// samples taken and the root mean square of the pixels' estimated
+/// errors.
+pub fn summary(film: &Film) -> AdaptiveStats {
     let mut stats = AdaptiveStats {
         pixels: u64::from(film.width()) * u64::from(film.height()),
         ..AdaptiveStats::default()
@@ -208,7 +252,7 @@ pub fn summary(film: &Film, a: &AdaptiveSampling) -> AdaptiveStats {
             let (samples, error) = (film.samples(x, y), film.error(x, y));
             stats.samples += u64::from(samples);
             stats.max_spp = stats.max_spp.max(samples);
-            if is_active(samples, error, a) {
+            if film.is_active(x, y) {
                 stats.active_pixels += 1;
             }
             if error.is_finite() {
@@ -237,65 +281,131 @@ mod tests {
         }
     }
 
-    /// The error estimate of `values` taken as samples.
-    fn estimate(values: &[f32]) -> f32 {
-        let (sum, squares) = values
-            .iter()
-            .fold((Vec3A::ZERO, Vec3A::ZERO), |(s, q), &v| {
-                let v = display_value(Vec3A::splat(v));
-                (s + v, q + v * v)
-            });
-        error_estimate(values.len() as u32, sum, squares)
+    /// What a film knows of a pixel whose passes gave it `earlier`, then
+    /// `last`.
+    fn spread(earlier: &[f32], last: &[f32]) -> (u32, Spread) {
+        let mut spread = Spread::default();
+        for (k, &v) in earlier.iter().chain(last).enumerate() {
+            if k == earlier.len() {
+                spread.earlier = spread.sum;
+                spread.earlier_samples = k as u32;
+            }
+            let v = display_value(Vec3A::splat(v));
+            spread.sum += v;
+            spread.squares += v * v;
+        }
+        ((earlier.len() + last.len()) as u32, spread)
+    }
+
+    fn estimate(earlier: &[f32], last: &[f32]) -> f32 {
+        let (n, spread) = spread(earlier, last);
+        error_estimate(n, &spread)
     }
 
     #[test]
     fn a_constant_pixel_stops_after_the_minimum() {
         let a = settings(0.01, 8, 64);
-        let error = estimate(&[0.4; 8]);
-        assert_eq!(error, 0.0);
-        assert!(is_active(7, estimate(&[0.4; 7]), &a), "below the minimum");
+        // Zero but for the halves' rounding.
+        let error = estimate(&[0.4; 4], &[0.4; 4]);
+        assert!(error < 1e-6, "{error}");
+        assert!(
+            is_active(4, estimate(&[0.4; 2], &[0.4; 2]), &a),
+            "below the minimum"
+        );
         assert!(!is_active(8, error, &a));
         // Bright beyond the display's range is as constant as it shows.
-        assert_eq!(estimate(&[1.5, 3.0, 1.0, 2.0]), 0.0);
+        assert_eq!(estimate(&[1.5, 3.0], &[1.0, 2.0]), 0.0);
     }
 
     #[test]
-    fn a_pixel_split_by_an_edge_keeps_refining() {
+    fn a_pixel_split_by_an_edge_keeps_refining_until_its_halves_agree() {
         let a = settings(0.01, 8, 64);
-        // A quarter of the pixel is a bright object: 16 samples see it 4 times.
-        let edge: Vec<f32> = (0..16)
-            .map(|k| if k % 4 == 0 { 0.9 } else { 0.1 })
-            .collect();
-        let error = estimate(&edge);
-        // sqrt(0.8^2 * 3/16 * 16/15 / 16): about 0.089.
-        assert!((error - 0.0894).abs() < 1e-3, "{error}");
+        // A quarter of the pixel is a bright object: the first 8 samples
+        // see it once, the next 8 three times.
+        let first = [0.9, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1];
+        let last = [0.9, 0.1, 0.9, 0.1, 0.9, 0.1, 0.1, 0.1];
+        let error = estimate(&first, &last);
+        // The means differ by 0.2, halves of 8: 0.2 / 2.
+        assert!((error - 0.1).abs() < 1e-6, "{error}");
         assert!(is_active(16, error, &a));
         assert!(!is_active(64, error, &a), "the maximum ends it");
-        assert!(!is_active(16, error, &settings(0.1, 8, 64)));
+        assert!(!is_active(16, error, &settings(0.2, 8, 64)));
+        // Stratified halves that each see the quarter twice agree: the
+        // mean has converged though the samples vary as much as ever.
+        let even = [0.9, 0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.1];
+        assert_eq!(estimate(&even, &even), 0.0);
+        let (n, spread) = spread(&even, &even);
+        assert!(variance_estimate(n, &spread) > 0.08);
+        // Unequal halves weigh the difference by sqrt(a b) / n.
+        let unequal = estimate(&[0.5, 0.5], &[0.2; 6]);
+        assert!(
+            (unequal - 0.3 * 12f32.sqrt() / 8.0).abs() < 1e-6,
+            "{unequal}"
+        );
     }
 
     #[test]
-    fn one_sample_says_nothing_and_threshold_zero_refines_to_the_maximum() {
+    fn one_pass_says_nothing_and_threshold_zero_refines_to_the_maximum() {
         let a = settings(0.5, 1, 16);
-        assert!(estimate(&[0.3]).is_infinite());
-        assert!(is_active(1, estimate(&[0.3]), &a));
+        assert!(estimate(&[], &[0.3]).is_infinite());
+        assert!(estimate(&[], &[0.3, 0.3]).is_infinite());
+        assert!(is_active(1, estimate(&[], &[0.3]), &a));
         let zero = settings(0.0, 1, 16);
         assert!(is_active(15, 0.0, &zero));
         assert!(!is_active(16, 0.0, &zero));
     }
 
     #[test]
-    fn the_schedule_doubles_to_the_minimum_then_grows_by_half() {
-        let a = settings(0.01, 8, 64);
+    fn the_schedule_doubles_to_the_minimum_then_to_the_maximum() {
+        let a = settings(0.01, 4, 64);
         let mut counts = vec![0];
         while *counts.last().unwrap() < a.max_spp {
             counts.push(next_count(*counts.last().unwrap(), &a));
         }
-        assert_eq!(counts, [0, 1, 2, 4, 8, 12, 18, 27, 40, 60, 64]);
-        assert_eq!(passes(&a), 10);
+        assert_eq!(counts, [0, 1, 2, 4, 8, 16, 32, 64]);
+        assert_eq!(passes(&a), 7);
         assert_eq!(passes(&settings(0.0, 1, 1)), 1);
-        // A minimum that is not a power of two is met exactly.
+        // A minimum or maximum that is not a power of two is met exactly.
         assert_eq!(next_count(4, &settings(0.0, 6, 9)), 6);
+        assert_eq!(next_count(6, &settings(0.0, 6, 9)), 9);
+    }
+
+    /// A film of `width` x 1 pixels whose passes gave each pixel
+    /// `earlier[i]`, then `last[i]`.
+    fn film(pixels: &[(&[f32], &[f32])]) -> Film {
+        let width = pixels.len() as u32;
+        let tile = Tile {
+            x: 0,
+            y: 0,
+            width,
+            height: 1,
+        };
+        let mut film = Film::with_error_estimate(width, 1);
+        for pass in 0..2 {
+            let halves: Vec<&[f32]> = pixels
+                .iter()
+                .map(|p| if pass == 0 { p.0 } else { p.1 })
+                .collect();
+            let counts: Vec<u32> = halves.iter().map(|h| h.len() as u32).collect();
+            let values: Vec<Vec3A> = halves
+                .iter()
+                .flat_map(|h| h.iter().map(|&v| Vec3A::splat(v)))
+                .collect();
+            film.add_samples(&tile, &counts, &values);
+        }
+        film
+    }
+
+    #[test]
+    fn a_varying_pixel_next_to_a_noisy_one_refines_too() {
+        let a = settings(0.05, 8, 64);
+        let edge: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.9, 0.9, 0.1]);
+        let lucky: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.1, 0.1, 0.1]);
+        let flat: (&[f32], &[f32]) = (&[0.3; 4], &[0.3; 4]);
+        let active = decide(&film(&[edge, lucky, flat, lucky]), &a);
+        // The edge on its own account, its lucky neighbour for it; the
+        // flat pixel never, the lucky pixel beside it alone stops.
+        assert_eq!(active, [true, true, false, false]);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The accumulation buffer: a running sum of samples per pixel, resolved on
 //! demand to an 8-bit image.
 
-use glam::Vec3A;
+use glam::{DVec3, Vec3A};
 use rayon::prelude::*;
 
 use super::Encoding;
@@ -68,12 +68,32 @@ impl Tile {
 pub struct Film {
     width: u32,
     height: u32,
-    sum: Vec<Vec3A>,
+    /// In f64: n equal f32 samples then sum and divide exactly, so a flat
+    /// pixel's mean is its samples' value whatever n (in f32, 0.3 summed 8
+    /// or 16 times fell on either side of 76.5 levels, and adaptive and
+    /// uniform renders of one flat sky differed by a level everywhere).
+    sum: Vec<DVec3>,
     samples: Vec<u32>,
-    /// Per pixel, the sums of the samples' display values and of their
-    /// squares, for the error estimate adaptive sampling steers by; empty
+    /// Per pixel, what adaptive sampling's error estimate needs; empty
     /// unless made with [`Film::with_error_estimate`].
-    spread: Vec<[Vec3A; 2]>,
+    spread: Vec<Spread>,
+    /// Adaptive sampling: the pixels the next pass refines, set by
+    /// [`Film::set_active`] between passes; empty otherwise.
+    active: Vec<bool>,
+}
+
+/// A pixel's samples as adaptive sampling sees them: display values
+/// (linear, clamped to 0..1, as the image shows them).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Spread {
+    /// Sums of the display values and of their squares.
+    pub sum: Vec3A,
+    pub squares: Vec3A,
+    /// The display sum before the pixel's last pass, and its sample
+    /// count: the pass's samples are one half of the pixel's, those
+    /// before it the other.
+    pub earlier: Vec3A,
+    pub earlier_samples: u32,
 }
 
 impl Film {
@@ -88,6 +108,7 @@ impl Film {
             sum: bytemuck::allocation::zeroed_vec(n),
             samples: vec![0; n],
             spread: Vec::new(),
+            active: Vec::new(),
         }
     }
 
@@ -95,7 +116,8 @@ impl Film {
     pub fn with_error_estimate(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
         Self {
-            spread: bytemuck::allocation::zeroed_vec(n),
+            spread: vec![Spread::default(); n],
+            active: vec![true; n],
             ..Self::new(width, height)
         }
     }
@@ -107,9 +129,8 @@ impl Film {
     /// `do_wp_page`, `flush_tlb_mm_range`). Done once, by whoever has a
     /// spare core: a job does it while its structure builds.
     pub fn prefault(&mut self) {
-        self.sum.fill(Vec3A::ZERO);
+        self.sum.fill(DVec3::ZERO);
         self.samples.fill(0);
-        self.spread.fill([Vec3A::ZERO; 2]);
     }
 
     pub fn width(&self) -> u32 {
@@ -127,7 +148,7 @@ impl Film {
             if self.spread.is_empty() {
                 let sums = &mut self.sum[start..start + chunk.len()];
                 for (s, v) in sums.iter_mut().zip(chunk) {
-                    *s += *v;
+                    *s += v.as_dvec3();
                 }
                 for n in &mut self.samples[start..start + chunk.len()] {
                     *n += 1;
@@ -147,6 +168,12 @@ impl Film {
         let mut values = values.iter();
         for (start, row) in tile.rows(self.width, counts) {
             for (i, &count) in (start..).zip(row) {
+                if count > 0
+                    && let Some(spread) = self.spread.get_mut(i)
+                {
+                    spread.earlier = spread.sum;
+                    spread.earlier_samples = self.samples[i];
+                }
                 for v in values.by_ref().take(count as usize) {
                     self.add(i, *v);
                 }
@@ -157,12 +184,12 @@ impl Film {
     /// Adds one sample to pixel `i`.
     #[inline]
     fn add(&mut self, i: usize, v: Vec3A) {
-        self.sum[i] += v;
+        self.sum[i] += v.as_dvec3();
         self.samples[i] += 1;
-        if let Some([sum, squares]) = self.spread.get_mut(i) {
+        if let Some(spread) = self.spread.get_mut(i) {
             let shown = super::adaptive::display_value(v);
-            *sum += shown;
-            *squares += shown * shown;
+            spread.sum += shown;
+            spread.squares += shown * shown;
         }
     }
 
@@ -171,22 +198,48 @@ impl Film {
         self.samples[y as usize * self.width as usize + x as usize]
     }
 
-    /// The standard error of pixel `(x, y)`'s mean estimated from its
-    /// samples, in display units (see [`super::adaptive::error_estimate`]);
-    /// infinite when the film does not estimate it or before two samples.
+    /// The error of pixel `(x, y)`'s mean estimated from its samples, in
+    /// display units (see [`super::adaptive::error_estimate`]); infinite
+    /// when the film does not estimate it or before two passes gave it
+    /// samples.
     pub fn error(&self, x: u32, y: u32) -> f32 {
         let i = y as usize * self.width as usize + x as usize;
         match self.spread.get(i) {
-            Some(&[sum, squares]) => super::adaptive::error_estimate(self.samples[i], sum, squares),
+            Some(spread) => super::adaptive::error_estimate(self.samples[i], spread),
             None => f32::INFINITY,
         }
+    }
+
+    /// What adaptive sampling knows of pixel `(x, y)`'s samples; `None`
+    /// when the film does not estimate errors.
+    pub fn spread(&self, x: u32, y: u32) -> Option<&Spread> {
+        self.spread
+            .get(y as usize * self.width as usize + x as usize)
+    }
+
+    /// Whether the next adaptive pass refines pixel `(x, y)`: every pixel
+    /// before [`Film::set_active`] first runs; never when the film does
+    /// not estimate errors.
+    pub fn is_active(&self, x: u32, y: u32) -> bool {
+        self.active
+            .get(y as usize * self.width as usize + x as usize)
+            .copied()
+            .unwrap_or(false)
+    }
+
+    /// Sets which pixels the next pass refines (row-major): decided
+    /// between passes, over the whole film, so that a pixel may look at
+    /// its neighbours and still not depend on the order tiles ran in.
+    pub fn set_active(&mut self, active: Vec<bool>) {
+        debug_assert_eq!(active.len(), self.samples.len());
+        self.active = active;
     }
 
     /// The mean radiance of pixel `(x, y)`, `None` before its first sample.
     pub fn pixel(&self, x: u32, y: u32) -> Option<Vec3A> {
         let i = y as usize * self.width as usize + x as usize;
         let n = *self.samples.get(i)?;
-        (n > 0).then(|| self.sum[i] / n as f32)
+        (n > 0).then(|| (self.sum[i] / f64::from(n)).as_vec3a())
     }
 
     /// Resolves the film to RGBA8, row-major from the top-left. Pixels with
@@ -237,8 +290,8 @@ impl Film {
         match self.samples[i] {
             0 => [0; 3],
             // One sample, the first pass: the sum is the mean.
-            1 => encoding.encode_rgb(self.sum[i]),
-            n => encoding.encode_rgb(self.sum[i] / n as f32),
+            1 => encoding.encode_rgb(self.sum[i].as_vec3a()),
+            n => encoding.encode_rgb((self.sum[i] / f64::from(n)).as_vec3a()),
         }
     }
 

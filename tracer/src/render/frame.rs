@@ -211,6 +211,12 @@ impl Frame {
         let n = self.settings.strata();
         let aa = self.settings.antialiasing;
         let mut rng = SampleStream::new(self.settings.seed, pixel, pass);
+        // Adaptive samples draw their lens and light points in the pixel's
+        // own order, stratified in every prefix where the pixel may stop.
+        let ranked = self.adaptive_order.is_some();
+        if ranked {
+            rng = rng.ranked(sample);
+        }
         let offset = if aa {
             jittered(stratum, n, rng.next_2d())
         } else {
@@ -218,10 +224,13 @@ impl Frame {
         };
         // Without anti-aliasing the lens alone is stratified; with it,
         // pixel strata already spread the samples, and a lens stratum
-        // tied to the pixel stratum would correlate the two.
+        // tied to the pixel stratum would correlate the two: uniform
+        // sampling's lens points are then independent, adaptive's follow
+        // their own scrambled sequence.
         let lens_point = match (self.camera.has_lens(), aa) {
             (false, _) => Vec2::ZERO,
             (true, false) => concentric_disk(jittered(stratum, n, rng.next_2d())),
+            (true, true) if ranked => concentric_disk(rng.next_2d_across_samples(n)),
             (true, true) => concentric_disk(rng.next_2d()),
         };
         let ray = self

@@ -505,7 +505,9 @@ fn run_passes(frame: &Frame, shared: &Shared) {
     let refine = frame.settings.keep_refining && adaptive.is_none();
     let mut rendered = Duration::ZERO;
     for pass in 0.. {
-        if shared.cancelled() || (pass >= target && !refine) {
+        // An adaptive render runs until no pixel is active: a pixel a
+        // neighbour brings back is a pass behind the schedule.
+        if shared.cancelled() || (pass >= target && !refine && adaptive.is_none()) {
             return;
         }
         let start = Instant::now();
@@ -554,9 +556,12 @@ fn run_passes(frame: &Frame, shared: &Shared) {
                     }
                     _ => {
                         let last = match (&rendered_tile, &adaptive) {
-                            (TileSamples::Some { counts, values, .. }, Some(a)) => {
+                            // Whether a neighbour's noise brings the tile
+                            // back is decided after the pass: its bytes
+                            // are made each time it takes samples.
+                            (TileSamples::Some { counts, values, .. }, Some(_)) => {
                                 p.film.add_samples(tile, counts, values);
-                                !adaptive::tile_active(&p.film, tile, a)
+                                true
                             }
                             (TileSamples::One(values, _), _) => {
                                 p.film.add_tile(tile, values);
@@ -604,13 +609,18 @@ fn run_passes(frame: &Frame, shared: &Shared) {
             p.stats.pass_rays.push(rays);
             p.stats.render_time = rendered;
             let converged = adaptive.map(|a| {
-                let summary = adaptive::summary(&p.film, &a);
+                let active = adaptive::decide(&p.film, &a);
+                p.film.set_active(active);
+                let summary = adaptive::summary(&p.film);
                 p.stats.adaptive = Some(summary);
                 summary.active_pixels == 0
             });
-            if converged == Some(true) {
+            match converged {
                 // Done before the most passes it might have taken.
-                p.stats.passes_target = pass + 1;
+                Some(true) => p.stats.passes_target = pass + 1,
+                // Behind the schedule: at least one more.
+                Some(false) => p.stats.passes_target = p.stats.passes_target.max(pass + 2),
+                None => {}
             }
             if let Some(observe) = &shared.on_pass {
                 observe(pass + 1, &p.film);

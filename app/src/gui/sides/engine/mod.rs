@@ -233,7 +233,7 @@ impl Engine {
                     // An adaptive render's last pass is the one that leaves
                     // no pixel active.
                     let last = match &adaptive {
-                        Some(a) => adaptive::summary(film, a).active_pixels == 0,
+                        Some(_) => adaptive::summary(film).active_pixels == 0,
                         None => Some(pass) == last_pass,
                     };
                     if last {
