@@ -8,7 +8,7 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer, Visit};
 use tracer::render::{
-    Finished, Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary,
+    Finished, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, ViewSummary,
 };
 use tracer::world::World;
 
@@ -118,7 +118,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         };
         if let Some((layer, index)) = &overlay {
             let world = &loaded.world;
-            let camera = Frame::camera(world, &settings)
+            let camera = RenderPlan::camera(world, &settings)
                 .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
             overlay::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
             if let Some(pixel) = &args.pixel {

@@ -4,7 +4,7 @@
 use glam::Vec3A;
 
 use super::tests::{index, world};
-use super::{Frame, RayKind, RenderSettings, TraceRecorder, Tracer};
+use super::{RayKind, RenderPlan, RenderSettings, TraceRecorder, Tracer};
 use crate::accel::AccelKind;
 use crate::geometry::Ray;
 use crate::stats::Counters;
@@ -37,7 +37,7 @@ fn each_round_of_passes_visits_every_stratum_of_every_pixel_once() {
             keep_refining: true,
             ..RenderSettings::default()
         };
-        let frame = Frame::new(w.clone(), idx.clone(), settings.clone()).unwrap();
+        let frame = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
         let tracer = Tracer::new(&w, &idx, &settings);
         let count = n * n;
         assert_eq!(frame.passes_target(), count);

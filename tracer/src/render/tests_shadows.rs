@@ -8,7 +8,7 @@
 use glam::Vec2;
 
 use super::tests::{index, world};
-use super::{Film, Frame, RenderSettings, render};
+use super::{Film, RenderPlan, RenderSettings, render};
 use crate::accel::AccelKind;
 
 /// Light height, occluder height and light side.
@@ -91,7 +91,7 @@ fn measured(light: &str, settings: &RenderSettings) -> Vec<(f32, f32)> {
     let shadowed = film(&scene(light, true), settings);
     let open = film(&scene(light, false), settings);
     let w = world(&scene(light, false));
-    let camera = Frame::camera(&w, settings).unwrap();
+    let camera = RenderPlan::camera(&w, settings).unwrap();
     let row = HEIGHT / 2;
     (0..WIDTH)
         .map(|px| {

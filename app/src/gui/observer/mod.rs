@@ -10,7 +10,7 @@ mod paint;
 use std::sync::Arc;
 
 use tracer::camera::{Camera, CameraPose};
-use tracer::render::{Frame, JobState, RayTree, RenderSettings, View};
+use tracer::render::{JobState, RayTree, RenderPlan, RenderSettings, View};
 use tracer::world::World;
 
 use crate::figures::observer::{self, PixelPattern};
@@ -115,7 +115,7 @@ impl Observer {
             camera: Some(self.pose?),
             ..self.engine.settings()?.clone()
         };
-        Frame::camera(world, &settings).ok()
+        RenderPlan::camera(world, &settings).ok()
     }
 
     /// The observer's engine (what it renders; picks read its pixels).
@@ -155,7 +155,7 @@ impl Observer {
         let pose = match self.pose {
             Some(pose) => pose,
             None => {
-                let camera = Frame::camera(&scene.world, target).map_err(|e| e.to_string())?;
+                let camera = RenderPlan::camera(&scene.world, target).map_err(|e| e.to_string())?;
                 *self.pose.insert(observer::framing(
                     &scene.world,
                     &camera,
