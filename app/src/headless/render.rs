@@ -40,13 +40,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             std::fs::create_dir_all(dir)
                 .with_context(|| format!("cannot create folder {}", dir.display()))?;
             let dir = dir.clone();
-            let observer: tracer::render::PassObserver = Box::new(move |pass, film| {
+            let listener: tracer::render::PassListener = Box::new(move |pass, film| {
                 let path = dir.join(format!("pass_{pass:04}.png"));
                 if let Err(e) = save_png(&film.to_image(encoding), &path) {
                     eprintln!("warning: {e:#}");
                 }
             });
-            Some(observer)
+            Some(listener)
         }
         None => None,
     };

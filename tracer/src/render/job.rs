@@ -79,7 +79,7 @@ pub struct JobOptions {
     pub on_progress: Option<Box<dyn Fn() + Send + Sync>>,
     /// Called with the pass number (from 1) and the film as it stands after
     /// each completed pass, before the next begins: to record convergence.
-    pub on_pass: Option<PassObserver>,
+    pub on_pass: Option<PassListener>,
     /// Let an interactive viewer's threads run first whenever they wake
     /// (batch scheduling on Linux, the lowest priority elsewhere), while
     /// render threads keep the share of the cores a headless render gets.
@@ -116,7 +116,7 @@ pub struct JobOptions {
 }
 
 /// See [`JobOptions::on_pass`].
-pub type PassObserver = Box<dyn Fn(u32, &Film) + Send + Sync>;
+pub type PassListener = Box<dyn Fn(u32, &Film) + Send + Sync>;
 
 struct Progress {
     film: Film,
@@ -147,7 +147,7 @@ struct Shared {
     index: Mutex<Option<Arc<SceneIndex>>>,
     version: AtomicU64,
     on_progress: Option<Box<dyn Fn() + Send + Sync>>,
-    on_pass: Option<PassObserver>,
+    on_pass: Option<PassListener>,
     views: bool,
     /// The finished image's encoding when [`JobOptions::image_only`]
     /// applies.

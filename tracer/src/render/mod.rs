@@ -24,7 +24,7 @@ mod view;
 use std::sync::Arc;
 
 pub use film::{Film, Tile, rgba_to_rgb_image};
-pub use job::{Finished, JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
+pub use job::{Finished, JobOptions, JobState, PassListener, RenderError, RenderJob, Snapshot};
 pub use plan::{RenderPlan, TILE_SIZE};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
