@@ -30,7 +30,7 @@ use super::panels::{central, stats, unfilled};
 use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
-use super::sides::{SideId, Sides, Wakes};
+use super::sides::{RepaintWakers, SideId, Sides};
 use super::windows::{Tools, help};
 use messages::Messages;
 use navigation::Navigation;
@@ -85,7 +85,7 @@ impl WorkbenchApp {
     ) -> Self {
         let (controls, session, progress) = persisted::restore(storage);
         let pacing = Pacing::default();
-        let wakes = Wakes::of(ctx, &pacing.progress_pace);
+        let wakes = RepaintWakers::of(ctx, &pacing.progress_pace);
         let mut app = Self {
             observer: Observer::new(&wakes),
             sides: Sides::new(controls, wakes, clock.clone()),

@@ -18,7 +18,7 @@ use crate::figures::projection::DepthMap;
 use crate::reports::ray_tree;
 
 use super::image::viewport::{Gesture, Placement, ViewportResponse};
-use super::sides::{Activity, Engine, LiveImage, Side, Version, Wakes};
+use super::sides::{Activity, Engine, LiveImage, RepaintWakers, Side, Version};
 
 pub use animation::Animation;
 pub use paint::paint;
@@ -71,7 +71,7 @@ pub struct Observer {
 type TreesKey = (Vec<(RenderSettings, usize)>, Vec<(u32, u32)>, u32);
 
 impl Observer {
-    pub fn new(wakes: &Wakes) -> Self {
+    pub fn new(wakes: &RepaintWakers) -> Self {
         let mut engine = wakes.engine();
         // The observer renders in the time the sides leave: it never slows
         // the render it explains.

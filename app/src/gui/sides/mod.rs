@@ -42,18 +42,18 @@ impl SideId {
 /// How render threads wake the window: at the progress pace, or at once
 /// for a render's last pass.
 #[derive(Clone)]
-pub struct Wakes {
+pub struct RepaintWakers {
     paced: Wake,
     now: Wake,
 }
 
-impl Wakes {
+impl RepaintWakers {
     /// An engine that wakes the window so.
     pub fn engine(&self) -> Engine {
         Engine::with_wakes(self.paced.clone(), self.now.clone())
     }
 
-    /// Wakes that redraw `ctx` at `pace` (and at once for last passes).
+    /// Wakers that redraw `ctx` at `pace` (and at once for last passes).
     pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
         let (paced_ctx, now_ctx, pace) = (ctx.clone(), ctx.clone(), pace.clone());
         Self {
@@ -85,7 +85,7 @@ struct Plan {
 }
 
 impl Side {
-    fn new(id: SideId, controls: Controls, wakes: &Wakes, clock: &Clock) -> Self {
+    fn new(id: SideId, controls: Controls, wakes: &RepaintWakers, clock: &Clock) -> Self {
         Self {
             id,
             engine: wakes.engine(),
@@ -218,14 +218,14 @@ pub struct Sides {
     /// Opening a scene adopts its settings; restoring the last session
     /// keeps the saved ones.
     pub adopt_loaded_scene: bool,
-    wakes: Wakes,
+    wakes: RepaintWakers,
     /// Times the merging of edits into undo steps.
     clock: Clock,
 }
 
 impl Sides {
     /// Side A alone, with `controls`.
-    pub fn new(controls: Controls, wakes: Wakes, clock: Clock) -> Self {
+    pub fn new(controls: Controls, wakes: RepaintWakers, clock: Clock) -> Self {
         Self {
             a: Side::new(SideId::A, controls, &wakes, &clock),
             b: None,
