@@ -31,7 +31,7 @@ use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
 use super::sides::{RepaintWakers, SideId, Sides};
-use super::windows::{Tools, help};
+use super::windows::{ToolsAndOverlays, help};
 use messages::Messages;
 use navigation::Navigation;
 use persisted::Session;
@@ -42,7 +42,7 @@ pub struct WorkbenchApp {
     sides: Sides,
     comparison: Comparison,
     navigation: Navigation,
-    tools: Tools,
+    tools: ToolsAndOverlays,
     session: Session,
     scene_list: SceneList,
     messages: Messages,
@@ -91,7 +91,7 @@ impl WorkbenchApp {
             sides: Sides::new(controls, wakes, clock.clone()),
             comparison: Comparison::default(),
             navigation: Navigation::default(),
-            tools: Tools::default(),
+            tools: ToolsAndOverlays::default(),
             session,
             scene_list: SceneList::new(clock.clone()),
             messages: Messages::new(clock.clone()),
