@@ -25,7 +25,7 @@ use tracer::scene::Scene;
 use tracer::world::World;
 
 use crate::measure::benchmark::{
-    self, Case, Event, Measurement, RunOptions, Sampling, Stop, Structures,
+    self, Case, Event, Measurement, RunOptions, SamplingColumn, Stop, Structures,
 };
 use crate::measure::study::{self, Param, Study, StudyEvent, StudyOutcome, Subject, values};
 use crate::reports::bench_table::{self, Columns, Format};
@@ -138,10 +138,15 @@ pub struct Lab {
 impl Lab {
     /// The timing matrix's row of `accel` with or without soft shadows,
     /// sampled as `sampling`.
-    pub fn row(&self, accel: AccelKind, soft: bool, sampling: Sampling) -> Option<&Measurement> {
+    pub fn row(
+        &self,
+        accel: AccelKind,
+        soft: bool,
+        sampling: SamplingColumn,
+    ) -> Option<&Measurement> {
         self.matrix.iter().find(|m| {
             let s = &m.case.settings;
-            s.accel == accel && s.soft_shadows == soft && Sampling::of(s) == sampling
+            s.accel == accel && s.soft_shadows == soft && SamplingColumn::of(s) == sampling
         })
     }
 }
