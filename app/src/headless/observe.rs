@@ -15,11 +15,11 @@ use crate::cli::{MetricsFormat, ObserveArgs};
 use crate::figures::observer::draw::{Piece, figure};
 use crate::figures::observer::{self, MAX_SEGMENTS, Part, Segment};
 use crate::image_file::save_png;
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::reports::ray_tree;
 
 pub fn run(args: &ObserveArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let world = loaded.world.clone();
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);

@@ -15,12 +15,12 @@ use tracer::world::World;
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::figures::{heat_map, overlay};
 use crate::image_file::{is_exr, save_exr, save_png};
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::reports::render_stats;
 use crate::reports::{ray_tree, view_summary};
 
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     if let Some(path) = &args.save_scene {
         let folder = match path.parent() {
             Some(p) if !p.as_os_str().is_empty() => p,

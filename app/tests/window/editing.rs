@@ -13,7 +13,7 @@ use tracer::accel::SceneIndex;
 use tracer::scene::Primitive;
 use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
 use workbench::gui::{Pending, WorkbenchApp};
-use workbench::load::{SceneSource, load_source_edited};
+use workbench::load::{Loaded, SceneSource};
 
 use crate::harness::{WINDOW, is_done, observer_done, ready_window, wait_for};
 use crate::support::scratch;
@@ -164,14 +164,15 @@ fn an_edit_in_the_window_renders_what_set_renders_headless() {
     let app = harness.state();
     let settings = app.engine().settings().cloned().unwrap();
     let source = SceneSource::Bundled("balls_low".into());
-    let (_, world) =
-        load_source_edited(&source, &[glass(BIG_SPHERE).to_string()], &mut |_| {}).unwrap();
+    let world = Loaded::read(source, &[glass(BIG_SPHERE).to_string()], &mut |_| {})
+        .unwrap()
+        .world;
     let index = Arc::new(SceneIndex::build(
         &world.shapes,
         settings.accel,
         settings.grid_multiplier,
     ));
-    let (film, _) = tracer::render::render(Arc::new(world), index, settings, None).unwrap();
+    let (film, _) = tracer::render::render(world, index, settings, None).unwrap();
     assert!(
         shown == film.to_rgba8(app.controls().encoding()),
         "the window's edit and `--set '{}'` render alike",

@@ -16,12 +16,13 @@ use tracer::render::{RenderSettings, View, ViewHeatmap};
 use tracer::scene::edit::{Edit, Effect};
 
 pub use controls::Controls;
-pub use engine::{Activity, Engine, LoadedScene, Version, Wake};
+pub use engine::{Activity, Engine, Version, Wake};
 pub use history::History;
 pub use live_image::LiveImage;
 
 use super::platform::clock::Clock;
 use super::platform::frame_meter::ProgressPace;
+use crate::load::Loaded;
 
 /// Which side.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -151,7 +152,7 @@ impl Side {
         }
         // Field by field: `..loaded.clone()` would copy the whole scene
         // document a second time only to drop it.
-        let edited = LoadedScene {
+        let edited = Loaded {
             source: loaded.source.clone(),
             scene,
             world: Arc::new(world),
@@ -305,7 +306,7 @@ impl Sides {
     }
 
     /// A opened `scene`: B shows it too, and neither has edits.
-    pub fn follow_scene(&mut self, scene: &LoadedScene) {
+    pub fn follow_scene(&mut self, scene: &Loaded) {
         self.a.history.reset();
         if let Some(b) = &mut self.b {
             b.engine.show(scene.clone());

@@ -446,14 +446,9 @@ fn opaque_world(request: &Request) -> Result<Option<Arc<World>>> {
     if lines.is_empty() {
         return Ok(None);
     }
-    let loaded = crate::load::Loaded {
-        scene: (**scene).clone(),
-        world: request.world.clone(),
-    };
-    let (opaque, _) = loaded
-        .edited(&lines)
+    let (_, opaque, _) = crate::load::with_edits(scene, &request.world, &lines)
         .context("the scene without refraction")?;
-    Ok(Some(opaque.world))
+    Ok(Some(opaque))
 }
 
 /// The page: the seven sections in the course report's order.
