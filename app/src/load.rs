@@ -5,7 +5,7 @@ use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
@@ -45,35 +45,91 @@ impl SceneSource {
     }
 }
 
-/// Reads and prepares `source`. Warnings from preparing the world stay in
-/// `World::warnings` for the caller to show.
-pub fn load_source(source: &SceneSource) -> Result<(Scene, World)> {
-    load_source_with_progress(source, &mut |_| {})
+/// A scene ready to render: where it came from, the parsed document, the
+/// world built from it and how long that took. The one shape of a loaded
+/// scene, made by [`Loaded::read`] (the window, the lessons) or
+/// [`Loaded::for_command`] (the headless commands).
+#[derive(Clone)]
+pub struct Loaded {
+    pub source: SceneSource,
+    pub scene: Scene,
+    pub world: Arc<World>,
+    /// How long parsing and preparing took.
+    pub load_time: Duration,
 }
 
-/// [`load_source`], reporting how much of a large mesh file has been read.
-pub fn load_source_with_progress(
-    source: &SceneSource,
-    on_progress: &mut dyn FnMut(LoadProgress),
-) -> Result<(Scene, World)> {
-    load_source_edited(source, &[], on_progress)
+impl Loaded {
+    /// Reads and prepares `source`, with `--set` edits applied to the scene
+    /// before the world is built from it (see [`apply_edits`]), reporting
+    /// how much of a large mesh file has been read. Warnings from preparing
+    /// the world stay in `World::warnings` for the caller to show.
+    pub fn read(
+        source: SceneSource,
+        edits: &[String],
+        on_progress: &mut dyn FnMut(LoadProgress),
+    ) -> Result<Self> {
+        let start = Instant::now();
+        let (mut scene, warnings) = read_source(&source, on_progress)?;
+        apply_edits(&mut scene, edits)?;
+        let mut world = match &source {
+            SceneSource::Bundled(_) => World::build_with_skybox(&scene, embedded_skybox),
+            SceneSource::File(_) => build_with_sky(&scene),
+        };
+        world.warnings.extend(warnings);
+        Ok(Self {
+            source,
+            scene,
+            world: Arc::new(world),
+            load_time: start.elapsed(),
+        })
+    }
+
+    /// Parses a scene file (or frames a bare mesh) for the headless
+    /// commands, with `--set` edits applied before the world is built;
+    /// warnings, and progress while a large mesh is read, go to stderr.
+    pub fn for_command(path: &Path, edits: &[String]) -> Result<Self> {
+        let source = SceneSource::File(path.to_path_buf());
+        let mut progress = MeshProgress::new(path);
+        let loaded = Self::read(source, edits, &mut |p| progress.show(p))?;
+        progress.finish(&loaded.world, loaded.load_time);
+        if loaded.source.is_bare_mesh() {
+            eprintln!("note: {}: {}", path.display(), mesh_io::FRAMING_NOTE);
+        }
+        for warning in &loaded.world.warnings {
+            eprintln!("warning: {}: {warning}", path.display());
+        }
+        Ok(loaded)
+    }
+
+    /// This scene with more `--set` edits (one side of a comparison), and
+    /// the edits in words (see [`with_edits`]).
+    pub fn edited(&self, lines: &[String]) -> Result<(Loaded, Vec<String>)> {
+        let (scene, world, described) = with_edits(&self.scene, &self.world, lines)?;
+        let edited = Loaded {
+            source: self.source.clone(),
+            scene,
+            world,
+            load_time: self.load_time,
+        };
+        Ok((edited, described))
+    }
 }
 
-/// [`load_source_with_progress`] with `--set` edits applied to the scene
-/// before the world is built from it (see [`apply_edits`]).
-pub fn load_source_edited(
-    source: &SceneSource,
-    edits: &[String],
-    on_progress: &mut dyn FnMut(LoadProgress),
-) -> Result<(Scene, World)> {
-    let (mut scene, warnings) = read_source(source, on_progress)?;
-    apply_edits(&mut scene, edits)?;
-    let mut world = match source {
-        SceneSource::Bundled(_) => World::build_with_skybox(&scene, embedded_skybox),
-        SceneSource::File(_) => build_with_sky(&scene),
-    };
-    world.warnings.extend(warnings);
-    Ok((scene, world))
+/// `scene` and its `world` with more `--set` edits, and the edits in
+/// words. The world follows each edit ([`World::update`]) instead of being
+/// built again: the skybox and the untouched shapes are kept.
+pub fn with_edits(
+    scene: &Scene,
+    world: &Arc<World>,
+    lines: &[String],
+) -> Result<(Scene, Arc<World>, Vec<String>)> {
+    let mut scene = scene.clone();
+    if lines.is_empty() {
+        return Ok((scene, world.clone(), Vec::new()));
+    }
+    let mut world = (**world).clone();
+    let described = apply_edits_then(&mut scene, lines, |scene, edit| world.update(scene, edit))?;
+    Ok((scene, Arc::new(world), described))
 }
 
 /// The scene document of `source`, and what reading a bare mesh warned of.
@@ -174,59 +230,6 @@ fn embedded_skybox(name: &str) -> Result<Skybox, SkyboxError> {
     }
 }
 
-/// A parsed scene and the world built from it.
-pub struct Loaded {
-    pub scene: Scene,
-    pub world: Arc<World>,
-}
-
-impl Loaded {
-    /// This scene with more `--set` edits (one side of a comparison), and
-    /// the edits in words. The world follows each edit ([`World::update`])
-    /// instead of being built again: the skybox and the untouched shapes
-    /// are kept.
-    pub fn edited(&self, lines: &[String]) -> Result<(Loaded, Vec<String>)> {
-        let mut scene = self.scene.clone();
-        if lines.is_empty() {
-            let same = Loaded {
-                scene,
-                world: self.world.clone(),
-            };
-            return Ok((same, Vec::new()));
-        }
-        let mut world = (*self.world).clone();
-        let described =
-            apply_edits_then(&mut scene, lines, |scene, edit| world.update(scene, edit))?;
-        let world = Arc::new(world);
-        Ok((Loaded { scene, world }, described))
-    }
-}
-
-/// Parses a scene file (or frames a bare mesh) for the headless commands;
-/// warnings, and progress while a large mesh is read, go to stderr.
-pub fn load_scene(path: &Path) -> Result<Loaded> {
-    load_scene_edited(path, &[])
-}
-
-/// [`load_scene`] with `--set` edits applied before the world is built.
-pub fn load_scene_edited(path: &Path, edits: &[String]) -> Result<Loaded> {
-    let source = SceneSource::File(path.to_path_buf());
-    let start = Instant::now();
-    let mut progress = MeshProgress::new(path);
-    let (scene, world) = load_source_edited(&source, edits, &mut |p| progress.show(p))?;
-    progress.finish(&world, start);
-    if source.is_bare_mesh() {
-        eprintln!("note: {}: {}", path.display(), mesh_io::FRAMING_NOTE);
-    }
-    for warning in &world.warnings {
-        eprintln!("warning: {}: {warning}", path.display());
-    }
-    Ok(Loaded {
-        scene,
-        world: Arc::new(world),
-    })
-}
-
 /// Progress of reading a large mesh on stderr: a line updated in place on
 /// a terminal, and the size and time once read.
 struct MeshProgress<'a> {
@@ -263,7 +266,7 @@ impl<'a> MeshProgress<'a> {
 
     /// Says how large the mesh was and how long it took, when progress
     /// was shown at all.
-    fn finish(&self, world: &World, start: Instant) {
+    fn finish(&self, world: &World, took: Duration) {
         if !self.shown {
             return;
         }
@@ -274,7 +277,7 @@ impl<'a> MeshProgress<'a> {
             "read {}: {} triangles in {:.2} s",
             self.path.display(),
             world.counts.triangles,
-            start.elapsed().as_secs_f64()
+            took.as_secs_f64()
         );
     }
 }
@@ -282,6 +285,11 @@ impl<'a> MeshProgress<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `source` as the window reads it: no edits, no progress.
+    fn read(source: SceneSource) -> Result<Loaded> {
+        Loaded::read(source, &[], &mut |_| {})
+    }
 
     /// The repository's `scenes/` folder.
     fn scenes_dir() -> PathBuf {
@@ -294,13 +302,13 @@ mod tests {
     #[test]
     fn the_bundled_default_scene_has_the_same_sky_as_its_file() {
         let bundled = SceneSource::Bundled(bundled::DEFAULT_SCENE.into());
-        let (scene, world) = load_source(&bundled).unwrap();
+        let Loaded { scene, world, .. } = read(bundled).unwrap();
         assert!(scene.env.is_some(), "the default scene should use a skybox");
         assert!(world.warnings.is_empty(), "{:?}", world.warnings);
         assert!(world.skybox.is_some());
 
         let file = scenes_dir().join(format!("{}.p3f", bundled::DEFAULT_SCENE));
-        let (_, from_file) = load_source(&SceneSource::File(file)).unwrap();
+        let from_file = read(SceneSource::File(file)).unwrap().world;
         assert!(from_file.warnings.is_empty(), "{:?}", from_file.warnings);
         assert_eq!(world.skybox, from_file.skybox);
     }
@@ -312,7 +320,7 @@ mod tests {
         let dir = tracer::scratch::Scratch::new("load-sky");
         let path = dir.join("scene.p3f");
         std::fs::write(&path, "env nowhere\nv from 0 0 5 at 0 0 0\ns 0 0 0 1\n").unwrap();
-        let (_, world) = load_source(&SceneSource::File(path)).unwrap();
+        let world = read(SceneSource::File(path)).unwrap().world;
         let bundled = embedded_skybox("sky").unwrap();
         assert_eq!(world.skybox, Some(Arc::new(bundled)));
         let warnings = world.warnings.join("; ");
@@ -340,7 +348,7 @@ mod tests {
         ] {
             let path = dir.join(format!("{name}.p3f"));
             std::fs::write(&path, format!("env skybox\n{view}\ns 0 0 0 1\n")).unwrap();
-            let (_, world) = load_source(&SceneSource::File(path)).unwrap();
+            let world = read(SceneSource::File(path)).unwrap().world;
             let up = glam::Vec3A::from(up);
             assert_eq!(
                 world.background(up),
@@ -367,7 +375,7 @@ mod tests {
         std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
         let source = SceneSource::File(path);
         assert!(source.is_bare_mesh());
-        let (scene, world) = load_source(&source).unwrap();
+        let Loaded { scene, world, .. } = read(source).unwrap();
         assert_eq!(scene.lights.len(), 2);
         assert_eq!(world.counts.triangles, 1);
         assert!(world.warnings.is_empty(), "{:?}", world.warnings);
@@ -379,8 +387,9 @@ mod tests {
     fn every_bundled_scene_loads_without_warnings() {
         assert!(!bundled::SCENES.is_empty());
         for scene in bundled::SCENES {
-            let (_, world) = load_source(&SceneSource::Bundled(scene.name.into()))
-                .unwrap_or_else(|e| panic!("{}: {e:#}", scene.name));
+            let world = read(SceneSource::Bundled(scene.name.into()))
+                .unwrap_or_else(|e| panic!("{}: {e:#}", scene.name))
+                .world;
             assert!(
                 world.warnings.is_empty(),
                 "{}: {:?}",

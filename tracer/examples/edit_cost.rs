@@ -16,7 +16,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use tracer::accel::{AccelKind, SceneIndex};
-use tracer::render::{Frame, RenderSettings};
+use tracer::render::{RenderPlan, RenderSettings};
 use tracer::scene::edit::{Edit, Effect};
 use tracer::scene::{Limits, parse_scene_file};
 use tracer::stats::Counters;
@@ -48,7 +48,7 @@ fn follow(index: &Arc<SceneIndex>, world: &World, change: &ShapeChange) -> (Arc<
 }
 
 /// One frame over `index`: its time and work.
-fn frame_time(frame: &Frame) -> (Duration, Counters) {
+fn frame_time(frame: &RenderPlan) -> (Duration, Counters) {
     let mut counters = Counters::default();
     let start = Instant::now();
     for tile in &frame.tiles {
@@ -142,7 +142,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..RenderSettings::from_scene(&edited)
     };
     let [rebuilt, refitted] = last.map(|(world, index)| {
-        Frame::new(Arc::new(world), index, settings.clone()).expect("the scene's camera")
+        RenderPlan::new(Arc::new(world), index, settings.clone()).expect("the scene's camera")
     });
     let (mut rebuilt_times, mut refit_times) = (Vec::new(), Vec::new());
     let mut work = [Counters::default(), Counters::default()];

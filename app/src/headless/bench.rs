@@ -5,11 +5,11 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
-use tracer::render::{Frame, RenderSettings};
+use tracer::render::{RenderPlan, RenderSettings};
 
 use crate::cli::{BenchArgs, TableFormat};
 use crate::image_file::save_png;
-use crate::load::{Loaded, load_scene_edited};
+use crate::load::Loaded;
 use crate::measure::benchmark::{self, Measurement, RunOptions};
 use crate::measure::ray_cast::{self, RayBenchOptions};
 use crate::measure::to_error::{self, ToErrorPlan};
@@ -19,7 +19,7 @@ use crate::reports::{
 };
 
 pub fn run(args: &BenchArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     // A benchmark frame is one sample per pixel with hard shadows unless
     // the command line (or the matrix) asks for more.
@@ -112,7 +112,7 @@ fn rays(args: &BenchArgs, loaded: &Loaded, settings: &RenderSettings) -> Result<
         Some([one]) => *one,
         Some(_) => bail!("--rays measures one structure: give one to --structure"),
     };
-    let camera = Frame::camera(&loaded.world, settings)
+    let camera = RenderPlan::camera(&loaded.world, settings)
         .with_context(|| format!("cannot set up the camera of {}", args.scene.display()))?;
     let options = RayBenchOptions {
         accel,

@@ -12,7 +12,7 @@ use tracer::world::World;
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
 use crate::figures::heat_map;
 use crate::image_file::save_png;
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::measure::ab::{self, Heatmap, ImageComparison, RenderComparison, SideOptions};
 use crate::measure::benchmark::{Case, Measurement};
 use crate::reports::render_stats::si;
@@ -27,7 +27,7 @@ struct SideSetup {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let side = |name: &str, flags: &str| -> Result<SideSetup> {
         let (own, own_encoding) =
             SettingsArgs::parse_str(flags).map_err(|e| anyhow!("--{name} \"{flags}\": {e}"))?;

@@ -5,11 +5,11 @@ use anyhow::{Result, anyhow};
 use tracer::render::RenderSettings;
 
 use crate::cli::{InspectArgs, MetricsFormat};
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::reports::ray_tree;
 
 pub fn run(args: &InspectArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);
     let [x, y] = args.pixel[..] else {

@@ -9,17 +9,17 @@ use glam::Vec3;
 use serde_json::json;
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
 use tracer::camera::CameraPose;
-use tracer::render::{Frame, RayTree, RenderSettings};
+use tracer::render::{RayTree, RenderPlan, RenderSettings};
 
 use crate::cli::{MetricsFormat, ObserveArgs};
 use crate::figures::observer::draw::{Piece, figure};
 use crate::figures::observer::{self, MAX_SEGMENTS, Part, Segment};
 use crate::image_file::save_png;
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::reports::ray_tree;
 
 pub fn run(args: &ObserveArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let world = loaded.world.clone();
     let mut settings = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut settings);
@@ -49,9 +49,9 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     observer_settings
         .validate()
         .map_err(|e| anyhow!("--size {figure_width} {figure_height}: {e}"))?;
-    let observer_camera = Frame::camera(&world, &observer_settings)
+    let observer_camera = RenderPlan::camera(&world, &observer_settings)
         .map_err(|e| anyhow!("the observer camera (--from, --at, --up): {e}"))?;
-    let scene_camera = Frame::camera(&world, &settings)?;
+    let scene_camera = RenderPlan::camera(&world, &settings)?;
 
     super::warn_brute_force_with(
         &settings,
@@ -126,7 +126,7 @@ fn observer_pose(
     settings: &RenderSettings,
 ) -> Result<CameraPose> {
     let aspect = args.size[1] as f32 / args.size[0].max(1) as f32;
-    let scene_camera = Frame::camera(world, settings)?;
+    let scene_camera = RenderPlan::camera(world, settings)?;
     let vector = |v: &Option<Vec<f32>>| v.as_ref().map(|v| Vec3::new(v[0], v[1], v[2]));
     let up = vector(&args.up).unwrap_or_else(|| scene_camera.basis()[1].into());
     let pose = match (vector(&args.from), vector(&args.at)) {

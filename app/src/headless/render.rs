@@ -8,19 +8,19 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer, Visit};
 use tracer::render::{
-    Finished, Frame, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary,
+    Finished, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, ViewSummary,
 };
 use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
 use crate::figures::{heat_map, overlay};
 use crate::image_file::{is_exr, save_exr, save_png};
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::reports::render_stats;
 use crate::reports::{ray_tree, view_summary};
 
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     if let Some(path) = &args.save_scene {
         let folder = match path.parent() {
             Some(p) if !p.as_os_str().is_empty() => p,
@@ -40,13 +40,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             std::fs::create_dir_all(dir)
                 .with_context(|| format!("cannot create folder {}", dir.display()))?;
             let dir = dir.clone();
-            let observer: tracer::render::PassObserver = Box::new(move |pass, film| {
+            let listener: tracer::render::PassListener = Box::new(move |pass, film| {
                 let path = dir.join(format!("pass_{pass:04}.png"));
                 if let Err(e) = save_png(&film.to_image(encoding), &path) {
                     eprintln!("warning: {e:#}");
                 }
             });
-            Some(observer)
+            Some(listener)
         }
         None => None,
     };
@@ -118,7 +118,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         };
         if let Some((layer, index)) = &overlay {
             let world = &loaded.world;
-            let camera = Frame::camera(world, &settings)
+            let camera = RenderPlan::camera(world, &settings)
                 .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
             overlay::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
             if let Some(pixel) = &args.pixel {

@@ -9,7 +9,7 @@ use anyhow::{Context, Result, bail};
 use tracer::render::RenderSettings;
 
 use crate::cli::{ReportArgs, SettingsArgs};
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::measure::benchmark::MATRIX_SAMPLES;
 use crate::reports::lab::{self, Request};
 
@@ -42,7 +42,7 @@ pub fn run(args: &ReportArgs) -> Result<()> {
              (--spp sets N, --aperture and --focal the lens)"
         );
     }
-    let loaded = load_scene_edited(&args.scene, &args.settings.set)?;
+    let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let mut base = RenderSettings::from_scene(&loaded.scene);
     args.settings.apply(&mut base);
     // The course measured its table with N = 4, not the scene's own N.

@@ -15,7 +15,7 @@ use tracer::scene::Scene;
 use crate::cli::{SettingsArgs, SweepArgs};
 use crate::figures::study_plot;
 use crate::image_file::save_png;
-use crate::load::load_scene_edited;
+use crate::load::Loaded;
 use crate::measure::benchmark::{RunOptions, Stop};
 use crate::measure::study::{self, Param, Study, StudyEvent, Subject, values};
 use crate::reports::bench_table::Format;
@@ -147,7 +147,7 @@ fn subject(args: &SweepArgs) -> Result<(Subject, String, RenderSettings)> {
         let Some(path) = &args.scene else {
             bail!("give a scene file to sweep {} on", args.param);
         };
-        let loaded = load_scene_edited(path, &args.settings.set)?;
+        let loaded = Loaded::for_command(path, &args.settings.set)?;
         let base = base_settings(&loaded.scene, &args.settings);
         let name = path.display().to_string();
         let subject = Subject::Document {

@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 use tracer::scene::{Limits, Scene, parse_scene};
 use tracer::world::World;
 
-use crate::load::{self, SceneSource};
+use crate::load::{self, Loaded, SceneSource};
 
 use super::check::{Verdict, evaluate};
 use super::format::{Lesson, LessonError, LessonScene, Step};
@@ -20,9 +20,10 @@ use super::state::LessonState;
 /// The lesson's scene and the world built from it. An inline scene's
 /// parse error names the lesson file's line.
 pub fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
-    let (scene, world) = match &lesson.scene {
-        LessonScene::Bundled(name) => load::load_source(&SceneSource::Bundled(name.clone()))?,
-        LessonScene::File(path) => load::load_source(&SceneSource::File(path.clone()))
+    let read = |source| Loaded::read(source, &[], &mut |_| {});
+    let loaded = match &lesson.scene {
+        LessonScene::Bundled(name) => read(SceneSource::Bundled(name.clone()))?,
+        LessonScene::File(path) => read(SceneSource::File(path.clone()))
             .with_context(|| format!("{}: the lesson's scene", lesson.file))?,
         LessonScene::Inline { text, first_line } => {
             let dir = Path::new(&lesson.file).parent();
@@ -40,10 +41,10 @@ pub fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
             })?;
             scene.base_dir = dir.map(Path::to_path_buf);
             let world = load::build_with_sky(&scene);
-            (scene, world)
+            return Ok((scene, Arc::new(world)));
         }
     };
-    Ok((scene, Arc::new(world)))
+    Ok((loaded.scene, loaded.world))
 }
 
 /// The state before step `step` is done: the start, every earlier step's

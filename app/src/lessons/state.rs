@@ -11,7 +11,7 @@ use tracer::scene::Scene;
 use tracer::world::World;
 
 use crate::cli::SettingsArgs;
-use crate::load::Loaded;
+use crate::load::with_edits;
 
 use super::format::{Actions, Located};
 
@@ -161,21 +161,17 @@ fn apply_flags(side: &mut SideState, flags: &Located<SettingsArgs>, file: &str) 
 /// An edit of the camera's lens sets the lens the settings render with, as
 /// the window's controls follow it.
 fn edited(side: &SideState, lines: &[String]) -> Result<SideState> {
-    let loaded = Loaded {
-        scene: side.scene.clone(),
-        world: side.world.clone(),
-    };
-    let (loaded, _) = loaded.edited(lines)?;
+    let (scene, world, _) = with_edits(&side.scene, &side.world, lines)?;
     let mut settings = side.settings.clone();
-    let (before, after) = (&side.scene.view, &loaded.scene.view);
+    let (before, after) = (&side.scene.view, &scene.view);
     if (before.aperture, before.focal) != (after.aperture, after.focal) {
         settings.depth_of_field = after.aperture > 0.0;
         settings.aperture = after.aperture;
         settings.focal = after.focal;
     }
     Ok(SideState {
-        scene: loaded.scene,
-        world: loaded.world,
+        scene,
+        world,
         settings,
     })
 }

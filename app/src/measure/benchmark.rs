@@ -56,7 +56,7 @@ impl Case {
 
 /// The sampling column of the course's timing matrix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Sampling {
+pub enum SamplingColumn {
     /// One sample per pixel.
     Single,
     /// Jittered N x N anti-aliasing.
@@ -65,14 +65,14 @@ pub enum Sampling {
     AntialiasingDof,
 }
 
-impl Sampling {
+impl SamplingColumn {
     /// The column `settings` belong in (depth of field without
     /// anti-aliasing, which the course did not measure, counts as DOF).
-    pub fn of(settings: &RenderSettings) -> Sampling {
+    pub fn of(settings: &RenderSettings) -> SamplingColumn {
         match (settings.antialiasing, settings.depth_of_field) {
-            (_, true) => Sampling::AntialiasingDof,
-            (true, false) => Sampling::Antialiasing,
-            (false, false) => Sampling::Single,
+            (_, true) => SamplingColumn::AntialiasingDof,
+            (true, false) => SamplingColumn::Antialiasing,
+            (false, false) => SamplingColumn::Single,
         }
     }
 }
@@ -95,15 +95,15 @@ pub fn matrix(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -
     for &accel in accels {
         for soft_shadows in [false, true] {
             for sampling in [
-                Sampling::Single,
-                Sampling::Antialiasing,
-                Sampling::AntialiasingDof,
+                SamplingColumn::Single,
+                SamplingColumn::Antialiasing,
+                SamplingColumn::AntialiasingDof,
             ] {
-                let dof = sampling == Sampling::AntialiasingDof;
+                let dof = sampling == SamplingColumn::AntialiasingDof;
                 let settings = RenderSettings {
                     accel,
                     soft_shadows,
-                    antialiasing: sampling != Sampling::Single,
+                    antialiasing: sampling != SamplingColumn::Single,
                     depth_of_field: dof,
                     aperture: if dof && base.aperture <= 0.0 {
                         MATRIX_APERTURE

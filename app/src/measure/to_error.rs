@@ -39,7 +39,7 @@ pub struct ToErrorPlan {
 
 /// One way of sampling, measured.
 #[derive(Debug, Clone)]
-pub struct Side {
+pub struct MeasuredSampling {
     pub settings: RenderSettings,
     /// Its image against the reference.
     pub metrics: Metrics,
@@ -50,7 +50,7 @@ pub struct Side {
     pub times: Vec<Duration>,
 }
 
-impl Side {
+impl MeasuredSampling {
     pub fn median(&self) -> Duration {
         median(&self.times)
     }
@@ -77,10 +77,10 @@ pub struct ToError {
     /// The FLIP to reach too, when the target is uniform N x N's error.
     pub target_flip: Option<f32>,
     /// The cheapest uniform N that reaches the target.
-    pub uniform: Side,
+    pub uniform: MeasuredSampling,
     /// The largest threshold that reaches it; `None` if none down to
     /// [`SMALLEST_THRESHOLD`] does.
-    pub adaptive: Option<Side>,
+    pub adaptive: Option<MeasuredSampling>,
     /// Every render tried, in order.
     pub attempts: Vec<Attempt>,
 }
@@ -314,7 +314,7 @@ pub fn measure(
         reference_time: reference.time,
         target_mse,
         target_flip,
-        uniform: Side {
+        uniform: MeasuredSampling {
             settings: uniform_settings,
             metrics: uniform_metrics,
             spp_mean: uniform_rendered.spp_mean,
@@ -322,7 +322,7 @@ pub fn measure(
             times: uniform_times,
         },
         adaptive: adaptive_found.zip(adaptive_settings).map(
-            |((_, metrics, rendered), settings)| Side {
+            |((_, metrics, rendered), settings)| MeasuredSampling {
                 settings,
                 metrics,
                 spp_mean: rendered.spp_mean,

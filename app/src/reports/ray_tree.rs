@@ -7,7 +7,7 @@ use std::sync::Arc;
 use anyhow::{Result, anyhow};
 use glam::Vec3A;
 use tracer::accel::{SceneIndex, Visit};
-use tracer::render::{Frame, Outcome, RayNode, RayTree, RenderSettings};
+use tracer::render::{Outcome, RayNode, RayTree, RenderPlan, RenderSettings};
 use tracer::world::World;
 
 /// The ray tree of sample `sample` of pixel `(x, y)` under `settings`,
@@ -35,7 +35,7 @@ pub fn inspect(
                 settings.grid_multiplier,
             ))
         });
-    let frame = Frame::new(world.clone(), index, settings.clone())?;
+    let frame = RenderPlan::new(world.clone(), index, settings.clone())?;
     frame.inspect(x, y, sample).ok_or_else(|| {
         anyhow!(
             "pixel ({x}, {y}) is outside the {}x{} image",

@@ -3,7 +3,7 @@
 
 use tracer::render::RenderSettings;
 
-use crate::measure::to_error::{SMALLEST_THRESHOLD, Side, ToError};
+use crate::measure::to_error::{MeasuredSampling, SMALLEST_THRESHOLD, ToError};
 
 /// How a side is named in the tables.
 fn name(settings: &RenderSettings) -> String {
@@ -84,7 +84,7 @@ pub fn text(found: &ToError) -> String {
 
 /// Everything measured, as JSON.
 pub fn json(found: &ToError) -> serde_json::Value {
-    let side = |s: &Side| {
+    let side = |s: &MeasuredSampling| {
         serde_json::json!({
             "sampling": name(&s.settings),
             "noise_threshold": s.settings.adaptive().map(|a| a.noise_threshold),

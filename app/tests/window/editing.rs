@@ -10,10 +10,11 @@ use std::sync::Arc;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::SceneIndex;
+use tracer::render::RenderSettings;
 use tracer::scene::Primitive;
 use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
 use workbench::gui::{Pending, WorkbenchApp};
-use workbench::load::{SceneSource, load_source_edited};
+use workbench::load::{Loaded, SceneSource};
 
 use crate::harness::{WINDOW, is_done, observer_done, ready_window, wait_for};
 use crate::support::scratch;
@@ -164,18 +165,51 @@ fn an_edit_in_the_window_renders_what_set_renders_headless() {
     let app = harness.state();
     let settings = app.engine().settings().cloned().unwrap();
     let source = SceneSource::Bundled("balls_low".into());
-    let (_, world) =
-        load_source_edited(&source, &[glass(BIG_SPHERE).to_string()], &mut |_| {}).unwrap();
+    let world = Loaded::read(source, &[glass(BIG_SPHERE).to_string()], &mut |_| {})
+        .unwrap()
+        .world;
     let index = Arc::new(SceneIndex::build(
         &world.shapes,
         settings.accel,
         settings.grid_multiplier,
     ));
-    let (film, _) = tracer::render::render(Arc::new(world), index, settings, None).unwrap();
+    let (film, _) = tracer::render::render(world, index, settings, None).unwrap();
     assert!(
         shown == film.to_rgba8(app.controls().encoding()),
         "the window's edit and `--set '{}'` render alike",
         glass(BIG_SPHERE)
+    );
+}
+
+/// A lens edit is the lens the side renders with, depth of field on, as
+/// `--set 'camera aperture 8'` gives on the command line, where the
+/// settings come from the edited scene.
+#[test]
+fn a_lens_edit_in_the_window_renders_what_set_renders_headless() {
+    let (mut harness, before) = editing();
+    let scene = harness.state().engine().scene().unwrap().scene.clone();
+    let lens = Edit::parse_in("camera aperture 8", &scene).unwrap();
+    harness.state_mut().edit(lens).unwrap();
+    let shown = finished(&mut harness);
+    assert!(shown != before, "the lens changes the image");
+    let app = harness.state();
+    let window = app.engine().settings().cloned().unwrap();
+    let source = SceneSource::Bundled("balls_low".into());
+    let loaded = Loaded::read(source, &["camera aperture 8".into()], &mut |_| {}).unwrap();
+    let settings = RenderSettings {
+        width: window.width,
+        height: window.height,
+        ..RenderSettings::from_scene(&loaded.scene)
+    };
+    let index = Arc::new(SceneIndex::build(
+        &loaded.world.shapes,
+        settings.accel,
+        settings.grid_multiplier,
+    ));
+    let (film, _) = tracer::render::render(loaded.world, index, settings, None).unwrap();
+    assert!(
+        shown == film.to_rgba8(app.controls().encoding()),
+        "the window's lens edit and `--set 'camera aperture 8'` render alike"
     );
 }
 

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use tracer::accel::{AccelKind, SceneIndex};
-use tracer::render::{Frame, RenderSettings};
+use tracer::render::{RenderPlan, RenderSettings};
 use tracer::scene::{Limits, Scene, parse_scene_file};
 use tracer::stats::Counters;
 use tracer::world::World;
@@ -26,7 +26,7 @@ pub fn load(name: &str) -> (Scene, Arc<World>) {
 
 /// The frame `workbench bench` times: the scene's size and depth, one
 /// sample per pixel, hard shadows, with acceleration `accel`.
-pub fn bench_frame(scene: &Scene, world: &Arc<World>, accel: AccelKind) -> Frame {
+pub fn bench_frame(scene: &Scene, world: &Arc<World>, accel: AccelKind) -> RenderPlan {
     let settings = RenderSettings {
         antialiasing: false,
         depth_of_field: false,
@@ -39,12 +39,12 @@ pub fn bench_frame(scene: &Scene, world: &Arc<World>, accel: AccelKind) -> Frame
         accel,
         settings.grid_multiplier,
     ));
-    Frame::new(world.clone(), index, settings).expect("the scene's camera is valid")
+    RenderPlan::new(world.clone(), index, settings).expect("the scene's camera is valid")
 }
 
 /// Renders every tile of the first pass on the calling thread: the work of
 /// one frame without the thread pool, so instruction counts are stable.
-pub fn render_frame(frame: &Frame) -> Counters {
+pub fn render_frame(frame: &RenderPlan) -> Counters {
     let mut counters = Counters::default();
     for tile in &frame.tiles {
         std::hint::black_box(frame.render_tile(0, tile, &mut counters));

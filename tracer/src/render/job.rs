@@ -20,7 +20,7 @@ use super::adaptive;
 use super::film::encode_values;
 use super::settings::SettingsError;
 use super::view::{View, ViewFilm, ViewHeatmap, ViewSample, view_rgba8};
-use super::{Encoding, Film, Frame, RenderSettings};
+use super::{Encoding, Film, RenderPlan, RenderSettings};
 
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
@@ -79,7 +79,7 @@ pub struct JobOptions {
     pub on_progress: Option<Box<dyn Fn() + Send + Sync>>,
     /// Called with the pass number (from 1) and the film as it stands after
     /// each completed pass, before the next begins: to record convergence.
-    pub on_pass: Option<PassObserver>,
+    pub on_pass: Option<PassListener>,
     /// Let an interactive viewer's threads run first whenever they wake
     /// (batch scheduling on Linux, the lowest priority elsewhere), while
     /// render threads keep the share of the cores a headless render gets.
@@ -116,7 +116,7 @@ pub struct JobOptions {
 }
 
 /// See [`JobOptions::on_pass`].
-pub type PassObserver = Box<dyn Fn(u32, &Film) + Send + Sync>;
+pub type PassListener = Box<dyn Fn(u32, &Film) + Send + Sync>;
 
 struct Progress {
     film: Film,
@@ -147,7 +147,7 @@ struct Shared {
     index: Mutex<Option<Arc<SceneIndex>>>,
     version: AtomicU64,
     on_progress: Option<Box<dyn Fn() + Send + Sync>>,
-    on_pass: Option<PassObserver>,
+    on_pass: Option<PassListener>,
     views: bool,
     /// The finished image's encoding when [`JobOptions::image_only`]
     /// applies.
@@ -209,7 +209,7 @@ impl RenderJob {
         options: JobOptions,
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
-        Frame::camera(&world, &settings)?;
+        RenderPlan::camera(&world, &settings)?;
         let (yield_to_viewer, idle) = (options.yield_to_viewer, options.idle_priority);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads.unwrap_or(0))
@@ -330,7 +330,7 @@ impl RenderJob {
                             built
                         }
                     };
-                    let frame = Frame::new(world, index, settings)
+                    let frame = RenderPlan::new(world, index, settings)
                         .map_err(|e| format!("invalid camera: {e}"))?;
                     pool.install(|| run_passes(&frame, &shared));
                     Ok::<(), String>(())
@@ -499,7 +499,7 @@ impl Drop for RenderJob {
 
 /// Runs passes until the target (or forever when refining) or cancellation;
 /// an adaptive render also ends once no pixel is active.
-fn run_passes(frame: &Frame, shared: &Shared) {
+fn run_passes(frame: &RenderPlan, shared: &Shared) {
     let target = frame.passes_target();
     let adaptive = frame.settings.adaptive().copied();
     let refine = frame.settings.keep_refining && adaptive.is_none();

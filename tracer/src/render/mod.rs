@@ -4,8 +4,8 @@
 
 pub mod adaptive;
 mod film;
-mod frame;
 mod job;
+mod plan;
 mod ray_tree;
 mod settings;
 #[cfg(test)]
@@ -16,8 +16,8 @@ mod view;
 use std::sync::Arc;
 
 pub use film::{Film, Tile, rgba_to_rgb_image};
-pub use frame::{Frame, TILE_SIZE};
-pub use job::{Finished, JobOptions, JobState, PassObserver, RenderError, RenderJob, Snapshot};
+pub use job::{Finished, JobOptions, JobState, PassListener, RenderError, RenderJob, Snapshot};
+pub use plan::{RenderPlan, TILE_SIZE};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
     AdaptiveSampling, Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,

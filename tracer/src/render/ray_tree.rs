@@ -1,6 +1,6 @@
 //! The ray-tree inspector: every ray one sample of one pixel spawned, with
 //! what each hit and what it added to the pixel. The tree is recorded by a
-//! [`TraceRecorder`] on [`Frame::sample`], the function the render itself
+//! [`TraceRecorder`] on [`RenderPlan::sample`], the function the render itself
 //! calls, with the same random numbers, so it is exactly the sample the
 //! image holds.
 
@@ -12,7 +12,7 @@ use crate::stats::Counters;
 use crate::world::Surface;
 
 use super::trace::{RayKind, ShadowSample, SurfaceHit, TraceRecorder};
-use super::{Frame, Tracer};
+use super::{RenderPlan, Tracer};
 
 /// One sample's rays, parents before their children.
 #[derive(Debug, Clone, PartialEq)]
@@ -112,7 +112,7 @@ pub struct Occluder {
     pub object_position: Option<(u32, u32)>,
 }
 
-impl Frame {
+impl RenderPlan {
     /// Records the ray tree of sample `sample` of pixel `(x, y)`: the same
     /// rays, random numbers and colour as the render's. `None` outside the
     /// image.
@@ -348,7 +348,7 @@ f 1 1 1 0.1 1 100 0.9 1.5
 s 2.5 0 1 1
 ";
 
-    fn frame(accel: AccelKind) -> Frame {
+    fn frame(accel: AccelKind) -> RenderPlan {
         let scene = parse_scene(SCENE, None, &Limits::default()).unwrap();
         let world = Arc::new(World::build(&scene));
         let index = Arc::new(SceneIndex::build(&world.shapes, accel, 2.0));
@@ -358,7 +358,7 @@ s 2.5 0 1 1
             accel,
             ..RenderSettings::default()
         };
-        Frame::new(world, index, settings).unwrap()
+        RenderPlan::new(world, index, settings).unwrap()
     }
 
     fn hit_object(node: &RayNode) -> Option<u32> {
@@ -527,7 +527,7 @@ s 2.5 0 1 1
             light_size: 3.0,
             ..RenderSettings::default()
         };
-        let frame = Frame::new(world.clone(), index.clone(), settings.clone()).unwrap();
+        let frame = RenderPlan::new(world.clone(), index.clone(), settings.clone()).unwrap();
         let (film, _) = render(world, index, settings, Some(1)).unwrap();
         for (x, y) in [(20, 20), (34, 20), (10, 35)] {
             let trees: Vec<RayTree> = (0..4).map(|k| frame.inspect(x, y, k).unwrap()).collect();

@@ -541,7 +541,7 @@ mod tests {
 
     use super::*;
     use crate::accel::{AccelKind, SceneIndex};
-    use crate::render::{Frame, JobOptions, RenderJob, RenderSettings};
+    use crate::render::{JobOptions, RenderJob, RenderPlan, RenderSettings};
     use crate::scene::{Limits, parse_scene};
 
     /// A sphere of radius 1 at the origin, seen from 5 units away: the
@@ -737,7 +737,7 @@ s 0 0 0 1
         let scene = parse_scene(ONE_SPHERE, None, &Limits::default()).unwrap();
         let world = Arc::new(crate::world::World::build(&scene));
         let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
-        let frame = Frame::new(world, index, plain(9, 9)).unwrap();
+        let frame = RenderPlan::new(world, index, plain(9, 9)).unwrap();
         let tile = frame.tiles[0];
         let mut a = Counters::default();
         let mut b = Counters::default();

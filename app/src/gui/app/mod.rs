@@ -30,8 +30,8 @@ use super::panels::{central, stats, unfilled};
 use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
-use super::sides::{SideId, Sides, Wakes};
-use super::windows::{Tools, help};
+use super::sides::{RepaintWakers, SideId, Sides};
+use super::windows::{ToolsAndOverlays, help};
 use messages::Messages;
 use navigation::Navigation;
 use persisted::Session;
@@ -42,7 +42,7 @@ pub struct WorkbenchApp {
     sides: Sides,
     comparison: Comparison,
     navigation: Navigation,
-    tools: Tools,
+    tools: ToolsAndOverlays,
     session: Session,
     scene_list: SceneList,
     messages: Messages,
@@ -85,13 +85,13 @@ impl WorkbenchApp {
     ) -> Self {
         let (controls, session, progress) = persisted::restore(storage);
         let pacing = Pacing::default();
-        let wakes = Wakes::of(ctx, &pacing.progress_pace);
+        let wakes = RepaintWakers::of(ctx, &pacing.progress_pace);
         let mut app = Self {
             observer: Observer::new(&wakes),
             sides: Sides::new(controls, wakes, clock.clone()),
             comparison: Comparison::default(),
             navigation: Navigation::default(),
-            tools: Tools::default(),
+            tools: ToolsAndOverlays::default(),
             session,
             scene_list: SceneList::new(clock.clone()),
             messages: Messages::new(clock.clone()),

@@ -8,7 +8,7 @@ use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
 use tracer::render::RenderSettings;
 
-use crate::gui::lessons::Progress;
+use crate::gui::lessons::StepsDone;
 use crate::gui::sides::Controls;
 use crate::load::SceneSource;
 
@@ -54,7 +54,7 @@ struct Saved {
     recent: Vec<PathBuf>,
     show_stats: bool,
     /// The lesson steps done, per lesson.
-    lessons: Progress,
+    lessons: StepsDone,
 }
 
 impl Default for Saved {
@@ -65,14 +65,14 @@ impl Default for Saved {
             last_scene: session.last_scene,
             recent: session.recent,
             show_stats: session.show_stats,
-            lessons: Progress::new(),
+            lessons: StepsDone::new(),
         }
     }
 }
 
 /// The controls, session and lesson progress `storage` holds, or the
 /// defaults.
-pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Progress) {
+pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, StepsDone) {
     let saved = storage
         .and_then(|s| s.get_string(eframe::APP_KEY))
         .and_then(|text| read(&text));
@@ -86,7 +86,7 @@ pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Pro
             },
             saved.lessons,
         ),
-        None => (Controls::default(), Session::default(), Progress::new()),
+        None => (Controls::default(), Session::default(), StepsDone::new()),
     }
 }
 
@@ -95,7 +95,7 @@ pub fn save(
     storage: &mut dyn eframe::Storage,
     controls: &Controls,
     session: &Session,
-    progress: &Progress,
+    progress: &StepsDone,
 ) {
     let saved = Saved {
         controls: controls.clone(),
@@ -154,7 +154,7 @@ mod tests {
             last_scene: Some(SceneSource::Bundled("glass".into())),
             recent: session.recent.clone(),
             show_stats: false,
-            lessons: Progress::from([("camera".to_string(), [0, 2].into())]),
+            lessons: StepsDone::from([("camera".to_string(), [0, 2].into())]),
         };
         let back = read(&ron::to_string(&saved).unwrap()).unwrap();
         assert_eq!(back.lessons, saved.lessons);

@@ -178,7 +178,7 @@ mod tests {
     use crate::gui::comparison::ReferenceImage;
     use crate::gui::platform::clock::Clock;
     use crate::gui::platform::frame_meter::ProgressPace;
-    use crate::gui::sides::{Controls, Sides, Wakes};
+    use crate::gui::sides::{Controls, RepaintWakers, Sides};
     use crate::load::SceneSource;
 
     fn wait_until(done: impl FnMut() -> bool) {
@@ -190,7 +190,7 @@ mod tests {
     fn rendered_a(ctx: &egui::Context) -> Sides {
         let mut sides = Sides::new(
             Controls::default(),
-            Wakes::of(ctx, &ProgressPace::default()),
+            RepaintWakers::of(ctx, &ProgressPace::default()),
             Clock::stopped(),
         );
         let a = &mut sides.a;

@@ -3,7 +3,7 @@
 
 use egui::{Color32, Pos2, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
-use tracer::render::{Frame, Outcome, RayKind, RayNode, RayTree};
+use tracer::render::{Outcome, RayKind, RayNode, RayTree, RenderPlan};
 
 use crate::gui::sides::Engine;
 
@@ -16,7 +16,7 @@ pub fn paint(ui: &Ui, tree: &RayTree, engine: &Engine, image_rect: Rect) -> usiz
     let (Some(settings), Some(scene)) = (engine.settings(), engine.scene()) else {
         return 0;
     };
-    let Ok(camera) = Frame::camera(&scene.world, settings) else {
+    let Ok(camera) = RenderPlan::camera(&scene.world, settings) else {
         return 0;
     };
     let size = egui::vec2(settings.width as f32, settings.height as f32);

@@ -14,7 +14,7 @@ use crate::lessons::{self, Lesson, LessonState, Verdict};
 pub use panel::show;
 
 /// The steps done, per lesson name: what persists across restarts.
-pub type Progress = BTreeMap<String, BTreeSet<usize>>;
+pub type StepsDone = BTreeMap<String, BTreeSet<usize>>;
 
 /// The Lessons panel.
 pub struct Lessons {
@@ -33,7 +33,7 @@ pub struct Lessons {
     /// What the verdict was evaluated on, to evaluate again only on change.
     evaluated: Option<u64>,
     pending: Option<(u64, Receiver<Verdict>)>,
-    pub progress: Progress,
+    pub progress: StepsDone,
 }
 
 impl Default for Lessons {
@@ -54,7 +54,7 @@ impl Default for Lessons {
             verdict: None,
             evaluated: None,
             pending: None,
-            progress: Progress::new(),
+            progress: StepsDone::new(),
         }
     }
 }

@@ -10,7 +10,7 @@ mod paint;
 use std::sync::Arc;
 
 use tracer::camera::{Camera, CameraPose};
-use tracer::render::{Frame, JobState, RayTree, RenderSettings, View};
+use tracer::render::{JobState, RayTree, RenderPlan, RenderSettings, View};
 use tracer::world::World;
 
 use crate::figures::observer::{self, PixelPattern, RayFilter};
@@ -18,7 +18,7 @@ use crate::figures::projection::DepthMap;
 use crate::reports::ray_tree;
 
 use super::image::viewport::{Gesture, Placement, ViewportResponse};
-use super::sides::{Activity, Engine, LiveImage, Side, Version, Wakes};
+use super::sides::{Activity, Engine, LiveImage, RepaintWakers, Side, Version};
 
 pub use animation::Animation;
 pub use paint::paint;
@@ -76,7 +76,7 @@ pub struct Observer {
 type TreesKey = (Vec<(RenderSettings, usize)>, Vec<(u32, u32)>, u32);
 
 impl Observer {
-    pub fn new(wakes: &Wakes) -> Self {
+    pub fn new(wakes: &RepaintWakers) -> Self {
         let mut engine = wakes.engine();
         // The observer renders in the time the sides leave: it never slows
         // the render it explains.
@@ -122,7 +122,7 @@ impl Observer {
             camera: Some(self.pose?),
             ..self.engine.settings()?.clone()
         };
-        Frame::camera(world, &settings).ok()
+        RenderPlan::camera(world, &settings).ok()
     }
 
     /// The observer's engine (what it renders; picks read its pixels).
@@ -162,7 +162,7 @@ impl Observer {
         let pose = match self.pose {
             Some(pose) => pose,
             None => {
-                let camera = Frame::camera(&scene.world, target).map_err(|e| e.to_string())?;
+                let camera = RenderPlan::camera(&scene.world, target).map_err(|e| e.to_string())?;
                 *self.pose.insert(observer::framing(
                     &scene.world,
                     &camera,

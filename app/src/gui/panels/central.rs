@@ -12,7 +12,7 @@ use crate::gui::image::viewport::{self, Layers, Placement, SplitWith, ViewportRe
 use crate::gui::image::{pixel_views, ray_paths};
 use crate::gui::observer::{self, Observer, ObserverLayout};
 use crate::gui::sides::{Activity, Side, SideId, Sides};
-use crate::gui::windows::Tools;
+use crate::gui::windows::ToolsAndOverlays;
 
 /// Hold it to see B in the compare mode's flip view.
 const FLIP_KEY: egui::Key = egui::Key::X;
@@ -24,7 +24,7 @@ pub struct CentralView<'a> {
     pub sides: &'a Sides,
     pub comparison: &'a mut Comparison,
     pub placement: &'a mut Placement,
-    pub tools: &'a mut Tools,
+    pub tools: &'a mut ToolsAndOverlays,
     pub error: &'a mut Option<String>,
     /// The camera moves: the status line says the image is a preview.
     pub moving: bool,
@@ -148,7 +148,7 @@ fn show_observer(
     area: Rect,
     observer: &mut Observer,
     a: &Side,
-    tools: &mut Tools,
+    tools: &mut ToolsAndOverlays,
     edits_a: bool,
 ) -> Vec<Edit> {
     let size = observer
@@ -314,7 +314,11 @@ fn status_line(a: &Side, moving: bool) -> String {
 }
 
 /// The pixel under the cursor: its colour, or the view's raw value.
-fn pixel_readout(a: &Side, tools: &Tools, hovered: Option<(u32, u32)>) -> Option<String> {
+fn pixel_readout(
+    a: &Side,
+    tools: &ToolsAndOverlays,
+    hovered: Option<(u32, u32)>,
+) -> Option<String> {
     let (x, y) = hovered?;
     let s = a.image.shown()?;
     let i = (y as usize * s.width as usize + x as usize) * 4;

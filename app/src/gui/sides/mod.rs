@@ -16,12 +16,13 @@ use tracer::render::{RenderSettings, View, ViewHeatmap};
 use tracer::scene::edit::{Edit, Effect};
 
 pub use controls::Controls;
-pub use engine::{Activity, Engine, LoadedScene, Version, Wake};
+pub use engine::{Activity, Engine, Version, Wake};
 pub use history::History;
 pub use live_image::LiveImage;
 
 use super::platform::clock::Clock;
 use super::platform::frame_meter::ProgressPace;
+use crate::load::Loaded;
 
 /// Which side.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,18 +43,18 @@ impl SideId {
 /// How render threads wake the window: at the progress pace, or at once
 /// for a render's last pass.
 #[derive(Clone)]
-pub struct Wakes {
+pub struct RepaintWakers {
     paced: Wake,
     now: Wake,
 }
 
-impl Wakes {
+impl RepaintWakers {
     /// An engine that wakes the window so.
     pub fn engine(&self) -> Engine {
         Engine::with_wakes(self.paced.clone(), self.now.clone())
     }
 
-    /// Wakes that redraw `ctx` at `pace` (and at once for last passes).
+    /// Wakers that redraw `ctx` at `pace` (and at once for last passes).
     pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
         let (paced_ctx, now_ctx, pace) = (ctx.clone(), ctx.clone(), pace.clone());
         Self {
@@ -85,7 +86,7 @@ struct Plan {
 }
 
 impl Side {
-    fn new(id: SideId, controls: Controls, wakes: &Wakes, clock: &Clock) -> Self {
+    fn new(id: SideId, controls: Controls, wakes: &RepaintWakers, clock: &Clock) -> Self {
         Self {
             id,
             engine: wakes.engine(),
@@ -150,7 +151,7 @@ impl Side {
         }
         // Field by field: `..loaded.clone()` would copy the whole scene
         // document a second time only to drop it.
-        let edited = LoadedScene {
+        let edited = Loaded {
             source: loaded.source.clone(),
             scene,
             world: Arc::new(world),
@@ -217,14 +218,14 @@ pub struct Sides {
     /// Opening a scene adopts its settings; restoring the last session
     /// keeps the saved ones.
     pub adopt_loaded_scene: bool,
-    wakes: Wakes,
+    wakes: RepaintWakers,
     /// Times the merging of edits into undo steps.
     clock: Clock,
 }
 
 impl Sides {
     /// Side A alone, with `controls`.
-    pub fn new(controls: Controls, wakes: Wakes, clock: Clock) -> Self {
+    pub fn new(controls: Controls, wakes: RepaintWakers, clock: Clock) -> Self {
         Self {
             a: Side::new(SideId::A, controls, &wakes, &clock),
             b: None,
@@ -304,7 +305,7 @@ impl Sides {
     }
 
     /// A opened `scene`: B shows it too, and neither has edits.
-    pub fn follow_scene(&mut self, scene: &LoadedScene) {
+    pub fn follow_scene(&mut self, scene: &Loaded) {
         self.a.history.reset();
         if let Some(b) = &mut self.b {
             b.engine.show(scene.clone());

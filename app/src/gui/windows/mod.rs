@@ -20,7 +20,7 @@ use super::image::structure_overlay::StructureOverlay;
 
 /// The tools a user opens beside the render, and what they draw over it.
 #[derive(Default)]
-pub struct Tools {
+pub struct ToolsAndOverlays {
     pub bench: BenchWindow,
     pub studies: StudiesWindow,
     /// Export report...: the lab report measured in the background.

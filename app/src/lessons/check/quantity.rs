@@ -10,7 +10,7 @@ use std::sync::Arc;
 use serde::Deserialize;
 use tracer::accel::{AccelKind, SceneIndex};
 use tracer::geometry::Ray;
-use tracer::render::{Frame, Outcome, RayKind, RayTree, View};
+use tracer::render::{Outcome, RayKind, RayTree, RenderPlan, View};
 use tracer::scene::{Primitive, Scene};
 
 use crate::reports::ray_tree;
@@ -308,7 +308,7 @@ impl Quantity {
                     side.settings.accel,
                     side.settings.grid_multiplier,
                 );
-                let hither = Frame::camera(&side.world, &side.settings)
+                let hither = RenderPlan::camera(&side.world, &side.settings)
                     .map_err(|e| e.to_string())?
                     .hither();
                 let ray = Ray::new(eye.origin, eye.dir);

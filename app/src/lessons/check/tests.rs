@@ -8,7 +8,7 @@ use tracer::scene::{Limits, parse_scene};
 
 use super::*;
 use crate::lessons::state::{LessonState, SideState};
-use crate::load::{self, SceneSource};
+use crate::load::{self, Loaded, SceneSource};
 
 /// A triangle at z = 0 facing a camera on the z axis, a light above and
 /// in front, and a small sphere on the segment from the triangle's centre
@@ -235,8 +235,8 @@ fn a_picked_answer_must_be_one_of_the_choices() {
 /// The bundled ten-sphere flake at 24 x 24: enough objects for structures
 /// to matter.
 fn balls() -> LessonState {
-    let (scene, world) = load::load_source(&SceneSource::Bundled("balls_low".into())).unwrap();
-    let mut state = LessonState::new(scene, Arc::new(world));
+    let loaded = Loaded::read(SceneSource::Bundled("balls_low".into()), &[], &mut |_| {}).unwrap();
+    let mut state = LessonState::new(loaded.scene, loaded.world);
     state.a.settings.width = 24;
     state.a.settings.height = 24;
     state

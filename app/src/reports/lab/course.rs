@@ -5,19 +5,19 @@ use tracer::accel::AccelKind;
 
 use super::html::{escape, table, titled_section};
 use super::{Lab, ms};
-use crate::measure::benchmark::Sampling;
+use crate::measure::benchmark::SamplingColumn;
 
 /// One row of the course's timing table.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CourseRow {
     pub grid: bool,
     pub soft_shadows: bool,
-    pub sampling: Sampling,
+    pub sampling: SamplingColumn,
     /// The reported time, in seconds (the report writes "≅ 1.03s").
     pub seconds: f64,
 }
 
-const fn row(grid: bool, soft_shadows: bool, sampling: Sampling, seconds: f64) -> CourseRow {
+const fn row(grid: bool, soft_shadows: bool, sampling: SamplingColumn, seconds: f64) -> CourseRow {
     CourseRow {
         grid,
         soft_shadows,
@@ -37,18 +37,18 @@ pub const COURSE_CITATION: &str = "P. Rodrigues, M. Duarte, Y. Cheng, \"3D Progr
 /// one sample, anti-aliasing, anti-aliasing with depth of field. See
 /// [`COURSE_CITATION`].
 pub const COURSE_TIMES: [CourseRow; 12] = [
-    row(false, false, Sampling::Single, 1.03),
-    row(false, false, Sampling::Antialiasing, 14.45),
-    row(false, false, Sampling::AntialiasingDof, 14.82),
-    row(false, true, Sampling::Single, 2.23),
-    row(false, true, Sampling::Antialiasing, 16.51),
-    row(false, true, Sampling::AntialiasingDof, 16.84),
-    row(true, false, Sampling::Single, 0.77),
-    row(true, false, Sampling::Antialiasing, 12.01),
-    row(true, false, Sampling::AntialiasingDof, 12.20),
-    row(true, true, Sampling::Single, 1.75),
-    row(true, true, Sampling::Antialiasing, 14.50),
-    row(true, true, Sampling::AntialiasingDof, 13.99),
+    row(false, false, SamplingColumn::Single, 1.03),
+    row(false, false, SamplingColumn::Antialiasing, 14.45),
+    row(false, false, SamplingColumn::AntialiasingDof, 14.82),
+    row(false, true, SamplingColumn::Single, 2.23),
+    row(false, true, SamplingColumn::Antialiasing, 16.51),
+    row(false, true, SamplingColumn::AntialiasingDof, 16.84),
+    row(true, false, SamplingColumn::Single, 0.77),
+    row(true, false, SamplingColumn::Antialiasing, 12.01),
+    row(true, false, SamplingColumn::AntialiasingDof, 12.20),
+    row(true, true, SamplingColumn::Single, 1.75),
+    row(true, true, SamplingColumn::Antialiasing, 14.50),
+    row(true, true, SamplingColumn::AntialiasingDof, 13.99),
 ];
 
 /// The course's scene, by file name.
@@ -62,11 +62,11 @@ pub fn is_course_scene(scene_name: &str) -> bool {
         .is_some_and(|s| s.eq_ignore_ascii_case(COURSE_SCENE))
 }
 
-fn sampling_words(s: Sampling) -> &'static str {
+fn sampling_words(s: SamplingColumn) -> &'static str {
     match s {
-        Sampling::Single => "one sample",
-        Sampling::Antialiasing => "AA",
-        Sampling::AntialiasingDof => "AA + DOF",
+        SamplingColumn::Single => "one sample",
+        SamplingColumn::Antialiasing => "AA",
+        SamplingColumn::AntialiasingDof => "AA + DOF",
     }
 }
 
@@ -149,11 +149,15 @@ mod tests {
             &[AccelKind::None, AccelKind::Grid],
             tracer::render::Encoding::Linear,
         );
-        let ours: Vec<(bool, bool, Sampling)> = matrix
+        let ours: Vec<(bool, bool, SamplingColumn)> = matrix
             .iter()
             .map(|c| {
                 let s = &c.settings;
-                (s.accel == AccelKind::Grid, s.soft_shadows, Sampling::of(s))
+                (
+                    s.accel == AccelKind::Grid,
+                    s.soft_shadows,
+                    SamplingColumn::of(s),
+                )
             })
             .collect();
         let course: Vec<_> = COURSE_TIMES

@@ -25,7 +25,7 @@ use tracer::scene::Scene;
 use tracer::world::World;
 
 use crate::measure::benchmark::{
-    self, Case, Event, Measurement, RunOptions, Sampling, Stop, Structures,
+    self, Case, Event, Measurement, RunOptions, SamplingColumn, Stop, Structures,
 };
 use crate::measure::study::{self, Param, Study, StudyEvent, StudyOutcome, Subject, values};
 use crate::reports::bench_table::{self, Columns, Format};
@@ -151,10 +151,15 @@ pub struct Lab {
 impl Lab {
     /// The timing matrix's row of `accel` with or without soft shadows,
     /// sampled as `sampling`.
-    pub fn row(&self, accel: AccelKind, soft: bool, sampling: Sampling) -> Option<&Measurement> {
+    pub fn row(
+        &self,
+        accel: AccelKind,
+        soft: bool,
+        sampling: SamplingColumn,
+    ) -> Option<&Measurement> {
         self.matrix.iter().find(|m| {
             let s = &m.case.settings;
-            s.accel == accel && s.soft_shadows == soft && Sampling::of(s) == sampling
+            s.accel == accel && s.soft_shadows == soft && SamplingColumn::of(s) == sampling
         })
     }
 }
@@ -462,14 +467,9 @@ fn opaque_world(request: &Request) -> Result<Option<Arc<World>>> {
     if lines.is_empty() {
         return Ok(None);
     }
-    let loaded = crate::load::Loaded {
-        scene: (**scene).clone(),
-        world: request.world.clone(),
-    };
-    let (opaque, _) = loaded
-        .edited(&lines)
+    let (_, opaque, _) = crate::load::with_edits(scene, &request.world, &lines)
         .context("the scene without refraction")?;
-    Ok(Some(opaque.world))
+    Ok(Some(opaque))
 }
 
 /// The page: the seven sections in the course report's order.

@@ -10,7 +10,7 @@ use tracer::accel::AccelKind;
 use super::html::{escape, figure, image, table, titled_section};
 use super::svg::{Series, line_chart};
 use super::{Lab, ms};
-use crate::measure::benchmark::{Measurement, Sampling};
+use crate::measure::benchmark::{Measurement, SamplingColumn};
 
 /// Side of the crop, in pixels of the image, before magnifying.
 const CROP: u32 = 24;
@@ -60,11 +60,11 @@ fn shown(m: &Measurement, what: &str) -> Result<String> {
 pub fn section(lab: &Lab) -> Result<String> {
     let row = |soft, sampling| lab.row(AccelKind::Bvh, soft, sampling);
     let (Some(plain), Some(aa), Some(dof), Some(soft), Some(soft_aa)) = (
-        row(false, Sampling::Single),
-        row(false, Sampling::Antialiasing),
-        row(false, Sampling::AntialiasingDof),
-        row(true, Sampling::Single),
-        row(true, Sampling::Antialiasing),
+        row(false, SamplingColumn::Single),
+        row(false, SamplingColumn::Antialiasing),
+        row(false, SamplingColumn::AntialiasingDof),
+        row(true, SamplingColumn::Single),
+        row(true, SamplingColumn::Antialiasing),
     ) else {
         bail!("the timing matrix lacks a BVH row");
     };

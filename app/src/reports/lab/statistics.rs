@@ -8,7 +8,7 @@ use tracer::accel::AccelKind;
 
 use super::Lab;
 use super::html::{escape, titled_section};
-use crate::measure::benchmark::{Measurement, Sampling};
+use crate::measure::benchmark::{Measurement, SamplingColumn};
 
 fn percent(part: f64, whole: f64) -> String {
     if whole > 0.0 {
@@ -19,7 +19,7 @@ fn percent(part: f64, whole: f64) -> String {
 }
 
 /// One configuration's block.
-fn block(lab: &Lab, soft: bool, sampling: Sampling) -> Option<String> {
+fn block(lab: &Lab, soft: bool, sampling: SamplingColumn) -> Option<String> {
     let bvh = lab.row(AccelKind::Bvh, soft, sampling)?;
     let views = lab
         .views
@@ -88,16 +88,18 @@ fn block(lab: &Lab, soft: bool, sampling: Sampling) -> Option<String> {
 
 fn same_configuration(a: &Measurement, b: &Measurement) -> bool {
     let (s, t) = (&a.case.settings, &b.case.settings);
-    s.accel == t.accel && s.soft_shadows == t.soft_shadows && Sampling::of(s) == Sampling::of(t)
+    s.accel == t.accel
+        && s.soft_shadows == t.soft_shadows
+        && SamplingColumn::of(s) == SamplingColumn::of(t)
 }
 
 pub fn section(lab: &Lab) -> String {
     let mut text = String::new();
     for soft in [false, true] {
         for sampling in [
-            Sampling::Single,
-            Sampling::Antialiasing,
-            Sampling::AntialiasingDof,
+            SamplingColumn::Single,
+            SamplingColumn::Antialiasing,
+            SamplingColumn::AntialiasingDof,
         ] {
             match block(lab, soft, sampling) {
                 Some(b) => text += &(b + "\n"),

@@ -6,7 +6,7 @@ use glam::Vec3A;
 use super::{index, world};
 use crate::accel::AccelKind;
 use crate::geometry::Ray;
-use crate::render::{Frame, RayKind, RenderSettings, TraceRecorder, Tracer};
+use crate::render::{RenderPlan, RayKind, RenderSettings, TraceRecorder, Tracer};
 use crate::stats::Counters;
 
 /// Keeps the eye ray of a traced sample.
@@ -37,7 +37,7 @@ fn each_round_of_passes_visits_every_stratum_of_every_pixel_once() {
             keep_refining: true,
             ..RenderSettings::default()
         };
-        let frame = Frame::new(w.clone(), idx.clone(), settings.clone()).unwrap();
+        let frame = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
         let tracer = Tracer::new(&w, &idx, &settings);
         let count = n * n;
         assert_eq!(frame.passes_target(), count);

@@ -7,7 +7,7 @@ use super::{index, world};
 use crate::accel::AccelKind;
 use crate::render::adaptive;
 use crate::render::{
-    AdaptiveSampling, Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, Sampling,
+    AdaptiveSampling, Film, RenderPlan, JobOptions, JobState, RenderJob, RenderSettings, Sampling,
     render,
 };
 use crate::stats::Counters;
@@ -98,7 +98,7 @@ fn the_image_is_the_same_whatever_the_thread_count() {
 }
 
 /// The adaptive passes run by hand, one tile after another on this thread.
-fn sequential(frame: &Frame) -> Film {
+fn sequential(frame: &RenderPlan) -> Film {
     let a = *frame.settings.adaptive().expect("adaptive settings");
     let mut film = Film::with_error_estimate(frame.settings.width, frame.settings.height);
     let mut counters = Counters::default();
@@ -126,7 +126,7 @@ fn progressive_passes_equal_a_sequential_render() {
     let settings = adaptive(0.02, 4, 49);
     let w = world(SCENE);
     let idx = index(&w, AccelKind::Bvh);
-    let frame = Frame::new(w.clone(), idx.clone(), settings.clone()).unwrap();
+    let frame = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
     let job = RenderJob::start(
         w,
         Some(idx),

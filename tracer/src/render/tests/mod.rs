@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use glam::Vec3A;
 
-use super::{Encoding, Film, Frame, JobOptions, JobState, RenderJob, RenderSettings, render};
+use super::{Encoding, Film, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, render};
 use crate::accel::{AccelKind, SceneIndex};
 use crate::scene::{Limits, parse_scene};
 use crate::stats::Counters;
@@ -58,7 +58,7 @@ fn settings(width: u32, height: u32) -> RenderSettings {
 }
 
 /// The plan executed by hand, one tile after another on this thread.
-fn sequential(frame: &Frame) -> Film {
+fn sequential(frame: &RenderPlan) -> Film {
     let mut film = Film::new(frame.settings.width, frame.settings.height);
     let mut counters = Counters::default();
     for pass in 0..frame.passes_target() {
@@ -74,7 +74,7 @@ fn progressive_passes_equal_a_sequential_render_bit_for_bit() {
     let w = world(SCENE);
     let idx = index(&w, AccelKind::Bvh);
     let s = settings(70, 45);
-    let frame = Frame::new(w.clone(), idx.clone(), s.clone()).unwrap();
+    let frame = RenderPlan::new(w.clone(), idx.clone(), s.clone()).unwrap();
     assert_eq!(frame.passes_target(), 9);
     let expected = sequential(&frame);
     for threads in [1, 2] {

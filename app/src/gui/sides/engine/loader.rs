@@ -4,29 +4,15 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
-use std::time::{Duration, Instant};
 
-use tracer::scene::Scene;
-use tracer::world::World;
-
-use crate::load::{SceneSource, load_source_with_progress};
+use crate::load::{Loaded, SceneSource};
 
 use super::Wake;
-
-/// A scene ready to render, with where it came from.
-#[derive(Clone)]
-pub struct LoadedScene {
-    pub source: SceneSource,
-    pub scene: Scene,
-    pub world: Arc<World>,
-    /// How long parsing and preparing took.
-    pub load_time: Duration,
-}
 
 /// A scene being loaded on its thread.
 pub(super) struct SceneLoad {
     pub label: String,
-    result: Receiver<Result<LoadedScene, String>>,
+    result: Receiver<Result<Loaded, String>>,
     /// Thousandths of a mesh file read so far, or [`NO_FRACTION`].
     per_mille: Arc<AtomicU32>,
 }
@@ -45,20 +31,13 @@ impl SceneLoad {
         let spawned = std::thread::Builder::new()
             .name("scene-loader".into())
             .spawn(move || {
-                let start = Instant::now();
                 let mut on_progress = |p: tracer::mesh_io::LoadProgress| {
                     let fraction = p.bytes_read as f64 / p.total_bytes.max(1) as f64;
                     progress.store((fraction.min(1.0) * 1000.0) as u32, Ordering::Relaxed);
                     wake();
                 };
-                let result = load_source_with_progress(&source, &mut on_progress)
-                    .map(|(scene, world)| LoadedScene {
-                        source,
-                        scene,
-                        world: Arc::new(world),
-                        load_time: start.elapsed(),
-                    })
-                    .map_err(|e| format!("{e:#}"));
+                let result =
+                    Loaded::read(source, &[], &mut on_progress).map_err(|e| format!("{e:#}"));
                 let _ = tx.send(result);
                 wake();
             });
@@ -78,7 +57,7 @@ impl SceneLoad {
     }
 
     /// The loaded scene or why it failed, once the thread is done.
-    pub fn poll(&self) -> Option<Result<LoadedScene, String>> {
+    pub fn poll(&self) -> Option<Result<Loaded, String>> {
         match self.result.try_recv() {
             Err(TryRecvError::Empty) => None,
             Err(TryRecvError::Disconnected) => {

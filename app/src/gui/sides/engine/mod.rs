@@ -9,7 +9,7 @@ use tracer::accel::SceneIndex;
 use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings, adaptive};
 use tracer::world::ShapeChange;
 
-use crate::load::SceneSource;
+use crate::load::{Loaded, SceneSource};
 
 use crate::gui::platform::cpu_clock::count_render_thread_cpu;
 
@@ -35,7 +35,7 @@ pub enum Activity {
 
 /// Owns the current scene and its render job.
 pub struct Engine {
-    scene: Option<LoadedScene>,
+    scene: Option<Loaded>,
     job: Option<RenderJob>,
     /// Settings of the current job, to decide what a change restarts.
     settings: Option<RenderSettings>,
@@ -110,7 +110,7 @@ impl Engine {
 
     /// Takes a finished load, if any: `Some(Ok(scene))`, now the current
     /// scene, or `Some(Err(message))` when it failed.
-    pub fn poll_load(&mut self) -> Option<Result<&LoadedScene, String>> {
+    pub fn poll_load(&mut self) -> Option<Result<&Loaded, String>> {
         let result = self.loading.as_ref()?.poll()?;
         self.loading = None;
         match result {
@@ -124,7 +124,7 @@ impl Engine {
 
     /// Makes `scene` the current scene (loaded elsewhere, e.g. by the
     /// other side of a comparison); nothing renders until asked.
-    pub fn show(&mut self, scene: LoadedScene) {
+    pub fn show(&mut self, scene: Loaded) {
         self.retire_job();
         self.index = None;
         self.settings = None;
@@ -138,7 +138,7 @@ impl Engine {
     /// says moved in place ([`SceneIndex::refit`]: no Building phase; on
     /// this thread, as a refit costs a fraction of a build), and built anew by
     /// the next job when the refit refuses or the shapes were renumbered.
-    pub fn edit_scene(&mut self, scene: LoadedScene, shapes: ShapeChange) {
+    pub fn edit_scene(&mut self, scene: Loaded, shapes: ShapeChange) {
         let index = self.index();
         let index = match shapes {
             ShapeChange::None => index,
@@ -160,7 +160,7 @@ impl Engine {
         }
     }
 
-    pub fn scene(&self) -> Option<&LoadedScene> {
+    pub fn scene(&self) -> Option<&Loaded> {
         self.scene.as_ref()
     }
 
@@ -366,5 +366,3 @@ mod loader;
 mod outputs;
 #[cfg(test)]
 mod tests;
-
-pub use loader::LoadedScene;

@@ -178,14 +178,14 @@ fn new_settings_wait_for_the_structure_being_built_instead_of_building_another()
 
 /// `text` applied to the engine's scene and world, as `Side::apply` does:
 /// the edited scene and which shapes changed.
-fn edited(engine: &Engine, text: &str) -> (LoadedScene, ShapeChange) {
+fn edited(engine: &Engine, text: &str) -> (Loaded, ShapeChange) {
     let loaded = engine.scene().expect("a scene");
     let mut scene = loaded.scene.clone();
     let edit = tracer::scene::edit::Edit::parse_in(text, &scene).unwrap();
     edit.apply(&mut scene).unwrap();
     let mut world = (*loaded.world).clone();
     let change = world.update_shapes(&scene, &edit);
-    let loaded = LoadedScene {
+    let loaded = Loaded {
         scene,
         world: Arc::new(world),
         ..loaded.clone()

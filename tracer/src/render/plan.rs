@@ -24,7 +24,7 @@ use super::{RenderSettings, Tile, Tracer};
 pub const TILE_SIZE: u32 = 32;
 
 /// A render's plan, shared by the threads that execute it.
-pub struct Frame {
+pub struct RenderPlan {
     pub world: Arc<World>,
     pub index: Arc<SceneIndex>,
     pub settings: RenderSettings,
@@ -37,7 +37,7 @@ pub struct Frame {
     adaptive_order: Option<RoundOrder>,
 }
 
-impl Frame {
+impl RenderPlan {
     pub fn new(
         world: Arc<World>,
         index: Arc<SceneIndex>,
@@ -140,7 +140,7 @@ impl Frame {
     /// A row's eye rays are made first, then traced: made one before each
     /// trace, each ray's square root and divisions waited alone; in a loop
     /// of their own the processor overlaps them across pixels. The rays
-    /// and their random numbers are [`Frame::sample`]'s.
+    /// and their random numbers are [`RenderPlan::sample`]'s.
     pub fn render_tile(&self, pass: u32, tile: &Tile, counters: &mut Counters) -> Vec<Vec3A> {
         let tracer = Tracer::new(&self.world, &self.index, &self.settings);
         let mut values = Vec::with_capacity(tile.pixel_count());
@@ -160,7 +160,7 @@ impl Frame {
         values
     }
 
-    /// [`Frame::render_tile`] that also measures what each pixel's sample
+    /// [`RenderPlan::render_tile`] that also measures what each pixel's sample
     /// cost and saw, for the views: the same samples, traced by the same
     /// code, so the image is identical bit for bit.
     pub fn render_tile_with_views(
@@ -260,7 +260,7 @@ mod tests {
 
     /// The frame of scene `text` on a BVH, with `settings` over the
     /// scene's own.
-    fn frame_of(text: &str, settings: impl FnOnce(RenderSettings) -> RenderSettings) -> Frame {
+    fn frame_of(text: &str, settings: impl FnOnce(RenderSettings) -> RenderSettings) -> RenderPlan {
         let scene = parse_scene(text, None, &Limits::default()).unwrap();
         let world = Arc::new(World::build(&scene));
         let index = Arc::new(crate::accel::SceneIndex::build(
@@ -269,7 +269,7 @@ mod tests {
             2.0,
         ));
         let settings = settings(RenderSettings::from_scene(&scene));
-        Frame::new(world, index, settings).unwrap()
+        RenderPlan::new(world, index, settings).unwrap()
     }
 
     fn film(text: &str, camera: Option<CameraPose>) -> Vec<Vec3A> {
