@@ -687,13 +687,14 @@ pub struct SettingsArgs {
     /// --noise-threshold; turns anti-aliasing on).
     #[arg(long, value_enum, value_name = "MODE")]
     pub sampling: Option<SamplingMode>,
-    /// Adaptive sampling: a pixel stops once the standard error of its
-    /// mean is below T, in display units 0..1 (default 0.01, 2.55 levels
-    /// of 255; 0 takes --max-spp everywhere). Implies --sampling adaptive.
+    /// Adaptive sampling: a pixel stops once its error estimate (its last
+    /// pass's mean against the mean before it) is below T, in display
+    /// units 0..1 (default 0.01, 2.55 levels of 255; 0 takes --max-spp
+    /// everywhere). Implies --sampling adaptive.
     #[arg(long, value_name = "T")]
     pub noise_threshold: Option<f32>,
     /// Adaptive sampling: samples every pixel takes first (default N^2/4,
-    /// at least 8). Implies --sampling adaptive.
+    /// at least 4). Implies --sampling adaptive.
     #[arg(long, value_name = "M")]
     pub min_spp: Option<u32>,
     /// Adaptive sampling: samples no pixel exceeds (default (2N)^2).

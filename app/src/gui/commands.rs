@@ -137,7 +137,7 @@ impl Command {
                 "Write the linear float film, before clamping and encoding, to an OpenEXR file"
             }
             Command::Open => {
-                "Open a scene (.p3f, .nff) or a mesh (.obj, .ply); you can also drop one on the window"
+                "Open a scene (.p3f, .nff), a mesh (.obj, .ply) or a lesson (.toml); you can also drop one on the window"
             }
             Command::Reload => "Read the current scene file again",
             Command::ResetCamera => "Back to the scene file's camera",

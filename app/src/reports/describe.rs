@@ -219,7 +219,7 @@ mod tests {
                 ..adaptive.clone()
             },
         );
-        assert_eq!(detailed, "adaptive AA, threshold 0.02, 8 to 100 spp");
+        assert_eq!(detailed, "adaptive AA, threshold 0.02, 6 to 100 spp");
     }
 
     #[test]

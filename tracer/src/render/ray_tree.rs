@@ -454,7 +454,7 @@ s 2.5 0 1 1
             shadows: false,
             ..shadowed.settings.clone()
         };
-        let frame = Frame::new(shadowed.world, shadowed.index, settings).unwrap();
+        let frame = RenderPlan::new(shadowed.world, shadowed.index, settings).unwrap();
         let (film, _) = render(
             frame.world.clone(),
             frame.index.clone(),

@@ -14,11 +14,12 @@ use tracer::render::{RenderSettings, View};
 use super::WorkbenchApp;
 use crate::gui::comparison::Comparison;
 use crate::gui::lessons;
-use crate::gui::sides::{Controls, LoadedScene, Side, Sides};
+use crate::gui::sides::{Controls, Side, Sides};
 use crate::lessons::format::read_lesson_file;
 use crate::lessons::replay::{open_scene, state_at_step};
 use crate::lessons::state::Layout;
 use crate::lessons::{LessonState, SideState};
+use crate::load::Loaded;
 use crate::load::SceneSource;
 
 /// A step set up, waiting for its scene to load.
@@ -137,7 +138,7 @@ impl WorkbenchApp {
             if !Arc::ptr_eq(&b.world, &state.a.world)
                 && let Some(shown) = side.engine.scene()
             {
-                let scene = LoadedScene {
+                let scene = Loaded {
                     source: shown.source.clone(),
                     scene: b.scene.clone(),
                     world: b.world.clone(),

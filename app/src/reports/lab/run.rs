@@ -5,7 +5,7 @@ use tracer::accel::AccelKind;
 
 use super::html::{facts, titled_section};
 use super::{Lab, QUICK_RUNS, QUICK_SIDE};
-use crate::measure::benchmark::Sampling;
+use crate::measure::benchmark::SamplingColumn;
 use crate::reports::render_stats::describe_objects;
 
 fn triple(v: glam::Vec3) -> String {
@@ -39,7 +39,7 @@ pub fn section(lab: &Lab) -> String {
         ),
     ]);
     let lens = lab
-        .row(AccelKind::Bvh, false, Sampling::AntialiasingDof)
+        .row(AccelKind::Bvh, false, SamplingColumn::AntialiasingDof)
         .map_or(s.aperture, |m| m.case.settings.aperture);
     let camera = facts(&[
         ("from", triple(from)),

@@ -6,7 +6,7 @@ use glam::Vec3A;
 use super::{index, world};
 use crate::accel::AccelKind;
 use crate::geometry::Ray;
-use crate::render::{RenderPlan, RayKind, RenderSettings, TraceRecorder, Tracer};
+use crate::render::{RayKind, RenderPlan, RenderSettings, TraceRecorder, Tracer};
 use crate::stats::Counters;
 
 /// Keeps the eye ray of a traced sample.

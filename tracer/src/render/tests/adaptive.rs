@@ -7,7 +7,7 @@ use super::{index, world};
 use crate::accel::AccelKind;
 use crate::render::adaptive;
 use crate::render::{
-    AdaptiveSampling, Film, RenderPlan, JobOptions, JobState, RenderJob, RenderSettings, Sampling,
+    AdaptiveSampling, Film, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, Sampling,
     render,
 };
 use crate::stats::Counters;
@@ -152,7 +152,7 @@ fn progressive_passes_equal_a_sequential_render() {
     assert_eq!(summary.active_pixels, 0);
     assert_eq!(
         summary.samples,
-        counts(&film).iter().map(|&n| n as u64).sum()
+        counts(&film).iter().map(|&n| n as u64).sum::<u64>()
     );
     assert_eq!(summary.max_spp, *counts(&film).iter().max().unwrap());
     assert!(summary.error > 0.0 && summary.error < 0.02, "{summary:?}");
