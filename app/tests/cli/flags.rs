@@ -504,7 +504,7 @@ fn report_takes<'a>(flags: &[&'a str]) -> Vec<&'a str> {
 fn page_images(page: &str) -> Vec<Vec<u8>> {
     page.split("src=\"data:image/png;base64,")
         .skip(1)
-        .map(|rest| rest[..rest.find('"').unwrap()].as_bytes().to_vec())
+        .map(|rest| rest.as_bytes()[..rest.find('"').unwrap()].to_vec())
         .collect()
 }
 
