@@ -7,6 +7,7 @@
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -303,7 +304,11 @@ fn the_slow_brute_force_banner_switches_to_the_bvh() {
         "the file's choice"
     );
     // The scene list's counts widen the side panel when they arrive, which
-    // moves the banner: click once they are in and drawn.
+    // moves the banner: click once they are in and drawn. Counting starts
+    // now: by default it waits for the first render, this test's brute
+    // force over thousands of spheres, which on a loaded machine outlasted
+    // the wait (the window's clock is stopped, so the deadline never came).
+    harness.state_mut().set_catalog_delay(Duration::ZERO);
     wait_for(&mut harness, "the scene list's counts", |app| {
         app.is_catalog_complete()
     });
