@@ -299,5 +299,6 @@ pub fn json(tree: &RayTree) -> serde_json::Value {
         "sum_of_contributions": v(tree.contributions()),
         "nodes": nodes,
         "eye_visits": tree.eye_visits.iter().map(visit_json).collect::<Vec<_>>(),
+        "eye_tests": tree.eye_counters.intersection_tests,
     })
 }
