@@ -78,7 +78,7 @@ impl VisitStep {
     /// The visits of `visits` drawn at this step, each with its colour:
     /// the whole walk's yellow to red, so a visit keeps its colour as the
     /// steps go on, and [`CURRENT_VISIT`] for the step's own.
-    pub fn coloured<'a>(self, visits: &'a [Visit]) -> impl Iterator<Item = (&'a Visit, Colour)> {
+    pub fn coloured(self, visits: &[Visit]) -> impl Iterator<Item = (&Visit, Colour)> {
         let n = visits.len();
         let current = self.current(n);
         visits[..self.drawn(n)]
