@@ -302,3 +302,56 @@ pub fn json(tree: &RayTree) -> serde_json::Value {
         "eye_tests": tree.eye_counters.intersection_tests,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use tracer::geometry::Aabb;
+    use tracer::stats::Counters;
+
+    use super::*;
+
+    /// A tree whose eye ray walked cells testing `tested` objects each, its
+    /// query counting `planes` more after the walk.
+    fn walked(tested: &[u32], planes: u64) -> RayTree {
+        let bounds = Aabb::new(Vec3A::ZERO, Vec3A::ONE);
+        let eye_visits: Vec<Visit> = (0..)
+            .zip(tested)
+            .map(|(x, &tested)| Visit::Cell {
+                cell: [x, 0, 0],
+                bounds,
+                tested,
+            })
+            .collect();
+        let eye_counters = Counters {
+            intersection_tests: tested.iter().map(|&t| u64::from(t)).sum::<u64>() + planes,
+            ..Counters::default()
+        };
+        RayTree {
+            x: 0,
+            y: 0,
+            sample: 0,
+            colour: Vec3A::ZERO,
+            nodes: Vec::new(),
+            eye_visits,
+            eye_counters,
+        }
+    }
+
+    #[test]
+    fn a_step_counts_the_tests_so_far_and_the_end_the_querys() {
+        let tree = walked(&[0, 3, 2], 1);
+        let at = |step| step_tally(&tree, step, 93);
+        assert_eq!(
+            at(VisitStep::At(1)),
+            "so far: 3 primitives tested; brute force tests 93"
+        );
+        let end = "in all: 6 primitives (5 in the walk, 1 unbounded after it) tested; \
+                   brute force tests 93";
+        assert_eq!(at(VisitStep::At(2)), end);
+        assert_eq!(at(VisitStep::All), end);
+        assert_eq!(
+            step_tally(&walked(&[4], 0), VisitStep::All, 93),
+            "in all: 4 primitives tested; brute force tests 93"
+        );
+    }
+}
