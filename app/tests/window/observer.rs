@@ -240,7 +240,9 @@ fn stepping_the_eye_rays_walk_draws_it_in_the_observer_up_to_the_step() {
     });
     harness.run_steps(2);
     let all = harness.state().observer().segments_drawn;
-    harness.get_by_role_and_label(Role::Button, "Next").click();
+    harness
+        .get_by_role_and_label(Role::Button, "Next visit")
+        .click();
     harness.run_steps(2);
     let first = harness.state().observer().segments_drawn;
     assert!(

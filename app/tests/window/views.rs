@@ -347,9 +347,13 @@ fn the_eye_rays_grid_walk_steps_one_cell_at_a_time_with_its_tests() {
     harness.get_by_label(&format!("all {n} visits"));
 
     // Next twice: the first two cells drawn, the second the current one.
-    harness.get_by_role_and_label(Role::Button, "Next").click();
+    harness
+        .get_by_role_and_label(Role::Button, "Next visit")
+        .click();
     harness.run_steps(2);
-    harness.get_by_role_and_label(Role::Button, "Next").click();
+    harness
+        .get_by_role_and_label(Role::Button, "Next visit")
+        .click();
     wait_for(&mut harness, "two cells drawn", |app| {
         app.overlay().visits_drawn == 2
     });

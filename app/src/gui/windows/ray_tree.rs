@@ -178,7 +178,8 @@ fn show_tree(
         });
 }
 
-/// All, or a step through the `n` visits: Home, Back, Next, End.
+/// All, or a step through the `n` visits: Home, back, next, End (named
+/// apart from the Lessons window's Back and Next).
 fn step_controls(ui: &mut Ui, step: &mut VisitStep, n: usize) {
     let current = step.current(n);
     ui.horizontal(|ui| {
@@ -195,13 +196,13 @@ fn step_controls(ui: &mut Ui, step: &mut VisitStep, n: usize) {
             *step = VisitStep::At(0);
         }
         if ui
-            .add_enabled(not_first, egui::Button::new("Back"))
+            .add_enabled(not_first, egui::Button::new("Previous visit"))
             .clicked()
         {
             *step = step.back(n);
         }
         if ui
-            .add_enabled(not_last, egui::Button::new("Next"))
+            .add_enabled(not_last, egui::Button::new("Next visit"))
             .clicked()
         {
             *step = step.next(n);
