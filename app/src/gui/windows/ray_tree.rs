@@ -149,7 +149,7 @@ impl Inspector {
 /// The tree as collapsible lines, children under their parents; hovering a
 /// line shows the ray's origin, direction and weight. With a `step` (side
 /// A's), the eye ray's walk can be stepped through, what it tested so far
-/// beside brute force's `primitives`.
+/// beside brute force's `primitives`, the step's visit in bold in the list.
 fn show_tree(
     ui: &mut Ui,
     tree: &RayTree,
@@ -162,18 +162,25 @@ fn show_tree(
         show_node(ui, tree, root, side);
     }
     let visits = &tree.eye_visits;
+    let mut current = None;
     if let Some(step) = step
         && !visits.is_empty()
     {
         step_controls(ui, step, visits.len());
         ui.label(step_tally(tree, *step, primitives));
+        current = step.current(visits.len());
     }
     egui::CollapsingHeader::new(visits_heading(visits))
         .id_salt(("visits", side))
         .show(ui, |ui| {
             ui.small("Drawn over the image with the structure overlay, yellow first, red last.");
-            for visit in visits {
-                ui.label(describe_visit(visit));
+            for (i, visit) in visits.iter().enumerate() {
+                let line = describe_visit(visit);
+                if current == Some(i) {
+                    ui.strong(line);
+                } else {
+                    ui.label(line);
+                }
             }
         });
 }
