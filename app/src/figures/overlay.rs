@@ -31,6 +31,89 @@ pub fn visit_colour(i: usize, n: usize) -> [u8; 3] {
     [255, (230.0 - 200.0 * t) as u8, (40.0 * t) as u8]
 }
 
+/// Which of one ray's visits are drawn: all of them, or the first `k + 1`
+/// while the user steps through the traversal, visit `k` highlighted.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum VisitStep {
+    #[default]
+    All,
+    At(usize),
+}
+
+/// The colour of the visit a step is at: white, apart from the walk's
+/// yellow to red and the structure's green.
+pub const CURRENT_VISIT: [u8; 3] = [255, 255, 255];
+
+impl VisitStep {
+    /// The visit it is at among `n` (the last one for a step beyond them,
+    /// as a new pixel's walk may be shorter), `None` showing all.
+    pub fn current(self, n: usize) -> Option<usize> {
+        match self {
+            VisitStep::All => None,
+            VisitStep::At(k) => n.checked_sub(1).map(|last| k.min(last)),
+        }
+    }
+
+    /// How many of `n` visits it draws.
+    pub fn drawn(self, n: usize) -> usize {
+        self.current(n).map_or(n, |k| k + 1)
+    }
+
+    /// One visit on among `n`: from all, the first.
+    pub fn next(self, n: usize) -> VisitStep {
+        match self.current(n) {
+            None => VisitStep::At(0),
+            Some(k) => VisitStep::At((k + 1).min(n.saturating_sub(1))),
+        }
+    }
+
+    /// One visit back among `n`: from all, the last.
+    pub fn back(self, n: usize) -> VisitStep {
+        match self.current(n) {
+            None => VisitStep::At(n.saturating_sub(1)),
+            Some(k) => VisitStep::At(k.saturating_sub(1)),
+        }
+    }
+
+    /// The visits of `visits` drawn at this step, each with its colour:
+    /// the whole walk's yellow to red, so a visit keeps its colour as the
+    /// steps go on, and [`CURRENT_VISIT`] for the step's own.
+    pub fn coloured(self, visits: &[Visit]) -> impl Iterator<Item = (&Visit, Colour)> {
+        let n = visits.len();
+        let current = self.current(n);
+        visits[..self.drawn(n)]
+            .iter()
+            .enumerate()
+            .map(move |(i, v)| {
+                let colour = if current == Some(i) {
+                    Colour::Current
+                } else {
+                    Colour::Order(visit_colour(i, n))
+                };
+                (v, colour)
+            })
+    }
+}
+
+/// How a drawn visit is coloured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Colour {
+    /// Its place in the walk ([`visit_colour`]).
+    Order([u8; 3]),
+    /// The step's own visit: [`CURRENT_VISIT`], drawn thicker.
+    Current,
+}
+
+impl Colour {
+    pub fn rgb(self) -> [u8; 3] {
+        match self {
+            Colour::Order(rgb) => rgb,
+            Colour::Current => CURRENT_VISIT,
+        }
+    }
+}
+
 /// Draws the boxes of one ray's `visits` over `image`, coloured by their
 /// order ([`visit_colour`]).
 pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
@@ -102,6 +185,33 @@ fn clip(a: Vec2, b: Vec2, size: Vec2) -> Option<(Vec2, Vec2)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_step_draws_the_visits_up_to_it_in_the_walks_colours() {
+        let visit = |x: u32| Visit::Cell {
+            cell: [x, 0, 0],
+            bounds: tracer::geometry::Aabb::new(Vec3A::ZERO, Vec3A::ONE),
+            tested: 1,
+        };
+        let visits: Vec<Visit> = (0..4).map(visit).collect();
+        let colours =
+            |step: VisitStep| -> Vec<Colour> { step.coloured(&visits).map(|(_, c)| c).collect() };
+        let order = |i| Colour::Order(visit_colour(i, 4));
+        assert_eq!(
+            colours(VisitStep::All),
+            (0..4).map(order).collect::<Vec<_>>()
+        );
+        let second = VisitStep::All.next(4).next(4);
+        assert_eq!(second, VisitStep::At(1));
+        assert_eq!(colours(second), [order(0), Colour::Current]);
+        // Beyond a shorter walk: its last visit.
+        assert_eq!(VisitStep::At(9).current(4), Some(3));
+        assert_eq!(VisitStep::At(3).next(4), VisitStep::At(3));
+        assert_eq!(VisitStep::All.back(4), VisitStep::At(3));
+        assert_eq!(VisitStep::At(0).back(4), VisitStep::At(0));
+        assert_eq!(VisitStep::At(2).drawn(0), 0);
+        assert_eq!(VisitStep::All.drawn(4), 4);
+    }
 
     #[test]
     fn lines_are_drawn_and_clipped() {

@@ -14,6 +14,7 @@ use tracer::render::{RayTree, RenderPlan, RenderSettings};
 use crate::cli::{MetricsFormat, ObserveArgs};
 use crate::figures::observer::draw::{Piece, figure};
 use crate::figures::observer::{self, MAX_SEGMENTS, Part, Segment};
+use crate::figures::overlay::VisitStep;
 use crate::image_file::save_png;
 use crate::load::Loaded;
 use crate::reports::ray_tree;
@@ -86,7 +87,12 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     if let Some(layer) = args.overlay {
         let visits = trees.first().map_or(&[][..], |t| &t.eye_visits[..]);
         let layer = structure_layer(layer, index.kind())?;
-        segments.extend(observer::structure_segments(&index, Some(layer), visits));
+        segments.extend(observer::structure_segments(
+            &index,
+            Some(layer),
+            visits,
+            VisitStep::All,
+        ));
     }
 
     // The figure and its image plane are traced with a BVH whatever the

@@ -6,9 +6,11 @@ use std::sync::Arc;
 
 use anyhow::{Result, anyhow};
 use glam::Vec3A;
-use tracer::accel::{SceneIndex, Visit};
+use tracer::accel::{SceneIndex, Tally, Visit};
 use tracer::render::{Outcome, RayNode, RayTree, RenderPlan, RenderSettings};
 use tracer::world::World;
+
+use crate::figures::overlay::VisitStep;
 
 /// The ray tree of sample `sample` of pixel `(x, y)` under `settings`,
 /// reusing `index` when it was built for them.
@@ -158,19 +160,57 @@ pub fn visits_heading(visits: &[Visit]) -> String {
     }
 }
 
-/// One visit in one line: what it is and its box.
+/// One visit in one line: what it is, its box and what it tested.
 pub fn describe_visit(visit: &Visit) -> String {
     let b = visit.bounds();
-    let what = match visit {
+    let bounds = format!("box {} .. {}", triple(b.min), triple(b.max));
+    match visit {
         Visit::Cell {
-            cell: [x, y, z], ..
-        } => format!("cell ({x}, {y}, {z})"),
-        Visit::Node { depth, .. } => format!("node at depth {depth}"),
+            cell: [x, y, z],
+            tested,
+            ..
+        } => format!("cell ({x}, {y}, {z}), {bounds}, {tested} objects tested"),
+        Visit::Node { depth, boxes, .. } => {
+            format!("node at depth {depth}, {bounds}, {boxes} boxes tested")
+        }
         Visit::Leaf {
             depth, primitives, ..
-        } => format!("leaf at depth {depth}, {primitives} primitives tested"),
+        } => format!("leaf at depth {depth}, {bounds}, {primitives} primitives tested"),
+    }
+}
+
+/// What the eye ray's walk in `tree` had tested by the visit `step` is at,
+/// against brute force's count (every one of the scene's `primitives`).
+/// At the end of the walk, with the unbounded shapes (planes) tested after
+/// it, it is the query's own count.
+pub fn step_tally(tree: &RayTree, step: VisitStep, primitives: usize) -> String {
+    let visits = &tree.eye_visits;
+    let tally = Tally::of(&visits[..step.drawn(visits.len())]);
+    let boxes = match visits.first() {
+        Some(Visit::Cell { .. }) | None => String::new(),
+        Some(_) => format!(" and {} boxes", tally.boxes),
     };
-    format!("{what}, box {} .. {}", triple(b.min), triple(b.max))
+    let brute = format!("brute force tests {primitives}");
+    let at_end = step
+        .current(visits.len())
+        .is_none_or(|k| k + 1 == visits.len());
+    if !at_end {
+        return format!(
+            "so far: {} primitives{boxes} tested; {brute}",
+            tally.primitives
+        );
+    }
+    let all = tree.eye_counters.intersection_tests;
+    let after = all.saturating_sub(tally.primitives);
+    let planes = if after > 0 {
+        format!(
+            " ({} in the walk, {after} unbounded after it)",
+            tally.primitives
+        )
+    } else {
+        String::new()
+    };
+    format!("in all: {all} primitives{planes}{boxes} tested; {brute}")
 }
 
 /// One visit as JSON: its kind, box and what identifies it.
@@ -178,8 +218,12 @@ fn visit_json(visit: &Visit) -> serde_json::Value {
     let b = visit.bounds();
     let v = |v: Vec3A| [v.x, v.y, v.z];
     let mut out = match visit {
-        Visit::Cell { cell, .. } => serde_json::json!({ "kind": "cell", "cell": cell }),
-        Visit::Node { depth, .. } => serde_json::json!({ "kind": "node", "depth": depth }),
+        Visit::Cell { cell, tested, .. } => {
+            serde_json::json!({ "kind": "cell", "cell": cell, "tested": tested })
+        }
+        Visit::Node { depth, boxes, .. } => {
+            serde_json::json!({ "kind": "node", "depth": depth, "boxes": boxes })
+        }
         Visit::Leaf {
             depth, primitives, ..
         } => serde_json::json!({ "kind": "leaf", "depth": depth, "primitives": primitives }),
@@ -255,5 +299,59 @@ pub fn json(tree: &RayTree) -> serde_json::Value {
         "sum_of_contributions": v(tree.contributions()),
         "nodes": nodes,
         "eye_visits": tree.eye_visits.iter().map(visit_json).collect::<Vec<_>>(),
+        "eye_tests": tree.eye_counters.intersection_tests,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use tracer::geometry::Aabb;
+    use tracer::stats::Counters;
+
+    use super::*;
+
+    /// A tree whose eye ray walked cells testing `tested` objects each, its
+    /// query counting `planes` more after the walk.
+    fn walked(tested: &[u32], planes: u64) -> RayTree {
+        let bounds = Aabb::new(Vec3A::ZERO, Vec3A::ONE);
+        let eye_visits: Vec<Visit> = (0..)
+            .zip(tested)
+            .map(|(x, &tested)| Visit::Cell {
+                cell: [x, 0, 0],
+                bounds,
+                tested,
+            })
+            .collect();
+        let eye_counters = Counters {
+            intersection_tests: tested.iter().map(|&t| u64::from(t)).sum::<u64>() + planes,
+            ..Counters::default()
+        };
+        RayTree {
+            x: 0,
+            y: 0,
+            sample: 0,
+            colour: Vec3A::ZERO,
+            nodes: Vec::new(),
+            eye_visits,
+            eye_counters,
+        }
+    }
+
+    #[test]
+    fn a_step_counts_the_tests_so_far_and_the_end_the_querys() {
+        let tree = walked(&[0, 3, 2], 1);
+        let at = |step| step_tally(&tree, step, 93);
+        assert_eq!(
+            at(VisitStep::At(1)),
+            "so far: 3 primitives tested; brute force tests 93"
+        );
+        let end = "in all: 6 primitives (5 in the walk, 1 unbounded after it) tested; \
+                   brute force tests 93";
+        assert_eq!(at(VisitStep::At(2)), end);
+        assert_eq!(at(VisitStep::All), end);
+        assert_eq!(
+            step_tally(&walked(&[4], 0), VisitStep::All, 93),
+            "in all: 4 primitives tested; brute force tests 93"
+        );
+    }
 }

@@ -1,13 +1,16 @@
 //! The observer view driven as a user would: O shows the scene from
 //! outside, drags move the observer (and never the render), a pinned
 //! pixel's rays fly through it generation by generation, compare mode
-//! shows both sides' trees, and its filter hides misses and grows the
-//! trees one bounce at a time.
+//! shows both sides' trees, its filter hides misses and grows the
+//! trees one bounce at a time, and the eye ray's walk is drawn as far as
+//! the ray tree's step.
 
 use std::time::Duration;
 
+use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use tracer::accel::Visit;
 use workbench::gui::WorkbenchApp;
 
 use crate::harness::{drag, is_done, observer_done, ready_window, wait_for};
@@ -217,4 +220,36 @@ fn the_filter_hides_misses_and_grows_the_trees_one_bounce_at_a_time() {
     assert_eq!(harness.state().observer().filter.max_depth, Some(1));
     let grown = harness.state().observer().segments_drawn;
     assert!(grown > first, "one bounce more: {grown} after {first}");
+}
+
+#[test]
+fn stepping_the_eye_rays_walk_draws_it_in_the_observer_up_to_the_step() {
+    let mut harness = observing();
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    harness.key_press(egui::Key::G);
+    harness.state_mut().inspect((32, 40));
+    wait_for(&mut harness, "the grid walk in the observer", |app| {
+        is_done(app)
+            && observer_done(app)
+            && app.observer().trees().first().is_some_and(|(_, tree)| {
+                matches!(tree.eye_visits.first(), Some(Visit::Cell { .. }))
+            })
+            && app.inspector().eye_visits().len() >= 2
+    });
+    harness.run_steps(2);
+    let all = harness.state().observer().segments_drawn;
+    harness
+        .get_by_role_and_label(Role::Button, "Next visit")
+        .click();
+    harness.run_steps(2);
+    let first = harness.state().observer().segments_drawn;
+    assert!(
+        first < all,
+        "the first cell alone draws fewer boxes ({first} of {all})"
+    );
+    harness.get_by_role_and_label(Role::Button, "All").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().observer().segments_drawn, all);
 }

@@ -3,7 +3,7 @@
 
 use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable;
-use tracer::accel::Visit;
+use tracer::accel::{Tally, Visit};
 use tracer::render::View;
 
 use crate::harness::{is_done, ready_window, wait_for};
@@ -311,4 +311,69 @@ fn the_samples_view_shows_where_adaptive_sampling_spent_them() {
     harness.run_steps(2);
     harness.get_by_label("Pixels done");
     harness.get_by_label("100.0%");
+}
+
+#[test]
+fn the_eye_rays_grid_walk_steps_one_cell_at_a_time_with_its_tests() {
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the render", is_done);
+    let settings = harness.state().engine().settings().unwrap().clone();
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Structure overlay")
+        .click();
+    harness.key_press(egui::Key::G);
+    // Down the middle column, the first pixel whose eye ray walks three
+    // cells or more: one to step through.
+    let mut visits = Vec::new();
+    for y in (1..8).map(|k| settings.height * k / 8) {
+        harness.state_mut().inspect((settings.width / 2, y));
+        wait_for(&mut harness, "the whole grid walk", |app| {
+            let tree = app.inspector().tree(0);
+            is_done(app)
+                && tree.and_then(|t| t.as_ref().ok()).is_some_and(|t| {
+                    (t.x, t.y) == (settings.width / 2, y)
+                        && matches!(t.eye_visits.first(), None | Some(Visit::Cell { .. }))
+                })
+                && app.overlay().visits_drawn == app.inspector().eye_visits().len()
+        });
+        visits = harness.state().inspector().eye_visits().to_vec();
+        if visits.len() >= 3 {
+            break;
+        }
+    }
+    let n = visits.len();
+    assert!(n >= 3, "a walk worth stepping through: {visits:?}");
+    let brute = harness.state().engine().scene().unwrap().world.shapes.len();
+    harness.get_by_label(&format!("all {n} visits"));
+
+    // Next twice: the first two cells drawn, the second the current one.
+    harness
+        .get_by_role_and_label(Role::Button, "Next visit")
+        .click();
+    harness.run_steps(2);
+    harness
+        .get_by_role_and_label(Role::Button, "Next visit")
+        .click();
+    wait_for(&mut harness, "two cells drawn", |app| {
+        app.overlay().visits_drawn == 2
+    });
+    harness.get_by_label(&format!("step 2 of {n}"));
+    let so_far = Tally::of(&visits[..2]).primitives;
+    harness.get_by_label(&format!(
+        "so far: {so_far} primitives tested; brute force tests {brute}"
+    ));
+
+    // All again: every cell, and the query's own count.
+    harness.get_by_role_and_label(Role::Button, "All").click();
+    wait_for(&mut harness, "every cell drawn", |app| {
+        app.overlay().visits_drawn == n
+    });
+    let tree = match harness.state().inspector().tree(0) {
+        Some(Ok(tree)) => tree.clone(),
+        other => panic!("no tree: {other:?}"),
+    };
+    let all = tree.eye_counters.intersection_tests;
+    assert!(all >= Tally::of(&visits).primitives);
+    harness.get_by_label_contains(&format!("in all: {all} primitives"));
+    harness.get_by_label_contains(&format!("brute force tests {brute}"));
 }

@@ -233,7 +233,7 @@ impl Grid {
         let mut nearest = f32::INFINITY;
         loop {
             counters.nodes_visited += 1;
-            log.step(Step::Cell(cell));
+            log.step(Step::Cell(cell), counters.intersection_tests);
             let i = (cell.x + self.cells.x * (cell.y + self.cells.y * cell.z)) as usize;
             let (from, to) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
             for &id in &self.refs[from..to] {

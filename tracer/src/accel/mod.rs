@@ -22,7 +22,7 @@ pub use brute::BruteForce;
 pub use bvh::{Bvh, BvhParams};
 pub use grid::{Grid, GridStats};
 pub use structure_view::StructureLayer;
-pub use visits::{Traversal, Visit};
+pub use visits::{Tally, Traversal, Visit};
 
 /// Which structure to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -25,32 +25,46 @@ pub(super) enum Step {
 
 /// Told every step of a traversal.
 pub(super) trait VisitLog {
-    fn step(&mut self, step: Step);
+    /// `step` begins after `tests` primitive tests by this traversal: the
+    /// difference to the next step's is what this one tested (the grid's
+    /// mailbox makes that less than a cell lists).
+    fn step(&mut self, step: Step, tests: u64);
 }
 
-/// The render's log: keeps nothing, costs nothing.
+/// The render's log: keeps nothing, costs nothing (the counts it is told
+/// are values the traversal holds anyway).
 pub(super) struct NoLog;
 
 impl VisitLog for NoLog {
     #[inline(always)]
-    fn step(&mut self, _: Step) {}
+    fn step(&mut self, _: Step, _: u64) {}
 }
 
-impl VisitLog for Vec<Step> {
-    fn step(&mut self, step: Step) {
-        self.push(step);
+impl VisitLog for Vec<(Step, u64)> {
+    fn step(&mut self, step: Step, tests: u64) {
+        self.push((step, tests));
     }
 }
 
 /// A cell or node one ray's traversal visited, with its box.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Visit {
-    /// A grid cell the 3D-DDA walked through: its (x, y, z) and its box.
-    Cell { cell: [u32; 3], bounds: Aabb },
-    /// An 8-wide BVH node whose children's boxes were tested against the
-    /// ray. `depth` counts as the overlay's does: the root's box (the
-    /// scene's) is 0, the root's children 1.
-    Node { bounds: Aabb, depth: u32 },
+    /// A grid cell the 3D-DDA walked through: its (x, y, z), its box, and
+    /// the objects tested in it: those it lists that the per-ray mailbox
+    /// had not seen tested in an earlier cell.
+    Cell {
+        cell: [u32; 3],
+        bounds: Aabb,
+        tested: u32,
+    },
+    /// An 8-wide BVH node whose `boxes` (its children's, all at once) were
+    /// tested against the ray. `depth` counts as the overlay's does: the
+    /// root's box (the scene's) is 0, the root's children 1.
+    Node {
+        bounds: Aabb,
+        depth: u32,
+        boxes: u32,
+    },
     /// A BVH leaf whose `primitives` were all tested.
     Leaf {
         bounds: Aabb,
@@ -68,6 +82,45 @@ impl Visit {
             | Visit::Leaf { bounds, .. } => bounds,
         }
     }
+
+    /// What this visit itself tested.
+    pub fn tally(&self) -> Tally {
+        let (primitives, boxes) = match *self {
+            Visit::Cell { tested, .. } => (tested, 0),
+            Visit::Node { boxes, .. } => (0, boxes),
+            Visit::Leaf { primitives, .. } => (primitives, 0),
+        };
+        Tally {
+            primitives: primitives.into(),
+            boxes: boxes.into(),
+        }
+    }
+}
+
+/// Tests a traversal made, for stepping through it: a prefix of its
+/// visits sums to what it had tested by then, and all of them to the
+/// query's own `intersection_tests` less its unbounded shapes'.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// Ray-primitive tests, one per primitive tested, as
+    /// `Counters::intersection_tests` counts them.
+    pub primitives: u64,
+    /// Ray-box tests of BVH children (the grid tests none: its walk steps
+    /// from cell to cell by arithmetic).
+    pub boxes: u64,
+}
+
+impl Tally {
+    /// What `visits` tested, added up.
+    pub fn of(visits: &[Visit]) -> Tally {
+        visits.iter().fold(Tally::default(), |sum, v| {
+            let t = v.tally();
+            Tally {
+                primitives: sum.primitives + t.primitives,
+                boxes: sum.boxes + t.boxes,
+            }
+        })
+    }
 }
 
 /// One closest-hit query with everything its traversal visited.
@@ -77,14 +130,16 @@ pub struct Traversal {
     /// In visiting order. The grid's cells and the BVH's nodes (not its
     /// leaves) are what `counters.nodes_visited` counts, one for one.
     pub visits: Vec<Visit>,
-    /// The work of this query alone.
+    /// The work of this query alone: its `intersection_tests` are the
+    /// visits' ([`Tally::of`]) plus one per unbounded shape (plane), each
+    /// tested after the walk.
     pub counters: Counters,
 }
 
 impl SceneIndex {
     /// [`SceneIndex::closest_hit`] with the cells (grid) or nodes and leaves
-    /// (BVH) its traversal visited, in order; brute force visits none. For
-    /// inspecting one ray: it allocates.
+    /// (BVH) its traversal visited, in order, and what each tested; brute
+    /// force visits none. For inspecting one ray: it allocates.
     pub fn closest_hit_visits(
         &self,
         shapes: &[Shape],
@@ -97,17 +152,24 @@ impl SceneIndex {
         let hit = self.closest_hit_logged(shapes, ray, t_min, t_max, &mut counters, &mut steps);
         let visits = match &self.structure {
             Structure::None(_) => Vec::new(),
-            Structure::Grid(grid) => steps
-                .iter()
-                .filter_map(|s| match *s {
-                    Step::Cell(c) => Some(Visit::Cell {
-                        cell: c.as_uvec3().to_array(),
-                        bounds: grid.cell_bounds(c),
-                    }),
-                    _ => None,
-                })
-                .collect(),
-            Structure::Bvh(bvh) => bvh.visits(&steps),
+            Structure::Grid(grid) => {
+                // The structure's tests end where the unbounded shapes' begin.
+                let walked = counters.intersection_tests - self.unbounded.len() as u64;
+                let ends = steps.iter().skip(1).map(|&(_, t)| t).chain([walked]);
+                steps
+                    .iter()
+                    .zip(ends)
+                    .filter_map(|(&(step, before), after)| match step {
+                        Step::Cell(c) => Some(Visit::Cell {
+                            cell: c.as_uvec3().to_array(),
+                            bounds: grid.cell_bounds(c),
+                            tested: (after - before) as u32,
+                        }),
+                        _ => None,
+                    })
+                    .collect()
+            }
+            Structure::Bvh(bvh) => bvh.visits(steps.iter().map(|&(step, _)| step)),
         };
         Traversal {
             hit,
@@ -123,7 +185,7 @@ mod tests {
 
     use super::*;
     use crate::accel::AccelKind;
-    use crate::geometry::Sphere;
+    use crate::geometry::{Plane, Sphere};
 
     /// Unit spheres every 3 units along x, a row of them.
     fn row(n: usize) -> Vec<Shape> {
@@ -252,13 +314,14 @@ mod tests {
                 t.visits[0],
                 Visit::Node {
                     bounds: scene,
-                    depth: 0
+                    depth: 0,
+                    boxes: bvh.boxes(Some(1)).len() as u32,
                 }
             );
             let mut seen_depths = vec![0u32];
             for v in &t.visits[1..] {
                 let (bounds, depth) = match *v {
-                    Visit::Node { bounds, depth } | Visit::Leaf { bounds, depth, .. } => {
+                    Visit::Node { bounds, depth, .. } | Visit::Leaf { bounds, depth, .. } => {
                         (bounds, depth)
                     }
                     Visit::Cell { .. } => panic!("a cell in a BVH"),
@@ -278,6 +341,62 @@ mod tests {
             }
         }
         assert!(deep >= 2, "the rays reach below the root's children");
+    }
+
+    #[test]
+    fn running_tallies_end_at_the_querys_own_counts() {
+        let mut shapes = cloud();
+        // A floor: unbounded, tested after every walk, in no visit.
+        let floor = Plane::from_points([Vec3A::ZERO, Vec3A::Z, Vec3A::X]).unwrap();
+        shapes.push(Shape::Plane(floor));
+        for kind in [AccelKind::Grid, AccelKind::Bvh] {
+            let index = SceneIndex::build(&shapes, kind, 2.0);
+            let mut tested = 0;
+            for ray in rays() {
+                let t = index.closest_hit_visits(&shapes, &ray, 0.0, f32::INFINITY);
+                let all = Tally::of(&t.visits);
+                assert_eq!(
+                    all.primitives + 1,
+                    t.counters.intersection_tests,
+                    "{kind:?}"
+                );
+                // A running total never falls, and the last is the whole.
+                let running: Vec<Tally> = (1..=t.visits.len())
+                    .map(|k| Tally::of(&t.visits[..k]))
+                    .collect();
+                assert!(
+                    running
+                        .windows(2)
+                        .all(|w| w[0].primitives <= w[1].primitives)
+                );
+                assert_eq!(running.last().copied().unwrap_or_default(), all);
+                let nodes = t.visits.iter().filter(|v| matches!(v, Visit::Node { .. }));
+                match kind {
+                    AccelKind::Grid => assert_eq!(all.boxes, 0),
+                    _ => {
+                        assert!(nodes.clone().all(|v| (1..=8).contains(&v.tally().boxes)));
+                        assert!(all.boxes >= nodes.count() as u64);
+                    }
+                }
+                tested += all.primitives;
+            }
+            assert!(tested > 0, "{kind:?}: the rays test something");
+        }
+    }
+
+    #[test]
+    fn the_grid_counts_an_object_in_many_cells_once_per_ray() {
+        // One big sphere listed in every cell of a 3 x 3 x 3 grid.
+        let shapes = vec![Shape::Sphere(Sphere::new(Vec3A::ZERO, 5.0))];
+        let index = SceneIndex::build(&shapes, AccelKind::Grid, 2.0);
+        assert_eq!(index.info().grid.map(|g| g.cells), Some([3, 3, 3]));
+        // Along an edge of its box, missing it: three cells, one test.
+        let ray = Ray::new(Vec3A::new(-10.0, 4.5, 4.5), Vec3A::X);
+        let t = index.closest_hit_visits(&shapes, &ray, 0.0, f32::INFINITY);
+        assert_eq!(t.hit, None);
+        let tested: Vec<u64> = t.visits.iter().map(|v| v.tally().primitives).collect();
+        assert_eq!(tested, [1, 0, 0]);
+        assert_eq!(t.counters.intersection_tests, 1);
     }
 
     #[test]

@@ -27,6 +27,11 @@ pub struct RayTree {
     /// The grid cells, or BVH nodes and leaves, the eye ray's traversal
     /// visited, in order (none with brute force).
     pub eye_visits: Vec<Visit>,
+    /// The eye ray's closest-hit query's own work: its
+    /// `intersection_tests` are what the visits tested
+    /// ([`crate::accel::Tally`]) plus the unbounded shapes tested after
+    /// the walk.
+    pub eye_counters: Counters,
 }
 
 impl RayTree {
@@ -134,10 +139,13 @@ impl RenderPlan {
         for node in &mut nodes {
             self.complete(node);
         }
-        let eye_visits = nodes
+        let (eye_visits, eye_counters) = nodes
             .first()
             .filter(|n| n.kind == RayKind::Eye)
-            .map(|eye| self.eye_traversal(eye).visits)
+            .map(|eye| {
+                let traversal = self.eye_traversal(eye);
+                (traversal.visits, traversal.counters)
+            })
             .unwrap_or_default();
         Some(RayTree {
             x,
@@ -146,6 +154,7 @@ impl RenderPlan {
             colour,
             nodes,
             eye_visits,
+            eye_counters,
         })
     }
 
@@ -326,7 +335,7 @@ mod tests {
     use std::sync::Arc;
 
     use super::*;
-    use crate::accel::{AccelKind, SceneIndex};
+    use crate::accel::{AccelKind, SceneIndex, Tally};
     use crate::render::{RenderSettings, render};
     use crate::scene::{Limits, parse_scene};
     use crate::world::World;
@@ -442,6 +451,19 @@ s 2.5 0 1 1
                     ));
                 }
             }
+            // What the visits tested and the plane after them are the
+            // query's count; brute force, visiting nothing, tests every shape.
+            let world = &frame(accel).world;
+            let planes = world.shapes.iter().filter(|s| s.bounds().is_none()).count();
+            let walked = match accel {
+                AccelKind::None => world.shapes.len() - planes,
+                _ => Tally::of(visits).primitives as usize,
+            };
+            assert_eq!(planes, 1);
+            assert_eq!(
+                (walked + planes) as u64,
+                tree.eye_counters.intersection_tests
+            );
         }
     }
 

@@ -17,6 +17,7 @@ use tracer::camera::{Camera, CameraPose};
 use tracer::render::{Film, Outcome, RayKind, RayTree, RenderSettings, View, render_with_views};
 use tracer::world::World;
 
+use crate::figures::overlay::{Colour, VisitStep};
 use crate::figures::projection::DepthMap;
 
 /// What a segment shows, for its colour and style.
@@ -41,8 +42,9 @@ pub enum Part {
     Light { index: usize },
     /// The acceleration structure (BVH boxes at a depth, grid lattice).
     Structure,
-    /// Box `order` of the pinned eye ray's walk, in visiting order.
-    Visit { order: usize, of: usize },
+    /// A box of the pinned eye ray's walk, coloured by its place in it or
+    /// as the step's own (see [`VisitStep`]).
+    Visit { colour: Colour },
 }
 
 /// [`RayKind`]'s name, for JSON and labels.
@@ -302,11 +304,12 @@ pub fn light_segments(world: &World, settings: &RenderSettings) -> Vec<Segment> 
 }
 
 /// The structure `index` renders with at `layer`, and the boxes of
-/// `visits` (an eye ray's walk) in order.
+/// `visits` (an eye ray's walk) in order, those `step` draws.
 pub fn structure_segments(
     index: &SceneIndex,
     layer: Option<StructureLayer>,
     visits: &[Visit],
+    step: VisitStep,
 ) -> Vec<Segment> {
     let mut segments: Vec<Segment> = layer
         .map(|layer| index.wireframe(layer))
@@ -314,11 +317,8 @@ pub fn structure_segments(
         .into_iter()
         .map(|ends| Segment::still(ends, Part::Structure))
         .collect();
-    for (order, visit) in visits.iter().enumerate() {
-        let part = Part::Visit {
-            order,
-            of: visits.len(),
-        };
+    for (visit, colour) in step.coloured(visits) {
+        let part = Part::Visit { colour };
         segments.extend(
             visit
                 .edges()
@@ -502,7 +502,7 @@ pub fn style(segment: &Segment, world: &World) -> ([u8; 3], bool) {
             [c.x, c.y, c.z].map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8)
         }),
         Part::Structure => [80, 255, 120],
-        Part::Visit { order, of } => crate::figures::overlay::visit_colour(order, of),
+        Part::Visit { colour } => colour.rgb(),
     };
     let dashed = segment.part == Part::BlockedShadow
         || (segment.side == 1 && matches!(segment.part, Part::Ray { .. } | Part::Normal));

@@ -9,7 +9,7 @@ use glam::Vec3A;
 use tracer::accel::{AccelKind, StructureLayer, Visit};
 use tracer::render::RenderPlan;
 
-use crate::figures::overlay;
+use crate::figures::overlay::{Colour, VisitStep};
 use crate::figures::projection::Projector;
 use crate::gui::sides::Engine;
 
@@ -68,9 +68,16 @@ impl StructureOverlay {
 
     /// Draws the structure of `engine`'s current job over `image_rect`
     /// through the camera of its current settings, and over it the cells
-    /// or nodes of `visits` (the inspected pixel's eye ray), yellow to red
-    /// in visiting order.
-    pub fn paint(&mut self, ui: &Ui, engine: &Engine, image_rect: Rect, visits: &[Visit]) {
+    /// or nodes of `visits` (the inspected pixel's eye ray) that `step`
+    /// draws, yellow to red in visiting order.
+    pub fn paint(
+        &mut self,
+        ui: &Ui,
+        engine: &Engine,
+        image_rect: Rect,
+        visits: &[Visit],
+        step: VisitStep,
+    ) {
         self.visits_drawn = 0;
         if !self.on {
             return;
@@ -110,17 +117,20 @@ impl StructureOverlay {
         // Only visits of the structure drawn: for one frame after a switch
         // the inspector still holds the other structure's.
         let grid = layer == StructureLayer::Grid;
-        let visits: Vec<&Visit> = visits
-            .iter()
-            .filter(|v| matches!(v, Visit::Cell { .. }) == grid)
-            .collect();
-        for (i, visit) in visits.iter().enumerate() {
-            let [r, g, b] = overlay::visit_colour(i, visits.len());
-            let stroke = Stroke::new(2.0, Color32::from_rgb(r, g, b));
+        if visits
+            .first()
+            .is_some_and(|v| matches!(v, Visit::Cell { .. }) != grid)
+        {
+            return;
+        }
+        for (visit, colour) in step.coloured(visits) {
+            let [r, g, b] = colour.rgb();
+            let width = if colour == Colour::Current { 3.0 } else { 2.0 };
+            let stroke = Stroke::new(width, Color32::from_rgb(r, g, b));
             for segment in visit.edges() {
                 line(segment, stroke);
             }
         }
-        self.visits_drawn = visits.len();
+        self.visits_drawn = step.drawn(visits.len());
     }
 }

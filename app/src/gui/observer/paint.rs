@@ -10,6 +10,7 @@ use tracer::render::RenderPlan;
 
 use super::Observer;
 use crate::figures::observer::{self, Part};
+use crate::figures::overlay::{Colour, VisitStep};
 use crate::figures::projection::Projector;
 use crate::gui::image::ray_paths;
 use crate::gui::image::structure_overlay::StructureOverlay;
@@ -24,14 +25,15 @@ const MAX_PAINTED: usize = 4000;
 /// cell, so a coarse grid would bend it).
 const PLANE_CELLS: usize = 12;
 
-/// Paints the figure over the observer's image in `rect`; returns the
-/// segments painted.
+/// Paints the figure over the observer's image in `rect`, the eye ray's
+/// walk as far as `step`; returns the segments painted.
 pub fn paint(
     ui: &Ui,
     rect: Rect,
     observer: &Observer,
     a: &Side,
     overlay: &StructureOverlay,
+    step: VisitStep,
 ) -> usize {
     let Some(scene) = a.engine.scene() else {
         return 0;
@@ -103,7 +105,7 @@ pub fn paint(
             .find(|(side, _)| *side == 0)
             .map_or(&[][..], |(_, t)| &t.eye_visits[..]);
         let layer = overlay.layer(index.kind());
-        segments.extend(observer::structure_segments(&index, layer, visits));
+        segments.extend(observer::structure_segments(&index, layer, visits, step));
     }
     let stub = observer::stub_length(world);
     for (side, tree) in &observer.trees {
@@ -134,7 +136,11 @@ pub fn paint(
         };
         let (colour, dashed) = observer::style(segment, world);
         let width = match segment.part {
-            Part::Ray { .. } | Part::BlockedShadow => 2.0,
+            Part::Ray { .. }
+            | Part::BlockedShadow
+            | Part::Visit {
+                colour: Colour::Current,
+            } => 2.0,
             _ => 1.0,
         };
         for ([t0, t1], hidden) in pieces {

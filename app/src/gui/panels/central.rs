@@ -109,8 +109,8 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
         None => Vec::new(),
     };
     if let Some(rect) = response.image_rect {
-        let visits = tools.inspector.eye_visits();
-        tools.overlay.paint(ui, &a.engine, rect, visits);
+        let (visits, step) = (tools.inspector.eye_visits(), tools.inspector.step);
+        tools.overlay.paint(ui, &a.engine, rect, visits, step);
         tools.editor.paint_outline(ui, &sides.active().engine, rect);
         tools.inspector.paths_drawn = match tools.inspector.tree(0) {
             Some(Ok(tree)) => ray_paths::paint(ui, tree, &a.engine, rect),
@@ -172,7 +172,8 @@ fn show_observer(
     observer.take(&response, area);
     observer.segments_drawn = match response.image_rect {
         Some(rect) => {
-            let painted = observer::paint(ui, rect, observer, a, &tools.overlay);
+            let painted =
+                observer::paint(ui, rect, observer, a, &tools.overlay, tools.inspector.step);
             tools.editor.paint_in_observer(ui, observer, a, rect);
             painted
         }

@@ -7,9 +7,10 @@ use egui::Ui;
 use tracer::accel::Visit;
 use tracer::render::{RayTree, RenderSettings};
 
+use crate::figures::overlay::VisitStep;
 use crate::gui::sides::Engine;
 use crate::reports::ray_tree::{
-    self, describe_node, describe_visit, headline, triple, visits_heading,
+    self, describe_node, describe_visit, headline, step_tally, triple, visits_heading,
 };
 
 /// The pinned pixel and its trees (A, and B while comparing).
@@ -21,6 +22,9 @@ pub struct Inspector {
     trees: [Option<Inspected>; 2],
     /// Ray paths drawn over the image in the last frame.
     pub paths_drawn: usize,
+    /// How far through side A's eye ray walk the structure overlay and the
+    /// observer draw it; a new pixel's walk is shown at the same step.
+    pub step: VisitStep,
 }
 
 /// A tree and what it was recorded for.
@@ -29,6 +33,8 @@ struct Inspected {
     /// pixel and the sample.
     of: (RenderSettings, usize, (u32, u32), u32),
     tree: Result<RayTree, String>,
+    /// The scene's primitives: what brute force tests for every ray.
+    primitives: usize,
 }
 
 impl Inspector {
@@ -77,7 +83,12 @@ impl Inspector {
             let tree =
                 ray_tree::inspect(&scene.world, engine.index(), settings, pixel, self.sample)
                     .map_err(|e| format!("{e:#}"));
-            *slot = Some(Inspected { of, tree });
+            let primitives = scene.world.shapes.len();
+            *slot = Some(Inspected {
+                of,
+                tree,
+                primitives,
+            });
         }
     }
 
@@ -113,9 +124,12 @@ impl Inspector {
                                 if comparing {
                                     ui.strong(if side == 0 { "A" } else { "B" });
                                 }
-                                match self.tree(side) {
-                                    Some(Ok(tree)) => show_tree(ui, tree, side),
-                                    Some(Err(e)) => {
+                                let step = (side == 0).then_some(&mut self.step);
+                                match self.trees[side].as_ref().map(|t| (&t.tree, t.primitives)) {
+                                    Some((Ok(tree), primitives)) => {
+                                        show_tree(ui, tree, side, step, primitives)
+                                    }
+                                    Some((Err(e), _)) => {
                                         ui.colored_label(ui.visuals().error_fg_color, e);
                                     }
                                     None => {
@@ -133,21 +147,84 @@ impl Inspector {
 }
 
 /// The tree as collapsible lines, children under their parents; hovering a
-/// line shows the ray's origin, direction and weight.
-fn show_tree(ui: &mut Ui, tree: &RayTree, side: usize) {
+/// line shows the ray's origin, direction and weight. With a `step` (side
+/// A's), the eye ray's walk can be stepped through, what it tested so far
+/// beside brute force's `primitives`, the step's visit in bold in the list.
+fn show_tree(
+    ui: &mut Ui,
+    tree: &RayTree,
+    side: usize,
+    step: Option<&mut VisitStep>,
+    primitives: usize,
+) {
     ui.label(headline(tree));
     for root in tree.children(None) {
         show_node(ui, tree, root, side);
     }
     let visits = &tree.eye_visits;
+    let mut current = None;
+    if let Some(step) = step
+        && !visits.is_empty()
+    {
+        step_controls(ui, step, visits.len());
+        ui.label(step_tally(tree, *step, primitives));
+        current = step.current(visits.len());
+    }
     egui::CollapsingHeader::new(visits_heading(visits))
         .id_salt(("visits", side))
         .show(ui, |ui| {
             ui.small("Drawn over the image with the structure overlay, yellow first, red last.");
-            for visit in visits {
-                ui.label(describe_visit(visit));
+            for (i, visit) in visits.iter().enumerate() {
+                let line = describe_visit(visit);
+                if current == Some(i) {
+                    ui.strong(line);
+                } else {
+                    ui.label(line);
+                }
             }
         });
+}
+
+/// All, or a step through the `n` visits: Home, back, next, End (named
+/// apart from the Lessons window's Back and Next).
+fn step_controls(ui: &mut Ui, step: &mut VisitStep, n: usize) {
+    let current = step.current(n);
+    ui.horizontal(|ui| {
+        ui.label("Walk:");
+        if ui.selectable_label(current.is_none(), "All").clicked() {
+            *step = VisitStep::All;
+        }
+        let not_first = current != Some(0);
+        let not_last = current != Some(n - 1);
+        if ui
+            .add_enabled(not_first, egui::Button::new("Home"))
+            .clicked()
+        {
+            *step = VisitStep::At(0);
+        }
+        if ui
+            .add_enabled(not_first, egui::Button::new("Previous visit"))
+            .clicked()
+        {
+            *step = step.back(n);
+        }
+        if ui
+            .add_enabled(not_last, egui::Button::new("Next visit"))
+            .clicked()
+        {
+            *step = step.next(n);
+        }
+        if ui.add_enabled(not_last, egui::Button::new("End")).clicked() {
+            *step = VisitStep::At(n - 1);
+        }
+        ui.label(match step.current(n) {
+            None => format!("all {n} visits"),
+            Some(k) => format!("step {} of {n}", k + 1),
+        })
+        .on_hover_text(
+            "The structure overlay and the observer draw the walk up to this visit, it in white.",
+        );
+    });
 }
 
 fn show_node(ui: &mut Ui, tree: &RayTree, index: usize, side: usize) {

@@ -12,14 +12,17 @@ impl Bvh {
     /// The visits of `steps` told by one traversal of this tree. A node is
     /// only reached through a parent visited before it, which gives its box
     /// and depth: only the visited nodes are read.
-    pub(in crate::accel) fn visits(&self, steps: &[Step]) -> Vec<Visit> {
+    pub(in crate::accel) fn visits(
+        &self,
+        steps: impl ExactSizeIterator<Item = Step>,
+    ) -> Vec<Visit> {
         // (first, count) of a slot -> its box and depth; the root is (0, 0).
         let mut known: HashMap<(u32, u32), (Aabb, u32)> = HashMap::new();
         if let Some(scene) = self.scene_box() {
             known.insert((0, 0), (scene, 0));
         }
         let mut out = Vec::with_capacity(steps.len());
-        for &step in steps {
+        for step in steps {
             let (key, leaf) = match step {
                 Step::Node(index) => ((index, 0), false),
                 Step::Leaf(first, count) => ((first, count), true),
@@ -36,8 +39,12 @@ impl Bvh {
                 });
                 continue;
             }
-            out.push(Visit::Node { bounds, depth });
             let node = &self.nodes[key.0 as usize];
+            out.push(Visit::Node {
+                bounds,
+                depth,
+                boxes: node.used_slots().count() as u32,
+            });
             for slot in node.used_slots() {
                 known.insert(
                     (node.first[slot], node.count[slot]),
