@@ -408,6 +408,17 @@ impl RenderJob {
         }
     }
 
+    /// The pixels an adaptive render still refines, row-major, as decided
+    /// after the last pass (every pixel before the first ends, none once
+    /// done); `None` for uniform sampling.
+    pub fn active_pixels(&self) -> Option<Vec<bool>> {
+        self.shared
+            .progress()
+            .film
+            .active_pixels()
+            .map(<[bool]>::to_vec)
+    }
+
     /// The film as it stands, as linear floats (see
     /// [`Film::to_linear_image`]), for saving HDR output mid-render.
     pub fn linear_image(&self) -> image::Rgb32FImage {

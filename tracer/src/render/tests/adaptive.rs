@@ -239,3 +239,48 @@ fn threshold_zero_takes_the_samples_of_uniform_sampling_at_the_maximum() {
         }
     }
 }
+
+/// What a viewer draws over the image: every pixel active before the
+/// first pass, some between passes while edges refine, none once done;
+/// nothing for uniform sampling.
+#[test]
+fn a_jobs_active_pixels_go_from_all_to_none() {
+    let settings = adaptive(0.01, 4, 64);
+    let pixels = (settings.width * settings.height) as usize;
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let between: Arc<Mutex<Vec<Vec<bool>>>> = Arc::default();
+    let record = between.clone();
+    let job = RenderJob::start(
+        w.clone(),
+        Some(idx.clone()),
+        settings.clone(),
+        JobOptions {
+            threads: Some(2),
+            paused: true,
+            on_pass: Some(Box::new(move |_, film| {
+                let mask = film.active_pixels().expect("an adaptive film").to_vec();
+                record.lock().unwrap().push(mask);
+            })),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(job.active_pixels(), Some(vec![true; pixels]));
+    job.set_paused(false);
+    crate::waiting::wait_until("the adaptive job", || job.is_finished());
+    assert_eq!(job.active_pixels(), Some(vec![false; pixels]));
+    let between = between.lock().unwrap();
+    assert!(
+        between
+            .iter()
+            .any(|mask| mask.contains(&true) && mask.contains(&false)),
+        "no pass left some pixels refining and others done"
+    );
+    let uniform = RenderSettings {
+        sampling: Sampling::Uniform,
+        ..settings
+    };
+    let job = RenderJob::start(w, Some(idx), uniform, JobOptions::default()).unwrap();
+    assert_eq!(job.active_pixels(), None);
+}

@@ -50,6 +50,14 @@ impl Engine {
         self.job.as_ref().and_then(|j| j.view_values(view))
     }
 
+    /// The current job's image size and the pixels its adaptive sampling
+    /// still refines (row-major); `None` for uniform sampling or no job.
+    pub fn active_pixels(&self) -> Option<([usize; 2], Vec<bool>)> {
+        let settings = self.settings.as_ref()?;
+        let mask = self.job.as_ref()?.active_pixels()?;
+        Some(([settings.width as usize, settings.height as usize], mask))
+    }
+
     /// What was built for the current job, once built.
     pub fn accel_info(&self) -> Option<AccelInfo> {
         self.job
