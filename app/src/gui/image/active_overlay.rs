@@ -1,8 +1,10 @@
 //! Adaptive sampling's active pixels tinted over the image: the pixels
 //! the next pass still refines, as the render decided after its last
 //! pass. The tint shrinks to the edges and noisy areas as pixels stop,
-//! and is gone once the render is done, so a user sees where the samples
-//! are going while they go there (the samples view shows where they went).
+//! and is gone once the render converged (a render its budget stopped
+//! leaves the pixels still above the threshold tinted), so a user sees
+//! where the samples are going while they go there (the samples view
+//! shows where they went).
 
 use egui::{Color32, ColorImage, Rect, TextureHandle, TextureOptions, Ui, pos2};
 

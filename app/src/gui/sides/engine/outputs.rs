@@ -4,6 +4,7 @@
 
 use tracer::accel::AccelInfo;
 use tracer::render::{Encoding, RenderJob, Snapshot, View, ViewHeatmap};
+use tracer::stats::RenderStats;
 
 use super::{Engine, Version};
 
@@ -56,6 +57,11 @@ impl Engine {
         let settings = self.settings.as_ref()?;
         let mask = self.job.as_ref()?.active_pixels()?;
         Some(([settings.width as usize, settings.height as usize], mask))
+    }
+
+    /// The current job's statistics.
+    pub fn stats(&self) -> Option<RenderStats> {
+        self.job.as_ref().map(RenderJob::stats)
     }
 
     /// What was built for the current job, once built.
