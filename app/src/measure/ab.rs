@@ -158,7 +158,6 @@ pub fn run(
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Option<RenderComparison>> {
-    let labels = side_labels(&a.settings, &b.settings);
     let options = RunOptions {
         runs: 1,
         threads: sides.threads,
@@ -196,6 +195,8 @@ pub fn run(
     let Ok([a, b]) = <[Measurement; 2]>::try_from(measured) else {
         return Ok(None);
     };
+    // After the renders: B's label names the budget A's render set.
+    let labels = side_labels(&a.case.settings, &b.case.settings);
     let (metrics, heatmap) = measure(&a.image, &b.image, heatmap)?;
     Ok(Some(RenderComparison {
         a,

@@ -156,6 +156,12 @@ fn compare_matches_adaptive_b_to_a() {
         taken("b") <= taken("a") && taken("b") * 10 >= taken("a") * 9,
         "{equal}"
     );
+    assert!(
+        equal
+            .to_string()
+            .contains(&format!("at most {} samples", taken("a"))),
+        "B's label names its budget: {equal}"
+    );
     let timed = run(compare("time", adaptive));
     assert!(
         timed["b"]["samples_taken"].as_u64().unwrap() >= 32 * 24,
