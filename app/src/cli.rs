@@ -416,6 +416,11 @@ pub struct CompareArgs {
     /// Side B is this image (PNG, JPEG or EXR) instead of a second render.
     #[arg(long, value_name = "IMAGE")]
     pub b_image: Option<PathBuf>,
+    /// B, adaptive, at A's cost: it stops when its samples reach the total
+    /// A's render took (`samples`), or once it has rendered as long as A
+    /// did (`time`, which depends on the machine). A renders first.
+    #[arg(long, value_enum, value_name = "COST", conflicts_with = "b_image")]
+    pub b_matches: Option<crate::measure::ab::Match>,
     /// Resize the --b-image to the render's size instead of refusing a
     /// mismatch.
     #[arg(long, requires = "b_image")]

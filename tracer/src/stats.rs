@@ -114,6 +114,16 @@ impl AdaptiveStats {
 }
 
 impl RenderStats {
+    /// Samples taken, every pixel's added up: an adaptive render's count,
+    /// or a sample per pixel per uniform pass. What an adaptive render's
+    /// sample budget is matched to.
+    pub fn samples_taken(&self) -> u64 {
+        match &self.adaptive {
+            Some(a) => a.samples,
+            None => u64::from(self.passes_done) * u64::from(self.width) * u64::from(self.height),
+        }
+    }
+
     /// Rays of all kinds per second of rendering.
     pub fn rays_per_second(&self) -> f64 {
         let secs = self.render_time.as_secs_f64();

@@ -71,6 +71,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let options = SideOptions {
         threads: args.threads,
         views: args.view.view().is_some(),
+        b_matches: args.b_matches,
     };
     let comparison = ab::run(
         [&a.world, &b.world],
@@ -205,14 +206,22 @@ fn against_image(
 /// One side's time and work in two lines.
 fn side_text(name: &str, label: &str, m: &Measurement) -> String {
     format!(
-        "{name}: {label}\n   {:.3} s, {}x{}, {} samples/pixel, {} rays, {} rays/s\n",
+        "{name}: {label}\n   {:.3} s, {}x{}, {} samples/pixel ({:.1} taken), {} rays, {} rays/s\n",
         m.median().as_secs_f64(),
         m.case.settings.width,
         m.case.settings.height,
         m.case.settings.samples_per_pixel(),
+        mean_spp(m),
         si(m.rays() as f64),
         si(m.rays_per_second()),
     )
+}
+
+/// Samples per pixel a side took, on average: its settings' for uniform
+/// sampling, fewer where adaptive sampling stopped early.
+fn mean_spp(m: &Measurement) -> f64 {
+    let pixels = u64::from(m.stats.width) * u64::from(m.stats.height);
+    m.stats.samples_taken() as f64 / pixels.max(1) as f64
 }
 
 /// One side's time and work as JSON.
@@ -223,6 +232,7 @@ fn side_json(label: &str, m: &Measurement) -> serde_json::Value {
         "width": m.case.settings.width,
         "height": m.case.settings.height,
         "samples_per_pixel": m.case.settings.samples_per_pixel(),
+        "samples_taken": m.stats.samples_taken(),
         "rays": m.rays(),
         "rays_per_second": m.rays_per_second(),
     })

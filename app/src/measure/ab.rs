@@ -10,7 +10,8 @@ use std::sync::atomic::AtomicBool;
 use anyhow::{Context, Result};
 use image::{Rgb, RgbImage};
 use tracer::metrics::{self, Palette};
-use tracer::render::Encoding;
+use tracer::render::{Budget, Encoding, RenderSettings, Sampling};
+use tracer::stats::RenderStats;
 use tracer::world::World;
 
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
@@ -104,6 +105,44 @@ pub struct SideOptions {
     /// Measure the per-pixel views in the same frames (each side is still
     /// rendered once).
     pub views: bool,
+    /// B, adaptive, stops at A's samples or A's time.
+    pub b_matches: Option<Match>,
+}
+
+/// Adaptive B against A at equal cost: B's budget is what A's finished
+/// render took (the command line's `--b-matches`, the window's compare
+/// header alike).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Match {
+    /// B stops when its samples reach A's total.
+    Samples,
+    /// B stops when it has rendered as long as A did.
+    Time,
+}
+
+impl Match {
+    /// B's budget from the statistics of A's finished render.
+    pub fn budget(self, a: &RenderStats) -> Budget {
+        match self {
+            Match::Samples => Budget::Samples(a.samples_taken()),
+            Match::Time => Budget::Time(a.render_time),
+        }
+    }
+
+    /// `settings` (adaptive) stopped at `budget`; an error for uniform
+    /// sampling, which has no budget.
+    pub fn apply(settings: &mut RenderSettings, budget: Budget) -> Result<()> {
+        match &mut settings.sampling {
+            Sampling::Adaptive(a) if settings.antialiasing || settings.depth_of_field => {
+                a.budget = Some(budget);
+                Ok(())
+            }
+            _ => anyhow::bail!(
+                "matching B to A needs B adaptive: --sampling adaptive with anti-aliasing \
+                 or depth of field"
+            ),
+        }
+    }
 }
 
 /// Renders `a` over the first world then `b` over the second once each
@@ -119,7 +158,6 @@ pub fn run(
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Option<RenderComparison>> {
-    let labels = side_labels(&a.settings, &b.settings);
     let options = RunOptions {
         runs: 1,
         threads: sides.threads,
@@ -130,10 +168,14 @@ pub fn run(
     };
     let same_shapes = Arc::ptr_eq(worlds[0], worlds[1]) || worlds[0].shapes == worlds[1].shapes;
     let mut structures = Structures::default();
-    let mut measured = Vec::new();
-    for (i, (world, case)) in worlds.into_iter().zip([a, b]).enumerate() {
+    let mut measured: Vec<Measurement> = Vec::new();
+    for (i, (world, mut case)) in worlds.into_iter().zip([a, b]).enumerate() {
         if i == 1 && !same_shapes {
             structures = Structures::default();
+        }
+        // B's budget is what A took: A renders first, alone.
+        if let (Some(matches), Some(a)) = (sides.b_matches, measured.first()) {
+            Match::apply(&mut case.settings, matches.budget(&a.stats))?;
         }
         let cases = [case];
         let outcome = benchmark::run_cases(
@@ -153,6 +195,8 @@ pub fn run(
     let Ok([a, b]) = <[Measurement; 2]>::try_from(measured) else {
         return Ok(None);
     };
+    // After the renders: B's label names the budget A's render set.
+    let labels = side_labels(&a.case.settings, &b.case.settings);
     let (metrics, heatmap) = measure(&a.image, &b.image, heatmap)?;
     Ok(Some(RenderComparison {
         a,

@@ -3,7 +3,7 @@
 //! comparison ("grid on, m = 4" against "no acceleration").
 
 use tracer::accel::AccelKind;
-use tracer::render::RenderSettings;
+use tracer::render::{Budget, RenderSettings};
 
 /// One thing the settings control, said briefly and in detail. The detail
 /// is shown only when two settings agree briefly but still differ (two soft
@@ -41,10 +41,16 @@ fn aspects(s: &RenderSettings, show_n: bool) -> Vec<Aspect> {
         AccelKind::Bvh => "BVH".to_string(),
     };
     let sampling = if let Some(a) = s.adaptive().filter(|_| s.antialiasing) {
+        // A budget (compare's B at A's cost) is part of what B is.
+        let budget = match a.budget {
+            Some(Budget::Samples(n)) => format!(", at most {n} samples"),
+            Some(Budget::Time(t)) => format!(", at most {:.3} s", t.as_secs_f64()),
+            None => String::new(),
+        };
         Aspect {
-            brief: format!("adaptive AA, threshold {}", a.noise_threshold),
+            brief: format!("adaptive AA, threshold {}{budget}", a.noise_threshold),
             detailed: format!(
-                "adaptive AA, threshold {}, {} to {} spp",
+                "adaptive AA, threshold {}, {} to {} spp{budget}",
                 a.noise_threshold, a.min_spp, a.max_spp
             ),
         }
@@ -220,6 +226,12 @@ mod tests {
             },
         );
         assert_eq!(detailed, "adaptive AA, threshold 0.02, 6 to 100 spp");
+        let mut budgeted = adaptive.clone();
+        if let tracer::render::Sampling::Adaptive(a) = &mut budgeted.sampling {
+            a.budget = Some(Budget::Samples(4096));
+        }
+        let (_, lb) = side_labels(&adaptive, &budgeted);
+        assert_eq!(lb, "adaptive AA, threshold 0.02, at most 4096 samples");
     }
 
     #[test]

@@ -116,6 +116,62 @@ fn compare_puts_uniform_against_adaptive() {
     assert!(text.contains("adaptive AA, threshold 0.03"), "{text}");
 }
 
+/// `compare --b-matches`: B stops at A's sample total (filled to within
+/// a few pixels' samples, as its threshold asks for more); at A's time
+/// (only the mechanism: B renders and reports its samples, no clock is
+/// asserted); and a uniform B is refused, as it has no budget.
+#[test]
+fn compare_matches_adaptive_b_to_a() {
+    let dir = scratch("adaptive-compare-matched");
+    let scene = scene(&dir);
+    let out = dir.join("compare.png");
+    let compare = |matches: &str, b: &str| {
+        [
+            "compare",
+            &scene,
+            "-o",
+            out.to_str().unwrap(),
+            "--format",
+            "json",
+            "--spp",
+            "3",
+            "--a",
+            "--aa",
+            "--b",
+            b,
+            "--b-matches",
+            matches,
+        ]
+        .map(str::to_owned)
+    };
+    let run = |args: [String; 14]| -> serde_json::Value {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        serde_json::from_str(&workbench_ok(&args)).unwrap()
+    };
+    let adaptive = "--sampling adaptive --noise-threshold 0.001";
+    let equal = run(compare("samples", adaptive));
+    let taken = |side: &str| equal[side]["samples_taken"].as_u64().unwrap();
+    assert_eq!(taken("a"), 9 * 32 * 24, "{equal}");
+    assert!(
+        taken("b") <= taken("a") && taken("b") * 10 >= taken("a") * 9,
+        "{equal}"
+    );
+    assert!(
+        equal
+            .to_string()
+            .contains(&format!("at most {} samples", taken("a"))),
+        "B's label names its budget: {equal}"
+    );
+    let timed = run(compare("time", adaptive));
+    assert!(
+        timed["b"]["samples_taken"].as_u64().unwrap() >= 32 * 24,
+        "{timed}"
+    );
+    let args = compare("samples", "--aa");
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    assert!(workbench_fails(&args).contains("needs B adaptive"));
+}
+
 #[test]
 fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
     let dir = scratch("adaptive-to-error");

@@ -198,6 +198,11 @@ const CHECKED: &[(&str, &str, &str)] = &[
     ),
     (
         "compare",
+        "b-matches",
+        "adaptive::compare_matches_adaptive_b_to_a",
+    ),
+    (
+        "compare",
         "fit",
         "meshes_and_images::a_reference_image_is_side_b",
     ),

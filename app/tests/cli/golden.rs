@@ -144,6 +144,7 @@ fn adaptive(s: &mut RenderSettings) {
         noise_threshold: 0.02,
         min_spp: 4,
         max_spp: 64,
+        budget: None,
     });
 }
 

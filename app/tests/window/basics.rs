@@ -12,7 +12,7 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::AccelKind;
-use tracer::render::{Encoding, JobState, RenderSettings, Snapshot};
+use tracer::render::{Budget, Encoding, JobState, RenderSettings, Snapshot};
 use workbench::gui::{Activity, CompareLayout, Side, WorkbenchApp};
 use workbench::load::SceneSource;
 
@@ -375,6 +375,49 @@ fn metrics(harness: &Harness<'static, WorkbenchApp>) -> workbench::measure::ab::
 
 fn both_done_and_measured(app: &WorkbenchApp) -> bool {
     app.comparison().is_some_and(|c| c.metrics().is_some()) && is_done(app)
+}
+
+/// B's budget, when its job has one.
+fn b_budget(app: &WorkbenchApp) -> Option<Budget> {
+    app.side_b()?.engine.settings()?.adaptive()?.budget
+}
+
+/// Compare mode's B at A's cost: "equal samples" makes B adaptive,
+/// renders it once A is done and stops it at A's sample total; "equal
+/// time" gives it A's render time as its budget (its mechanism; what a
+/// time budget does is the tracer's test, without a clock).
+#[test]
+fn compare_mode_matches_adaptive_b_to_a() {
+    let mut harness = ready_window(WINDOW);
+    harness.key_press(egui::Key::B);
+    settle(&mut harness);
+    harness
+        .get_by_role_and_label(Role::Button, "equal samples")
+        .click();
+    wait_for(&mut harness, "B at A's samples", |app| {
+        is_done(app) && matches!(b_budget(app), Some(Budget::Samples(_)))
+    });
+    let a = harness.state().engine().stats().unwrap();
+    let b = side_b(&harness).engine.stats().unwrap();
+    assert!(
+        a.adaptive.is_none() && b.adaptive.is_some(),
+        "A uniform, B adaptive"
+    );
+    assert_eq!(
+        b_budget(harness.state()),
+        Some(Budget::Samples(a.samples_taken()))
+    );
+    assert!(b.samples_taken() <= a.samples_taken());
+    harness.get_by_label("Mean spp");
+
+    harness
+        .get_by_role_and_label(Role::Button, "equal time")
+        .click();
+    wait_for(&mut harness, "B at A's time", |app| {
+        is_done(app) && matches!(b_budget(app), Some(Budget::Time(_)))
+    });
+    let a = harness.state().engine().stats().unwrap();
+    assert_eq!(b_budget(harness.state()), Some(Budget::Time(a.render_time)));
 }
 
 #[test]

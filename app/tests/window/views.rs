@@ -4,7 +4,7 @@
 use egui::accesskit::Role;
 use egui_kittest::kittest::Queryable;
 use tracer::accel::{Tally, Visit};
-use tracer::render::View;
+use tracer::render::{TILE_SIZE, Tile, View};
 
 use crate::harness::{is_done, ready_window, wait_for};
 
@@ -376,4 +376,42 @@ fn the_eye_rays_grid_walk_steps_one_cell_at_a_time_with_its_tests() {
     assert!(all >= Tally::of(&visits).primitives);
     harness.get_by_label_contains(&format!("in all: {all} primitives"));
     harness.get_by_label_contains(&format!("brute force tests {brute}"));
+/// The active pixels' overlay: an adaptive render held after the pass that
+/// first lets flat pixels stop (the third: 1, 2, then 4 samples, the
+/// minimum at N = 2) tints the pixels still refining, only some of them;
+/// once the render is done, none.
+#[test]
+fn the_active_overlay_shows_the_pixels_still_refining() {
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the first render", is_done);
+    let settings = harness.state().engine().settings().unwrap().clone();
+    let pixels = (settings.width * settings.height) as usize;
+    let tiles = Tile::grid(settings.width, settings.height, TILE_SIZE).len() as u64;
+    // Every tile takes samples in the first three passes: the last one's
+    // last tile holds the render, with the mask decided after it.
+    harness
+        .state_mut()
+        .pause_renders_after_tiles(Some(3 * tiles));
+    harness.get_by_label("adaptive").click();
+    harness.run_steps(2);
+    harness.get_by_label("Show active pixels").click();
+    wait_for(
+        &mut harness,
+        "the render held after its third pass",
+        |app| {
+            let drawn = app.active_overlay().active_drawn();
+            app.engine().is_paused() && drawn > 0 && drawn < pixels
+        },
+    );
+    harness.state_mut().pause_renders_after_tiles(None);
+    harness.key_press(egui::Key::Space);
+    wait_for(&mut harness, "the adaptive render done", |app| {
+        is_done(app)
+            && app
+                .engine()
+                .settings()
+                .is_some_and(|s| s.adaptive().is_some())
+            && app.active_overlay().active_drawn() == 0
+    });
+    assert!(harness.state().active_overlay().on);
 }

@@ -237,6 +237,43 @@ pub(super) fn plan(film: &Film, tile: &Tile, a: &AdaptiveSampling) -> Vec<Range<
     plan
 }
 
+/// `active` cut to a sample budget of `total` samples: when the next
+/// pass would take the film past it, only the pixels with the largest
+/// error estimates whose samples fit refine (ties in row-major order),
+/// and the flag says the budget is spent, so that pass is the last.
+pub fn within_budget(
+    film: &Film,
+    mut active: Vec<bool>,
+    a: &AdaptiveSampling,
+    total: u64,
+) -> (Vec<bool>, bool) {
+    let width = film.width() as usize;
+    let at = |i: usize| ((i % width) as u32, (i / width) as u32);
+    let extra = |i: usize| {
+        let (x, y) = at(i);
+        let n = film.samples(x, y);
+        u64::from(next_count(n, a) - n)
+    };
+    let taken: u64 = (0..active.len())
+        .map(|i| u64::from(film.samples(at(i).0, at(i).1)))
+        .sum();
+    let mut refining: Vec<usize> = (0..active.len()).filter(|&i| active[i]).collect();
+    if taken + refining.iter().map(|&i| extra(i)).sum::<u64>() <= total {
+        return (active, false);
+    }
+    let error = |i: usize| film.error(at(i).0, at(i).1);
+    // Stable: equal errors keep their row-major order.
+    refining.sort_by(|&i, &j| error(j).total_cmp(&error(i)));
+    let mut left = total.saturating_sub(taken);
+    for i in refining {
+        match left.checked_sub(extra(i)) {
+            Some(rest) => left = rest,
+            None => active[i] = false,
+        }
+    }
+    (active, true)
+}
+
 /// Where an adaptive render stands: active pixels (as last decided),
 /// samples taken and the root mean square of the pixels' estimated
 /// errors.
@@ -278,6 +315,7 @@ mod tests {
             noise_threshold: threshold,
             min_spp,
             max_spp,
+            budget: None,
         }
     }
 

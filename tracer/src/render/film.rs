@@ -227,6 +227,13 @@ impl Film {
             .unwrap_or(false)
     }
 
+    /// Which pixels the next adaptive pass refines, row-major (see
+    /// [`Film::is_active`]); `None` when the film does not estimate
+    /// errors. What a viewer draws over the image while it refines.
+    pub fn active_pixels(&self) -> Option<&[bool]> {
+        (!self.spread.is_empty()).then_some(self.active.as_slice())
+    }
+
     /// Sets which pixels the next pass refines (row-major): decided
     /// between passes, over the whole film, so that a pixel may look at
     /// its neighbours and still not depend on the order tiles ran in.

@@ -20,7 +20,7 @@ use super::adaptive;
 use super::film::encode_values;
 use super::settings::SettingsError;
 use super::view::{View, ViewFilm, ViewHeatmap, ViewSample, view_rgba8};
-use super::{Encoding, Film, RenderPlan, RenderSettings};
+use super::{Budget, Encoding, Film, RenderPlan, RenderSettings};
 
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
@@ -408,6 +408,17 @@ impl RenderJob {
         }
     }
 
+    /// The pixels an adaptive render still refines, row-major, as decided
+    /// after the last pass (every pixel before the first ends, none once
+    /// done); `None` for uniform sampling.
+    pub fn active_pixels(&self) -> Option<Vec<bool>> {
+        self.shared
+            .progress()
+            .film
+            .active_pixels()
+            .map(<[bool]>::to_vec)
+    }
+
     /// The film as it stands, as linear floats (see
     /// [`Film::to_linear_image`]), for saving HDR output mid-render.
     pub fn linear_image(&self) -> image::Rgb32FImage {
@@ -498,11 +509,18 @@ impl Drop for RenderJob {
 }
 
 /// Runs passes until the target (or forever when refining) or cancellation;
-/// an adaptive render also ends once no pixel is active.
+/// an adaptive render also ends once no pixel is active or its budget is
+/// spent.
 fn run_passes(frame: &RenderPlan, shared: &Shared) {
     let target = frame.passes_target();
     let adaptive = frame.settings.adaptive().copied();
     let refine = frame.settings.keep_refining && adaptive.is_none();
+    let time_budget = match adaptive.and_then(|a| a.budget) {
+        Some(Budget::Time(limit)) => Some(limit),
+        _ => None,
+    };
+    // A sample budget's last pass is under way (or done).
+    let mut samples_spent = false;
     let mut rendered = Duration::ZERO;
     for pass in 0.. {
         // An adaptive render runs until no pixel is active: a pixel a
@@ -515,6 +533,10 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
         frame.tiles.par_iter().for_each(|tile| {
             shared.wait_while_paused();
             if shared.cancelled() {
+                return;
+            }
+            // A time budget spent starts no tile, after the first pass.
+            if pass > 0 && time_budget.is_some_and(|limit| rendered + start.elapsed() >= limit) {
                 return;
             }
             let mut counters = Counters::default();
@@ -608,12 +630,19 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
             let rays = p.stats.counters.total_rays() - rays_before;
             p.stats.pass_rays.push(rays);
             p.stats.render_time = rendered;
+            let out_of_budget = samples_spent || time_budget.is_some_and(|limit| rendered >= limit);
             let converged = adaptive.map(|a| {
-                let active = adaptive::decide(&p.film, &a);
+                let mut active = adaptive::decide(&p.film, &a);
+                if let (Some(Budget::Samples(total)), false) = (a.budget, out_of_budget) {
+                    (active, samples_spent) = adaptive::within_budget(&p.film, active, &a, total);
+                }
                 p.film.set_active(active);
                 let summary = adaptive::summary(&p.film);
                 p.stats.adaptive = Some(summary);
-                summary.active_pixels == 0
+                // Ended by its budget, a render leaves its pixels still
+                // above the threshold active: a viewer shows where the
+                // budget ran out.
+                summary.active_pixels == 0 || out_of_budget
             });
             match converged {
                 // Done before the most passes it might have taken.

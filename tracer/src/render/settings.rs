@@ -120,6 +120,23 @@ pub struct AdaptiveSampling {
     /// side of the strata the samples fill, for the pixel, the lens and
     /// soft shadows alike.
     pub max_spp: u32,
+    /// Where the render stops early, whatever the threshold: to compare
+    /// it with another render at equal samples or equal time.
+    pub budget: Option<Budget>,
+}
+
+/// An adaptive render's budget ([`AdaptiveSampling::budget`]). Its first
+/// pass (a sample in every pixel) always runs, so the image has no hole.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Budget {
+    /// At most this many samples in all: the pass that would go over
+    /// refines only the pixels with the largest error estimates that fit,
+    /// and is the last. The image stays a function of the settings.
+    Samples(u64),
+    /// No tile starts once the render has taken this long, and the pass
+    /// under way is the last. The image depends on the machine's speed.
+    Time(std::time::Duration),
 }
 
 impl Default for AdaptiveSampling {
@@ -141,6 +158,7 @@ impl AdaptiveSampling {
             noise_threshold,
             min_spp: (n * n / 4).max(4).min(max_spp),
             max_spp,
+            budget: None,
         }
     }
 }

@@ -162,10 +162,33 @@ impl WorkbenchApp {
         let (camera, moving) = (self.navigation.camera, self.navigation.is_camera_moving());
         let views = self.tools.views.measures();
         let b_is_image = self.comparison.reference().is_some();
+        // B at A's cost: A's budget once A is done (`Some(None)` before).
+        let a = &self.sides.a.engine;
+        let a_cost = self
+            .comparison
+            .b_matches
+            .filter(|_| !b_is_image)
+            .map(|matches| {
+                (a.activity() == Activity::Job(JobState::Done))
+                    .then(|| a.stats())
+                    .flatten()
+                    .map(|stats| matches.budget(&stats))
+            });
         for side in self.sides.each_mut() {
+            let is_b = side.id == crate::gui::sides::SideId::B;
+            if is_b && a_cost.is_some() {
+                side.make_adaptive();
+            }
             side.plan(camera, moving);
-            if side.id == crate::gui::sides::SideId::B && b_is_image {
+            if is_b && b_is_image {
                 continue;
+            }
+            if let (true, Some(cost)) = (is_b, a_cost) {
+                // B waits for A: it renders alone, after A, at A's cost.
+                let Some(budget) = cost else {
+                    continue;
+                };
+                side.limit(budget);
             }
             if let Err(e) = side.render(views) {
                 self.messages.error = Some(e);

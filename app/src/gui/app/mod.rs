@@ -179,6 +179,7 @@ impl WorkbenchApp {
             paused,
             views: &mut self.tools.views,
             overlay: &mut self.tools.overlay,
+            active: &mut self.tools.active,
             observer: &mut self.observer,
         };
         let mut picked = None;

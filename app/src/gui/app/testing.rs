@@ -12,6 +12,7 @@ use super::saving::FileDialog;
 use crate::gui::Clock;
 use crate::gui::comparison::Comparison;
 use crate::gui::editor::Editor;
+use crate::gui::image::active_overlay::ActiveOverlay;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::image::viewport::Zoom;
@@ -88,6 +89,11 @@ impl WorkbenchApp {
     /// The structure overlay.
     pub fn overlay(&self) -> &StructureOverlay {
         &self.tools.overlay
+    }
+
+    /// The overlay of adaptive sampling's active pixels.
+    pub fn active_overlay(&self) -> &ActiveOverlay {
+        &self.tools.active
     }
 
     /// Export report...'s state: its progress and what it last did.

@@ -13,7 +13,7 @@ use std::sync::mpsc::Receiver;
 use egui::TextureHandle;
 use tracer::render::{Encoding, View};
 
-use crate::measure::ab::Metrics;
+use crate::measure::ab::{Match, Metrics};
 use crate::measure::value_difference::ValueDifference;
 
 use reference::PendingReference;
@@ -79,6 +79,9 @@ pub struct Comparison {
     picking: Option<PendingReference>,
     /// Why the last image picked could not be read.
     pub picking_error: Option<String>,
+    /// B adaptive at A's cost: it renders once A is done, stopped at A's
+    /// samples or A's time.
+    pub b_matches: Option<Match>,
 }
 
 impl Default for Comparison {
@@ -97,6 +100,7 @@ impl Default for Comparison {
             reference_changes: 0,
             picking: None,
             picking_error: None,
+            b_matches: None,
         }
     }
 }

@@ -111,6 +111,7 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
     if let Some(rect) = response.image_rect {
         let (visits, step) = (tools.inspector.eye_visits(), tools.inspector.step);
         tools.overlay.paint(ui, &a.engine, rect, visits, step);
+        tools.active.paint(ui, &a.engine, rect);
         tools.editor.paint_outline(ui, &sides.active().engine, rect);
         tools.inspector.paths_drawn = match tools.inspector.tree(0) {
             Some(Ok(tree)) => ray_paths::paint(ui, tree, &a.engine, rect),

@@ -11,6 +11,7 @@ use crate::figures::heat_map::format_number;
 use crate::gui::comparison::{CompareLayout, Comparison};
 use crate::gui::image::pixel_views::colour_bar;
 use crate::gui::sides::Side;
+use crate::measure::ab::Match;
 use crate::measure::value_difference::{ValueStats, diverging_colour};
 use crate::reports::describe::{describe, side_labels};
 
@@ -74,6 +75,9 @@ pub fn header(ui: &mut Ui, comparison: &mut Comparison, a: &Side, b: &Side) {
         }
     });
     reference_controls(ui, comparison, a.controls.encoding());
+    if comparison.reference().is_none() {
+        match_controls(ui, comparison);
+    }
     if let Some((label_a, label_b)) = labels(comparison, a, b) {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(label_a).strong());
@@ -121,6 +125,21 @@ fn reference_controls(ui: &mut Ui, comparison: &mut Comparison, encoding: Encodi
     }
 }
 
+/// B adaptive at A's cost: off, equal samples or equal time.
+fn match_controls(ui: &mut Ui, comparison: &mut Comparison) {
+    ui.horizontal(|ui| {
+        ui.label("B adaptive at A's cost").on_hover_text(
+            "B switches to adaptive sampling and renders once A is done, stopping when \
+                 its samples reach A's total or when it has rendered as long as A did; its \
+                 threshold still stops it sooner where the image is smooth enough",
+        );
+        let choice = &mut comparison.b_matches;
+        ui.selectable_value(choice, None, "off");
+        ui.selectable_value(choice, Some(Match::Samples), "equal samples");
+        ui.selectable_value(choice, Some(Match::Time), "equal time");
+    });
+}
+
 /// The numbers of both sides and their difference.
 pub fn numbers(ui: &mut Ui, comparison: &Comparison, a: &Side, b: &Side) {
     let labels = labels(comparison, a, b).unwrap_or_default();
@@ -146,6 +165,13 @@ pub fn numbers(ui: &mut Ui, comparison: &Comparison, a: &Side, b: &Side) {
             });
             row(ui, "Samples", &|s| {
                 format!("{} / {}", s.stats.passes_done, s.stats.passes_target)
+            });
+            row(ui, "Mean spp", &|s| {
+                let pixels = u64::from(s.stats.width) * u64::from(s.stats.height);
+                format!(
+                    "{:.2}",
+                    s.stats.samples_taken() as f64 / pixels.max(1) as f64
+                )
             });
             row(ui, "Rays", &|s| {
                 crate::reports::render_stats::si(s.stats.counters.total_rays() as f64)

@@ -8,6 +8,7 @@ use tracer::render::{
 };
 
 use crate::gui::commands::Command;
+use crate::gui::image::active_overlay::ActiveOverlay;
 use crate::gui::sides::Controls;
 
 /// Largest N offered by the slider (N x N samples per pixel).
@@ -97,7 +98,13 @@ pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>
 
 /// Draws the controls; toggles and buttons record commands, sliders edit
 /// `controls` directly.
-pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut Vec<Command>) {
+pub fn show(
+    ui: &mut Ui,
+    controls: &mut Controls,
+    active: &mut ActiveOverlay,
+    paused: bool,
+    commands: &mut Vec<Command>,
+) {
     ui.heading("Rendering");
     command_toggle(
         ui,
@@ -153,6 +160,9 @@ pub fn show(ui: &mut Ui, controls: &mut Controls, paused: bool, commands: &mut V
         adaptive_switch(ui, &mut controls.render);
     });
     adaptive_knobs(ui, &mut controls.render);
+    if controls.render.adaptive().is_some() {
+        active.ui(ui);
+    }
     ui.add(Slider::new(&mut controls.render.aperture, 0.0..=64.0).text("Aperture (px)"))
         .on_hover_text("Lens diameter in pixels; depth of field must be on");
     ui.add(

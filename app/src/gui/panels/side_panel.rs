@@ -1,6 +1,6 @@
 //! The side panel: the scene list, compare mode and which side is edited,
-//! the edited side's settings, the per-pixel view and the structure
-//! overlay.
+//! the edited side's settings (with the active pixels' overlay beside the
+//! adaptive controls), the per-pixel view and the structure overlay.
 
 use std::path::PathBuf;
 
@@ -10,6 +10,7 @@ use tracer::stats::SceneCounts;
 use super::scene_list::{self, SceneList};
 use super::settings::{self, command_button, command_toggle};
 use crate::gui::commands::Command;
+use crate::gui::image::active_overlay::ActiveOverlay;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::observer::Observer;
@@ -29,6 +30,7 @@ pub struct SidePanelView<'a> {
     pub paused: bool,
     pub views: &'a mut PixelViews,
     pub overlay: &'a mut StructureOverlay,
+    pub active: &'a mut ActiveOverlay,
     pub observer: &'a mut Observer,
 }
 
@@ -59,7 +61,7 @@ pub fn show(
             command_button(ui, Command::CopyAToB, commands);
         });
     }
-    settings::show(ui, view.controls, view.paused, commands);
+    settings::show(ui, view.controls, view.active, view.paused, commands);
     ui.separator();
     view.views.ui(ui, comparing);
     view.overlay.ui(ui);

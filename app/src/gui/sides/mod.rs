@@ -12,7 +12,7 @@ mod live_image;
 use std::sync::Arc;
 
 use tracer::camera::CameraPose;
-use tracer::render::{RenderSettings, View, ViewHeatmap};
+use tracer::render::{AdaptiveSampling, Budget, RenderSettings, Sampling, View, ViewHeatmap};
 use tracer::scene::edit::{Edit, Effect};
 
 pub use controls::Controls;
@@ -168,6 +168,33 @@ impl Side {
             target: self.controls.render_settings(&scene.scene, camera, false),
             rendered: self.controls.render_settings(&scene.scene, camera, moving),
         });
+    }
+
+    /// Switches the controls to adaptive sampling (with anti-aliasing
+    /// unless depth of field spreads the samples), as compare mode's B
+    /// at A's cost is.
+    pub fn make_adaptive(&mut self) {
+        let render = &mut self.controls.render;
+        render.antialiasing |= !render.depth_of_field;
+        if !matches!(render.sampling, Sampling::Adaptive(_)) {
+            render.sampling = Sampling::Adaptive(AdaptiveSampling::for_samples(
+                render.samples,
+                AdaptiveSampling::default().noise_threshold,
+            ));
+        }
+    }
+
+    /// Stops this frame's plan, when adaptive, at `budget` (the cost of
+    /// A's finished render).
+    pub fn limit(&mut self, budget: Budget) {
+        let Some(plan) = &mut self.plan else {
+            return;
+        };
+        for settings in [&mut plan.target, &mut plan.rendered] {
+            if let Sampling::Adaptive(a) = &mut settings.sampling {
+                a.budget = Some(budget);
+            }
+        }
     }
 
     /// The full-resolution settings of this frame, once there is a scene:

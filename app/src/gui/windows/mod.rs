@@ -15,6 +15,7 @@ use report::ReportExport;
 use studies::StudiesWindow;
 
 use super::editor::Editor;
+use super::image::active_overlay::ActiveOverlay;
 use super::image::pixel_views::PixelViews;
 use super::image::structure_overlay::StructureOverlay;
 
@@ -29,6 +30,8 @@ pub struct ToolsAndOverlays {
     pub inspector: Inspector,
     /// The acceleration structure drawn over the image.
     pub overlay: StructureOverlay,
+    /// Adaptive sampling's active pixels tinted over the image.
+    pub active: ActiveOverlay,
     /// Which per-pixel view the images show.
     pub views: PixelViews,
     pub help_open: bool,

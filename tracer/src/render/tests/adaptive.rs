@@ -7,8 +7,8 @@ use super::{index, world};
 use crate::accel::AccelKind;
 use crate::render::adaptive;
 use crate::render::{
-    AdaptiveSampling, Film, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, Sampling,
-    render,
+    AdaptiveSampling, Budget, Film, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings,
+    Sampling, render,
 };
 use crate::stats::Counters;
 
@@ -38,6 +38,7 @@ fn adaptive(threshold: f32, min_spp: u32, max_spp: u32) -> RenderSettings {
             noise_threshold: threshold,
             min_spp,
             max_spp,
+            budget: None,
         }),
         ..RenderSettings::default()
     }
@@ -238,4 +239,92 @@ fn threshold_zero_takes_the_samples_of_uniform_sampling_at_the_maximum() {
             assert!((a - u).abs().max_element() < 1e-5, "({x}, {y}): {a} vs {u}");
         }
     }
+}
+
+/// What a viewer draws over the image: every pixel active before the
+/// first pass, some between passes while edges refine, none once done;
+/// nothing for uniform sampling.
+#[test]
+fn a_jobs_active_pixels_go_from_all_to_none() {
+    let settings = adaptive(0.01, 4, 64);
+    let pixels = (settings.width * settings.height) as usize;
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let between: Arc<Mutex<Vec<Vec<bool>>>> = Arc::default();
+    let record = between.clone();
+    let job = RenderJob::start(
+        w.clone(),
+        Some(idx.clone()),
+        settings.clone(),
+        JobOptions {
+            threads: Some(2),
+            paused: true,
+            on_pass: Some(Box::new(move |_, film| {
+                let mask = film.active_pixels().expect("an adaptive film").to_vec();
+                record.lock().unwrap().push(mask);
+            })),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(job.active_pixels(), Some(vec![true; pixels]));
+    job.set_paused(false);
+    crate::waiting::wait_until("the adaptive job", || job.is_finished());
+    assert_eq!(job.active_pixels(), Some(vec![false; pixels]));
+    let between = between.lock().unwrap();
+    assert!(
+        between
+            .iter()
+            .any(|mask| mask.contains(&true) && mask.contains(&false)),
+        "no pass left some pixels refining and others done"
+    );
+    let uniform = RenderSettings {
+        sampling: Sampling::Uniform,
+        ..settings
+    };
+    let job = RenderJob::start(w, Some(idx), uniform, JobOptions::default()).unwrap();
+    assert_eq!(job.active_pixels(), None);
+}
+
+/// Compare mode's "equal samples": with a budget of 12 samples per pixel
+/// and a threshold of 0 (every pixel refines to the maximum), the pass
+/// from 8 to 16 samples refines only the half of the pixels with the
+/// largest errors, and the render takes exactly its budget, the same on
+/// any thread count.
+#[test]
+fn a_sample_budget_ends_the_render_at_its_total() {
+    let pixels = 32 * 24;
+    let total = 12 * pixels as u64;
+    let settings = RenderSettings {
+        sampling: Sampling::Adaptive(AdaptiveSampling {
+            budget: Some(Budget::Samples(total)),
+            ..*adaptive(0.0, 4, 64).adaptive().unwrap()
+        }),
+        ..adaptive(0.0, 4, 64)
+    };
+    let film = render_film(settings.clone(), 3);
+    let counts = counts(&film);
+    assert_eq!(counts.iter().map(|&n| u64::from(n)).sum::<u64>(), total);
+    assert_eq!(counts.iter().filter(|&&n| n == 16).count(), pixels / 2);
+    assert!(counts.iter().all(|&n| n == 8 || n == 16));
+    assert!(film == render_film(settings, 1));
+}
+
+/// Compare mode's "equal time", through its mechanism rather than a
+/// clock: a budget already spent stops the render after its first pass
+/// (one sample in every pixel, no hole), its target met.
+#[test]
+fn a_spent_time_budget_ends_the_render_after_its_first_pass() {
+    let settings = RenderSettings {
+        sampling: Sampling::Adaptive(AdaptiveSampling {
+            budget: Some(Budget::Time(std::time::Duration::ZERO)),
+            ..*adaptive(0.01, 4, 64).adaptive().unwrap()
+        }),
+        ..adaptive(0.01, 4, 64)
+    };
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let (film, stats) = render(w, idx, settings, Some(2)).unwrap();
+    assert_eq!((stats.passes_done, stats.passes_target), (1, 1));
+    assert!(counts(&film).iter().all(|&n| n == 1));
 }

@@ -4,6 +4,7 @@
 
 use tracer::accel::AccelInfo;
 use tracer::render::{Encoding, RenderJob, Snapshot, View, ViewHeatmap};
+use tracer::stats::RenderStats;
 
 use super::{Engine, Version};
 
@@ -48,6 +49,19 @@ impl Engine {
     /// The current values of a scalar view, if the job measures views.
     pub fn view_values(&self, view: View) -> Option<Vec<Option<f32>>> {
         self.job.as_ref().and_then(|j| j.view_values(view))
+    }
+
+    /// The current job's image size and the pixels its adaptive sampling
+    /// still refines (row-major); `None` for uniform sampling or no job.
+    pub fn active_pixels(&self) -> Option<([usize; 2], Vec<bool>)> {
+        let settings = self.settings.as_ref()?;
+        let mask = self.job.as_ref()?.active_pixels()?;
+        Some(([settings.width as usize, settings.height as usize], mask))
+    }
+
+    /// The current job's statistics.
+    pub fn stats(&self) -> Option<RenderStats> {
+        self.job.as_ref().map(RenderJob::stats)
     }
 
     /// What was built for the current job, once built.
