@@ -376,6 +376,8 @@ fn the_eye_rays_grid_walk_steps_one_cell_at_a_time_with_its_tests() {
     assert!(all >= Tally::of(&visits).primitives);
     harness.get_by_label_contains(&format!("in all: {all} primitives"));
     harness.get_by_label_contains(&format!("brute force tests {brute}"));
+}
+
 /// The active pixels' overlay: an adaptive render held after the pass that
 /// first lets flat pixels stop (the third: 1, 2, then 4 samples, the
 /// minimum at N = 2) tints the pixels still refining, only some of them;
