@@ -6,6 +6,7 @@
 use glam::{Quat, Vec2, Vec3, Vec3A};
 
 use crate::geometry::Ray;
+use crate::render::RenderSettings;
 use crate::scene::Viewpoint;
 
 /// Why a camera cannot be built.
@@ -171,6 +172,23 @@ impl Camera {
             focal_ratio: focal,
             hither: view.hither.max(0.0),
         })
+    }
+
+    /// The one camera a render of `view` with `settings` uses, so the
+    /// image, its overlays, picking and the figures all agree: the view,
+    /// or the settings' pose when the user moved the camera; the lens only
+    /// with depth of field on.
+    pub fn for_render(view: &Viewpoint, settings: &RenderSettings) -> Result<Self, CameraError> {
+        let (aperture, focal) = if settings.depth_of_field {
+            (settings.aperture, settings.focal)
+        } else {
+            (0.0, 1.0)
+        };
+        let mut view = view.clone();
+        if let Some(pose) = &settings.camera {
+            pose.apply(&mut view);
+        }
+        Self::new(&view, settings.width, settings.height, aperture, focal)
     }
 
     pub fn width(&self) -> u32 {

@@ -5,7 +5,8 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
-use tracer::render::{RenderPlan, RenderSettings};
+use tracer::camera::Camera;
+use tracer::render::RenderSettings;
 
 use crate::cli::{BenchArgs, TableFormat};
 use crate::image_file::save_png;
@@ -112,7 +113,7 @@ fn rays(args: &BenchArgs, loaded: &Loaded, settings: &RenderSettings) -> Result<
         Some([one]) => *one,
         Some(_) => bail!("--rays measures one structure: give one to --structure"),
     };
-    let camera = RenderPlan::camera(&loaded.world, settings)
+    let camera = Camera::for_render(&loaded.world.view, settings)
         .with_context(|| format!("cannot set up the camera of {}", args.scene.display()))?;
     let options = RayBenchOptions {
         accel,

@@ -9,8 +9,9 @@ use std::sync::Arc;
 
 use serde::Deserialize;
 use tracer::accel::{AccelKind, SceneIndex};
+use tracer::camera::Camera;
 use tracer::geometry::Ray;
-use tracer::render::{Outcome, RayKind, RayTree, RenderPlan, View};
+use tracer::render::{Outcome, RayKind, RayTree, View};
 use tracer::scene::{Primitive, Scene};
 
 use crate::reports::ray_tree;
@@ -308,7 +309,7 @@ impl Quantity {
                     side.settings.accel,
                     side.settings.grid_multiplier,
                 );
-                let hither = RenderPlan::camera(&side.world, &side.settings)
+                let hither = Camera::for_render(&side.world.view, &side.settings)
                     .map_err(|e| e.to_string())?
                     .hither();
                 let ray = Ray::new(eye.origin, eye.dir);
