@@ -51,7 +51,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             settings.samples = benchmark::MATRIX_SAMPLES;
         }
         (
-            benchmark::matrix(&settings, &accels, encoding),
+            benchmark::matrix(&settings, &loaded.scene.view, &accels, encoding),
             Columns::Matrix,
         )
     } else {
@@ -160,7 +160,7 @@ fn to_error(args: &BenchArgs, loaded: &Loaded, mut settings: RenderSettings) -> 
         args.scene.display(),
         plan.base.width,
         plan.base.height,
-        reports::describe::describe(&plan.base),
+        reports::describe::describe(&plan.base, &loaded.scene.view),
         plan.runs,
         args.threads.map_or_else(
             || rayon::current_num_threads().to_string(),

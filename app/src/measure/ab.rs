@@ -119,7 +119,7 @@ pub fn run(
     cancel: &AtomicBool,
     on_event: &mut dyn FnMut(Event),
 ) -> Result<Option<RenderComparison>> {
-    let labels = side_labels(&a.settings, &b.settings);
+    let labels = side_labels(&a.settings, &b.settings, [&worlds[0].view, &worlds[1].view]);
     let options = RunOptions {
         runs: 1,
         threads: sides.threads,

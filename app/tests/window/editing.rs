@@ -11,9 +11,9 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::SceneIndex;
 use tracer::camera::Camera;
-use tracer::render::RenderSettings;
-use tracer::scene::Primitive;
+use tracer::render::{LensOverride, RenderSettings};
 use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
+use tracer::scene::{Lens, Primitive};
 use workbench::gui::{Pending, WorkbenchApp};
 use workbench::load::{Loaded, SceneSource};
 
@@ -238,8 +238,10 @@ fn the_scene_owns_the_lens_until_the_user_overrides_it() {
     let user = |harness: &mut Harness<'static, WorkbenchApp>| {
         let render = &mut harness.state_mut().controls_mut().render;
         render.depth_of_field = true;
-        render.aperture = 20.0;
-        render.focal = 2.0;
+        render.lens_override = LensOverride::all(Lens {
+            aperture: 20.0,
+            focal: 2.0,
+        });
     };
     user(&mut harness);
     assert!(

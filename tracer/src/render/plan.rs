@@ -231,6 +231,7 @@ mod tests {
     use super::*;
     use crate::accel::AccelKind;
     use crate::camera::CameraPose;
+    use crate::render::LensOverride;
     use crate::scene::{Limits, parse_scene};
 
     fn scene(from: &str) -> String {
@@ -291,7 +292,10 @@ mod tests {
             antialiasing: true,
             samples: 2,
             depth_of_field: true,
-            aperture: 4.0,
+            lens_override: LensOverride {
+                aperture: Some(4.0),
+                ..Default::default()
+            },
             soft_shadows: true,
             light_size: 0.5,
             ..s

@@ -26,7 +26,10 @@ s 0.9 1.6 0.5 0.5
 fn world_and_settings(aperture: f32) -> (Arc<World>, RenderSettings) {
     let scene = parse_scene(SCENE, None, &Limits::default()).unwrap();
     let settings = RenderSettings {
-        aperture,
+        lens_override: tracer::render::LensOverride {
+            aperture: Some(aperture),
+            focal: None,
+        },
         depth_of_field: aperture > 0.0,
         ..RenderSettings::from_scene(&scene)
     };

@@ -371,8 +371,8 @@ fn read_setting(side: &SideState, setting: Setting) -> Value {
         Setting::SoftShadows => Value::Bool(s.soft_shadows),
         Setting::LightSize => number(s.light_size),
         Setting::Dof => Value::Bool(s.depth_of_field),
-        Setting::Aperture => number(s.aperture),
-        Setting::Focal => number(s.focal),
+        Setting::Aperture => number(s.chosen_lens(&side.scene.view).aperture),
+        Setting::Focal => number(s.chosen_lens(&side.scene.view).focal),
         Setting::Ambient => number(s.ambient),
         Setting::Accel => Value::Word(s.accel.name().to_string()),
         Setting::GridM => number(s.grid_multiplier),
@@ -456,7 +456,7 @@ fn focus_error(side: &SideState, n: usize) -> Result<Value, String> {
     if depth <= 0.0 {
         return Err(format!("object {n} is behind the camera"));
     }
-    let in_focus = side.settings.focal * (view.at - view.from).length();
+    let in_focus = side.settings.chosen_lens(view).focal * (view.at - view.from).length();
     Ok(Value::Number(f64::from((in_focus - depth).abs() / depth)))
 }
 
