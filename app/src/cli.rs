@@ -823,14 +823,14 @@ impl SettingsArgs {
             s.light_size = size;
         }
         if let Some(a) = self.aperture {
-            s.aperture = a;
+            s.lens_override.aperture = Some(a);
             s.depth_of_field = a > 0.0;
         }
         if self.dof {
             s.depth_of_field = true;
         }
         if let Some(f) = self.focal {
-            s.focal = f;
+            s.lens_override.focal = Some(f);
         }
         if let Some(a) = self.ambient {
             s.ambient = a;

@@ -6,7 +6,8 @@
 use glam::{Quat, Vec2, Vec3, Vec3A};
 
 use crate::geometry::Ray;
-use crate::scene::Viewpoint;
+use crate::render::RenderSettings;
+use crate::scene::{Lens, Viewpoint};
 
 /// Why a camera cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -171,6 +172,26 @@ impl Camera {
             focal_ratio: focal,
             hither: view.hither.max(0.0),
         })
+    }
+
+    /// The one camera a render of `view` with `settings` uses, so the
+    /// image, its overlays, picking and the figures all agree: the view,
+    /// or the settings' pose when the user moved the camera; the view's
+    /// lens, or the settings' override of it, only with depth of field on
+    /// ([`RenderSettings::lens`]).
+    pub fn for_render(view: &Viewpoint, settings: &RenderSettings) -> Result<Self, CameraError> {
+        let lens = settings.lens(view).unwrap_or(Lens::PINHOLE);
+        let mut view = view.clone();
+        if let Some(pose) = &settings.camera {
+            pose.apply(&mut view);
+        }
+        Self::new(
+            &view,
+            settings.width,
+            settings.height,
+            lens.aperture,
+            lens.focal,
+        )
     }
 
     pub fn width(&self) -> u32 {

@@ -5,7 +5,8 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
-use tracer::render::{RenderPlan, RenderSettings};
+use tracer::camera::Camera;
+use tracer::render::RenderSettings;
 
 use crate::cli::{BenchArgs, TableFormat};
 use crate::image_file::save_png;
@@ -50,7 +51,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             settings.samples = benchmark::MATRIX_SAMPLES;
         }
         (
-            benchmark::matrix(&settings, &accels, encoding),
+            benchmark::matrix(&settings, &loaded.scene.view, &accels, encoding),
             Columns::Matrix,
         )
     } else {
@@ -112,7 +113,7 @@ fn rays(args: &BenchArgs, loaded: &Loaded, settings: &RenderSettings) -> Result<
         Some([one]) => *one,
         Some(_) => bail!("--rays measures one structure: give one to --structure"),
     };
-    let camera = RenderPlan::camera(&loaded.world, settings)
+    let camera = Camera::for_render(&loaded.world.view, settings)
         .with_context(|| format!("cannot set up the camera of {}", args.scene.display()))?;
     let options = RayBenchOptions {
         accel,
@@ -159,7 +160,7 @@ fn to_error(args: &BenchArgs, loaded: &Loaded, mut settings: RenderSettings) -> 
         args.scene.display(),
         plan.base.width,
         plan.base.height,
-        reports::describe::describe(&plan.base),
+        reports::describe::describe(&plan.base, &loaded.scene.view),
         plan.runs,
         args.threads.map_or_else(
             || rayon::current_num_threads().to_string(),

@@ -34,7 +34,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         let (edited, edits) = loaded
             .edited(&own.set)
             .with_context(|| format!("--{name} \"{flags}\""))?;
-        // The side's camera edits (aperture, focal) reach its settings.
+        // The side's lens edits turn depth of field on as its scene's lens
+        // does.
         let mut settings = RenderSettings::from_scene(&edited.scene);
         args.settings.apply(&mut settings);
         own.apply(&mut settings);
@@ -174,7 +175,7 @@ fn against_image(
         ),
         &args.output,
     )?;
-    let settings = crate::reports::describe::describe(&c.a.case.settings);
+    let settings = crate::reports::describe::describe(&c.a.case.settings, &world.view);
     let label = [settings]
         .into_iter()
         .chain(edits)

@@ -8,8 +8,8 @@ use anyhow::{Context, Result, anyhow, bail};
 use glam::Vec3;
 use serde_json::json;
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
-use tracer::camera::CameraPose;
-use tracer::render::{RayTree, RenderPlan, RenderSettings};
+use tracer::camera::{Camera, CameraPose};
+use tracer::render::{RayTree, RenderSettings};
 
 use crate::cli::{MetricsFormat, ObserveArgs};
 use crate::figures::observer::draw::{Piece, figure};
@@ -50,9 +50,9 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     observer_settings
         .validate()
         .map_err(|e| anyhow!("--size {figure_width} {figure_height}: {e}"))?;
-    let observer_camera = RenderPlan::camera(&world, &observer_settings)
+    let observer_camera = Camera::for_render(&world.view, &observer_settings)
         .map_err(|e| anyhow!("the observer camera (--from, --at, --up): {e}"))?;
-    let scene_camera = RenderPlan::camera(&world, &settings)?;
+    let scene_camera = Camera::for_render(&world.view, &settings)?;
 
     super::warn_brute_force_with(
         &settings,
@@ -132,7 +132,7 @@ fn observer_pose(
     settings: &RenderSettings,
 ) -> Result<CameraPose> {
     let aspect = args.size[1] as f32 / args.size[0].max(1) as f32;
-    let scene_camera = RenderPlan::camera(world, settings)?;
+    let scene_camera = Camera::for_render(&world.view, settings)?;
     let vector = |v: &Option<Vec<f32>>| v.as_ref().map(|v| Vec3::new(v[0], v[1], v[2]));
     let up = vector(&args.up).unwrap_or_else(|| scene_camera.basis()[1].into());
     let pose = match (vector(&args.from), vector(&args.at)) {

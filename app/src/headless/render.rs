@@ -7,9 +7,8 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer, Visit};
-use tracer::render::{
-    Finished, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, ViewSummary,
-};
+use tracer::camera::Camera;
+use tracer::render::{Finished, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
 use tracer::world::World;
 
 use crate::cli::{RenderArgs, StatsFormat};
@@ -118,7 +117,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         };
         if let Some((layer, index)) = &overlay {
             let world = &loaded.world;
-            let camera = RenderPlan::camera(world, &settings)
+            let camera = Camera::for_render(&world.view, &settings)
                 .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
             overlay::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
             if let Some(pixel) = &args.pixel {

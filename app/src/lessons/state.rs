@@ -158,16 +158,15 @@ fn apply_flags(side: &mut SideState, flags: &Located<SettingsArgs>, file: &str) 
 }
 
 /// `side` with `--set` edits applied to its scene, its world following.
-/// An edit of the camera's lens sets the lens the settings render with, as
-/// the window's controls follow it.
+/// An edit of the camera's lens is the lens the side renders with (the
+/// user's override dropped, depth of field on when it is open), as in the
+/// window.
 fn edited(side: &SideState, lines: &[String]) -> Result<SideState> {
     let (scene, world, _) = with_edits(&side.scene, &side.world, lines)?;
     let mut settings = side.settings.clone();
     let (before, after) = (&side.scene.view, &scene.view);
-    if (before.aperture, before.focal) != (after.aperture, after.focal) {
-        settings.depth_of_field = after.aperture > 0.0;
-        settings.aperture = after.aperture;
-        settings.focal = after.focal;
+    if before.lens() != after.lens() {
+        settings.follow_scene_lens(after);
     }
     Ok(SideState {
         scene,

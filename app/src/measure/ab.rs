@@ -196,7 +196,11 @@ pub fn run(
         return Ok(None);
     };
     // After the renders: B's label names the budget A's render set.
-    let labels = side_labels(&a.case.settings, &b.case.settings);
+    let labels = side_labels(
+        &a.case.settings,
+        &b.case.settings,
+        [&worlds[0].view, &worlds[1].view],
+    );
     let (metrics, heatmap) = measure(&a.image, &b.image, heatmap)?;
     Ok(Some(RenderComparison {
         a,

@@ -10,7 +10,10 @@ use std::time::Duration;
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use tracer::accel::{AccelInfo, AccelKind, SceneIndex};
-use tracer::render::{Encoding, JobOptions, JobState, RenderJob, RenderSettings, ViewFilm};
+use tracer::render::{
+    Encoding, JobOptions, JobState, LensOverride, RenderJob, RenderSettings, ViewFilm,
+};
+use tracer::scene::{Lens, Viewpoint};
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
@@ -27,10 +30,10 @@ pub struct Case {
 }
 
 impl Case {
-    /// A case labelled with [`describe`].
-    pub fn new(settings: RenderSettings, encoding: Encoding) -> Self {
+    /// A case of a scene seen from `view`, labelled with [`describe`].
+    pub fn new(settings: RenderSettings, view: &Viewpoint, encoding: Encoding) -> Self {
         Self {
-            label: describe(&settings),
+            label: describe(&settings, view),
             settings,
             encoding,
         }
@@ -89,8 +92,15 @@ pub const MATRIX_APERTURE: f32 = 8.0;
 /// hard then soft shadows, each with one sample, AA, and AA with DOF; the
 /// course measured none and grid (12 rows), the workbench adds BVH (18).
 /// Everything else (size, N, light size, lens, depth, seed) comes from
-/// `base`: set its `samples` to [`MATRIX_SAMPLES`] for the course's N.
-pub fn matrix(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -> Vec<Case> {
+/// `base` rendering `view`: set its `samples` to [`MATRIX_SAMPLES`] for the
+/// course's N.
+pub fn matrix(
+    base: &RenderSettings,
+    view: &Viewpoint,
+    accels: &[AccelKind],
+    encoding: Encoding,
+) -> Vec<Case> {
+    let open = base.chosen_lens(view).aperture > 0.0;
     let mut cases = Vec::new();
     for &accel in accels {
         for soft_shadows in [false, true] {
@@ -105,14 +115,17 @@ pub fn matrix(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -
                     soft_shadows,
                     antialiasing: sampling != SamplingColumn::Single,
                     depth_of_field: dof,
-                    aperture: if dof && base.aperture <= 0.0 {
-                        MATRIX_APERTURE
+                    lens_override: if dof && !open {
+                        LensOverride {
+                            aperture: Some(MATRIX_APERTURE),
+                            ..base.lens_override
+                        }
                     } else {
-                        base.aperture
+                        base.lens_override
                     },
                     ..base.clone()
                 };
-                cases.push(Case::new(settings, encoding));
+                cases.push(Case::new(settings, view, encoding));
             }
         }
     }
@@ -196,6 +209,10 @@ pub struct Measurement {
     pub stats: RenderStats,
     /// The structure traced against, with its build time and memory.
     pub index: AccelInfo,
+    /// The lens chosen for the scene (its view's, or the settings'
+    /// override), seen through only with depth of field on: what the
+    /// tables say the case rendered with.
+    pub lens: Lens,
     /// The last frame's image.
     pub image: RgbImage,
     /// The last frame's per-pixel views, when the run measured them
@@ -441,6 +458,7 @@ pub fn run_cases(
             times,
             stats,
             index: index.info().clone(),
+            lens: case.settings.chosen_lens(&world.view),
             image: film.to_image(case.encoding),
             views,
         };
@@ -464,7 +482,8 @@ mod tests {
     #[test]
     fn the_matrix_has_the_seed_reports_shape() {
         let base = RenderSettings::default();
-        let cases = matrix(&base, &AccelKind::ALL, Encoding::Linear);
+        let pinhole = Viewpoint::default();
+        let cases = matrix(&base, &pinhole, &AccelKind::ALL, Encoding::Linear);
         assert_eq!(cases.len(), 18);
         // The course's order: structure, then shadows, then sampling.
         let first: Vec<String> = cases[..6].iter().map(Case::file_stem).collect();
@@ -482,19 +501,18 @@ mod tests {
         assert_eq!(cases[6].settings.accel, AccelKind::Grid);
         assert_eq!(cases[17].file_stem(), "bvh_soft_aa4_dof");
         let dof = &cases[2].settings;
-        assert!(dof.antialiasing && dof.aperture == MATRIX_APERTURE);
+        assert!(dof.antialiasing && dof.chosen_lens(&pinhole).aperture == MATRIX_APERTURE);
         // A scene's own lens is kept.
-        let lens = RenderSettings {
+        let open = Viewpoint {
             aperture: 3.0,
-            ..base
+            ..Viewpoint::default()
         };
+        let dof = &matrix(&base, &open, &AccelKind::ALL, Encoding::Linear)[2].settings;
+        assert_eq!(dof.chosen_lens(&open).aperture, 3.0);
         assert_eq!(
-            matrix(&lens, &AccelKind::ALL, Encoding::Linear)[2]
-                .settings
-                .aperture,
-            3.0
+            matrix(&base, &open, &[AccelKind::Grid], Encoding::Linear).len(),
+            6
         );
-        assert_eq!(matrix(&lens, &[AccelKind::Grid], Encoding::Linear).len(), 6);
     }
 
     fn world() -> Arc<World> {
@@ -513,7 +531,7 @@ mod tests {
             height: 8,
             ..RenderSettings::default()
         };
-        let cases = matrix(&base, &[AccelKind::Grid], Encoding::Linear);
+        let cases = matrix(&base, &world.view, &[AccelKind::Grid], Encoding::Linear);
         let mut measured = Vec::new();
         let mut fractions_ok = true;
         let options = RunOptions {
@@ -578,10 +596,15 @@ mod tests {
     fn statistics_of_the_frame_times() {
         let ms = Duration::from_millis;
         let m = |times: Vec<Duration>| Measurement {
-            case: Case::new(RenderSettings::default(), Encoding::Linear),
+            case: Case::new(
+                RenderSettings::default(),
+                &Viewpoint::default(),
+                Encoding::Linear,
+            ),
             times,
             stats: RenderStats::default(),
             index: SceneIndex::build(&[], AccelKind::None, 1.0).info().clone(),
+            lens: Lens::PINHOLE,
             image: RgbImage::new(1, 1),
             views: None,
         };

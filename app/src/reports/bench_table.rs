@@ -149,7 +149,7 @@ fn aa_cell(m: &Measurement) -> String {
 fn dof_cell(m: &Measurement) -> String {
     let s = &m.case.settings;
     match (s.depth_of_field, s.antialiasing) {
-        (true, _) => format!("yes (aperture {})", s.aperture),
+        (true, _) => format!("yes (aperture {})", m.lens.aperture),
         (false, true) => "no".into(),
         (false, false) => "-".into(),
     }
@@ -253,8 +253,8 @@ fn json(rows: &[Measurement]) -> String {
                 "antialiasing": s.antialiasing,
                 "depth_of_field": s.depth_of_field,
                 "n": s.samples,
-                "aperture": s.aperture,
-                "focal": s.focal,
+                "aperture": m.lens.aperture,
+                "focal": m.lens.focal,
                 "width": s.width,
                 "height": s.height,
                 "samples_per_pixel": s.samples_per_pixel(),

@@ -4,6 +4,7 @@
 
 use tracer::accel::AccelKind;
 use tracer::render::{Budget, RenderSettings};
+use tracer::scene::Viewpoint;
 
 /// One thing the settings control, said briefly and in detail. The detail
 /// is shown only when two settings agree briefly but still differ (two soft
@@ -29,11 +30,12 @@ fn samples_matter(s: &RenderSettings) -> bool {
     s.antialiasing || s.depth_of_field || s.soft_shadows
 }
 
-/// The aspects of `s` in a fixed order, the same for any settings, so two
+/// The aspects of `s` rendering `view` (whose lens it sees through unless
+/// `s` overrides it) in a fixed order, the same for any settings, so two
 /// lists compare element by element. The first four are the features the
 /// workbench is about (see [`describe`]). `show_n` asks to mention N even
 /// without AA (when it matters to either side of a comparison).
-fn aspects(s: &RenderSettings, show_n: bool) -> Vec<Aspect> {
+fn aspects(s: &RenderSettings, view: &Viewpoint, show_n: bool) -> Vec<Aspect> {
     let n = s.samples;
     let accel = match s.accel {
         AccelKind::None => "no acceleration".to_string(),
@@ -76,10 +78,9 @@ fn aspects(s: &RenderSettings, show_n: bool) -> Vec<Aspect> {
     } else {
         Aspect::plain("hard shadows".into())
     };
-    let dof = if s.depth_of_field {
-        format!("DOF aperture {} focal {}", s.aperture, s.focal)
-    } else {
-        "no DOF".into()
+    let dof = match s.lens(view) {
+        Some(lens) => format!("DOF aperture {} focal {}", lens.aperture, lens.focal),
+        None => "no DOF".into(),
     };
     let camera = match &s.camera {
         None => Aspect::plain("scene camera".into()),
@@ -112,11 +113,11 @@ fn aspects(s: &RenderSettings, show_n: bool) -> Vec<Aspect> {
     ]
 }
 
-/// The features of `s` the workbench compares (structure, anti-aliasing,
-/// shadows, depth of field) in one line, e.g. "BVH, AA 4x4, hard shadows,
-/// no DOF".
-pub fn describe(s: &RenderSettings) -> String {
-    aspects(s, false)
+/// The features of `s` rendering `view` the workbench compares (structure,
+/// anti-aliasing, shadows, depth of field) in one line, e.g. "BVH, AA 4x4,
+/// hard shadows, no DOF".
+pub fn describe(s: &RenderSettings, view: &Viewpoint) -> String {
+    aspects(s, view, false)
         .into_iter()
         .take(4)
         .map(|a| a.brief)
@@ -131,13 +132,18 @@ pub struct Difference {
     pub b: String,
 }
 
-/// What differs between `a` and `b`, in the order of the settings panel;
-/// empty when they render the same image.
-pub fn differences(a: &RenderSettings, b: &RenderSettings) -> Vec<Difference> {
+/// What differs between `a` and `b`, rendering `views` (a side's lens is
+/// its view's unless its settings override it), in the order of the
+/// settings panel; empty when they render the same image.
+pub fn differences(
+    a: &RenderSettings,
+    b: &RenderSettings,
+    views: [&Viewpoint; 2],
+) -> Vec<Difference> {
     let show_n = samples_matter(a) || samples_matter(b);
-    aspects(a, show_n)
+    aspects(a, views[0], show_n)
         .into_iter()
-        .zip(aspects(b, show_n))
+        .zip(aspects(b, views[1], show_n))
         .filter_map(|(x, y)| {
             if x.brief != y.brief {
                 Some(Difference {
@@ -158,8 +164,12 @@ pub fn differences(a: &RenderSettings, b: &RenderSettings) -> Vec<Difference> {
 
 /// Labels for the two sides of a comparison: each side's differences
 /// joined, or "same settings" for both when nothing differs.
-pub fn side_labels(a: &RenderSettings, b: &RenderSettings) -> (String, String) {
-    let diffs = differences(a, b);
+pub fn side_labels(
+    a: &RenderSettings,
+    b: &RenderSettings,
+    views: [&Viewpoint; 2],
+) -> (String, String) {
+    let diffs = differences(a, b, views);
     if diffs.is_empty() {
         return ("same settings".into(), "same settings".into());
     }
@@ -171,6 +181,11 @@ pub fn side_labels(a: &RenderSettings, b: &RenderSettings) -> (String, String) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tracer::render::LensOverride;
+    use tracer::scene::Lens;
+
+    /// A pinhole's view: the tests' lenses are the settings' own.
+    static VIEW: std::sync::LazyLock<Viewpoint> = std::sync::LazyLock::new(Viewpoint::default);
 
     fn base() -> RenderSettings {
         RenderSettings {
@@ -181,9 +196,9 @@ mod tests {
 
     #[test]
     fn identical_settings_have_no_differences() {
-        assert!(differences(&base(), &base()).is_empty());
+        assert!(differences(&base(), &base(), [&VIEW; 2]).is_empty());
         assert_eq!(
-            side_labels(&base(), &base()),
+            side_labels(&base(), &base(), [&VIEW; 2]),
             ("same settings".into(), "same settings".into())
         );
     }
@@ -197,24 +212,26 @@ mod tests {
             samples: 4,
             soft_shadows: true,
             depth_of_field: true,
-            aperture: 8.0,
-            focal: 1.5,
+            lens_override: LensOverride::all(Lens {
+                aperture: 8.0,
+                focal: 1.5,
+            }),
             ..base()
         };
-        let (la, lb) = side_labels(&base(), &b);
+        let (la, lb) = side_labels(&base(), &b, [&VIEW; 2]);
         assert_eq!(la, "no acceleration, no AA, hard shadows, no DOF");
         assert_eq!(
             lb,
             "grid on, m = 4, AA 4x4, soft shadows on, DOF aperture 8 focal 1.5"
         );
-        assert_eq!(describe(&b), lb);
+        assert_eq!(describe(&b, &VIEW), lb);
         let adaptive = RenderSettings {
             sampling: tracer::render::Sampling::Adaptive(
                 tracer::render::AdaptiveSampling::for_samples(4, 0.02),
             ),
             ..b.clone()
         };
-        let (_, la) = side_labels(&b, &adaptive);
+        let (_, la) = side_labels(&b, &adaptive, [&VIEW; 2]);
         assert_eq!(la, "adaptive AA, threshold 0.02");
         let (_, detailed) = side_labels(
             &adaptive,
@@ -224,13 +241,14 @@ mod tests {
                 ),
                 ..adaptive.clone()
             },
+            [&VIEW; 2],
         );
         assert_eq!(detailed, "adaptive AA, threshold 0.02, 6 to 100 spp");
         let mut budgeted = adaptive.clone();
         if let tracer::render::Sampling::Adaptive(a) = &mut budgeted.sampling {
             a.budget = Some(Budget::Samples(4096));
         }
-        let (_, lb) = side_labels(&adaptive, &budgeted);
+        let (_, lb) = side_labels(&adaptive, &budgeted, [&VIEW; 2]);
         assert_eq!(lb, "adaptive AA, threshold 0.02, at most 4096 samples");
     }
 
@@ -246,7 +264,7 @@ mod tests {
             ..soft.clone()
         };
         assert_eq!(
-            differences(&soft, &softer),
+            differences(&soft, &softer, [&VIEW; 2]),
             vec![Difference {
                 a: "soft shadows on, light size 0.5".into(),
                 b: "soft shadows on, light size 2".into(),
@@ -257,21 +275,24 @@ mod tests {
             samples: 3,
             ..soft.clone()
         };
-        assert_eq!(differences(&soft, &n3)[0].b, "no AA, N = 3");
+        assert_eq!(differences(&soft, &n3, [&VIEW; 2])[0].b, "no AA, N = 3");
         // ...but not for one hard-shadowed sample per pixel.
         let hard_n3 = RenderSettings {
             samples: 3,
             ..base()
         };
-        assert!(differences(&base(), &hard_n3).is_empty());
+        assert!(differences(&base(), &hard_n3, [&VIEW; 2]).is_empty());
         // Turning DOF on with the same N says only that.
         let dof = RenderSettings {
             depth_of_field: true,
-            aperture: 4.0,
+            lens_override: LensOverride {
+                aperture: Some(4.0),
+                focal: None,
+            },
             ..base()
         };
         assert_eq!(
-            differences(&base(), &dof),
+            differences(&base(), &dof, [&VIEW; 2]),
             vec![Difference {
                 a: "no DOF".into(),
                 b: "DOF aperture 4 focal 1".into(),
@@ -283,7 +304,7 @@ mod tests {
             grid_multiplier: m,
             ..base()
         };
-        assert!(differences(&bvh(1.0), &bvh(3.0)).is_empty());
+        assert!(differences(&bvh(1.0), &bvh(3.0), [&VIEW; 2]).is_empty());
     }
 
     #[test]
@@ -295,7 +316,7 @@ mod tests {
             seed: 9,
             ..base()
         };
-        let diffs = differences(&base(), &b);
+        let diffs = differences(&base(), &b, [&VIEW; 2]);
         let words: Vec<&str> = diffs.iter().map(|d| d.b.as_str()).collect();
         assert_eq!(words, ["64x32", "depth 2", "seed 9"]);
         assert_eq!(diffs[0].a, "512x512");

@@ -328,7 +328,8 @@ fn render_film(case: &Case) -> Result<tracer::render::Film, String> {
     // lens the same size in the scene, or a 64-pixel golden of a 512-pixel
     // scene gets a lens eight times wider and shows nothing but blur.
     let pixel_ratio = f64::from(settings.height.max(2) - 1) / f64::from(h.max(2) - 1);
-    settings.aperture = (f64::from(settings.aperture) * pixel_ratio) as f32;
+    let aperture = settings.chosen_lens(&scene.view).aperture;
+    settings.lens_override.aperture = Some((f64::from(aperture) * pixel_ratio) as f32);
     settings.samples = settings.samples.min(MAX_SAMPLES);
     settings.seed = 0;
     (case.apply)(&mut settings);

@@ -10,9 +10,10 @@ use std::sync::Arc;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tracer::accel::SceneIndex;
-use tracer::render::RenderSettings;
-use tracer::scene::Primitive;
+use tracer::camera::Camera;
+use tracer::render::{LensOverride, RenderSettings};
 use tracer::scene::edit::{Edit, Effect, MaterialField, ObjectChange};
+use tracer::scene::{Lens, Primitive};
 use workbench::gui::{Pending, WorkbenchApp};
 use workbench::load::{Loaded, SceneSource};
 
@@ -211,6 +212,76 @@ fn a_lens_edit_in_the_window_renders_what_set_renders_headless() {
         shown == film.to_rgba8(app.controls().encoding()),
         "the window's lens edit and `--set 'camera aperture 8'` render alike"
     );
+}
+
+/// Whether side A's finished render saw through the lens `(aperture,
+/// focal)` of its scene's view (`None`: a pinhole).
+fn renders_through(harness: &mut Harness<'static, WorkbenchApp>, lens: Option<(f32, f32)>) -> bool {
+    harness.run_steps(2);
+    finished(harness);
+    let app = harness.state();
+    let view = &app.engine().scene().unwrap().world.view;
+    let settings = app.engine().settings().unwrap();
+    let (aperture, focal) = lens.unwrap_or((0.0, 1.0));
+    let expected = Camera::new(view, settings.width, settings.height, aperture, focal);
+    Camera::for_render(view, settings) == expected
+}
+
+/// Whose lens a side renders with: a scene's own, opened or edited, with
+/// depth of field on when it is open; the user's (the panel's sliders)
+/// until another scene opens or the scene's camera is edited, any field of
+/// it; an undone camera edit gives the scene's lens back.
+#[test]
+fn the_scene_owns_the_lens_until_the_user_overrides_it() {
+    let mut harness = ready_window(WINDOW);
+    assert!(renders_through(&mut harness, None), "balls_low: a pinhole");
+    let user = |harness: &mut Harness<'static, WorkbenchApp>| {
+        let render = &mut harness.state_mut().controls_mut().render;
+        render.depth_of_field = true;
+        render.lens_override = LensOverride::all(Lens {
+            aperture: 20.0,
+            focal: 2.0,
+        });
+    };
+    user(&mut harness);
+    assert!(
+        renders_through(&mut harness, Some((20.0, 2.0))),
+        "the user's lens"
+    );
+
+    harness.state_mut().open(SceneSource::Bundled("dof".into()));
+    wait_for(&mut harness, "the dof scene", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "dof")
+    });
+    assert!(harness.state().controls().render.depth_of_field);
+    assert!(
+        renders_through(&mut harness, Some((24.0, 0.957))),
+        "another scene opens with its own lens"
+    );
+
+    user(&mut harness);
+    assert!(renders_through(&mut harness, Some((20.0, 2.0))));
+    let scene = harness.state().engine().scene().unwrap().scene.clone();
+    let angle = Edit::parse_in("camera angle 30", &scene).unwrap();
+    harness.state_mut().edit(angle).unwrap();
+    assert!(
+        renders_through(&mut harness, Some((24.0, 0.957))),
+        "a camera edit renders through the scene's lens again"
+    );
+
+    harness.state_mut().controls_mut().render.depth_of_field = false;
+    assert!(renders_through(&mut harness, None), "depth of field off");
+    let closed = Edit::parse_in("camera aperture 0", &scene).unwrap();
+    harness.state_mut().edit(closed).unwrap();
+    assert!(renders_through(&mut harness, None));
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    assert!(
+        renders_through(&mut harness, Some((24.0, 0.957))),
+        "undo: the scene's open lens, depth of field on again"
+    );
+    assert!(harness.state().controls().render.depth_of_field);
 }
 
 #[test]

@@ -209,7 +209,7 @@ impl RenderJob {
         options: JobOptions,
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
-        RenderPlan::camera(&world, &settings)?;
+        crate::camera::Camera::for_render(&world.view, &settings)?;
         let (yield_to_viewer, idle) = (options.yield_to_viewer, options.idle_priority);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads.unwrap_or(0))

@@ -20,8 +20,8 @@ pub use job::{Finished, JobOptions, JobState, PassListener, RenderError, RenderJ
 pub use plan::{RenderPlan, TILE_SIZE};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
-    AdaptiveSampling, Budget, Encoding, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_IMAGE_PIXELS,
-    MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling, SettingsError,
+    AdaptiveSampling, Budget, Encoding, LensOverride, MAX_DEPTH, MAX_GRID_MULTIPLIER,
+    MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling, SettingsError,
 };
 pub use trace::{NoRecord, RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
 pub use view::{

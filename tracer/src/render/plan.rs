@@ -43,7 +43,7 @@ impl RenderPlan {
         index: Arc<SceneIndex>,
         settings: RenderSettings,
     ) -> Result<Self, CameraError> {
-        let camera = Self::camera(&world, &settings)?;
+        let camera = Camera::for_render(&world.view, &settings)?;
         let spp = settings.samples_per_pixel();
         let n = settings.strata();
         Ok(Self {
@@ -55,22 +55,6 @@ impl RenderPlan {
             settings,
             camera,
         })
-    }
-
-    /// The camera `settings` give for `world`: the scene's view, or the
-    /// settings' pose when the user moved the camera; the lens only with
-    /// depth of field on.
-    pub fn camera(world: &World, settings: &RenderSettings) -> Result<Camera, CameraError> {
-        let (aperture, focal) = if settings.depth_of_field {
-            (settings.aperture, settings.focal)
-        } else {
-            (0.0, 1.0)
-        };
-        let mut view = world.view.clone();
-        if let Some(pose) = &settings.camera {
-            pose.apply(&mut view);
-        }
-        Camera::new(&view, settings.width, settings.height, aperture, focal)
     }
 
     /// Passes that reach the target of N x N samples per pixel (or one);
@@ -247,6 +231,7 @@ mod tests {
     use super::*;
     use crate::accel::AccelKind;
     use crate::camera::CameraPose;
+    use crate::render::LensOverride;
     use crate::scene::{Limits, parse_scene};
 
     fn scene(from: &str) -> String {
@@ -307,7 +292,10 @@ mod tests {
             antialiasing: true,
             samples: 2,
             depth_of_field: true,
-            aperture: 4.0,
+            lens_override: LensOverride {
+                aperture: Some(4.0),
+                ..Default::default()
+            },
             soft_shadows: true,
             light_size: 0.5,
             ..s

@@ -6,7 +6,7 @@ use glam::Vec3A;
 
 use crate::accel::AccelKind;
 use crate::camera::CameraPose;
-use crate::scene::Scene;
+use crate::scene::{Lens, Scene, Viewpoint};
 
 /// What to render and how.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,12 +41,13 @@ pub struct RenderSettings {
     /// Side of the square a point light becomes with soft shadows, in scene
     /// units.
     pub light_size: f32,
-    /// Thin-lens depth of field with `aperture` and `focal`.
+    /// Thin-lens depth of field, through [`RenderSettings::lens`].
     pub depth_of_field: bool,
-    /// Lens diameter in pixels.
-    pub aperture: f32,
-    /// Focal distance as a multiple of the view-plane distance.
-    pub focal: f32,
+    /// The user's lens in place of the scene's. The scene's viewpoint owns
+    /// the lens, so an edit of it reaches every render without a copy; the
+    /// settings only say what the user chose instead (a slider, a flag, a
+    /// study's level).
+    pub lens_override: LensOverride,
     pub accel: AccelKind,
     /// The grid's cell multiplier m (cells per axis = trunc(m * dim * s) + 1).
     pub grid_multiplier: f32,
@@ -76,14 +77,38 @@ impl Default for RenderSettings {
             shadows: true,
             light_size: 0.3,
             depth_of_field: false,
-            aperture: 0.0,
-            focal: 1.0,
+            lens_override: LensOverride::default(),
             accel: AccelKind::Bvh,
             grid_multiplier: 2.0,
             seed: 0,
             sampling: Sampling::Uniform,
             keep_refining: false,
             camera: None,
+        }
+    }
+}
+
+/// The parts of the lens the user chose in place of the scene's; `None`
+/// keeps the scene's part.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default)
+)]
+pub struct LensOverride {
+    /// Lens diameter in pixels.
+    pub aperture: Option<f32>,
+    /// Focal distance as a multiple of the view-plane distance.
+    pub focal: Option<f32>,
+}
+
+impl LensOverride {
+    /// The whole of `lens` in place of the scene's.
+    pub fn all(lens: Lens) -> Self {
+        Self {
+            aperture: Some(lens.aperture),
+            focal: Some(lens.focal),
         }
     }
 }
@@ -164,19 +189,21 @@ impl AdaptiveSampling {
 }
 
 impl RenderSettings {
-    /// The settings a scene file asks for: its resolution, `spp`, `accel`,
-    /// `aperture` and `focal`; everything else at its default.
+    /// The settings a scene file asks for: its resolution, `spp`, `accel`
+    /// and depth of field when its lens is open; everything else at its
+    /// default.
     pub fn from_scene(scene: &Scene) -> Self {
         let mut settings = Self::default();
         settings.adopt_scene(scene);
         settings
     }
 
-    /// Takes what `scene` asks for (its resolution, `spp`, `accel`,
-    /// `aperture` and `focal`, and a light size that suits its scale) and
-    /// keeps every other field: how a viewer keeps its user's choices when
-    /// another scene opens. The light size is a tenth of the camera's
-    /// distance to `at`, so the penumbra scales with the scene.
+    /// Takes what `scene` asks for (its resolution, `spp`, `accel`, depth
+    /// of field when its lens is open and its lens, the user's override
+    /// dropped, and a light size that suits its scale) and keeps every
+    /// other field: how a viewer keeps its user's choices when another
+    /// scene opens. The light size is a tenth of the camera's distance to
+    /// `at`, so the penumbra scales with the scene.
     pub fn adopt_scene(&mut self, scene: &Scene) {
         let view = &scene.view;
         let spp = scene.spp.unwrap_or(0);
@@ -184,9 +211,7 @@ impl RenderSettings {
         self.height = view.height;
         self.antialiasing = spp > 0;
         self.samples = if spp > 0 { spp } else { 4 };
-        self.depth_of_field = view.aperture > 0.0;
-        self.aperture = view.aperture;
-        self.focal = view.focal;
+        self.follow_scene_lens(view);
         self.accel = match scene.accel {
             Some(0) => AccelKind::None,
             Some(1) => AccelKind::Grid,
@@ -194,6 +219,31 @@ impl RenderSettings {
         };
         // Finite even for absurd (huge but finite) camera coordinates.
         self.light_size = (0.1 * (view.at - view.from).length()).min(f32::MAX);
+    }
+
+    /// Renders through `view`'s own lens again, with depth of field when
+    /// it is open: what opening a scene does, and an edit of its camera,
+    /// as a scene file stating the edited lens would.
+    pub fn follow_scene_lens(&mut self, view: &Viewpoint) {
+        self.depth_of_field = view.aperture > 0.0;
+        self.lens_override = LensOverride::default();
+    }
+
+    /// The lens chosen for renders of `view`, whether depth of field is on
+    /// or not (what the sliders show): the view's, each part the user
+    /// overrode replaced.
+    pub fn chosen_lens(&self, view: &Viewpoint) -> Lens {
+        let scene = view.lens();
+        Lens {
+            aperture: self.lens_override.aperture.unwrap_or(scene.aperture),
+            focal: self.lens_override.focal.unwrap_or(scene.focal),
+        }
+    }
+
+    /// The lens a render of `view` sees through: the chosen lens with
+    /// depth of field on, none (a pinhole) without.
+    pub fn lens(&self, view: &Viewpoint) -> Option<Lens> {
+        self.depth_of_field.then(|| self.chosen_lens(view))
     }
 
     /// Samples per pixel to reach the target: N x N when anti-aliasing or
@@ -321,7 +371,12 @@ impl RenderSettings {
         let checks = [
             ("ambient", self.ambient, 0.0, f32::MAX),
             ("light size", self.light_size, 0.0, f32::MAX),
-            ("aperture", self.aperture, 0.0, f32::MAX),
+            (
+                "aperture",
+                self.lens_override.aperture.unwrap_or(0.0),
+                0.0,
+                f32::MAX,
+            ),
             (
                 "grid multiplier",
                 self.grid_multiplier,
@@ -338,8 +393,10 @@ impl RenderSettings {
                 );
             }
         }
-        if !(self.focal > 0.0 && self.focal.is_finite()) {
-            return fail("focal", self.focal.to_string(), "a number > 0".into());
+        if let Some(focal) = self.lens_override.focal
+            && !(focal > 0.0 && focal.is_finite())
+        {
+            return fail("focal", focal.to_string(), "a number > 0".into());
         }
         Ok(())
     }
@@ -466,11 +523,17 @@ mod tests {
                 ..Default::default()
             },
             RenderSettings {
-                aperture: f32::INFINITY,
+                lens_override: LensOverride {
+                    aperture: Some(f32::INFINITY),
+                    ..Default::default()
+                },
                 ..Default::default()
             },
             RenderSettings {
-                focal: 0.0,
+                lens_override: LensOverride {
+                    focal: Some(0.0),
+                    ..Default::default()
+                },
                 ..Default::default()
             },
             RenderSettings {

@@ -58,6 +58,35 @@ impl Default for Viewpoint {
     }
 }
 
+impl Viewpoint {
+    /// The scene's lens: the viewpoint owns it, so an edit of the camera
+    /// is the lens every render of the scene uses, unless the render's
+    /// settings override it.
+    pub fn lens(&self) -> Lens {
+        Lens {
+            aperture: self.aperture,
+            focal: self.focal,
+        }
+    }
+}
+
+/// A thin lens, as `v` states it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lens {
+    /// Diameter as a multiple of the pixel size; 0 is a pinhole.
+    pub aperture: f32,
+    /// Focal distance as a multiple of the view-plane distance `|at - from|`.
+    pub focal: f32,
+}
+
+impl Lens {
+    /// What a render without depth of field sees through.
+    pub const PINHOLE: Lens = Lens {
+        aperture: 0.0,
+        focal: 1.0,
+    };
+}
+
 /// A surface material (the `f` command). The NFF 8-number form has a white
 /// specular colour.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -165,11 +165,12 @@ impl WorkbenchApp {
         let counts = a.engine.scene().map(|s| s.world.counts.clone());
         let paused = a.engine.is_paused();
         let comparing = b.is_some();
-        let controls = match (b, *editing) {
-            (Some(b), SideId::B) => &mut b.controls,
-            _ => &mut a.controls,
+        let (controls, engine) = match (b, *editing) {
+            (Some(b), SideId::B) => (&mut b.controls, &b.engine),
+            _ => (&mut a.controls, &a.engine),
         };
         let view = SidePanelView {
+            scene_view: engine.scene().map(|s| &s.scene.view),
             scene_list: &self.scene_list,
             current: current.as_ref(),
             recent: &self.session.recent,

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
-use tracer::render::RenderSettings;
+use tracer::render::{LensOverride, RenderSettings};
 
 use crate::gui::lessons::StepsDone;
 use crate::gui::sides::Controls;
@@ -109,7 +109,9 @@ pub fn save(
 
 /// Reads a saved state. Before the controls held the render settings as
 /// one value (`render`) they were saved flat, the settings' fields beside
-/// the window's own; such a state gives its settings too.
+/// the window's own; such a state gives its settings too. Before the
+/// scene's view owned the lens, the settings saved the lens they rendered
+/// with (`aperture`, `focal`): it comes back as the user's, as it rendered.
 fn read(text: &str) -> Option<Saved> {
     let mut saved: Saved = ron::from_str(text).ok()?;
     #[derive(Deserialize, Default)]
@@ -126,14 +128,45 @@ fn read(text: &str) -> Option<Saved> {
     fn present<'de, D: serde::Deserializer<'de>>(field: D) -> Result<bool, D::Error> {
         IgnoredAny::deserialize(field).map(|_| true)
     }
+    /// `controls` alone, or `render` within them.
     #[derive(Deserialize, Default)]
     #[serde(default)]
-    struct Flat {
-        controls: RenderSettings,
+    struct InControls<T> {
+        controls: T,
+    }
+    #[derive(Deserialize, Default)]
+    #[serde(default)]
+    struct Render<T> {
+        render: T,
+    }
+    #[derive(Deserialize, Default)]
+    #[serde(default)]
+    struct OldLens {
+        #[serde(deserialize_with = "some")]
+        aperture: Option<f32>,
+        #[serde(deserialize_with = "some")]
+        focal: Option<f32>,
+    }
+    fn some<'de, D: serde::Deserializer<'de>>(field: D) -> Result<Option<f32>, D::Error> {
+        f32::deserialize(field).map(Some)
     }
     let probe: Probe = ron::from_str(text).ok()?;
-    if !probe.controls.render {
-        saved.controls.render = ron::from_str::<Flat>(text).ok()?.controls;
+    let old = if probe.controls.render {
+        ron::from_str::<InControls<Render<OldLens>>>(text)
+            .ok()?
+            .controls
+            .render
+    } else {
+        saved.controls.render = ron::from_str::<InControls<RenderSettings>>(text)
+            .ok()?
+            .controls;
+        ron::from_str::<InControls<OldLens>>(text).ok()?.controls
+    };
+    if old.aperture.is_some() || old.focal.is_some() {
+        saved.controls.render.lens_override = LensOverride {
+            aperture: old.aperture,
+            focal: old.focal,
+        };
     }
     Some(saved)
 }
@@ -172,6 +205,26 @@ mod tests {
         assert_eq!(saved.controls.resolution_scale, 0.25);
         assert!(saved.controls.srgb);
         assert!(read("not ron").is_none());
+    }
+
+    /// A state saved when the settings held the lens they rendered with
+    /// renders with it again: it comes back as the user's override.
+    #[test]
+    fn an_earlier_states_lens_comes_back_as_the_users() {
+        let nested = "(controls:(render:(depth_of_field:true,aperture:12.0,focal:1.5,samples:5)))";
+        let saved = read(nested).unwrap();
+        assert!(saved.controls.render.depth_of_field);
+        assert_eq!(saved.controls.render.samples, 5);
+        let lens = LensOverride {
+            aperture: Some(12.0),
+            focal: Some(1.5),
+        };
+        assert_eq!(saved.controls.render.lens_override, lens);
+        let flat = read("(controls:(aperture:12.0,focal:1.5,srgb:true))").unwrap();
+        assert_eq!(flat.controls.render.lens_override, lens);
+        assert!(flat.controls.srgb);
+        let none = read("(controls:(render:(samples:5)))").unwrap();
+        assert_eq!(none.controls.render.lens_override, LensOverride::default());
     }
 
     #[test]

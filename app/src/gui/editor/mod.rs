@@ -15,7 +15,7 @@ use egui::{Color32, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
 use tracer::camera::Camera;
 use tracer::geometry::Aabb;
-use tracer::render::{Outcome, RenderPlan};
+use tracer::render::Outcome;
 use tracer::scene::edit::{Edit, GeometryChange, ObjectChange};
 use tracer::world::World;
 
@@ -85,7 +85,7 @@ impl Editor {
         let (Some(scene), Some(settings)) = (engine.scene(), engine.settings()) else {
             return;
         };
-        if let Ok(camera) = RenderPlan::camera(&scene.world, settings) {
+        if let Ok(camera) = Camera::for_render(&scene.world.view, settings) {
             self.paint_outline_through(ui, &scene.world, &camera, rect);
         }
     }
@@ -154,7 +154,7 @@ impl Editor {
         let (Some(scene), Some(settings)) = (side.engine.scene(), side.engine.settings()) else {
             return (gestures, None);
         };
-        let Ok(camera) = RenderPlan::camera(&scene.world, settings) else {
+        let Ok(camera) = Camera::for_render(&scene.world.view, settings) else {
             return (gestures, None);
         };
         self.drag_object(&scene.world, object, &camera, rect, gestures)

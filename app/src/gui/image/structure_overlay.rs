@@ -7,7 +7,7 @@
 use egui::{Color32, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
 use tracer::accel::{AccelKind, StructureLayer, Visit};
-use tracer::render::RenderPlan;
+use tracer::camera::Camera;
 
 use crate::figures::overlay::{Colour, VisitStep};
 use crate::figures::projection::Projector;
@@ -94,7 +94,7 @@ impl StructureOverlay {
         if self.cache.as_ref().is_none_or(|(k, _)| *k != key) {
             self.cache = Some((key, index.wireframe(layer)));
         }
-        let Ok(camera) = RenderPlan::camera(&scene.world, settings) else {
+        let Ok(camera) = Camera::for_render(&scene.world.view, settings) else {
             return;
         };
         let size = egui::vec2(settings.width as f32, settings.height as f32);

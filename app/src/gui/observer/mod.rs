@@ -10,7 +10,7 @@ mod paint;
 use std::sync::Arc;
 
 use tracer::camera::{Camera, CameraPose};
-use tracer::render::{JobState, RayTree, RenderPlan, RenderSettings, View};
+use tracer::render::{JobState, RayTree, RenderSettings, View};
 use tracer::world::World;
 
 use crate::figures::observer::{self, PixelPattern, RayFilter};
@@ -122,7 +122,7 @@ impl Observer {
             camera: Some(self.pose?),
             ..self.engine.settings()?.clone()
         };
-        RenderPlan::camera(world, &settings).ok()
+        Camera::for_render(&world.view, &settings).ok()
     }
 
     /// The observer's engine (what it renders; picks read its pixels).
@@ -162,7 +162,8 @@ impl Observer {
         let pose = match self.pose {
             Some(pose) => pose,
             None => {
-                let camera = RenderPlan::camera(&scene.world, target).map_err(|e| e.to_string())?;
+                let camera =
+                    Camera::for_render(&scene.world.view, target).map_err(|e| e.to_string())?;
                 *self.pose.insert(observer::framing(
                     &scene.world,
                     &camera,

@@ -20,10 +20,15 @@ use crate::reports::describe::{describe, side_labels};
 /// the other has not ("B: sphere #2 T 0.9").
 pub fn labels(comparison: &Comparison, a: &Side, b: &Side) -> Option<(String, String)> {
     let settings_a = a.settings()?;
+    let view_a = &a.engine.scene()?.scene.view;
     if let Some(reference) = comparison.reference() {
-        return Some((format!("A: {}", describe(settings_a)), reference.label()));
+        return Some((
+            format!("A: {}", describe(settings_a, view_a)),
+            reference.label(),
+        ));
     }
-    let (label_a, label_b) = side_labels(settings_a, b.settings()?);
+    let view_b = &b.engine.scene()?.scene.view;
+    let (label_a, label_b) = side_labels(settings_a, b.settings()?, [view_a, view_b]);
     let edits = |side: &Side| {
         side.engine
             .scene()

@@ -6,6 +6,7 @@ use tracer::accel::AccelKind;
 use tracer::render::{
     AdaptiveSampling, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_SAMPLES, RenderSettings, Sampling,
 };
+use tracer::scene::Viewpoint;
 
 use crate::gui::commands::Command;
 use crate::gui::image::active_overlay::ActiveOverlay;
@@ -98,9 +99,12 @@ pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>
 
 /// Draws the controls; toggles and buttons record commands, sliders edit
 /// `controls` directly.
+/// `scene_view` is the side's scene's view (none before one loads): it owns
+/// the lens, which the sliders show and a moved slider overrides.
 pub fn show(
     ui: &mut Ui,
     controls: &mut Controls,
+    scene_view: Option<&Viewpoint>,
     active: &mut ActiveOverlay,
     paused: bool,
     commands: &mut Vec<Command>,
@@ -163,14 +167,28 @@ pub fn show(
     if controls.render.adaptive().is_some() {
         active.ui(ui);
     }
-    ui.add(Slider::new(&mut controls.render.aperture, 0.0..=64.0).text("Aperture (px)"))
-        .on_hover_text("Lens diameter in pixels; depth of field must be on");
-    ui.add(
-        Slider::new(&mut controls.render.focal, 0.1..=4.0)
-            .logarithmic(true)
-            .text("Focal ratio"),
-    )
-    .on_hover_text("Distance of the sharp plane as a multiple of the view distance |at - from|");
+    let mut lens = controls
+        .render
+        .chosen_lens(scene_view.unwrap_or(&Viewpoint::default()));
+    let lens_override = &mut controls.render.lens_override;
+    if ui
+        .add(Slider::new(&mut lens.aperture, 0.0..=64.0).text("Aperture (px)"))
+        .on_hover_text("Lens diameter in pixels; depth of field must be on")
+        .changed()
+    {
+        lens_override.aperture = Some(lens.aperture);
+    }
+    if ui
+        .add(
+            Slider::new(&mut lens.focal, 0.1..=4.0)
+                .logarithmic(true)
+                .text("Focal ratio"),
+        )
+        .on_hover_text("Distance of the sharp plane as a multiple of the view distance |at - from|")
+        .changed()
+    {
+        lens_override.focal = Some(lens.focal);
+    }
     ui.add(
         Slider::new(
             &mut controls.render.grid_multiplier,

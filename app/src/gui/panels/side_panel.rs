@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use egui::Ui;
+use tracer::scene::Viewpoint;
 use tracer::stats::SceneCounts;
 
 use super::scene_list::{self, SceneList};
@@ -27,6 +28,9 @@ pub struct SidePanelView<'a> {
     pub editing: Option<&'a mut SideId>,
     /// The edited side's controls.
     pub controls: &'a mut Controls,
+    /// The edited side's view, once its scene is loaded: the lens the
+    /// sliders show unless the controls override it.
+    pub scene_view: Option<&'a Viewpoint>,
     pub paused: bool,
     pub views: &'a mut PixelViews,
     pub overlay: &'a mut StructureOverlay,
@@ -61,7 +65,14 @@ pub fn show(
             command_button(ui, Command::CopyAToB, commands);
         });
     }
-    settings::show(ui, view.controls, view.active, view.paused, commands);
+    settings::show(
+        ui,
+        view.controls,
+        view.scene_view,
+        view.active,
+        view.paused,
+        commands,
+    );
     ui.separator();
     view.views.ui(ui, comparing);
     view.overlay.ui(ui);

@@ -46,15 +46,6 @@ impl Controls {
         self.set_accel(self.render.accel);
     }
 
-    /// The scene's lens after an edit of its camera: aperture (depth of
-    /// field on when it is open) and focal ratio, as a scene opened with
-    /// them would set.
-    pub fn follow_lens(&mut self, view: &tracer::scene::Viewpoint) {
-        self.render.depth_of_field = view.aperture > 0.0;
-        self.render.aperture = view.aperture;
-        self.render.focal = view.focal;
-    }
-
     /// Turns the uniform grid on, or back to the previous structure.
     pub fn toggle_grid(&mut self) {
         if self.render.accel == AccelKind::Grid {

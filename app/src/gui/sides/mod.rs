@@ -138,8 +138,9 @@ impl Side {
     }
 
     /// `edit` on a copy of the scene and world, which then replace them;
-    /// returns its inverse. A lens edit is the lens the side renders with,
-    /// as the command line's `--set` is.
+    /// returns its inverse. An edit of the camera renders through the
+    /// scene's lens again (the lens the scene's view owns, depth of field
+    /// on when it is open), as the command line's `--set` does.
     fn apply(&mut self, edit: &Edit) -> Result<Edit, String> {
         let loaded = self.engine.scene().ok_or("there is no scene to edit")?;
         let mut scene = loaded.scene.clone();
@@ -147,7 +148,7 @@ impl Side {
         let mut world = (*loaded.world).clone();
         let shapes = world.update_shapes(&scene, edit);
         if edit.kind() == Effect::Camera {
-            self.controls.follow_lens(&scene.view);
+            self.controls.render.follow_scene_lens(&scene.view);
         }
         // Field by field: `..loaded.clone()` would copy the whole scene
         // document a second time only to drop it.

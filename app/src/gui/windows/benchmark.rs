@@ -73,7 +73,7 @@ impl BenchWindow {
             samples: benchmark::MATRIX_SAMPLES,
             ..base.clone()
         };
-        self.cases = benchmark::matrix(&base, &AccelKind::ALL, Encoding::Srgb);
+        self.cases = benchmark::matrix(&base, &world.view, &AccelKind::ALL, Encoding::Srgb);
         let cases = self.cases.clone();
         let options = RunOptions {
             runs: self.runs,

@@ -81,8 +81,8 @@ pub fn measure(
             let cancel = AtomicBool::new(false);
             let comparison = ab::run(
                 [&state.a.world, &b.world],
-                case(state.a.settings.clone()),
-                case(b.settings.clone()),
+                case(&state.a, state.a.settings.clone()),
+                case(b, b.settings.clone()),
                 SideOptions::default(),
                 Heatmap::Flip,
                 &cancel,
@@ -100,9 +100,10 @@ pub fn measure(
     }
 }
 
-/// A case measured once, labelled as the reports label it.
-fn case(settings: RenderSettings) -> Case {
-    Case::new(settings, Encoding::Linear)
+/// A case of `side`'s scene measured once, labelled as the reports label
+/// it.
+fn case(side: &SideState, settings: RenderSettings) -> Case {
+    Case::new(settings, &side.scene.view, Encoding::Linear)
 }
 
 /// One frame of `side`.
@@ -115,7 +116,7 @@ fn frames(side: &SideState, settings: &RenderSettings, runs: usize) -> Result<Me
     let cancel = AtomicBool::new(false);
     let outcome = benchmark::run(
         &side.world,
-        &[case(settings.clone())],
+        &[case(side, settings.clone())],
         RunOptions {
             runs,
             threads: None,

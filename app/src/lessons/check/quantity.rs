@@ -9,8 +9,9 @@ use std::sync::Arc;
 
 use serde::Deserialize;
 use tracer::accel::{AccelKind, SceneIndex};
+use tracer::camera::Camera;
 use tracer::geometry::Ray;
-use tracer::render::{Outcome, RayKind, RayTree, RenderPlan, View};
+use tracer::render::{Outcome, RayKind, RayTree, View};
 use tracer::scene::{Primitive, Scene};
 
 use crate::reports::ray_tree;
@@ -308,7 +309,7 @@ impl Quantity {
                     side.settings.accel,
                     side.settings.grid_multiplier,
                 );
-                let hither = RenderPlan::camera(&side.world, &side.settings)
+                let hither = Camera::for_render(&side.world.view, &side.settings)
                     .map_err(|e| e.to_string())?
                     .hither();
                 let ray = Ray::new(eye.origin, eye.dir);
@@ -370,8 +371,8 @@ fn read_setting(side: &SideState, setting: Setting) -> Value {
         Setting::SoftShadows => Value::Bool(s.soft_shadows),
         Setting::LightSize => number(s.light_size),
         Setting::Dof => Value::Bool(s.depth_of_field),
-        Setting::Aperture => number(s.aperture),
-        Setting::Focal => number(s.focal),
+        Setting::Aperture => number(s.chosen_lens(&side.scene.view).aperture),
+        Setting::Focal => number(s.chosen_lens(&side.scene.view).focal),
         Setting::Ambient => number(s.ambient),
         Setting::Accel => Value::Word(s.accel.name().to_string()),
         Setting::GridM => number(s.grid_multiplier),
@@ -455,7 +456,7 @@ fn focus_error(side: &SideState, n: usize) -> Result<Value, String> {
     if depth <= 0.0 {
         return Err(format!("object {n} is behind the camera"));
     }
-    let in_focus = side.settings.focal * (view.at - view.from).length();
+    let in_focus = side.settings.chosen_lens(view).focal * (view.at - view.from).length();
     Ok(Value::Number(f64::from((in_focus - depth).abs() / depth)))
 }
 

@@ -115,9 +115,9 @@ fn the_focus_error_is_the_plane_in_focus_against_an_object() {
     // The sphere's centre is 8 along the view from the eye; the view-plane
     // distance is 10.
     let check = value("focus-error 1", "<= 0.05");
-    state.a.settings.focal = 1.0;
+    state.a.settings.lens_override.focal = Some(1.0);
     assert!(!done(&check, &state));
-    state.a.settings.focal = 0.8;
+    state.a.settings.lens_override.focal = Some(0.8);
     assert!(done(&check, &state));
 }
 

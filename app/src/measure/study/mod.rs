@@ -150,7 +150,7 @@ impl Param {
                 settings.light_size = value as f32;
             }
             Param::Aperture => {
-                settings.aperture = value as f32;
+                settings.lens_override.aperture = Some(value as f32);
                 settings.depth_of_field = value > 0.0;
             }
             Param::Resolution => {

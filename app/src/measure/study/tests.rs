@@ -248,7 +248,7 @@ fn parameters_turn_their_feature_on() {
     Param::Aperture.apply(&mut s, 0.0);
     assert!(!s.depth_of_field);
     Param::Aperture.apply(&mut s, 4.0);
-    assert!(s.depth_of_field && s.aperture == 4.0);
+    assert!(s.depth_of_field && s.lens_override.aperture == Some(4.0));
     assert_eq!("Grid-M".parse::<Param>(), Ok(Param::GridM));
     assert!(
         "speed"

@@ -43,7 +43,7 @@ fn timing_row(m: &Measurement) -> (String, Vec<String>) {
         "no".into()
     };
     let dof = match (s.depth_of_field, s.antialiasing) {
-        (true, _) => format!("yes ({} px)", s.aperture),
+        (true, _) => format!("yes ({} px)", m.lens.aperture),
         (false, true) => "no".into(),
         (false, false) => "-".into(),
     };

@@ -146,6 +146,7 @@ mod tests {
         let base = tracer::render::RenderSettings::default();
         let matrix = crate::measure::benchmark::matrix(
             &base,
+            &tracer::scene::Viewpoint::default(),
             &[AccelKind::None, AccelKind::Grid],
             tracer::render::Encoding::Linear,
         );

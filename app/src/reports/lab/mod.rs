@@ -85,12 +85,11 @@ impl Request {
                 // The lens is in pixels: keep its blur the same share of the
                 // image, the timing table's own lens too when the scene has
                 // none (its depth-of-field rows are blurred all the same).
-                let lens = if base.aperture > 0.0 {
-                    base.aperture
-                } else {
-                    benchmark::MATRIX_APERTURE
+                let lens = match base.chosen_lens(&self.scene.view).aperture {
+                    open if open > 0.0 => open,
+                    _ => benchmark::MATRIX_APERTURE,
                 };
-                base.aperture = lens * QUICK_SIDE as f32 / longer as f32;
+                base.lens_override.aperture = Some(lens * QUICK_SIDE as f32 / longer as f32);
             }
             runs = runs.min(QUICK_RUNS);
         }
@@ -217,7 +216,8 @@ impl Plan {
             threads: request.threads,
         };
         let encoding = request.encoding;
-        let matrix = benchmark::matrix(base, &AccelKind::ALL, encoding);
+        let view = &request.scene.view;
+        let matrix = benchmark::matrix(base, view, &AccelKind::ALL, encoding);
         // Blocked shadow rays and bounces do not depend on the structure:
         // the BVH's frames give them; none and the grid add their tests.
         let mut views: Vec<Case> = matrix
@@ -226,7 +226,7 @@ impl Plan {
             .cloned()
             .collect();
         for accel in [AccelKind::None, AccelKind::Grid] {
-            views.push(Case::new(plain(base, accel), encoding));
+            views.push(Case::new(plain(base, accel), view, encoding));
         }
         let mut depths = vec![0, 1, base.max_depth];
         depths.retain(|&d| d <= base.max_depth);

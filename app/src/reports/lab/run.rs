@@ -38,9 +38,10 @@ pub fn section(lab: &Lab) -> String {
             },
         ),
     ]);
+    let chosen = s.chosen_lens(view);
     let lens = lab
         .row(AccelKind::Bvh, false, SamplingColumn::AntialiasingDof)
-        .map_or(s.aperture, |m| m.case.settings.aperture);
+        .map_or(chosen.aperture, |m| m.lens.aperture);
     let camera = facts(&[
         ("from", triple(from)),
         ("at", triple(at)),
@@ -48,7 +49,7 @@ pub fn section(lab: &Lab) -> String {
         ("field of view", format!("{}°", view.angle)),
         (
             "lens of the depth-of-field frames",
-            format!("aperture {} px, focal {}", lens, s.focal),
+            format!("aperture {} px, focal {}", lens, chosen.focal),
         ),
     ]);
     let settings = facts(&[

@@ -92,7 +92,7 @@ pub fn section(lab: &Lab) -> Result<String> {
         )?,
         &crop_caption(&format!("With anti-aliasing N = {n}")),
     );
-    let aperture = dof.case.settings.aperture;
+    let aperture = dof.lens.aperture;
     let body = format!(
         "<h3>Anti-aliasing</h3>\n<p>Jittered sampling: N x N = {spp} samples per pixel, each \
          at a random point of its stratum.</p>\n<div class=\"figures\">{}{}</div>\n\
@@ -106,7 +106,7 @@ pub fn section(lab: &Lab) -> Result<String> {
          {}",
         shown(plain, "Anti-aliasing off")?,
         shown(aa, &format!("Anti-aliasing N = {n}"))?,
-        lab.base.focal,
+        lab.base.chosen_lens(&lab.request.scene.view).focal,
         shown(aa, "Depth of field off (anti-aliasing on)")?,
         shown(dof, "Depth of field on")?,
         shown(plain, "Hard shadows")?,

@@ -7,8 +7,8 @@ use super::{index, world};
 use crate::accel::AccelKind;
 use crate::render::adaptive;
 use crate::render::{
-    AdaptiveSampling, Budget, Film, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings,
-    Sampling, render,
+    AdaptiveSampling, Budget, Film, JobOptions, JobState, LensOverride, RenderJob, RenderPlan,
+    RenderSettings, Sampling, render,
 };
 use crate::stats::Counters;
 
@@ -32,8 +32,10 @@ fn adaptive(threshold: f32, min_spp: u32, max_spp: u32) -> RenderSettings {
         soft_shadows: true,
         light_size: 0.8,
         depth_of_field: true,
-        aperture: 3.0,
-        focal: 1.2,
+        lens_override: LensOverride {
+            aperture: Some(3.0),
+            focal: Some(1.2),
+        },
         sampling: Sampling::Adaptive(AdaptiveSampling {
             noise_threshold: threshold,
             min_spp,

@@ -7,7 +7,8 @@ use glam::{Vec2, Vec3A};
 
 use super::{index, world};
 use crate::accel::AccelKind;
-use crate::render::{Encoding, Film, RenderSettings, render};
+use crate::render::{Encoding, Film, LensOverride, RenderSettings, render};
+use crate::scene::Lens;
 
 /// The camera of every scene here: 10 units above the origin looking down
 /// -z, 64 x 64 pixels, 30 degrees between the top and bottom row centres.
@@ -26,8 +27,9 @@ fn lit_by_ambient(lens: Option<(f32, f32)>, n: u32) -> RenderSettings {
         height: SIDE,
         ambient: 1.0,
         depth_of_field: lens.is_some(),
-        aperture: lens.map_or(0.0, |l| l.0),
-        focal: lens.map_or(1.0, |l| l.1),
+        lens_override: lens.map_or_else(LensOverride::default, |(aperture, focal)| {
+            LensOverride::all(Lens { aperture, focal })
+        }),
         samples: n,
         ..RenderSettings::default()
     }

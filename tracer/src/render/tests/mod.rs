@@ -11,7 +11,10 @@ use std::time::Duration;
 
 use glam::Vec3A;
 
-use super::{Encoding, Film, JobOptions, JobState, RenderJob, RenderPlan, RenderSettings, render};
+use super::{
+    Encoding, Film, JobOptions, JobState, LensOverride, RenderJob, RenderPlan, RenderSettings,
+    render,
+};
 use crate::accel::{AccelKind, SceneIndex};
 use crate::scene::{Limits, parse_scene};
 use crate::stats::Counters;
@@ -51,8 +54,10 @@ fn settings(width: u32, height: u32) -> RenderSettings {
         soft_shadows: true,
         light_size: 0.8,
         depth_of_field: true,
-        aperture: 6.0,
-        focal: 1.2,
+        lens_override: LensOverride {
+            aperture: Some(6.0),
+            focal: Some(1.2),
+        },
         ..RenderSettings::default()
     }
 }

@@ -9,7 +9,8 @@ use glam::Vec2;
 
 use super::{index, world};
 use crate::accel::AccelKind;
-use crate::render::{Film, RenderPlan, RenderSettings, render};
+use crate::camera::Camera;
+use crate::render::{Film, RenderSettings, render};
 
 /// Light height, occluder height and light side.
 const H: f32 = 40.0;
@@ -91,7 +92,7 @@ fn measured(light: &str, settings: &RenderSettings) -> Vec<(f32, f32)> {
     let shadowed = film(&scene(light, true), settings);
     let open = film(&scene(light, false), settings);
     let w = world(&scene(light, false));
-    let camera = RenderPlan::camera(&w, settings).unwrap();
+    let camera = Camera::for_render(&w.view, settings).unwrap();
     let row = HEIGHT / 2;
     (0..WIDTH)
         .map(|px| {

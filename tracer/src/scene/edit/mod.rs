@@ -27,8 +27,8 @@ pub enum Effect {
     Geometry,
     /// The lights (and the default colour of the colourless ones).
     Lights,
-    /// The camera block: the world's view, and the render settings' lens
-    /// that [`crate::render::RenderSettings::adopt_scene`] takes from it.
+    /// The camera block: the world's view, which owns the lens renders see
+    /// through ([`crate::camera::Camera::for_render`]).
     Camera,
 }
 
