@@ -144,6 +144,9 @@ fn to_error(args: &BenchArgs, loaded: &Loaded, mut settings: RenderSettings) -> 
     if !matches!(args.format, TableFormat::Text | TableFormat::Json) {
         bail!("--to-error prints text or json");
     }
+    // The reference and both sides anti-alias whatever the flags say: the
+    // header describes what is measured.
+    settings.antialiasing = true;
     let plan = ToErrorPlan {
         reference_samples: args
             .reference_spp

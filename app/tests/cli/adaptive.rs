@@ -250,6 +250,12 @@ fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
         text.contains("adaptive reaches the error of uniform 2 x 2 in"),
         "{text}"
     );
+    // The header says what was measured: anti-aliased renders.
+    let header = text.lines().next().unwrap_or_default();
+    assert!(
+        header.contains("AA 2x2") && !header.contains("no AA"),
+        "{header}"
+    );
 }
 
 #[test]
