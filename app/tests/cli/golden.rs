@@ -137,7 +137,7 @@ fn aa(s: &mut RenderSettings) {
 }
 
 /// Adaptive anti-aliasing at a threshold of 0.02, 4 to 64 samples a
-/// pixel: its per-pixel cap, reached on edges, penumbrae and blur.
+/// pixel: the most on edges, penumbrae and blur.
 fn adaptive(s: &mut RenderSettings) {
     s.antialiasing = true;
     s.sampling = Sampling::Adaptive(AdaptiveSampling {

@@ -63,10 +63,21 @@ pub(super) fn display_value(v: Vec3A) -> Vec3A {
 
 /// Whether a pixel with `samples` samples and error `error` takes more on
 /// its own account: always below the minimum, never at the maximum, else
-/// while the error is not below the threshold (so a threshold of 0
-/// refines every pixel to the maximum).
+/// while the error is not below [`threshold_at`] its count (so a
+/// threshold of 0 refines every pixel to the maximum).
 pub fn is_active(samples: u32, error: f32, a: &AdaptiveSampling) -> bool {
-    samples < a.min_spp || (samples < a.max_spp && error >= a.noise_threshold)
+    samples < a.min_spp || (samples < a.max_spp && error >= threshold_at(samples, a))
+}
+
+/// The error a pixel with `samples` samples may keep: the noise threshold
+/// at the minimum, growing in proportion to the samples taken. A pass
+/// doubles a pixel's samples, so its cost grows with the count while the
+/// error it removes shrinks: held to one threshold, the few pixels that
+/// never settle (edges of reflections, penumbrae) took most of the render
+/// for little of its error, and adaptive sampling was slower than uniform
+/// at equal error (docs/PERFORMANCE.md measures both rules).
+pub fn threshold_at(samples: u32, a: &AdaptiveSampling) -> f32 {
+    a.noise_threshold * samples.max(a.min_spp) as f32 / a.min_spp.max(1) as f32
 }
 
 /// Which pixels of `film` the next pass refines, row-major: those active
@@ -83,7 +94,7 @@ pub fn decide(film: &Film, a: &AdaptiveSampling) -> Vec<bool> {
             film.spread(x, y).is_some_and(|spread| {
                 let n = film.samples(x, y);
                 let error = error_estimate(n, spread);
-                error.is_finite() && error >= a.noise_threshold
+                error.is_finite() && error >= threshold_at(n, a)
             })
         })
         .collect();
@@ -97,7 +108,7 @@ pub fn decide(film: &Film, a: &AdaptiveSampling) -> Vec<bool> {
             }
             let varies = film
                 .spread(x, y)
-                .is_some_and(|spread| variance_estimate(n, spread) >= a.noise_threshold);
+                .is_some_and(|spread| variance_estimate(n, spread) >= threshold_at(n, a));
             varies
                 && n < a.max_spp
                 && (y.saturating_sub(1)..(y + 2).min(height))
@@ -368,6 +379,15 @@ mod tests {
         assert!(is_active(16, error, &a));
         assert!(!is_active(64, error, &a), "the maximum ends it");
         assert!(!is_active(16, error, &settings(0.2, 8, 64)));
+        // The error a pixel may keep grows with its samples: 0.1 keeps
+        // refining at 16 against 0.06 (twice 0.03), not at 32 (0.12).
+        assert!(is_active(16, error, &settings(0.03, 8, 64)));
+        assert!(!is_active(32, error, &settings(0.03, 8, 64)));
+        assert_eq!(
+            threshold_at(4, &settings(0.03, 8, 64)),
+            0.03,
+            "below the minimum"
+        );
         // Stratified halves that each see the quarter twice agree: the
         // mean has converged though the samples vary as much as ever.
         let even = [0.9, 0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.1];

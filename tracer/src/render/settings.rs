@@ -134,10 +134,12 @@ pub enum Sampling {
     serde(default)
 )]
 pub struct AdaptiveSampling {
-    /// A pixel stops once the standard error of its mean, estimated from
-    /// the variance of its samples, is below this, in display units (the
-    /// linear value clamped to 0..1, as the image is written: 0.01 is 2.55
-    /// levels of 255). 0 never stops a pixel before `max_spp`.
+    /// A pixel at `min_spp` samples stops once the estimated error of its
+    /// mean is below this, in display units (the linear value clamped to
+    /// 0..1, as the image is written: 0.01 is 2.55 levels of 255); with
+    /// more samples, below this times its samples over `min_spp`
+    /// ([`crate::render::adaptive::threshold_at`]). 0 never stops a
+    /// pixel before `max_spp`.
     pub noise_threshold: f32,
     /// Samples every pixel takes before its error is trusted.
     pub min_spp: u32,

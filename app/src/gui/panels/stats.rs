@@ -92,7 +92,10 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                         "Pixels done",
                         format!("{:.1}%", 100.0 * (1.0 - a.active_share())),
                     )
-                    .on_hover_text("Pixels whose estimated error is below the noise threshold");
+                    .on_hover_text(
+                        "Pixels that stopped: their estimated error is below the noise threshold \
+                         times their samples over the minimum, or they reached the maximum",
+                    );
                     row(
                         ui,
                         "Estimated error",

@@ -196,7 +196,7 @@ fn pixels_below_the_threshold_get_no_more_samples() {
                     assert!(
                         adaptive::is_active(n, before.error(x, y), &a)
                             || adaptive::variance_estimate(n, before.spread(x, y).unwrap())
-                                >= a.noise_threshold,
+                                >= adaptive::threshold_at(n, &a),
                         "pixel ({x}, {y}) active though converged"
                     );
                     assert_eq!(after.samples(x, y), adaptive::next_count(n, &a));
