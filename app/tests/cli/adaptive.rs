@@ -96,24 +96,22 @@ fn compare_puts_uniform_against_adaptive() {
     let dir = scratch("adaptive-compare");
     let scene = scene(&dir);
     let out = dir.join("compare.png");
-    let json = workbench_ok(&[
-        "compare",
-        &scene,
-        "-o",
-        out.to_str().unwrap(),
-        "--format",
-        "json",
-        "--spp",
-        "3",
-        "--a",
-        "--aa",
-        "--b",
-        "--sampling adaptive --noise-threshold 0.03",
-    ]);
+    let b = "--sampling adaptive --noise-threshold 0.03";
+    let json = workbench_ok(&compare_args(&scene, out.to_str().unwrap(), b, &[]));
     let json: serde_json::Value = serde_json::from_str(&json).unwrap();
     let text = json.to_string();
     assert!(text.contains("AA 3x3"), "{text}");
     assert!(text.contains("adaptive AA, threshold 0.03"), "{text}");
+}
+
+/// `compare` of `scene` as JSON at N = 3: A uniform with anti-aliasing,
+/// B with the flags `b`, then `extra`.
+fn compare_args<'a>(scene: &'a str, out: &'a str, b: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "compare", scene, "-o", out, "--format", "json", "--spp", "3", "--a", "--aa", "--b", b,
+    ];
+    args.extend_from_slice(extra);
+    args
 }
 
 /// `compare --b-matches`: B stops at A's sample total (filled to within
@@ -125,31 +123,13 @@ fn compare_matches_adaptive_b_to_a() {
     let dir = scratch("adaptive-compare-matched");
     let scene = scene(&dir);
     let out = dir.join("compare.png");
-    let compare = |matches: &str, b: &str| {
-        [
-            "compare",
-            &scene,
-            "-o",
-            out.to_str().unwrap(),
-            "--format",
-            "json",
-            "--spp",
-            "3",
-            "--a",
-            "--aa",
-            "--b",
-            b,
-            "--b-matches",
-            matches,
-        ]
-        .map(str::to_owned)
-    };
-    let run = |args: [String; 14]| -> serde_json::Value {
-        let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        serde_json::from_str(&workbench_ok(&args)).unwrap()
+    let out = out.to_str().unwrap();
+    let args = |matches, b| compare_args(&scene, out, b, &["--b-matches", matches]);
+    let run = |matches, b| -> serde_json::Value {
+        serde_json::from_str(&workbench_ok(&args(matches, b))).unwrap()
     };
     let adaptive = "--sampling adaptive --noise-threshold 0.001";
-    let equal = run(compare("samples", adaptive));
+    let equal = run("samples", adaptive);
     let taken = |side: &str| equal[side]["samples_taken"].as_u64().unwrap();
     assert_eq!(taken("a"), 9 * 32 * 24, "{equal}");
     assert!(
@@ -162,14 +142,12 @@ fn compare_matches_adaptive_b_to_a() {
             .contains(&format!("at most {} samples", taken("a"))),
         "B's label names its budget: {equal}"
     );
-    let timed = run(compare("time", adaptive));
+    let timed = run("time", adaptive);
     assert!(
         timed["b"]["samples_taken"].as_u64().unwrap() >= 32 * 24,
         "{timed}"
     );
-    let args = compare("samples", "--aa");
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    assert!(workbench_fails(&args).contains("needs B adaptive"));
+    assert!(workbench_fails(&args("samples", "--aa")).contains("needs B adaptive"));
 }
 
 #[test]
