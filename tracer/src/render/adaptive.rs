@@ -1,12 +1,14 @@
 //! Adaptive sampling: which pixels take more samples in a pass, how many,
 //! and in which order of their strata.
 //!
-//! A pixel's error is estimated from its own samples only: the samples
-//! of its last pass against those before it (two halves, as Cycles
-//! compares two interleaved half-buffers). Its samples are a pure
-//! function of (seed, pixel, sample index), and which pixels refine is
-//! decided between passes over the whole film: so the image never depends
-//! on the thread count or on when a viewer looked.
+//! A pixel's error is estimated from its samples: those of its last pass
+//! against those before it (two halves, as Cycles compares two
+//! interleaved half-buffers), pooled with its neighbours' estimates; the
+//! error it may keep grows with what its samples cost in intersection
+//! tests. Its samples are a pure function of (seed, pixel, sample index),
+//! and which pixels refine is decided between passes over the whole film
+//! (the tests a sample makes are as deterministic as its value): so the
+//! image never depends on the thread count or on when a viewer looked.
 
 use std::ops::Range;
 
@@ -61,58 +63,141 @@ pub(super) fn display_value(v: Vec3A) -> Vec3A {
     v.max(Vec3A::ZERO).min(Vec3A::ONE)
 }
 
-/// Whether a pixel with `samples` samples and error `error` takes more on
-/// its own account: always below the minimum, never at the maximum, else
-/// while the error is not below [`threshold_at`] its count (so a
-/// threshold of 0 refines every pixel to the maximum).
-pub fn is_active(samples: u32, error: f32, a: &AdaptiveSampling) -> bool {
-    samples < a.min_spp || (samples < a.max_spp && error >= threshold_at(samples, a))
+/// Whether a pixel with `samples` samples, error `error` and relative
+/// cost `cost` (see [`relative_costs`]) takes more on its own account:
+/// always below the minimum, never at the maximum, else while the error
+/// is not below [`threshold_at`] (so a threshold of 0 refines every pixel
+/// to the maximum).
+pub fn is_active(samples: u32, error: f32, cost: f32, a: &AdaptiveSampling) -> bool {
+    samples < a.min_spp || (samples < a.max_spp && error >= threshold_at(samples, cost, a))
 }
 
-/// The error a pixel with `samples` samples may keep: the noise threshold
-/// at the minimum, growing in proportion to the samples taken. A pass
-/// doubles a pixel's samples, so its cost grows with the count while the
-/// error it removes shrinks: held to one threshold, the few pixels that
-/// never settle (edges of reflections, penumbrae) took most of the render
-/// for little of its error, and adaptive sampling was slower than uniform
-/// at equal error (docs/PERFORMANCE.md measures both rules).
-pub fn threshold_at(samples: u32, a: &AdaptiveSampling) -> f32 {
-    a.noise_threshold * samples.max(a.min_spp) as f32 / a.min_spp.max(1) as f32
+/// The error a pixel with `samples` samples may keep when its samples
+/// cost `cost` times the film's average (see [`relative_costs`]): the
+/// noise threshold at the minimum and the average cost, growing as the
+/// square root of the samples times the cost. Doubling a pixel's samples
+/// removes about half its squared error, e^2 / 2, and costs its samples
+/// again, n c: a pass is worth it while e^2 / (n c) stays above a bar,
+/// that is while e >= T sqrt(n c), the per-pixel choice minimising
+/// squared error plus a price on intersection tests. Held to one
+/// threshold, the few pixels that never settle (edges of reflections,
+/// penumbrae) took most of the render for little of its error; priced
+/// by samples only, reflections and refractions, which cost several
+/// times a floor pixel's tests per sample, refined as often as the floor
+/// (docs/PERFORMANCE.md measures the rules).
+pub fn threshold_at(samples: u32, cost: f32, a: &AdaptiveSampling) -> f32 {
+    let samples = samples.max(a.min_spp) as f32 / a.min_spp.max(1) as f32;
+    a.noise_threshold * (samples * cost).sqrt()
+}
+
+/// What a sample costs besides its intersection tests (the eye ray, the
+/// shading), as a share of the film's mean tests per sample: a sample of
+/// the sky, which tests nothing, is not free.
+const SAMPLE_OVERHEAD: f32 = 0.5;
+
+/// Each pixel's cost per sample relative to the film's (row-major): its
+/// intersection tests per sample plus what a sample costs besides them
+/// (half the film's mean tests per sample), over the mean of that over
+/// the film's pixels. 1 everywhere when nothing was tested.
+pub fn relative_costs(film: &Film) -> Vec<f32> {
+    let per_sample: Vec<f32> = pixels(film)
+        .map(|(x, y)| {
+            let tests = film.spread(x, y).map_or(0, |s| s.tests);
+            tests as f32 / film.samples(x, y).max(1) as f32
+        })
+        .collect();
+    let mean = (per_sample.iter().map(|&c| f64::from(c)).sum::<f64>()
+        / per_sample.len().max(1) as f64) as f32;
+    if mean <= 0.0 {
+        return vec![1.0; per_sample.len()];
+    }
+    let overhead = SAMPLE_OVERHEAD * mean;
+    per_sample
+        .iter()
+        .map(|&c| (c + overhead) / (mean + overhead))
+        .collect()
+}
+
+/// How much more a pixel's own error weighs than each neighbour's in
+/// [`pooled_errors`].
+const OWN_WEIGHT: f32 = 4.0;
+
+/// Each pixel's error (row-major) as [`error_estimate`] gives it, pooled
+/// over its 3 x 3 neighbourhood: the mean of the squared errors, its own
+/// weighing four times a neighbour's, a neighbour's scaled to
+/// the pixel's sample count (as 1 / n). Two halves of 2 samples are one
+/// draw of the error: a pixel split by an edge may find its halves equal
+/// or far apart by chance, while its neighbours along the edge see much
+/// the same edge (Cycles filters its error estimate too). Infinite where
+/// the pixel's own is (before two passes); neighbours without an estimate
+/// are left out.
+pub fn pooled_errors(film: &Film) -> Vec<f32> {
+    let width = film.width() as usize;
+    let own: Vec<f32> = pixels(film).map(|(x, y)| film.error(x, y)).collect();
+    let samples: Vec<f32> = pixels(film)
+        .map(|(x, y)| film.samples(x, y) as f32)
+        .collect();
+    pixels(film)
+        .map(|(x, y)| {
+            let i = y as usize * width + x as usize;
+            if !own[i].is_finite() {
+                return own[i];
+            }
+            let (mut sum, mut weight) = (0.0, 0.0);
+            for j in window(film, x, y).map(|(nx, ny)| ny as usize * width + nx as usize) {
+                if own[j].is_finite() {
+                    let w = if j == i { OWN_WEIGHT } else { 1.0 };
+                    sum += w * own[j] * own[j] * samples[j] / samples[i];
+                    weight += w;
+                }
+            }
+            (sum / weight).sqrt()
+        })
+        .collect()
+}
+
+/// The film's pixels, row-major.
+fn pixels(film: &Film) -> impl Iterator<Item = (u32, u32)> + Clone + use<> {
+    let (width, height) = (film.width(), film.height());
+    (0..height).flat_map(move |y| (0..width).map(move |x| (x, y)))
+}
+
+/// Pixel `(x, y)` and its neighbours within the film.
+fn window(film: &Film, x: u32, y: u32) -> impl Iterator<Item = (u32, u32)> + use<> {
+    let (width, height) = (film.width(), film.height());
+    (y.saturating_sub(1)..(y + 2).min(height))
+        .flat_map(move |ny| (x.saturating_sub(1)..(x + 2).min(width)).map(move |nx| (nx, ny)))
 }
 
 /// Which pixels of `film` the next pass refines, row-major: those active
-/// on their own account ([`is_active`]), and those whose samples still
-/// vary enough ([`variance_estimate`] at or above the threshold) next to
-/// a pixel whose error is above it. Two halves of a few samples can agree
-/// by chance on an edge; its neighbours along the edge rarely all do (the
+/// on their own account ([`is_active`] with their [`pooled_errors`] and
+/// [`relative_costs`]), and those whose samples still vary enough
+/// ([`variance_estimate`] at or above their threshold) next to a pixel
+/// whose error is above its own. Two halves of a few samples can agree by
+/// chance on an edge; its neighbours along the edge rarely all do (the
 /// window Cycles widens its active pixels by).
 pub fn decide(film: &Film, a: &AdaptiveSampling) -> Vec<bool> {
-    let (width, height) = (film.width(), film.height());
-    let noisy: Vec<bool> = (0..height)
-        .flat_map(|y| (0..width).map(move |x| (x, y)))
+    let width = film.width() as usize;
+    let at = |x: u32, y: u32| y as usize * width + x as usize;
+    let errors = pooled_errors(film);
+    let costs = relative_costs(film);
+    let threshold = |x: u32, y: u32| threshold_at(film.samples(x, y), costs[at(x, y)], a);
+    let noisy: Vec<bool> = pixels(film)
         .map(|(x, y)| {
-            film.spread(x, y).is_some_and(|spread| {
-                let n = film.samples(x, y);
-                let error = error_estimate(n, spread);
-                error.is_finite() && error >= threshold_at(n, a)
-            })
+            let error = errors[at(x, y)];
+            error.is_finite() && error >= threshold(x, y)
         })
         .collect();
-    let at = |x: u32, y: u32| y as usize * width as usize + x as usize;
-    (0..height)
-        .flat_map(|y| (0..width).map(move |x| (x, y)))
+    pixels(film)
         .map(|(x, y)| {
             let n = film.samples(x, y);
-            if is_active(n, film.error(x, y), a) {
+            if is_active(n, errors[at(x, y)], costs[at(x, y)], a) {
                 return true;
             }
             let varies = film
                 .spread(x, y)
-                .is_some_and(|spread| variance_estimate(n, spread) >= threshold_at(n, a));
-            varies
-                && n < a.max_spp
-                && (y.saturating_sub(1)..(y + 2).min(height))
-                    .any(|ny| (x.saturating_sub(1)..(x + 2).min(width)).any(|nx| noisy[at(nx, ny)]))
+                .is_some_and(|spread| variance_estimate(n, spread) >= threshold(x, y));
+            varies && n < a.max_spp && window(film, x, y).any(|(nx, ny)| noisy[at(nx, ny)])
         })
         .collect()
 }
@@ -358,10 +443,10 @@ mod tests {
         let error = estimate(&[0.4; 4], &[0.4; 4]);
         assert!(error < 1e-6, "{error}");
         assert!(
-            is_active(4, estimate(&[0.4; 2], &[0.4; 2]), &a),
+            is_active(4, estimate(&[0.4; 2], &[0.4; 2]), 1.0, &a),
             "below the minimum"
         );
-        assert!(!is_active(8, error, &a));
+        assert!(!is_active(8, error, 1.0, &a));
         // Bright beyond the display's range is as constant as it shows.
         assert_eq!(estimate(&[1.5, 3.0], &[1.0, 2.0]), 0.0);
     }
@@ -376,18 +461,23 @@ mod tests {
         let error = estimate(&first, &last);
         // The means differ by 0.2, halves of 8: 0.2 / 2.
         assert!((error - 0.1).abs() < 1e-6, "{error}");
-        assert!(is_active(16, error, &a));
-        assert!(!is_active(64, error, &a), "the maximum ends it");
-        assert!(!is_active(16, error, &settings(0.2, 8, 64)));
-        // The error a pixel may keep grows with its samples: 0.1 keeps
-        // refining at 16 against 0.06 (twice 0.03), not at 32 (0.12).
-        assert!(is_active(16, error, &settings(0.03, 8, 64)));
-        assert!(!is_active(32, error, &settings(0.03, 8, 64)));
+        assert!(is_active(16, error, 1.0, &a));
+        assert!(!is_active(64, error, 1.0, &a), "the maximum ends it");
+        assert!(!is_active(16, error, 1.0, &settings(0.2, 8, 64)));
+        // The error a pixel may keep grows as the square root of its
+        // samples: 0.1 keeps refining at 16 against 0.085 (0.06 sqrt 2),
+        // not at 32 (0.12).
+        assert!(is_active(16, error, 1.0, &settings(0.06, 8, 64)));
+        assert!(!is_active(32, error, 1.0, &settings(0.06, 8, 64)));
         assert_eq!(
-            threshold_at(4, &settings(0.03, 8, 64)),
+            threshold_at(4, 1.0, &settings(0.03, 8, 64)),
             0.03,
             "below the minimum"
         );
+        // And as the square root of what its samples cost: at 16 a pixel
+        // whose samples cost 4 times the average may keep 0.17.
+        assert!(!is_active(16, error, 4.0, &settings(0.06, 8, 64)));
+        assert!(is_active(16, error, 0.25, &settings(0.06, 8, 64)));
         // Stratified halves that each see the quarter twice agree: the
         // mean has converged though the samples vary as much as ever.
         let even = [0.9, 0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.1];
@@ -407,10 +497,10 @@ mod tests {
         let a = settings(0.5, 1, 16);
         assert!(estimate(&[], &[0.3]).is_infinite());
         assert!(estimate(&[], &[0.3, 0.3]).is_infinite());
-        assert!(is_active(1, estimate(&[], &[0.3]), &a));
+        assert!(is_active(1, estimate(&[], &[0.3]), 1.0, &a));
         let zero = settings(0.0, 1, 16);
-        assert!(is_active(15, 0.0, &zero));
-        assert!(!is_active(16, 0.0, &zero));
+        assert!(is_active(15, 0.0, 1.0, &zero));
+        assert!(!is_active(16, 0.0, 1.0, &zero));
     }
 
     #[test]
@@ -449,7 +539,7 @@ mod tests {
                 .iter()
                 .flat_map(|h| h.iter().map(|&v| Vec3A::splat(v)))
                 .collect();
-            film.add_samples(&tile, &counts, &values);
+            film.add_samples(&tile, &counts, &values, &[]);
         }
         film
     }

@@ -94,6 +94,8 @@ pub struct Spread {
     /// before it the other.
     pub earlier: Vec3A,
     pub earlier_samples: u32,
+    /// Intersection tests the pixel's samples made: what they cost.
+    pub tests: u64,
 }
 
 impl Film {
@@ -163,16 +165,20 @@ impl Film {
 
     /// Adds samples to the pixels of `tile`: `counts` says how many each
     /// pixel (row-major within the tile) takes, `values` holds them pixel
-    /// after pixel, each pixel's in the order they were taken.
-    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], values: &[Vec3A]) {
+    /// after pixel, each pixel's in the order they were taken, and
+    /// `tests` the intersection tests each pixel's samples made.
+    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], values: &[Vec3A], tests: &[u64]) {
         let mut values = values.iter();
+        let mut tests = tests.iter();
         for (start, row) in tile.rows(self.width, counts) {
             for (i, &count) in (start..).zip(row) {
+                let pixel_tests = tests.next().copied().unwrap_or(0);
                 if count > 0
                     && let Some(spread) = self.spread.get_mut(i)
                 {
                     spread.earlier = spread.sum;
                     spread.earlier_samples = self.samples[i];
+                    spread.tests += pixel_tests;
                 }
                 for v in values.by_ref().take(count as usize) {
                     self.add(i, *v);

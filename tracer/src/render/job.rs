@@ -20,7 +20,7 @@ use super::adaptive;
 use super::film::encode_values;
 use super::settings::SettingsError;
 use super::view::{View, ViewFilm, ViewHeatmap, ViewSample, view_rgba8};
-use super::{Budget, Encoding, Film, RenderPlan, RenderSettings};
+use super::{Budget, Encoding, Film, PlannedSamples, RenderPlan, RenderSettings};
 
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
@@ -546,12 +546,16 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
                     if plan.iter().all(|samples| samples.is_empty()) {
                         return;
                     }
-                    let (values, views) =
-                        frame.render_samples(tile, &plan, shared.views, &mut counters);
+                    let PlannedSamples {
+                        values,
+                        tests,
+                        views,
+                    } = frame.render_samples(tile, &plan, shared.views, &mut counters);
                     let counts = plan.iter().map(|samples| samples.len() as u32).collect();
                     TileSamples::Some {
                         counts,
                         values,
+                        tests,
                         views,
                     }
                 }
@@ -581,8 +585,16 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
                             // Whether a neighbour's noise brings the tile
                             // back is decided after the pass: its bytes
                             // are made each time it takes samples.
-                            (TileSamples::Some { counts, values, .. }, Some(_)) => {
-                                p.film.add_samples(tile, counts, values);
+                            (
+                                TileSamples::Some {
+                                    counts,
+                                    values,
+                                    tests,
+                                    ..
+                                },
+                                Some(_),
+                            ) => {
+                                p.film.add_samples(tile, counts, values, tests);
                                 true
                             }
                             (TileSamples::One(values, _), _) => {
@@ -672,6 +684,8 @@ enum TileSamples {
     Some {
         counts: Vec<u32>,
         values: Vec<Vec3A>,
+        /// Each pixel's intersection tests.
+        tests: Vec<u64>,
         views: Option<Vec<ViewSample>>,
     },
 }

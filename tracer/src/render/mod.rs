@@ -17,7 +17,7 @@ use std::sync::Arc;
 
 pub use film::{Film, Tile, rgba_to_rgb_image};
 pub use job::{Finished, JobOptions, JobState, PassListener, RenderError, RenderJob, Snapshot};
-pub use plan::{RenderPlan, TILE_SIZE};
+pub use plan::{PlannedSamples, RenderPlan, TILE_SIZE};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
     AdaptiveSampling, Budget, Encoding, LensOverride, MAX_DEPTH, MAX_GRID_MULTIPLIER,

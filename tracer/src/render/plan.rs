@@ -23,6 +23,17 @@ use super::{RenderSettings, Tile, Tracer};
 /// per-tile bookkeeping is negligible.
 pub const TILE_SIZE: u32 = 32;
 
+/// What [`RenderPlan::render_samples`] made of a tile's planned samples.
+pub struct PlannedSamples {
+    /// The samples' values, pixel after pixel.
+    pub values: Vec<Vec3A>,
+    /// Each pixel's intersection tests over its samples (row-major): what
+    /// its samples cost, for adaptive sampling.
+    pub tests: Vec<u64>,
+    /// The samples' view samples, when asked for.
+    pub views: Option<Vec<ViewSample>>,
+}
+
 /// A render's plan, shared by the threads that execute it.
 pub struct RenderPlan {
     pub world: Arc<World>,
@@ -82,8 +93,8 @@ impl RenderPlan {
 
     /// Renders the samples `plan` asks of the pixels of `tile` (row-major:
     /// pixel `i` takes samples `plan[i]`), with their view samples when
-    /// `views`: the values pixel after pixel, as [`Film::add_samples`]
-    /// takes them.
+    /// `views`: the values pixel after pixel and each pixel's intersection
+    /// tests, as [`Film::add_samples`] takes them.
     ///
     /// [`Film::add_samples`]: super::Film::add_samples
     pub fn render_samples(
@@ -92,14 +103,16 @@ impl RenderPlan {
         plan: &[std::ops::Range<u32>],
         views: bool,
         counters: &mut Counters,
-    ) -> (Vec<Vec3A>, Option<Vec<ViewSample>>) {
+    ) -> PlannedSamples {
         let tracer = Tracer::new(&self.world, &self.index, &self.settings);
         let total: usize = plan.iter().map(|r| r.len()).sum();
         let mut values = Vec::with_capacity(total);
+        let mut tests = Vec::with_capacity(plan.len());
         let mut samples = views.then(|| Vec::with_capacity(total));
         let pixels = (tile.y..tile.y + tile.height)
             .flat_map(|y| (tile.x..tile.x + tile.width).map(move |x| (x, y)));
         for ((x, y), range) in pixels.zip(plan) {
+            let tests_before = counters.intersection_tests;
             for sample in range.clone() {
                 let value = match &mut samples {
                     Some(samples) => {
@@ -113,8 +126,13 @@ impl RenderPlan {
                 };
                 values.push(value);
             }
+            tests.push(counters.intersection_tests - tests_before);
         }
-        (values, samples)
+        PlannedSamples {
+            values,
+            tests,
+            views: samples,
+        }
     }
 
     /// Renders pass `pass` over `tile`: one sample per pixel, row-major.

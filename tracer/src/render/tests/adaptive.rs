@@ -115,9 +115,9 @@ fn sequential(frame: &RenderPlan) -> Film {
             return film;
         }
         for (tile, plan) in frame.tiles.iter().zip(plans) {
-            let (values, _) = frame.render_samples(tile, &plan, false, &mut counters);
+            let samples = frame.render_samples(tile, &plan, false, &mut counters);
             let counts: Vec<u32> = plan.iter().map(|s| s.len() as u32).collect();
-            film.add_samples(tile, &counts, &values);
+            film.add_samples(tile, &counts, &samples.values, &samples.tests);
         }
         let active = adaptive::decide(&film, &a);
         film.set_active(active);
@@ -189,14 +189,19 @@ fn pixels_below_the_threshold_get_no_more_samples() {
     let mut stopped = 0;
     for pair in passes.windows(2) {
         let (before, after) = (&pair[0], &pair[1]);
+        let (errors, costs) = (
+            adaptive::pooled_errors(before),
+            adaptive::relative_costs(before),
+        );
         for y in 0..before.height() {
             for x in 0..before.width() {
                 let n = before.samples(x, y);
+                let i = (y * before.width() + x) as usize;
                 if before.is_active(x, y) {
                     assert!(
-                        adaptive::is_active(n, before.error(x, y), &a)
+                        adaptive::is_active(n, errors[i], costs[i], &a)
                             || adaptive::variance_estimate(n, before.spread(x, y).unwrap())
-                                >= adaptive::threshold_at(n, &a),
+                                >= adaptive::threshold_at(n, costs[i], &a),
                         "pixel ({x}, {y}) active though converged"
                     );
                     assert_eq!(after.samples(x, y), adaptive::next_count(n, &a));
