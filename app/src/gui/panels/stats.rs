@@ -93,8 +93,10 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                         format!("{:.1}%", 100.0 * (1.0 - a.active_share())),
                     )
                     .on_hover_text(
-                        "Pixels that stopped: their estimated error is below the noise threshold \
-                         times their samples over the minimum, or they reached the maximum",
+                        "Pixels that stopped: their estimated error, pooled with their \
+                         neighbours', is below the noise threshold times the square root of \
+                         their samples over the minimum times what their samples cost, or \
+                         they reached the maximum",
                     );
                     row(
                         ui,
