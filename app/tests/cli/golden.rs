@@ -14,10 +14,10 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use tracer::accel::{AccelKind, SceneIndex};
+use tracer::mesh_io::MeshFormat;
 use tracer::metrics::{diff_heatmap, psnr};
 use tracer::render::{AdaptiveSampling, Encoding, RenderSettings, Sampling, render};
-use tracer::scene::{Limits, parse_scene_file};
-use tracer::world::World;
+use workbench::load::{Loaded, SceneSource};
 
 /// Lowest PSNR that passes, in dB. Renders are deterministic, so with one
 /// build the PSNR is infinite; another compiler may round a value across
@@ -248,7 +248,8 @@ fn root() -> PathBuf {
     app.parent().unwrap_or(app).to_path_buf()
 }
 
-/// `scenes/*.p3f` and `*.nff`, sorted; empty if the folder is missing.
+/// `scenes/*.p3f`, `*.nff` and the bare meshes, sorted; empty if the folder
+/// is missing.
 fn scenes() -> Vec<PathBuf> {
     let Ok(entries) = std::fs::read_dir(root().join("scenes")) else {
         return Vec::new();
@@ -258,6 +259,7 @@ fn scenes() -> Vec<PathBuf> {
         .filter(|p| {
             p.extension()
                 .is_some_and(|x| x.eq_ignore_ascii_case("p3f") || x.eq_ignore_ascii_case("nff"))
+                || MeshFormat::of(p).is_some()
         })
         .collect();
     found.sort();
@@ -318,7 +320,10 @@ where
 /// and lens kept, seed 0, at most `MAX_SAMPLES`, every core (renders do not
 /// depend on threads), then the case's changes.
 fn render_film(case: &Case) -> Result<tracer::render::Film, String> {
-    let scene = parse_scene_file(&case.scene, &Limits::default()).map_err(|e| e.to_string())?;
+    // As the binary reads it: a bare mesh framed, a scene's sky loaded.
+    let source = SceneSource::File(case.scene.clone());
+    let Loaded { scene, world, .. } =
+        Loaded::read(source, &[], &mut |_| {}).map_err(|e| format!("{e:#}"))?;
     let mut settings = RenderSettings::from_scene(&scene);
     let (w, h) = (settings.width.max(1), settings.height.max(1));
     let scale = f64::from(case.side) / f64::from(w.max(h));
@@ -333,7 +338,6 @@ fn render_film(case: &Case) -> Result<tracer::render::Film, String> {
     settings.samples = settings.samples.min(MAX_SAMPLES);
     settings.seed = 0;
     (case.apply)(&mut settings);
-    let world = Arc::new(World::build(&scene));
     let index = Arc::new(SceneIndex::build(
         &world.shapes,
         settings.accel,
