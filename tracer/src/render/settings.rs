@@ -138,8 +138,8 @@ pub struct AdaptiveSampling {
     /// stops once the estimated error of its mean (pooled with its
     /// neighbours') is below this, in display units (the linear value
     /// clamped to 0..1, as the image is written: 0.01 is 2.55 levels of
-    /// 255); with more or costlier samples, below this times the square
-    /// root of its samples over `min_spp` times their relative cost
+    /// 255); with more or costlier samples, below this times its samples
+    /// over `min_spp` times their relative cost
     /// ([`crate::render::adaptive::threshold_at`]). 0 never stops a
     /// pixel before `max_spp`.
     pub noise_threshold: f32,
