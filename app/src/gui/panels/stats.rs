@@ -94,9 +94,8 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
                     )
                     .on_hover_text(
                         "Pixels that stopped: their estimated error, pooled with their \
-                         neighbours', is below the noise threshold times the square root of \
-                         their samples over the minimum times what their samples cost, or \
-                         they reached the maximum",
+                         neighbours', is below the noise threshold times their samples over the \
+                         minimum times what their samples cost, or they reached the maximum",
                     );
                     row(
                         ui,
