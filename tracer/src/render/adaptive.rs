@@ -547,7 +547,8 @@ mod tests {
                 .iter()
                 .flat_map(|h| h.iter().map(|&v| Vec3A::splat(v)))
                 .collect();
-            film.add_samples(&tile, &counts, &values, &[]);
+            // Synthetic samples cost nothing.
+            film.add_samples(&tile, &counts, &values, &vec![0; counts.len()]);
         }
         film
     }

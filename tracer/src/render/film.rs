@@ -166,8 +166,10 @@ impl Film {
     /// Adds samples to the pixels of `tile`: `counts` says how many each
     /// pixel (row-major within the tile) takes, `values` holds them pixel
     /// after pixel, each pixel's in the order they were taken, and
-    /// `tests` the intersection tests each pixel's samples made.
+    /// `tests` the intersection tests each pixel's samples made (one entry
+    /// a pixel, as `counts`).
     pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], values: &[Vec3A], tests: &[u64]) {
+        debug_assert_eq!(tests.len(), counts.len(), "one test count a pixel");
         let mut values = values.iter();
         let mut tests = tests.iter();
         for (start, row) in tile.rows(self.width, counts) {
