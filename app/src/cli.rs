@@ -807,7 +807,7 @@ impl SettingsArgs {
             s.antialiasing = true;
         }
         if let Some(n) = self.spp {
-            s.samples = n.max(1);
+            s.set_samples(n.max(1));
         }
         self.apply_sampling(s);
         if self.no_aa {
@@ -848,8 +848,8 @@ impl SettingsArgs {
 
     /// `--sampling` and the adaptive knobs: adaptive sampling (with
     /// anti-aliasing on) from N's defaults, or the settings' own adaptive
-    /// sampling, with the knobs given; `--sampling uniform` wins over
-    /// them.
+    /// sampling (the scene's, its bounds following `--spp`), with the
+    /// knobs given; `--sampling uniform` wins over them.
     fn apply_sampling(&self, s: &mut RenderSettings) {
         let knobs =
             self.noise_threshold.is_some() || self.min_spp.is_some() || self.max_spp.is_some();
@@ -862,7 +862,7 @@ impl SettingsArgs {
             _ => {}
         }
         let mut adaptive = match s.sampling {
-            Sampling::Adaptive(a) if self.spp.is_none() => a,
+            Sampling::Adaptive(a) => a,
             _ => AdaptiveSampling::for_samples(
                 s.samples,
                 AdaptiveSampling::default().noise_threshold,

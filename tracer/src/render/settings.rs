@@ -193,9 +193,9 @@ impl AdaptiveSampling {
 }
 
 impl RenderSettings {
-    /// The settings a scene file asks for: its resolution, `spp`, `accel`
-    /// and depth of field when its lens is open; everything else at its
-    /// default.
+    /// The settings a scene file asks for: its resolution, `spp` (and
+    /// `adaptive`), `accel` and depth of field when its lens is open;
+    /// everything else at its default.
     pub fn from_scene(scene: &Scene) -> Self {
         let mut settings = Self::default();
         settings.adopt_scene(scene);
@@ -207,14 +207,22 @@ impl RenderSettings {
     /// dropped, and a light size that suits its scale) and keeps every
     /// other field: how a viewer keeps its user's choices when another
     /// scene opens. The light size is a tenth of the camera's distance to
-    /// `at`, so the penumbra scales with the scene.
+    /// `at`, so the penumbra scales with the scene. Its `adaptive`
+    /// threshold turns anti-aliasing on and samples adaptively with N's
+    /// bounds; without one it samples uniformly.
     pub fn adopt_scene(&mut self, scene: &Scene) {
         let view = &scene.view;
         let spp = scene.spp.unwrap_or(0);
         self.width = view.width;
         self.height = view.height;
-        self.antialiasing = spp > 0;
+        self.antialiasing = spp > 0 || scene.adaptive.is_some();
         self.samples = if spp > 0 { spp } else { 4 };
+        self.sampling = match scene.adaptive {
+            Some(threshold) => {
+                Sampling::Adaptive(AdaptiveSampling::for_samples(self.samples, threshold))
+            }
+            None => Sampling::Uniform,
+        };
         self.follow_scene_lens(view);
         self.accel = match scene.accel {
             Some(0) => AccelKind::None,
@@ -223,6 +231,19 @@ impl RenderSettings {
         };
         // Finite even for absurd (huge but finite) camera coordinates.
         self.light_size = (0.1 * (view.at - view.from).length()).min(f32::MAX);
+    }
+
+    /// Sets N; adaptive sampling, when chosen, takes N's bounds
+    /// ([`AdaptiveSampling::for_samples`]) and keeps its threshold and
+    /// budget, so that it stays adaptive sampling "in place of N x N".
+    pub fn set_samples(&mut self, n: u32) {
+        self.samples = n;
+        if let Sampling::Adaptive(adaptive) = &mut self.sampling {
+            *adaptive = AdaptiveSampling {
+                budget: adaptive.budget,
+                ..AdaptiveSampling::for_samples(n, adaptive.noise_threshold)
+            };
+        }
     }
 
     /// Renders through `view`'s own lens again, with depth of field when
@@ -590,5 +611,50 @@ mod tests {
         assert_eq!((s.samples_per_pixel(), s.strata()), (36, 6));
         s.antialiasing = false;
         assert_eq!(s.samples_per_pixel(), 1, "adaptive spends AA's samples");
+    }
+
+    #[test]
+    fn adaptive_bounds_follow_n_and_keep_the_threshold_and_budget() {
+        let budget = Some(Budget::Samples(1000));
+        let mut s = RenderSettings {
+            sampling: Sampling::Adaptive(AdaptiveSampling {
+                budget,
+                ..AdaptiveSampling::for_samples(4, 0.003)
+            }),
+            ..RenderSettings::default()
+        };
+        s.set_samples(12);
+        let expected = AdaptiveSampling {
+            budget,
+            ..AdaptiveSampling::for_samples(12, 0.003)
+        };
+        assert_eq!(s.sampling, Sampling::Adaptive(expected));
+        assert_eq!((expected.min_spp, expected.max_spp), (36, 576));
+
+        let mut uniform = RenderSettings::default();
+        uniform.set_samples(12);
+        assert_eq!((uniform.samples, uniform.sampling), (12, Sampling::Uniform));
+    }
+
+    #[test]
+    fn a_scene_file_chooses_adaptive_or_uniform_sampling() {
+        let scene = |text: &str| Scene {
+            spp: text.contains("spp 12").then_some(12),
+            adaptive: text.contains("adaptive").then_some(0.007),
+            ..Scene::default()
+        };
+        let mut s = RenderSettings::from_scene(&scene("spp 12 adaptive"));
+        assert!(s.antialiasing);
+        let showcase = AdaptiveSampling::for_samples(12, 0.007);
+        assert_eq!(s.sampling, Sampling::Adaptive(showcase));
+
+        s.adopt_scene(&scene("spp 12"));
+        assert_eq!((s.samples, s.sampling), (12, Sampling::Uniform));
+
+        // `adaptive` alone turns anti-aliasing on, with N = 4's bounds.
+        s.adopt_scene(&scene("adaptive"));
+        assert!(s.antialiasing);
+        let four = AdaptiveSampling::for_samples(4, 0.007);
+        assert_eq!((s.samples, s.sampling), (4, Sampling::Adaptive(four)));
     }
 }

@@ -250,6 +250,11 @@ pub struct Scene {
     pub accel: Option<u32>,
     /// `spp n`: 0 one centred sample, n > 0 n x n jittered samples.
     pub spp: Option<u32>,
+    /// `adaptive T`: anti-aliasing spends its samples adaptively, each
+    /// pixel refining until its estimated error is below the noise
+    /// threshold T, from N^2 / 4 to (2N)^2 samples with `spp`'s N (a
+    /// workbench extension of P3F, as `spp` suggests, not imposes).
+    pub adaptive: Option<f32>,
     /// Folder of the scene file, for resolving `env`; `None` for in-memory text.
     pub base_dir: Option<PathBuf>,
     /// What the parser noticed that did not stop it (a `mesh_file`'s
@@ -270,6 +275,7 @@ impl Default for Scene {
             object_positions: ObjectPositions::default(),
             accel: None,
             spp: None,
+            adaptive: None,
             base_dir: None,
             warnings: Vec::new(),
         }

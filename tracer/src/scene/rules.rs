@@ -21,6 +21,17 @@ fn invalid(what: &'static str, why: impl Into<String>) -> Result<(), Invalid> {
     })
 }
 
+/// Adaptive sampling's noise threshold, in display units: 0 refines every
+/// pixel to its maximum, 1 (the whole range of a channel) stops every pixel
+/// at its minimum, beyond is meaningless.
+pub(crate) fn noise_threshold(threshold: f32) -> Result<(), Invalid> {
+    if !(0.0..=1.0).contains(&threshold) {
+        let why = format!("must lie in 0..1, found {threshold}");
+        return invalid("noise threshold", why);
+    }
+    Ok(())
+}
+
 /// Largest sine of the angle between two plane edges that counts as
 /// collinear.
 const COLLINEAR_SINE: f64 = 1e-6;

@@ -94,6 +94,9 @@ impl Display for P3f<'_> {
         if let Some(spp) = scene.spp {
             writeln!(f, "spp {spp}")?;
         }
+        if let Some(threshold) = scene.adaptive {
+            writeln!(f, "adaptive {threshold}")?;
+        }
         writeln!(f, "bclr {}", V(scene.background))?;
         if let Some(env) = &scene.env {
             writeln!(f, "env {env}")?;

@@ -46,8 +46,9 @@ fn adaptive_knobs(ui: &mut Ui, render: &mut RenderSettings) {
                 .text("Noise threshold"),
         )
         .on_hover_text(
-            "A pixel stops once the standard error of its mean is below this (display units: \
-             0.01 is 2.55 levels of 255)",
+            "A pixel at the minimum stops once its estimated error is below this (display \
+             units: 0.01 is 2.55 levels of 255); with more or costlier samples the bar grows \
+             in proportion",
         );
         let most = MAX_SAMPLES * MAX_SAMPLES;
         ui.add(
@@ -159,8 +160,17 @@ pub fn show(
     // N and the switch to adaptive sampling share a row: the panel keeps
     // its height (the overlay's options below stay on screen).
     ui.horizontal(|ui| {
-        ui.add(Slider::new(&mut controls.render.samples, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
-            .on_hover_text("N x N samples per pixel (and strata of the lens and of soft shadows)");
+        let mut n = controls.render.samples;
+        if ui
+            .add(Slider::new(&mut n, 1..=SLIDER_MAX_SAMPLES).text("Samples N"))
+            .on_hover_text(
+                "N x N samples per pixel (and strata of the lens and of soft shadows); \
+                 adaptive sampling takes from N^2 / 4 to (2N)^2",
+            )
+            .changed()
+        {
+            controls.render.set_samples(n);
+        }
         adaptive_switch(ui, &mut controls.render);
     });
     adaptive_knobs(ui, &mut controls.render);

@@ -156,6 +156,15 @@ impl Parser<'_, '_> {
         }
     }
 
+    /// `adaptive T` with T a noise threshold in `0..=1`.
+    pub(super) fn adaptive(&mut self) -> Result<(), ParseError> {
+        let pos = self.cursor.here();
+        let threshold = self.cursor.number("the noise threshold")?;
+        self.rule(pos, rules::noise_threshold(threshold))?;
+        self.scene.adaptive = Some(threshold);
+        Ok(())
+    }
+
     /// The count of numbers does not match any form of the command.
     fn wrong_count(&self, pos: Pos, expected: &'static str, found: usize) -> ParseError {
         self.cursor

@@ -17,9 +17,9 @@ use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene, rules}
 /// Every command word, for telling a misspelt `v` field from the next
 /// command. `#` comments are removed by the lexer.
 #[rustfmt::skip]
-pub(super) const COMMANDS: [&str; 17] = [
+pub(super) const COMMANDS: [&str; 18] = [
     "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "mesh_file",
-    "accel", "spp",
+    "accel", "spp", "adaptive",
 ];
 
 /// Parses scene text; `file` only labels errors and sets `base_dir` (its
@@ -167,6 +167,7 @@ impl Parser<'_, '_> {
             "mesh_file" => self.mesh_file(token.pos),
             "accel" => self.accel(),
             "spp" => self.spp(),
+            "adaptive" => self.adaptive(),
             word => {
                 // Not inside any command: the error names none.
                 self.cursor.set_command(None);

@@ -35,7 +35,7 @@ fn view_defaults_to_pinhole_focused_on_the_view_plane() {
 }
 
 #[test]
-fn background_both_spellings_env_accel_spp() {
+fn background_both_spellings_env_accel_spp_adaptive() {
     let scene = parse_ok("v\nb 0.1 0.2 0.3");
     assert_eq!(scene.background, Vec3::new(0.1, 0.2, 0.3));
     let scene = parse_ok("v\nbclr 1 +2 3e-1\nenv skybox\naccel 2\nspp 4");
@@ -44,6 +44,9 @@ fn background_both_spellings_env_accel_spp() {
     assert_eq!((scene.accel, scene.spp), (Some(2), Some(4)));
     let scene = parse_ok("v accel 0 spp 0");
     assert_eq!((scene.accel, scene.spp), (Some(0), Some(0)));
+    assert_eq!(scene.adaptive, None);
+    let scene = parse_ok("v spp 12 adaptive 0.007");
+    assert_eq!((scene.spp, scene.adaptive), (Some(12), Some(0.007)));
 }
 
 #[test]

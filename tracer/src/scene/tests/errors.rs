@@ -224,6 +224,14 @@ fn invalid_settings() {
             limit: 64
         }
     );
+    assert_eq!(
+        parse_err("spp 4\nadaptive 1.5", 2, 10, Some("adaptive")),
+        invalid("noise threshold", "must lie in 0..1, found 1.5")
+    );
+    assert_eq!(
+        parse_err("adaptive -0.01", 1, 10, Some("adaptive")),
+        invalid("noise threshold", "must lie in 0..1, found -0.01")
+    );
 }
 
 #[test]

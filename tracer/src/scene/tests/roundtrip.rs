@@ -8,7 +8,7 @@ use crate::scene::{LightSpec, Material, Object, Primitive, Scene, write_p3f, wri
 #[test]
 fn every_command_round_trips() {
     let scene = parse_ok(
-        "accel 1 spp 3 b 0.1 0.2 0.3 env sky_box\n\
+        "accel 1 spp 3 adaptive 0.0125 b 0.1 0.2 0.3 env sky_box\n\
          v from 1e-7 2 3 at 0 0 0 up 0 0 1 angle 33.3 hither 0.001 resolution 320 200 aperture 2 focal 0.7\n\
          l 1 2 3 l 4 5 6 0.5 0.25 1 al 0 9 0 0 0 0 3 2 al 0 9 0 0 0 0 3 2 1 0.5 0.25\n\
          s 0 0 0 1 s 1 1 1 -0.1\n\
@@ -260,6 +260,7 @@ mod valid_by_construction {
             colour().prop_map(|c| (format!("b {c}"), Setting)),
             (0u32..3).prop_map(|k| (format!("accel {k}"), Setting)),
             (1u32..9).prop_map(|n| (format!("spp {n}"), Setting)),
+            (0.0f32..=1.0).prop_map(|t| (format!("adaptive {t}"), Setting)),
         ]
     }
 
