@@ -74,6 +74,26 @@ fn render_spends_adaptive_samples_where_the_flags_say() {
 }
 
 #[test]
+fn a_scene_file_asks_for_adaptive_sampling_and_flags_override_it() {
+    let dir = scratch("adaptive-scene");
+    let text = spheres_on_a_floor(32, 24, "", "").replace("bclr", "spp 4\nadaptive 0.02\nbclr");
+    let path = write(&dir, "adaptive.p3f", &text);
+    let scene = path.to_str().unwrap();
+    // The file's `adaptive` turns anti-aliasing on within N = 4's bounds.
+    let (asked, _) = render(&dir, scene, &[]);
+    let (mean, max) = spp(&asked);
+    assert!((4.0..64.0).contains(&mean) && max <= 64, "{asked}");
+    assert!(!asked["adaptive"].is_null(), "{asked}");
+    // `--spp` moves the bounds with N ((2N)^2 = 16 at threshold 0);
+    // `--sampling uniform` takes N x N.
+    let (two, _) = render(&dir, scene, &["--spp", "2", "--noise-threshold", "0"]);
+    assert_eq!(spp(&two), (16.0, 16), "{two}");
+    let (uniform, _) = render(&dir, scene, &["--sampling", "uniform"]);
+    assert_eq!(spp(&uniform), (16.0, 16));
+    assert!(uniform["adaptive"].is_null(), "{uniform}");
+}
+
+#[test]
 fn adaptive_renders_are_the_same_on_any_thread_count() {
     let dir = scratch("adaptive-threads");
     let scene = scene(&dir);

@@ -142,7 +142,7 @@ impl Param {
             Param::GridM => settings.grid_multiplier = value as f32,
             Param::Spp => {
                 settings.antialiasing = true;
-                settings.samples = value as u32;
+                settings.set_samples(value as u32);
             }
             Param::Depth => settings.max_depth = value as u32,
             Param::LightSize => {
