@@ -5,7 +5,7 @@
 #   scripts/window_speed.sh [--rounds N] [--profile] [--observer] [SCENE...]
 #
 # For each scene (default: balls_medium, AA 2 x 2 from its own `spp 2`, and
-# showcase, AA 12 x 12 with its 8 px lens), each round opens the real window under Xvfb with a
+# showcase, adaptive within 12 x 12's bounds, its 8 px lens), each round opens the real window under Xvfb with a
 # fresh home (no saved settings), leaves it alone until the render is done
 # (`--screenshot`: the line it prints is what the statistics panel shows),
 # and runs `workbench render` of the same file; the order alternates every

@@ -34,6 +34,22 @@ fn samples_per_pixel(stats: &RenderStats) -> (f64, u32) {
     }
 }
 
+/// How far the samples are, in a few words: "4 / 16 spp" (uniform: passes
+/// of one sample a pixel against N x N), "pass 7 / 11, 36.0 spp mean"
+/// (adaptive: its passes double the active pixels' samples, so the pass
+/// count is not the samples).
+pub fn sample_progress(stats: &RenderStats) -> String {
+    match &stats.adaptive {
+        Some(a) => format!(
+            "pass {} / {}, {:.1} spp mean",
+            stats.passes_done,
+            stats.passes_target,
+            a.mean_spp()
+        ),
+        None => format!("{} / {} spp", stats.passes_done, stats.passes_target),
+    }
+}
+
 /// The few lines `workbench render` prints after a render.
 pub fn summary(stats: &RenderStats, counts: &SceneCounts) -> String {
     let mut text = counts_summary(stats, counts);

@@ -13,6 +13,7 @@ use crate::gui::image::{pixel_views, ray_paths};
 use crate::gui::observer::{self, Observer, ObserverLayout};
 use crate::gui::sides::{Activity, Side, SideId, Sides};
 use crate::gui::windows::ToolsAndOverlays;
+use crate::reports::render_stats::sample_progress;
 
 /// Hold it to see B in the compare mode's flip view.
 const FLIP_KEY: egui::Key = egui::Key::X;
@@ -276,16 +277,16 @@ impl Images<'_> {
     }
 }
 
-/// "512 x 512 · 4 / 16 spp · 1.20 s · rendering".
+/// "512 x 512 · 4 / 16 spp · 1.20 s · rendering" (adaptive: "pass 7 / 11,
+/// 36.0 spp mean" in the middle).
 fn status_line(a: &Side, moving: bool) -> String {
     let mut parts = Vec::new();
     if let Some(s) = a.image.shown() {
         parts.push(format!(
-            "{} x {} · {} / {} spp · {:.2} s",
+            "{} x {} · {} · {:.2} s",
             s.width,
             s.height,
-            s.stats.passes_done,
-            s.stats.passes_target,
+            sample_progress(&s.stats),
             s.stats.render_time.as_secs_f64()
         ));
     }

@@ -10,7 +10,7 @@ use anyhow::Result;
 use tracer::render::Snapshot;
 
 use crate::image_file::save_png;
-use crate::reports::render_stats::si;
+use crate::reports::render_stats::{sample_progress, si};
 
 pub use crate::cli::ScreenshotPlan;
 
@@ -23,11 +23,10 @@ pub type ScreenshotOutcome = Arc<Mutex<Option<Result<String, String>>>>;
 pub fn describe(shown: &Snapshot) -> String {
     let s = &shown.stats;
     format!(
-        "{} x {}, {} / {} spp, {} rays in {:.3} s ({} rays/s)",
+        "{} x {}, {}, {} rays in {:.3} s ({} rays/s)",
         s.width,
         s.height,
-        s.passes_done,
-        s.passes_target,
+        sample_progress(s),
         si(s.counters.total_rays() as f64),
         s.render_time.as_secs_f64(),
         si(s.rays_per_second())
