@@ -3,6 +3,8 @@
 //! patterns built on them: jittered strata, multi-jittered light samples,
 //! lens disks.
 
+use std::ops::Range;
+
 use glam::Vec2;
 
 /// Where a random number is used: the pixel, the sample index within it and
@@ -73,9 +75,7 @@ impl SampleStream {
     /// dimensions (light samples, lens) stay independent of each other.
     pub fn next_2d_across_samples(&mut self, n: u32) -> Vec2 {
         if let Some(rank) = self.rank {
-            let seed = mix64(self.pixel_key ^ (u64::from(self.dimension) << 40 | 0x50b0));
-            self.dimension += 2;
-            return scrambled_sobol(rank, seed);
+            return scrambled_sobol(rank, self.sobol_seed());
         }
         let n = n.clamp(1, MAX_N);
         let count = n * n;
@@ -85,6 +85,40 @@ impl SampleStream {
         self.dimension += 2;
         let index = permute(self.sample % count, count, (pattern >> 32) as u32);
         multi_jittered(index, n, pattern as u32)
+    }
+
+    /// This sample's points on one light, each given to `each` with its
+    /// weight (the weights sum to 1): the one point of
+    /// [`SampleStream::next_2d_across_samples`], or with a ranked stream
+    /// points `indices(rank)` of the pixel's scrambled Sobol sequence (in
+    /// place of point `rank`). An aligned block of indices is a net of its
+    /// own, so a pixel whose few samples take several points each
+    /// averages as many well spread points as one that took a sample a
+    /// point. Takes two dimensions.
+    pub fn next_light_points(
+        &mut self,
+        n: u32,
+        indices: impl FnOnce(u32) -> Range<u32>,
+        mut each: impl FnMut(Vec2, f32),
+    ) {
+        let Some(rank) = self.rank else {
+            each(self.next_2d_across_samples(n), 1.0);
+            return;
+        };
+        let seed = self.sobol_seed();
+        let indices = indices(rank);
+        let weight = 1.0 / indices.len().max(1) as f32;
+        for index in indices {
+            each(scrambled_sobol(index, seed), weight);
+        }
+    }
+
+    /// The scramble of a ranked stream's Sobol points in the next two
+    /// dimensions, the same for all the pixel's samples; takes them.
+    fn sobol_seed(&mut self) -> u64 {
+        let seed = mix64(self.pixel_key ^ (u64::from(self.dimension) << 40 | 0x50b0));
+        self.dimension += 2;
+        seed
     }
 
     /// The next number in `[0, 1)`.
@@ -478,6 +512,36 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn light_points_are_one_point_or_the_ranked_range() {
+        let points = |stream: &mut SampleStream| {
+            let mut points = Vec::new();
+            stream.next_light_points(4, |rank| 4 * rank..4 * rank + 4, |p, w| points.push((p, w)));
+            points
+        };
+        // Uniform sampling: the pattern's one point, at full weight.
+        let (mut first, mut second) = (SampleStream::new(3, 17, 5), SampleStream::new(3, 17, 5));
+        assert_eq!(
+            points(&mut first),
+            [(second.next_2d_across_samples(4), 1.0)]
+        );
+        // Ranked: points 4 k .. 4 k + 4 of the sequence point k takes alone.
+        let alone = |k: u32| {
+            let mut stream = SampleStream::new(3, 17, 100 + k).ranked(k);
+            stream.next_2d_across_samples(8)
+        };
+        let mut ranked = SampleStream::new(3, 17, 100).ranked(1);
+        let taken = points(&mut ranked);
+        assert_eq!(taken.len(), 4);
+        for (i, (p, w)) in taken.into_iter().enumerate() {
+            assert_eq!((p, w), (alone(4 + i as u32), 0.25));
+        }
+        // Two dimensions taken, as for one point.
+        let mut one = SampleStream::new(3, 17, 100).ranked(1);
+        one.next_2d_across_samples(8);
+        assert_eq!(ranked.next_1d(), one.next_1d());
     }
 
     #[test]

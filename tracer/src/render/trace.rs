@@ -13,7 +13,7 @@ use crate::sampling::{SampleStream, multi_jittered};
 use crate::stats::Counters;
 use crate::world::{Light, Surface, World, perpendicular_basis};
 
-use super::RenderSettings;
+use super::{RenderSettings, adaptive};
 
 /// Why a ray was traced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -111,7 +111,8 @@ enum ShadowMode {
     /// where the pixel's samples average them. The pixel's N x N samples
     /// take the points of one multi-jittered pattern, so they too see the
     /// light's visible fraction within one sample (independent random points
-    /// were off by about 1/(2N)).
+    /// were off by about 1/(2N)). With adaptive sampling a pixel's first
+    /// samples take several points each ([`adaptive::light_points`]).
     OnePerSample(u32),
 }
 
@@ -142,6 +143,9 @@ pub struct Tracer<'a> {
     /// blocks never changes *whether* the ray is blocked, so images are the
     /// same with or without it.
     last_occluder: Vec<OwnLine<Cell<Option<u32>>>>,
+    /// Per light, the points an adaptive pixel's early samples take with
+    /// soft shadows ([`adaptive::light_points`]).
+    early_light_points: Vec<u32>,
 }
 
 /// A value alone on its cache line. The shadow cache is written on every
@@ -165,6 +169,8 @@ impl<'a> Tracer<'a> {
             (true, true, 1) => ShadowMode::Stratified(settings.samples.max(1)),
             (true, true, _) => ShadowMode::OnePerSample(settings.strata()),
         };
+        let power = |light: &Light| light.color.element_sum();
+        let brightest = world.lights.iter().map(power).fold(0.0, f32::max);
         let size = if world.bounds.is_empty() {
             1.0
         } else {
@@ -179,6 +185,11 @@ impl<'a> Tracer<'a> {
             min_offset: 1e-6 * size.min(1e30),
             last_occluder: (0..world.lights.len())
                 .map(|_| OwnLine::default())
+                .collect(),
+            early_light_points: world
+                .lights
+                .iter()
+                .map(|light| adaptive::early_light_points(power(light), brightest))
                 .collect(),
         }
     }
@@ -442,8 +453,20 @@ impl<'a> Tracer<'a> {
                 }
                 ShadowMode::OnePerSample(n) => {
                     let (u, v) = self.light_area(light, origin);
-                    let s = rng.next_2d_across_samples(n) - 0.5;
-                    add_sample(light.position + u * s.x + v * s.y, 1.0, counters, recorder);
+                    let early = self.early_light_points[light_index];
+                    let indices = |rank| match self.settings.adaptive() {
+                        Some(a) => adaptive::light_points(rank, early, a),
+                        None => rank..rank + 1,
+                    };
+                    rng.next_light_points(n, indices, |s, weight| {
+                        let s = s - 0.5;
+                        add_sample(
+                            light.position + u * s.x + v * s.y,
+                            weight,
+                            counters,
+                            recorder,
+                        );
+                    });
                 }
             }
             total += from_light * light.color;
