@@ -797,6 +797,16 @@ fn settings_flags_change_what_each_subcommand_does() {
             "the spp study renders N x N samples with a pinhole lens or without",
         ),
         (
+            "sweep",
+            "min-spp",
+            "the spp study gives adaptive sampling each point's N's bounds, N^2 / 4 to (2N)^2",
+        ),
+        (
+            "sweep",
+            "max-spp",
+            "the spp study gives adaptive sampling each point's N's bounds, N^2 / 4 to (2N)^2",
+        ),
+        (
             "compare",
             "accel",
             "compare counts rays, not the structure's work",
