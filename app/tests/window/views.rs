@@ -133,6 +133,53 @@ fn a_clicked_pixel_shows_its_ray_tree_and_follows_the_settings() {
     assert_eq!(eyes, 2, "A's tree and B's");
 }
 
+/// While the camera moves the engine renders a quarter-size preview; the
+/// tree of a pixel pinned beyond the preview's size is still recorded, at
+/// full resolution, and follows the camera.
+#[test]
+fn the_ray_tree_follows_the_camera_through_the_preview() {
+    let mut harness = ready_window(TALL);
+    wait_for(&mut harness, "the render", is_done);
+    let full = harness.state().engine().settings().unwrap().clone();
+    let corner = (full.width - 2, full.height - 2);
+    harness.state_mut().inspect(corner);
+    wait_for(
+        &mut harness,
+        "the corner's tree",
+        |app| matches!(app.inspector().tree(0), Some(Ok(t)) if (t.x, t.y) == corner),
+    );
+    let Some(Ok(before)) = harness.state().inspector().tree(0) else {
+        unreachable!()
+    };
+    let eye_before = before.nodes[0].dir;
+
+    let rect = harness.get_by_role_and_label(Role::Image, "Render").rect();
+    let mut at = rect.center();
+    harness.drag_at(at);
+    for _ in 0..6 {
+        at += egui::vec2(9.0, 4.0);
+        harness.hover_at(at);
+        harness.step();
+    }
+    let preview = harness.state().engine().settings().unwrap().width;
+    assert!(
+        preview < full.width && corner.0 >= preview,
+        "a preview renders while dragging"
+    );
+    let Some(Ok(moving)) = harness.state().inspector().tree(0) else {
+        panic!(
+            "the tree during the preview: {:?}",
+            harness.state().inspector().tree(0)
+        )
+    };
+    assert_eq!((moving.x, moving.y), corner);
+    assert_ne!(
+        moving.nodes[0].dir, eye_before,
+        "the eye ray turned with the camera"
+    );
+    harness.drop_at(at);
+}
+
 #[test]
 fn the_structure_overlay_toggle_draws_the_bvh_and_the_grid() {
     let mut harness = ready_window(TALL);

@@ -268,8 +268,8 @@ impl eframe::App for WorkbenchApp {
         let mut commands = Command::pressed(&ctx);
         self.side_panel(ui, &mut commands);
         self.statistics_panel(ui);
-        let b = self.sides.b.as_ref().map(|b| &b.engine);
-        self.tools.inspector.update(&self.sides.a.engine, b);
+        let b = self.sides.b.as_ref();
+        self.tools.inspector.update(&self.sides.a, b);
         self.tools.inspector.panel(ui, b.is_some());
         self.central_panel(ui);
         self.messages.show_notice(&ctx);

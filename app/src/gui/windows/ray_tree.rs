@@ -8,7 +8,7 @@ use tracer::accel::Visit;
 use tracer::render::{RayTree, RenderSettings};
 
 use crate::figures::overlay::VisitStep;
-use crate::gui::sides::Engine;
+use crate::gui::sides::Side;
 use crate::reports::ray_tree::{
     self, describe_node, describe_visit, headline, step_tally, triple, visits_heading,
 };
@@ -58,23 +58,26 @@ impl Inspector {
     }
 
     /// Records the trees again for what changed: the pixel, the sample or
-    /// an engine's settings. Recording one sample takes microseconds, so it
-    /// runs on the UI thread.
-    pub fn update(&mut self, a: &Engine, b: Option<&Engine>) {
+    /// a side's settings. Recording one sample takes microseconds, so it
+    /// runs on the UI thread. A side's full-resolution settings, not its
+    /// engine's: while the camera moves the engine renders a small
+    /// preview, and the tree follows the camera at the pixel pinned.
+    pub fn update(&mut self, a: &Side, b: Option<&Side>) {
         let Some(pixel) = self.pinned else {
             self.trees = [None, None];
             return;
         };
-        for (side, engine) in [Some(a), b].into_iter().enumerate() {
-            let slot = &mut self.trees[side];
-            let (Some(engine), Some(settings), Some(scene)) = (
-                engine,
-                engine.and_then(Engine::settings),
-                engine.and_then(Engine::scene),
+        for (index, side) in [Some(a), b].into_iter().enumerate() {
+            let slot = &mut self.trees[index];
+            let (Some(side), Some(settings), Some(scene)) = (
+                side,
+                side.and_then(Side::settings),
+                side.and_then(|s| s.engine.scene()),
             ) else {
                 *slot = None;
                 continue;
             };
+            let engine = &side.engine;
             let world = std::sync::Arc::as_ptr(&scene.world) as usize;
             let of = (settings.clone(), world, pixel, self.sample);
             if slot.as_ref().is_some_and(|s| s.of == of) {
