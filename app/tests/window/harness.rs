@@ -127,6 +127,14 @@ pub fn observer_done(app: &WorkbenchApp) -> bool {
 /// Drags the left button across the image named `label` ("Render",
 /// "Observer"), as a user orbits its camera.
 pub fn drag(harness: &mut Harness<'static, WorkbenchApp>, label: &str) {
+    let at = drag_holding(harness, label);
+    harness.drop_at(at);
+    harness.step();
+}
+
+/// [`drag`] without the release: the camera is still moving. Returns
+/// where the pointer is, to drop it there.
+pub fn drag_holding(harness: &mut Harness<'static, WorkbenchApp>, label: &str) -> egui::Pos2 {
     let view = harness
         .get_by_role_and_label(egui::accesskit::Role::Image, label)
         .rect();
@@ -137,8 +145,7 @@ pub fn drag(harness: &mut Harness<'static, WorkbenchApp>, label: &str) {
         harness.hover_at(at);
         harness.step();
     }
-    harness.drop_at(at);
-    harness.step();
+    at
 }
 
 /// Steps the window until `done` holds (the render runs on other

@@ -6,7 +6,7 @@ use egui_kittest::kittest::Queryable;
 use tracer::accel::{Tally, Visit};
 use tracer::render::{TILE_SIZE, Tile, View};
 
-use crate::harness::{is_done, ready_window, wait_for};
+use crate::harness::{drag_holding, is_done, ready_window, wait_for};
 
 /// The window on balls_low, tall enough for the whole side panel.
 /// Tall enough for the view section's legend and numbers.
@@ -153,14 +153,7 @@ fn the_ray_tree_follows_the_camera_through_the_preview() {
     };
     let eye_before = before.nodes[0].dir;
 
-    let rect = harness.get_by_role_and_label(Role::Image, "Render").rect();
-    let mut at = rect.center();
-    harness.drag_at(at);
-    for _ in 0..6 {
-        at += egui::vec2(9.0, 4.0);
-        harness.hover_at(at);
-        harness.step();
-    }
+    let at = drag_holding(&mut harness, "Render");
     let preview = harness.state().engine().settings().unwrap().width;
     assert!(
         preview < full.width && corner.0 >= preview,
