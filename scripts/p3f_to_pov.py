@@ -62,9 +62,13 @@ def convert(text):
     while i < len(words):
         word = words[i]
         i += 1
-        if word in ("v", "accel", "spp", "hither", "aperture", "focal"):
-            if word in ("accel", "spp", "hither", "aperture", "focal"):
-                take(1)
+        if word == "v":
+            pass
+        elif word in ("accel", "spp", "hither", "focal"):
+            take(1)
+        elif word == "aperture":
+            if number(take(1)[0]) > 0:
+                raise SystemExit("a lens (aperture > 0) is not converted")
         elif word in ("from", "at", "up"):
             camera[word] = vec(take(3))
         elif word == "angle":
