@@ -97,6 +97,12 @@ impl ToError {
 pub const FIRST_THRESHOLD: f32 = 0.08;
 /// The search gives up below this threshold.
 pub const SMALLEST_THRESHOLD: f32 = 1e-4;
+/// Bisections of the last halving's bracket (on a log scale): four leave
+/// the threshold found within 2^(1/16), 4.4%, of the largest that reaches
+/// the target. With two (19%), on balls_medium at 512 x 512, the
+/// threshold found left an MSE 7% below uniform's (1.936 against 2.083):
+/// adaptive sampling was timed doing more than the comparison asks.
+const NARROWING_STEPS: usize = 4;
 
 /// A render of `settings` as the measurement sees it.
 struct Rendered {
@@ -281,7 +287,7 @@ pub fn measure(
                 t /= 2.0;
             }
             if let (Some(mut high), Some(_)) = (missed, &hit) {
-                for _ in 0..2 {
+                for _ in 0..NARROWING_STEPS {
                     let low = hit.as_ref().map_or(high, |h| h.0);
                     let t = (low * high).sqrt();
                     let (tried, rendered) = try_threshold(t)?;
