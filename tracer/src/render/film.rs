@@ -74,9 +74,16 @@ pub struct Film {
     /// uniform renders of one flat sky differed by a level everywhere).
     sum: Vec<DVec3>,
     samples: Vec<u32>,
-    /// Per pixel, what adaptive sampling's error estimate needs; empty
-    /// unless made with [`Film::with_error_estimate`].
+    /// Per pixel, what adaptive sampling's error estimate needs, the
+    /// estimate itself, and the intersection tests the pixel's samples
+    /// made (what they cost); empty unless made with
+    /// [`Film::with_error_estimate`]. The estimates and tests are kept
+    /// apart from the spreads, 64 bytes a pixel: the decision between
+    /// passes reads them over the whole film, and reading the spreads
+    /// instead (17 MB at 512 x 512) took it milliseconds a pass.
     spread: Vec<Spread>,
+    errors: Vec<f32>,
+    tests: Vec<u64>,
     /// Adaptive sampling: the pixels the next pass refines, set by
     /// [`Film::set_active`] between passes; empty otherwise.
     active: Vec<bool>,
@@ -94,8 +101,6 @@ pub struct Spread {
     /// before it the other.
     pub earlier: Vec3A,
     pub earlier_samples: u32,
-    /// Intersection tests the pixel's samples made: what they cost.
-    pub tests: u64,
 }
 
 impl Film {
@@ -110,6 +115,8 @@ impl Film {
             sum: bytemuck::allocation::zeroed_vec(n),
             samples: vec![0; n],
             spread: Vec::new(),
+            errors: Vec::new(),
+            tests: Vec::new(),
             active: Vec::new(),
         }
     }
@@ -119,6 +126,8 @@ impl Film {
         let n = width as usize * height as usize;
         Self {
             spread: vec![Spread::default(); n],
+            errors: vec![f32::INFINITY; n],
+            tests: vec![0; n],
             active: vec![true; n],
             ..Self::new(width, height)
         }
@@ -158,6 +167,7 @@ impl Film {
             } else {
                 for (i, v) in (start..).zip(chunk) {
                     self.add(i, *v);
+                    self.estimate_error(i);
                 }
             }
         }
@@ -175,16 +185,18 @@ impl Film {
         for (start, row) in tile.rows(self.width, counts) {
             for (i, &count) in (start..).zip(row) {
                 let pixel_tests = tests.next().copied().unwrap_or(0);
-                if count > 0
-                    && let Some(spread) = self.spread.get_mut(i)
-                {
+                if count == 0 {
+                    continue;
+                }
+                if let Some(spread) = self.spread.get_mut(i) {
                     spread.earlier = spread.sum;
                     spread.earlier_samples = self.samples[i];
-                    spread.tests += pixel_tests;
+                    self.tests[i] += pixel_tests;
                 }
                 for v in values.by_ref().take(count as usize) {
                     self.add(i, *v);
                 }
+                self.estimate_error(i);
             }
         }
     }
@@ -201,6 +213,14 @@ impl Film {
         }
     }
 
+    /// Brings pixel `i`'s error estimate up to date with its samples.
+    #[inline]
+    fn estimate_error(&mut self, i: usize) {
+        if let Some(spread) = self.spread.get(i) {
+            self.errors[i] = super::adaptive::error_estimate(self.samples[i], spread);
+        }
+    }
+
     /// Samples pixel `(x, y)` has taken.
     pub fn samples(&self, x: u32, y: u32) -> u32 {
         self.samples[y as usize * self.width as usize + x as usize]
@@ -211,11 +231,34 @@ impl Film {
     /// when the film does not estimate it or before two passes gave it
     /// samples.
     pub fn error(&self, x: u32, y: u32) -> f32 {
-        let i = y as usize * self.width as usize + x as usize;
-        match self.spread.get(i) {
-            Some(spread) => super::adaptive::error_estimate(self.samples[i], spread),
-            None => f32::INFINITY,
-        }
+        self.errors
+            .get(y as usize * self.width as usize + x as usize)
+            .copied()
+            .unwrap_or(f32::INFINITY)
+    }
+
+    /// Every pixel's sample count, row-major: what adaptive sampling's
+    /// decision over the whole film reads without a lookup per pixel.
+    pub(crate) fn sample_counts(&self) -> &[u32] {
+        &self.samples
+    }
+
+    /// Every pixel's [`Spread`], row-major; empty when the film does not
+    /// estimate errors.
+    pub(crate) fn spreads(&self) -> &[Spread] {
+        &self.spread
+    }
+
+    /// Every pixel's error estimate ([`Film::error`]), row-major; empty
+    /// when the film does not estimate errors.
+    pub(crate) fn errors(&self) -> &[f32] {
+        &self.errors
+    }
+
+    /// The intersection tests each pixel's samples made, row-major; empty
+    /// when the film does not estimate errors.
+    pub(crate) fn tests(&self) -> &[u64] {
+        &self.tests
     }
 
     /// What adaptive sampling knows of pixel `(x, y)`'s samples; `None`

@@ -522,6 +522,7 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
     // A sample budget's last pass is under way (or done).
     let mut samples_spent = false;
     let mut rendered = Duration::ZERO;
+    let mut refinement = adaptive::Refinement::default();
     for pass in 0.. {
         // An adaptive render runs until no pixel is active: a pixel a
         // neighbour brings back is a pass behind the schedule.
@@ -633,18 +634,12 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
         if shared.cancelled() {
             return;
         }
-        let elapsed = start.elapsed();
-        rendered += elapsed;
         let converged = {
             let mut p = shared.progress();
-            p.stats.passes_done = pass + 1;
-            p.stats.pass_times.push(elapsed);
-            let rays = p.stats.counters.total_rays() - rays_before;
-            p.stats.pass_rays.push(rays);
-            p.stats.render_time = rendered;
-            let out_of_budget = samples_spent || time_budget.is_some_and(|limit| rendered >= limit);
+            let out_of_budget = samples_spent
+                || time_budget.is_some_and(|limit| rendered + start.elapsed() >= limit);
             let converged = adaptive.map(|a| {
-                let mut active = adaptive::decide(&p.film, &a);
+                let mut active = refinement.decide(&p.film, &a);
                 if let (Some(Budget::Samples(total)), false) = (a.budget, out_of_budget) {
                     (active, samples_spent) = adaptive::within_budget(&p.film, active, &a, total);
                 }
@@ -656,6 +651,15 @@ fn run_passes(frame: &RenderPlan, shared: &Shared) {
                 // budget ran out.
                 summary.active_pixels == 0 || out_of_budget
             });
+            // A pass's time takes in the decision after it: the next pass
+            // waits for it, and so does whoever waits for the image.
+            let elapsed = start.elapsed();
+            rendered += elapsed;
+            p.stats.passes_done = pass + 1;
+            p.stats.pass_times.push(elapsed);
+            let rays = p.stats.counters.total_rays() - rays_before;
+            p.stats.pass_rays.push(rays);
+            p.stats.render_time = rendered;
             match converged {
                 // Done before the most passes it might have taken.
                 Some(true) => p.stats.passes_target = pass + 1,

@@ -100,11 +100,17 @@ fn the_image_is_the_same_whatever_the_thread_count() {
     }
 }
 
+/// How many of two decisions' pixels differ.
+fn differing(a: &[bool], b: &[bool]) -> usize {
+    a.iter().zip(b).filter(|(a, b)| a != b).count()
+}
+
 /// The adaptive passes run by hand, one tile after another on this thread.
 fn sequential(frame: &RenderPlan) -> Film {
     let a = *frame.settings.adaptive().expect("adaptive settings");
     let mut film = Film::with_error_estimate(frame.settings.width, frame.settings.height);
     let mut counters = Counters::default();
+    let mut refinement = adaptive::Refinement::default();
     loop {
         let plans: Vec<_> = frame
             .tiles
@@ -119,7 +125,17 @@ fn sequential(frame: &RenderPlan) -> Film {
             let counts: Vec<u32> = plan.iter().map(|s| s.len() as u32).collect();
             film.add_samples(tile, &counts, &samples.values, &samples.tests);
         }
-        let active = adaptive::decide(&film, &a);
+        let active = refinement.decide(&film, &a);
+        // Re-measured in the rows a pass changed, the decision must be
+        // the one every row measured afresh gives.
+        if let Some(mean) = refinement.mean_per_sample() {
+            let afresh = adaptive::Refinement::relative_to(mean).decide(&film, &a);
+            assert!(
+                active == afresh,
+                "{} pixels differ",
+                differing(&active, &afresh)
+            );
+        }
         film.set_active(active);
     }
 }
@@ -162,6 +178,32 @@ fn progressive_passes_equal_a_sequential_render() {
     assert_eq!(stats.passes_done, stats.passes_target);
 }
 
+/// Sharp edges on a larger film: late passes refine a few rows, and the
+/// decisions, which re-measure only the rows a pass changed and their
+/// neighbours, must be those every row measured afresh gives (checked
+/// pass by pass in [`sequential`]).
+#[test]
+fn decisions_over_the_changed_rows_equal_decisions_over_the_film() {
+    let settings = RenderSettings {
+        width: 128,
+        height: 96,
+        soft_shadows: false,
+        depth_of_field: false,
+        ..adaptive(0.01, 4, 64)
+    };
+    let w = world(SCENE);
+    let idx = index(&w, AccelKind::Bvh);
+    let film = sequential(&RenderPlan::new(w, idx, settings).unwrap());
+    let most = counts(&film).into_iter().max().unwrap_or(0);
+    let rows_refined_last = (0..film.height())
+        .filter(|&y| (0..film.width()).any(|x| film.samples(x, y) == most))
+        .count();
+    assert!(
+        most > 8 && (1..film.height() as usize / 4).contains(&rows_refined_last),
+        "{rows_refined_last} rows reached {most} samples: the last passes must refine a few rows"
+    );
+}
+
 #[test]
 fn pixels_below_the_threshold_get_no_more_samples() {
     let settings = adaptive(0.03, 2, 36);
@@ -187,21 +229,34 @@ fn pixels_below_the_threshold_get_no_more_samples() {
     let passes = passes.lock().unwrap();
     assert!(passes.len() > 3, "{} passes", passes.len());
     let mut stopped = 0;
+    // Costs are relative to the mean when every pixel has the minimum.
+    let mean = passes
+        .iter()
+        .find(|film| {
+            (0..film.height()).all(|y| (0..film.width()).all(|x| film.samples(x, y) >= a.min_spp))
+        })
+        .and_then(|film| {
+            let mut refinement = adaptive::Refinement::default();
+            refinement.decide(film, &a);
+            refinement.mean_per_sample()
+        })
+        .expect("a pass with the minimum everywhere");
     for pair in passes.windows(2) {
         let (before, after) = (&pair[0], &pair[1]);
-        let (errors, costs) = (
-            adaptive::pooled_errors(before),
-            adaptive::relative_costs(before),
-        );
+        let mut measured = adaptive::Refinement::relative_to(mean);
+        measured.decide(before, &a);
+        let errors = measured.pooled_errors();
         for y in 0..before.height() {
             for x in 0..before.width() {
                 let n = before.samples(x, y);
                 let i = (y * before.width() + x) as usize;
                 if before.is_active(x, y) {
+                    // Below the minimum nothing is measured.
                     assert!(
-                        adaptive::is_active(n, errors[i], costs[i], &a)
+                        n < a.min_spp
+                            || adaptive::is_active(n, errors[i], measured.relative_cost(i), &a)
                             || adaptive::variance_estimate(n, before.spread(x, y).unwrap())
-                                >= adaptive::threshold_at(n, costs[i], &a),
+                                >= adaptive::threshold_at(n, measured.relative_cost(i), &a),
                         "pixel ({x}, {y}) active though converged"
                     );
                     assert_eq!(after.samples(x, y), adaptive::next_count(n, &a));
