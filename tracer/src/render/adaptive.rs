@@ -125,10 +125,16 @@ const OWN_WEIGHT: f32 = 4.0;
 pub struct Refinement {
     /// Row-major and empty before the first measure: each pixel's
     /// intersection tests per sample, its error pooled with its
-    /// neighbours', and whether that error is at or above its threshold.
+    /// neighbours', and whether that error is at or above its threshold
+    /// (1) or not (0).
     per_sample: Vec<f32>,
     pooled: Vec<f32>,
-    noisy: Vec<bool>,
+    noisy: Vec<u8>,
+    /// What a pixel brings to its neighbours' pooled errors: its squared
+    /// error times its samples, and 1, where it has an estimate; 0 and 0
+    /// where not.
+    weighted: Vec<f32>,
+    estimated: Vec<f32>,
     /// The film's mean tests per sample over its pixels, from the first
     /// measure (every pixel at the minimum): a pixel's cost is relative
     /// to it. Fixed, so a pass leaves the thresholds of the pixels far
@@ -171,21 +177,21 @@ impl Refinement {
             return vec![true; samples.len()];
         }
         let changed = self.measure(film, a);
+        let (width, errors) = (film.width().max(1) as usize, &self.pooled);
         let mut active = vec![false; samples.len()];
-        let (errors, noisy) = (&self.pooled, &self.noisy);
-        for_rows(film, &near(&changed, 1), &mut active, |i, x, y| {
-            let n = samples[i];
-            let cost = self.relative_cost(i);
-            if is_active(n, errors[i], cost, a) {
-                return true;
+        for_rows(width, &near(&changed, 1), &mut active, |y, row| {
+            let noisy_near = window_sums(&self.noisy, width, y);
+            for (x, active) in row.iter_mut().enumerate() {
+                let i = y * width + x;
+                let (n, cost) = (samples[i], self.relative_cost(i));
+                // The spread last: few pixels get past the neighbours.
+                *active = is_active(n, errors[i], cost, a)
+                    || (n < a.max_spp
+                        && noisy_near[x] > 0
+                        && film.spreads().get(i).is_some_and(|spread| {
+                            variance_estimate(n, spread) >= threshold_at(n, cost, a)
+                        }));
             }
-            // The spread last: few pixels get past the neighbours.
-            n < a.max_spp
-                && window(film, x, y).any(|mut row| row.any(|j| noisy[j]))
-                && film
-                    .spreads()
-                    .get(i)
-                    .is_some_and(|spread| variance_estimate(n, spread) >= threshold_at(n, cost, a))
         });
         active
     }
@@ -228,14 +234,28 @@ impl Refinement {
         if first {
             self.per_sample = vec![0.0; samples.len()];
             self.pooled = vec![f32::INFINITY; samples.len()];
-            self.noisy = vec![false; samples.len()];
+            self.noisy = vec![0; samples.len()];
+            self.weighted = vec![0.0; samples.len()];
+            self.estimated = vec![0.0; samples.len()];
         }
         let active = film.active_pixels();
         let sampled: Vec<bool> = (0..height)
             .map(|y| first || active.is_none_or(|a| a[y * width..][..width].contains(&true)))
             .collect();
-        for_rows(film, &sampled, &mut self.per_sample, |i, _, _| {
+        let own = |i: usize| film.errors().get(i).copied().unwrap_or(f32::INFINITY);
+        for_pixels(width, &sampled, &mut self.per_sample, |i| {
             tests.get(i).copied().unwrap_or(0) as f32 / samples[i].max(1) as f32
+        });
+        for_pixels(width, &sampled, &mut self.weighted, |i| {
+            let error = own(i);
+            if error.is_finite() {
+                error * error * samples[i] as f32
+            } else {
+                0.0
+            }
+        });
+        for_pixels(width, &sampled, &mut self.estimated, |i| {
+            f32::from(u8::from(own(i).is_finite()))
         });
         if self.mean_per_sample.is_none() {
             // Row by row, the rows' sums added in order: the same bits
@@ -249,13 +269,30 @@ impl Refinement {
             self.mean_per_sample = Some((rows.iter().sum::<f64>() / pixels) as f32);
         }
         let changed = near(&sampled, 1);
-        for_rows(film, &changed, &mut self.pooled, |_, x, y| {
-            pooled_error(film, x, y)
+        let (weighted, estimated) = (&self.weighted, &self.estimated);
+        for_rows(width, &changed, &mut self.pooled, |y, row| {
+            let sums = window_sums(weighted, width, y);
+            let counts = window_sums(estimated, width, y);
+            for (x, pooled) in row.iter_mut().enumerate() {
+                let i = y * width + x;
+                let error = own(i);
+                // The pixel's own counts OWN_WEIGHT times: once in the
+                // window, the rest here.
+                let extra = OWN_WEIGHT - 1.0;
+                *pooled = if error.is_finite() {
+                    let weight = (counts[x] + extra) * samples[i] as f32;
+                    ((sums[x] + extra * weighted[i]) / weight).sqrt()
+                } else {
+                    error
+                };
+            }
         });
         let mut noisy = std::mem::take(&mut self.noisy);
-        for_rows(film, &changed, &mut noisy, |i, _, _| {
+        for_pixels(width, &changed, &mut noisy, |i| {
             let error = self.pooled[i];
-            error.is_finite() && error >= threshold_at(samples[i], self.relative_cost(i), a)
+            u8::from(
+                error.is_finite() && error >= threshold_at(samples[i], self.relative_cost(i), a),
+            )
         });
         self.noisy = noisy;
         changed
@@ -271,61 +308,60 @@ fn near(rows: &[bool], distance: usize) -> Vec<bool> {
         .collect()
 }
 
-/// Pixel `(x, y)`'s error pooled with its neighbours' (see
-/// [`Refinement::pooled_errors`]).
-fn pooled_error(film: &Film, x: usize, y: usize) -> f32 {
-    let i = y * film.width() as usize + x;
-    let Some(&error) = film.errors().get(i) else {
-        return f32::INFINITY;
-    };
-    if !error.is_finite() {
-        return error;
-    }
-    let (own, samples) = (film.errors(), film.sample_counts());
-    let (mut sum, mut weight) = (0.0, 0.0);
-    for row in window(film, x, y) {
-        for j in row {
-            if own[j].is_finite() {
-                let w = if j == i { OWN_WEIGHT } else { 1.0 };
-                sum += w * own[j] * own[j] * samples[j] as f32;
-                weight += w;
-            }
-        }
-    }
-    (sum / (weight * samples[i] as f32)).sqrt()
-}
-
-/// Sets `values[i]` to `value(i, x, y)` for each pixel `(x, y)` of the
-/// film's rows where `rows` is true, `i` its row-major index, a row at a
-/// time on the render's threads. Each value depends only on its pixel, so
-/// the result is the same whatever the threads.
+/// Sets `values` in the rows where `rows` is true (`width` values a row)
+/// with `fill(y, row)`, a row at a time on the render's threads. Each row
+/// depends only on what `fill` reads, so the result is the same whatever
+/// the threads.
 fn for_rows<T: Send>(
-    film: &Film,
+    width: usize,
     rows: &[bool],
     values: &mut [T],
-    value: impl Fn(usize, usize, usize) -> T + Sync,
+    fill: impl Fn(usize, &mut [T]) + Sync,
 ) {
-    let width = film.width().max(1) as usize;
     values
         .par_chunks_mut(width)
         .enumerate()
         .filter(|(y, _)| rows[*y])
-        .for_each(|(y, row)| {
-            for (x, v) in row.iter_mut().enumerate() {
-                *v = value(y * width + x, x, y);
-            }
-        });
+        .for_each(|(y, row)| fill(y, row));
 }
 
-/// The row-major indices of pixel `(x, y)` and its neighbours within the
-/// film, a row's at a time. Plain ranges: an iterator over single pixels,
-/// with a division to find each one's column, made the decision between
-/// passes take milliseconds.
-fn window(film: &Film, x: usize, y: usize) -> impl Iterator<Item = Range<usize>> + use<> {
-    let (width, height) = (film.width() as usize, film.height() as usize);
-    let columns = x.saturating_sub(1)..(x + 2).min(width);
-    (y.saturating_sub(1)..(y + 2).min(height))
-        .map(move |row| row * width + columns.start..row * width + columns.end)
+/// [`for_rows`] pixel by pixel: `values[i] = value(i)`, `i` row-major.
+fn for_pixels<T: Send>(
+    width: usize,
+    rows: &[bool],
+    values: &mut [T],
+    value: impl Fn(usize) -> T + Sync,
+) {
+    for_rows(width, rows, values, |y, row| {
+        for (x, v) in row.iter_mut().enumerate() {
+            *v = value(y * width + x);
+        }
+    });
+}
+
+/// The sums of `values` (row-major, `width` a row) over the 3 x 3 window
+/// of each pixel of row `y`, within the film: the rows added column by
+/// column, then each column to its neighbours. Six additions a pixel, in
+/// loops the compiler vectorises: a loop over each pixel's window, with
+/// a test of each neighbour, took pooling 5% of an adaptive render.
+fn window_sums<T>(values: &[T], width: usize, y: usize) -> Vec<T>
+where
+    T: Copy + Default + std::ops::Add<Output = T>,
+{
+    let height = values.len() / width.max(1);
+    let mut columns = vec![T::default(); width];
+    for row in y.saturating_sub(1)..(y + 2).min(height) {
+        for (sum, &v) in columns.iter_mut().zip(&values[row * width..][..width]) {
+            *sum = *sum + v;
+        }
+    }
+    (0..width)
+        .map(|x| {
+            let left = if x > 0 { columns[x - 1] } else { T::default() };
+            let right = columns.get(x + 1).copied().unwrap_or_default();
+            left + columns[x] + right
+        })
+        .collect()
 }
 
 /// The sample count an active pixel with `samples` samples reaches in the
