@@ -65,19 +65,18 @@ pub(super) fn display_value(v: Vec3A) -> Vec3A {
 }
 
 /// Whether a pixel with `samples` samples, error `error` and relative
-/// cost `cost` (see [`Refinement::relative_costs`]) takes more on its own account:
-/// always below the minimum, never at the maximum, else while the error
-/// is not below [`threshold_at`] (so a threshold of 0 refines every pixel
-/// to the maximum).
+/// cost `cost` (see [`Refinement::relative_cost`]) takes more on its own
+/// account: always below the minimum, never at the maximum, else while
+/// the error is not below [`threshold_at`] (so a threshold of 0 refines
+/// every pixel to the maximum).
 pub fn is_active(samples: u32, error: f32, cost: f32, a: &AdaptiveSampling) -> bool {
     samples < a.min_spp || (samples < a.max_spp && error >= threshold_at(samples, cost, a))
 }
 
 /// The error a pixel with `samples` samples may keep when its samples
 /// cost `cost` times the film's average (see
-/// [`Refinement::relative_costs`]): the
-/// noise threshold at the minimum and the average cost, growing in
-/// proportion to the samples times the cost. Doubling a pixel's samples
+/// [`Refinement::relative_cost`]): the noise threshold at the minimum and
+/// the average cost, growing in proportion to the samples times the cost. Doubling a pixel's samples
 /// divides its error e by about sqrt 2 and costs its samples again, n c.
 /// Priced by squared error (removing e^2 / 2), a pass is worth it while
 /// e >= T sqrt(n c); but what a viewer (and FLIP) sees of small errors
