@@ -76,8 +76,9 @@ pub fn is_active(samples: u32, error: f32, cost: f32, a: &AdaptiveSampling) -> b
 /// The error a pixel with `samples` samples may keep when its samples
 /// cost `cost` times the film's average (see
 /// [`Refinement::relative_cost`]): the noise threshold at the minimum and
-/// the average cost, growing in proportion to the samples times the cost. Doubling a pixel's samples
-/// divides its error e by about sqrt 2 and costs its samples again, n c.
+/// the average cost, growing in proportion to the samples times the
+/// cost. Doubling a pixel's samples divides its error e by about sqrt 2
+/// and costs its samples again, n c.
 /// Priced by squared error (removing e^2 / 2), a pass is worth it while
 /// e >= T sqrt(n c); but what a viewer (and FLIP) sees of small errors
 /// grows about as e itself, not e^2 (faint noise that flips a smooth
@@ -111,15 +112,14 @@ const OWN_WEIGHT: f32 = 4.0;
 /// of each pixel, kept from one pass to the next. A pixel's cost changes
 /// only when it takes samples, its pooled error and whether it is noisy
 /// only when a neighbour does, and whether a pixel refines only when its
-/// neighbours' noise does: each decision re-measures the rows where a
-/// pixel took samples in the last pass (the pixels active at the last
-/// decision) and the rows next to them; elsewhere no pixel refines, as at
-/// the last decision. Measured over the whole film on one thread, each
-/// decision at 512 x 512 took 16-24 ms, as long as a late pass's samples;
-/// and late passes, each refining a few edges, are many.
+/// neighbours' noise does: each decision re-measures the rows where its
+/// last decision refined a pixel (the pass may have sampled fewer, cut by
+/// a budget, never more) and the rows next to them; elsewhere no pixel
+/// refines, as at the last decision. Measured over the whole film on one
+/// thread, each decision at 512 x 512 took 13-24 ms, as long as a late
+/// pass's samples; and late passes, each refining a few edges, are many.
 ///
-/// Meant for one film from its first pass to its last: a decision finds
-/// the rows that changed from the film's active pixels.
+/// Meant for one film from its first pass to its last.
 #[derive(Debug, Default, Clone)]
 pub struct Refinement {
     /// Row-major and empty before the first measure: each pixel's
@@ -134,6 +134,8 @@ pub struct Refinement {
     /// where not.
     weighted: Vec<f32>,
     estimated: Vec<f32>,
+    /// The rows where the last decision refined a pixel; empty before it.
+    refining_rows: Vec<bool>,
     /// The film's mean tests per sample over its pixels, from the first
     /// measure (every pixel at the minimum): a pixel's cost is relative
     /// to it. Fixed, so a pass leaves the thresholds of the pixels far
@@ -192,6 +194,10 @@ impl Refinement {
                         }));
             }
         });
+        self.refining_rows = active
+            .chunks(width)
+            .map(|row| row.contains(&true))
+            .collect();
         active
     }
 
@@ -223,7 +229,7 @@ impl Refinement {
     }
 
     /// Brings the measures up to date with `film`: re-measures the rows
-    /// where a pixel was active at the last decision (every row the first
+    /// where the last decision refined a pixel (every row the first
     /// time), and pools the errors of those rows and their neighbours.
     /// Returns the rows whose pooled errors it measured.
     fn measure(&mut self, film: &Film, a: &AdaptiveSampling) -> Vec<bool> {
@@ -237,10 +243,11 @@ impl Refinement {
             self.weighted = vec![0.0; samples.len()];
             self.estimated = vec![0.0; samples.len()];
         }
-        let active = film.active_pixels();
-        let sampled: Vec<bool> = (0..height)
-            .map(|y| first || active.is_none_or(|a| a[y * width..][..width].contains(&true)))
-            .collect();
+        let sampled = if first || self.refining_rows.len() != height {
+            vec![true; height]
+        } else {
+            std::mem::take(&mut self.refining_rows)
+        };
         let own = |i: usize| film.errors().get(i).copied().unwrap_or(f32::INFINITY);
         for_pixels(width, &sampled, &mut self.per_sample, |i| {
             tests.get(i).copied().unwrap_or(0) as f32 / samples[i].max(1) as f32
@@ -817,7 +824,9 @@ mod tests {
     /// after the minimum, and its error grows: B, two rows from C and
     /// never sampled again, becomes noisy through A, and C refines for
     /// B's sake. A decision that re-pooled only the rows sampled, or
-    /// decided only the rows it re-pooled, would leave both stopped.
+    /// decided only the rows it re-pooled, would leave both stopped; one
+    /// that took the rows to re-measure from the film's active pixels
+    /// would stop A when a budget cut it from a pass.
     #[test]
     fn a_pass_changes_decisions_two_rows_away_as_a_fresh_decision_does() {
         let a = settings(0.05, 4, 64);
@@ -828,6 +837,10 @@ mod tests {
         let mut refinement = Refinement::default();
         let first = refinement.decide(&film, &a);
         assert_eq!(first, [true, false, false]);
+        // A budget that cut every pixel from the pass: nothing changed,
+        // and A is still above the threshold.
+        film.set_active(vec![false; 3]);
+        assert_eq!(refinement.decide(&film, &a), first);
         film.set_active(first);
         add_pass(&mut film, &[&[0.0; 4], &[], &[]]);
         let second = refinement.decide(&film, &a);
