@@ -69,10 +69,10 @@ pub fn measure(
             Ok(Measured {
                 value,
                 detail: format!(
-                    "A {} and B {}: B is {}x faster",
+                    "A {} and B {}: {}",
                     cost_words(a_cost, by),
                     cost_words(b_cost, by),
-                    number(value)
+                    faster_side(value)
                 ),
             })
         }
@@ -136,6 +136,20 @@ fn frames(side: &SideState, settings: &RenderSettings, runs: usize) -> Result<Me
 fn work(m: &Measurement) -> f64 {
     let c = &m.stats.counters;
     (c.intersection_tests + c.nodes_visited) as f64
+}
+
+/// Which side is faster, A's cost over B's being `ratio`: a student
+/// reads "A is 2.7x faster", not "B is 0.37x faster".
+fn faster_side(ratio: f64) -> String {
+    if ratio >= 1.0 {
+        format!("B is {}x faster", number(ratio))
+    } else {
+        format!(
+            "A is {}x faster (A costs {} of B)",
+            number(1.0 / ratio.max(f64::MIN_POSITIVE)),
+            number(ratio)
+        )
+    }
 }
 
 fn cost_words(cost: f64, by: By) -> String {

@@ -11,7 +11,7 @@ use serde::Deserialize;
 use tracer::accel::{AccelKind, SceneIndex};
 use tracer::camera::Camera;
 use tracer::geometry::Ray;
-use tracer::render::{Outcome, RayKind, RayTree, View};
+use tracer::render::{Film, Outcome, RayKind, RayTree, Sampling, View, render};
 use tracer::scene::{Primitive, Scene};
 
 use crate::reports::ray_tree;
@@ -37,9 +37,13 @@ pub enum Setting {
     Accel,
     GridM,
     Seed,
+    /// `uniform` or `adaptive`.
+    Sampling,
+    /// Adaptive sampling's noise threshold; off with uniform sampling.
+    NoiseThreshold,
 }
 
-const SETTINGS: [(&str, Setting); 15] = [
+const SETTINGS: [(&str, Setting); 17] = [
     ("width", Setting::Width),
     ("height", Setting::Height),
     ("depth", Setting::Depth),
@@ -55,6 +59,8 @@ const SETTINGS: [(&str, Setting); 15] = [
     ("accel", Setting::Accel),
     ("grid-m", Setting::GridM),
     ("seed", Setting::Seed),
+    ("sampling", Setting::Sampling),
+    ("noise-threshold", Setting::NoiseThreshold),
 ];
 
 /// A field of an object or a material.
@@ -162,6 +168,13 @@ pub enum Quantity {
     /// `brute-force tests`: what one ray tests with no structure (every
     /// shape).
     BruteForceTests,
+    /// `pixel samples`: the samples the pinned pixel took in the side's
+    /// render, as its film counted them (adaptive sampling's decisions).
+    PixelSamples,
+    /// `samples mean`: the side's render's samples per pixel, on average.
+    SamplesMean,
+    /// `samples max`: the most samples one pixel of the render took.
+    SamplesMax,
 }
 
 impl TryFrom<String> for Quantity {
@@ -221,11 +234,14 @@ impl Quantity {
             ["eye", "steps"] => Quantity::EyeSteps,
             ["eye", "tests"] => Quantity::EyeTests,
             ["brute-force", "tests"] => Quantity::BruteForceTests,
+            ["pixel", "samples"] => Quantity::PixelSamples,
+            ["samples", "mean"] => Quantity::SamplesMean,
+            ["samples", "max"] => Quantity::SamplesMax,
             [setting] => Quantity::Setting(lookup(&SETTINGS, setting, "setting").map_err(|e| {
                 format!(
                     "{e}; or objects, lights, camera distance, camera angle, observer, view, focus-error N, object N FIELD, \
                      material M FIELD, tree FIGURE, tree blocker L, grid cells, eye steps, \
-                     eye tests, brute-force tests"
+                     eye tests, brute-force tests, pixel samples, samples mean, samples max"
                 )
             })?),
             _ => {
@@ -233,7 +249,7 @@ impl Quantity {
                     "`{text}` names nothing to read; expected a setting (spp, accel, ...), \
                      objects, lights, camera distance, camera angle, observer, view, focus-error N, object N FIELD, \
                      material M FIELD, tree FIGURE, tree blocker L, grid cells, eye steps, \
-                     eye tests or brute-force tests"
+                     eye tests, brute-force tests, pixel samples, samples mean or samples max"
                 ));
             }
         };
@@ -244,7 +260,11 @@ impl Quantity {
     pub fn needs_pixel(&self) -> bool {
         matches!(
             self,
-            Quantity::Tree(_) | Quantity::Blocker(_) | Quantity::EyeSteps | Quantity::EyeTests
+            Quantity::Tree(_)
+                | Quantity::Blocker(_)
+                | Quantity::EyeSteps
+                | Quantity::EyeTests
+                | Quantity::PixelSamples
         )
     }
 
@@ -321,6 +341,28 @@ impl Quantity {
                 })
             }
             Quantity::BruteForceTests => Ok(count(side.world.shapes.len())),
+            Quantity::PixelSamples => {
+                let (x, y) = pixel()?;
+                let film = rendered_film(side)?;
+                if x >= film.width() || y >= film.height() {
+                    return Err(format!(
+                        "the pinned pixel ({x}, {y}) is outside the {}x{} image",
+                        film.width(),
+                        film.height()
+                    ));
+                }
+                Ok(count(film.samples(x, y) as usize))
+            }
+            Quantity::SamplesMean | Quantity::SamplesMax => {
+                let film = rendered_film(side)?;
+                let counts = (0..film.height())
+                    .flat_map(|y| (0..film.width()).map(move |x| (x, y)))
+                    .map(|(x, y)| f64::from(film.samples(x, y)));
+                Ok(Value::Number(match self {
+                    Quantity::SamplesMax => counts.fold(0.0, f64::max),
+                    _ => counts.sum::<f64>() / f64::from(film.width() * film.height()).max(1.0),
+                }))
+            }
         }
     }
 }
@@ -345,6 +387,9 @@ impl Display for Quantity {
             Quantity::EyeSteps => f.write_str("eye steps"),
             Quantity::EyeTests => f.write_str("eye tests"),
             Quantity::BruteForceTests => f.write_str("brute-force tests"),
+            Quantity::PixelSamples => f.write_str("pixel samples"),
+            Quantity::SamplesMean => f.write_str("samples mean"),
+            Quantity::SamplesMax => f.write_str("samples max"),
         }
     }
 }
@@ -377,6 +422,17 @@ fn read_setting(side: &SideState, setting: Setting) -> Value {
         Setting::Accel => Value::Word(s.accel.name().to_string()),
         Setting::GridM => number(s.grid_multiplier),
         Setting::Seed => Value::Number(s.seed as f64),
+        Setting::Sampling => Value::Word(
+            match s.sampling {
+                Sampling::Uniform => "uniform",
+                Sampling::Adaptive(_) => "adaptive",
+            }
+            .to_string(),
+        ),
+        Setting::NoiseThreshold => match s.sampling {
+            Sampling::Uniform => Value::Bool(false),
+            Sampling::Adaptive(a) => number(a.noise_threshold),
+        },
     }
 }
 
@@ -458,6 +514,19 @@ fn focus_error(side: &SideState, n: usize) -> Result<Value, String> {
     }
     let in_focus = side.settings.chosen_lens(view).focal * (view.at - view.from).length();
     Ok(Value::Number(f64::from((in_focus - depth).abs() / depth)))
+}
+
+/// The side rendered to the end, as `workbench render` renders it: its
+/// film counts every pixel's samples.
+fn rendered_film(side: &SideState) -> Result<Film, String> {
+    let index = Arc::new(SceneIndex::build(
+        &side.world.shapes,
+        side.settings.accel,
+        side.settings.grid_multiplier,
+    ));
+    render(side.world.clone(), index, side.settings.clone(), None)
+        .map(|(film, _)| film)
+        .map_err(|e| e.to_string())
 }
 
 /// The pinned pixel's tree, sample 0, under the side's settings.

@@ -4,6 +4,7 @@
 use std::sync::Arc;
 
 use tracer::accel::AccelKind;
+use tracer::render::{AdaptiveSampling, Sampling};
 use tracer::scene::{Limits, parse_scene};
 
 use super::*;
@@ -259,8 +260,60 @@ fn a_speedup_is_measured_between_the_sides() {
     let same = evaluate(&check, &state);
     assert!(same.reason().contains("B is 1x faster"), "{same:?}");
     b.settings.accel = AccelKind::Bvh;
-    state.b = Some(b);
+    state.b = Some(b.clone());
     assert!(done(&check, &state), "{:?}", evaluate(&check, &state));
+    state.b = Some(state.a.clone());
+    state.a = b;
+    let reversed = evaluate(&check, &state);
+    assert!(reversed.reason().contains("A is "), "{reversed:?}");
+    assert!(
+        reversed.reason().contains("x faster (A costs 0."),
+        "{reversed:?}"
+    );
+}
+
+/// The samples a check reads are those the side's render took: N x N
+/// everywhere with uniform sampling; with adaptive sampling the minimum in
+/// the empty background and more along the triangle's edges.
+#[test]
+fn the_samples_pixels_took_are_read_from_the_render() {
+    let mut state = state_of(SHADOWED);
+    state.a.settings.antialiasing = true;
+    state.a.settings.samples = 2;
+    let read =
+        |of: &str, state: &LessonState| Quantity::parse(of).unwrap().read(state, Which::A).unwrap();
+    assert_eq!(read("sampling", &state), Value::Word("uniform".into()));
+    assert_eq!(read("noise-threshold", &state), Value::Bool(false));
+    assert_eq!(read("samples mean", &state), Value::Number(4.0));
+    assert_eq!(read("samples max", &state), Value::Number(4.0));
+    let verdict = evaluate(&value("pixel samples", "4"), &state);
+    assert_eq!(verdict, Verdict::NotYet("no pixel is pinned".into()));
+
+    let adaptive = AdaptiveSampling::for_samples(4, 0.01);
+    state.a.settings.sampling = Sampling::Adaptive(adaptive);
+    state.pixel = Some((0, 0));
+    assert_eq!(read("sampling", &state), Value::Word("adaptive".into()));
+    assert_eq!(
+        read("noise-threshold", &state),
+        Value::Number(0.01f32.into())
+    );
+    let min = f64::from(adaptive.min_spp);
+    assert_eq!(read("pixel samples", &state), Value::Number(min));
+    let (Value::Number(mean), Value::Number(max)) =
+        (read("samples mean", &state), read("samples max", &state))
+    else {
+        panic!("sample counts are numbers");
+    };
+    assert!(min < mean && mean < max, "{min} < {mean} < {max}");
+    assert!(max <= f64::from(adaptive.max_spp));
+
+    state.a.settings.width = 16;
+    state.pixel = Some((20, 20));
+    let verdict = evaluate(&value("pixel samples", ">= 1"), &state);
+    assert!(
+        verdict.reason().contains("outside the 16x32 image"),
+        "{verdict:?}"
+    );
 }
 
 #[test]
