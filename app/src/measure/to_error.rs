@@ -93,10 +93,14 @@ impl ToError {
     }
 }
 
-/// The threshold the search starts from, halved until the target is met.
+/// The threshold the search starts from: halved until the target is met,
+/// or doubled while it is.
 pub const FIRST_THRESHOLD: f32 = 0.08;
 /// The search gives up below this threshold.
 pub const SMALLEST_THRESHOLD: f32 = 1e-4;
+/// The search stops doubling at this threshold: an error of the whole
+/// display range, past which no pixel refines beyond the minimum.
+pub const LARGEST_THRESHOLD: f32 = 1.0;
 /// Bisections of the last halving's bracket (on a log scale): four leave
 /// the threshold found within 2^(1/16), 4.4%, of the largest that reaches
 /// the target. With two (19%), on balls_medium at 512 x 512, the
@@ -259,8 +263,10 @@ pub fn measure(
         }
     };
 
-    // Adaptive: halve the threshold until the target is met, then narrow
-    // the step between the last miss and the first hit.
+    // Adaptive: halve the threshold until the target is met (or, when
+    // the first one meets it, double it until it does not: a target above
+    // the first threshold's error is met at less cost), then narrow the
+    // step between the last miss and the last hit.
     let mut try_threshold = |t: f32| {
         attempt(
             format!("adaptive T = {t:.5}"),
@@ -285,6 +291,16 @@ pub fn measure(
                 }
                 missed = Some(t);
                 t /= 2.0;
+            }
+            let mut t = FIRST_THRESHOLD;
+            while missed.is_none() && t < LARGEST_THRESHOLD {
+                t = (t * 2.0).min(LARGEST_THRESHOLD);
+                let (tried, rendered) = try_threshold(t)?;
+                if tried.reached {
+                    hit = Some((t, tried.metrics, rendered));
+                } else {
+                    missed = Some(t);
+                }
             }
             if let (Some(mut high), Some(_)) = (missed, &hit) {
                 for _ in 0..NARROWING_STEPS {

@@ -222,6 +222,31 @@ fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
         "{easier}"
     );
     assert!(easier["target_flip"].is_null());
+    // The threshold found is the largest that reaches it: every larger one
+    // tried missed (searched upwards when the first already reaches it).
+    let found_threshold = easier["adaptive"]["noise_threshold"].as_f64().unwrap();
+    let tried = |found: &serde_json::Value| -> Vec<(f64, bool)> {
+        found["attempts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|a| {
+                let t = a["label"].as_str()?.strip_prefix("adaptive T = ")?;
+                Some((t.parse().unwrap(), a["reached"].as_bool().unwrap()))
+            })
+            .collect()
+    };
+    for (t, reached) in tried(&easier) {
+        assert!(t <= found_threshold * 1.0001 || !reached, "{easier}");
+    }
+    // A target any render meets: the largest threshold there is.
+    let any = measure(&["--reference-spp", "6", "--target-mse", "1e9"]);
+    assert_eq!(
+        any["adaptive"]["noise_threshold"].as_f64(),
+        Some(1.0),
+        "{any}"
+    );
+    assert!(tried(&any).iter().all(|&(_, reached)| reached), "{any}");
 
     let refused = workbench_fails(&[
         "bench",
