@@ -146,6 +146,29 @@ fn check_page(page: &str, rows: &[Value]) {
     assert!(decoded.len() >= 15, "{} images", decoded.len());
     assert!(decoded.iter().all(|i| i.width() > 0 && i.height() > 0));
 
+    // Adaptive sampling beside uniform: a point per threshold of the
+    // quick report, each between the minimum (4) and the reference's 36
+    // samples a pixel, fewer as the threshold grows.
+    assert!(page.contains("PSNR against frame time"));
+    let (headers, adaptive) = table(page, "adaptive");
+    let cell = |cells: &[String], name: &str| -> f64 {
+        cells[headers.iter().position(|h| h == name).unwrap()]
+            .parse()
+            .unwrap()
+    };
+    let ids: Vec<&str> = adaptive.iter().map(|(id, _)| id.as_str()).collect();
+    assert_eq!(ids, ["t0.01", "t0.02", "t0.04"]);
+    let means: Vec<f64> = adaptive
+        .iter()
+        .map(|(_, cells)| cell(cells, "samples/px"))
+        .collect();
+    assert!(means.windows(2).all(|w| w[0] >= w[1]), "{means:?}");
+    for (id, cells) in &adaptive {
+        assert!(cell(cells, "samples/px") >= 4.0, "{id}");
+        assert!(cell(cells, "most/px") <= 36.0, "{id}");
+        assert!(cell(cells, "PSNR dB").is_finite(), "{id}");
+    }
+
     let (headers, table_rows) = table(page, "timing");
     let column = |name: &str| headers.iter().position(|h| h == name).unwrap();
     let ids: Vec<&str> = table_rows.iter().map(|(id, _)| id.as_str()).collect();

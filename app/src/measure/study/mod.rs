@@ -485,7 +485,7 @@ pub fn run(
             material::run(study, scene, world, base, stop, on_event)
         }
         Subject::Scene { world, base } | Subject::Document { world, base, .. } => {
-            run_scene(study, world, base, stop, on_event)
+            run_scene(study, world, base, None, stop, on_event)
         }
         Subject::Generated {
             generator,
@@ -493,6 +493,32 @@ pub fn run(
             settings,
         } => run_levels(study, *generator, *seed, settings, stop, on_event),
     }
+}
+
+/// [`run`] against a reference already rendered, another study's of the
+/// same scene and N (a noise-threshold study beside the `spp` study it is
+/// compared with): its points are measured against that image, which is
+/// not rendered again.
+pub fn run_with_reference(
+    study: &Study,
+    subject: &Subject,
+    reference: ReferenceRender,
+    stop: Stop,
+    on_event: &mut dyn FnMut(StudyEvent),
+) -> Result<StudyOutcome> {
+    study.check(subject)?;
+    let Subject::Scene { world, base } = subject else {
+        bail!("a reference is reused on a scene's settings only");
+    };
+    let wanted = study.reference_samples(base);
+    if !study.param.has_reference() || reference.samples != wanted {
+        bail!(
+            "the {} study takes a reference of N = {wanted}, not N = {}",
+            study.param,
+            reference.samples
+        );
+    }
+    run_scene(study, world, base, Some(reference), stop, on_event)
 }
 
 /// Some of a study's points (`first..`), measured in one call of the
@@ -569,20 +595,26 @@ impl Batch<'_> {
     }
 }
 
+/// The points of `study` over `base` on `world`, against `reference`
+/// or, when the study has one and none is given, a reference it renders.
 fn run_scene(
     study: &Study,
     world: &Arc<World>,
     base: &RenderSettings,
+    reference: Option<ReferenceRender>,
     stop: Stop,
     on_event: &mut dyn FnMut(StudyEvent),
 ) -> Result<StudyOutcome> {
     let mut structures = Structures::default();
-    let mut outcome = StudyOutcome::default();
+    let mut outcome = StudyOutcome {
+        reference,
+        ..StudyOutcome::default()
+    };
     let one_frame = RunOptions {
         runs: 1,
         ..study.options
     };
-    if study.param.has_reference() {
+    if study.param.has_reference() && outcome.reference.is_none() {
         let samples = study.reference_samples(base);
         let what = format!("reference image, N = {samples}");
         // The image does not depend on the structure: use the first one,

@@ -135,6 +135,51 @@ fn the_spp_study_measures_error_against_a_reference() {
     }
 }
 
+/// A noise-threshold study given the spp study's reference renders none
+/// and measures what it would have measured against its own: the same
+/// image. A reference of another N is refused.
+#[test]
+fn a_reference_is_reused_as_if_rendered_again() {
+    let (now, after) = (never(), never());
+    let stop = || Stop {
+        now: &now,
+        after_frame: &after,
+    };
+    let spp = run(
+        &study(Param::Spp, "1..3", &[AccelKind::Bvh]),
+        &scene(),
+        stop(),
+        &mut |_| {},
+    )
+    .unwrap();
+    let reference = spp.reference.clone().unwrap();
+    let adaptive = Study {
+        reference_samples: Some(reference.samples),
+        ..study(Param::NoiseThreshold, "0.01..0.04:x2", &[AccelKind::Bvh])
+    };
+    let own = run(&adaptive, &scene(), stop(), &mut |_| {}).unwrap();
+    let mut preparing = false;
+    let reused = run_with_reference(&adaptive, &scene(), reference.clone(), stop(), &mut |e| {
+        preparing |= matches!(e, StudyEvent::Preparing { .. });
+    })
+    .unwrap();
+    assert!(!preparing, "nothing rendered before the points");
+    let errors =
+        |o: &StudyOutcome| -> Vec<f64> { o.points.iter().map(|p| p.error.unwrap().mse).collect() };
+    assert_eq!(errors(&reused), errors(&own));
+    assert_eq!(errors(&reused).len(), 3);
+
+    let other = ReferenceRender {
+        samples: reference.samples + 1,
+        ..reference
+    };
+    let refused = run_with_reference(&adaptive, &scene(), other, stop(), &mut |_| {}).unwrap_err();
+    assert!(
+        refused.to_string().contains("takes a reference of N = 6"),
+        "{refused}"
+    );
+}
+
 #[test]
 fn the_level_study_generates_each_level_once_and_counts_primitives() {
     let study = study(Param::Level, "0..1", &[AccelKind::None, AccelKind::Bvh]);

@@ -20,7 +20,7 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result};
 use tracer::accel::AccelKind;
-use tracer::render::{Encoding, RenderSettings};
+use tracer::render::{AdaptiveSampling, Encoding, RenderSettings, Sampling};
 use tracer::scene::Scene;
 use tracer::world::World;
 
@@ -142,6 +142,9 @@ pub struct Lab {
     pub opaque: Option<Measurement>,
     /// Error against samples: the `spp` study with its reference.
     pub samples: StudyOutcome,
+    /// Error against time with adaptive sampling: the `noise-threshold`
+    /// study, against a reference of the `spp` study's N.
+    pub adaptive: StudyOutcome,
     /// The grid multiplier study.
     pub grid: StudyOutcome,
     pub pixel: PixelExplained,
@@ -178,6 +181,8 @@ struct Plan {
     views: Vec<Case>,
     whitted: Vec<Case>,
     samples: Study,
+    /// Over [`Plan::adaptive_base`].
+    adaptive: Study,
     grid: Study,
 }
 
@@ -192,19 +197,25 @@ fn work(cases: &[Case], runs: usize) -> f64 {
         * runs as f64
 }
 
-fn study_work(study: &Study, base: &RenderSettings) -> f64 {
+/// The samples `study` traces over `base`: its points, and its reference
+/// when `with_reference` (a study that reuses another's renders none).
+fn study_work(study: &Study, base: &RenderSettings, with_reference: bool) -> f64 {
     let pixels = f64::from(base.width) * f64::from(base.height);
     let per_point: f64 = study
         .values
         .iter()
-        .map(|&v| match study.param {
-            Param::Spp => v * v,
+        .map(|&v| match (study.param, base.adaptive()) {
+            (Param::Spp, _) => v * v,
+            // An estimate: twice the minimum, about what a threshold of
+            // 0.01 spends on the bundled scenes.
+            (Param::NoiseThreshold, Some(a)) => 2.0 * f64::from(a.min_spp),
             _ => 1.0,
         })
         .sum();
-    let reference = match study.param {
-        Param::Spp => f64::from(study.reference_samples(base)).powi(2),
-        _ => 0.0,
+    let reference = if with_reference && study.param.has_reference() {
+        f64::from(study.reference_samples(base)).powi(2)
+    } else {
+        0.0
     };
     pixels * (per_point * study.options.runs as f64 * study.structures.len() as f64 + reference)
 }
@@ -250,10 +261,10 @@ impl Plan {
                 encoding,
             }))
             .collect();
-        let (spp_values, grid_values) = if request.quick {
-            ("1..3", "0.5..4:x2")
+        let (spp_values, threshold_values, grid_values) = if request.quick {
+            ("1..3", "0.01..0.04:x2", "0.5..4:x2")
         } else {
-            ("1..6", "0.25..8:x2")
+            ("1..6", "0.0025..0.04:x2", "0.25..8:x2")
         };
         let samples = Study {
             param: Param::Spp,
@@ -262,6 +273,12 @@ impl Plan {
             options,
             encoding,
             reference_samples: None,
+        };
+        let adaptive = Study {
+            param: Param::NoiseThreshold,
+            values: values::parse(threshold_values)?,
+            reference_samples: Some(samples.reference_samples(base)),
+            ..samples.clone()
         };
         let grid = Study {
             param: Param::GridM,
@@ -276,8 +293,26 @@ impl Plan {
             views,
             whitted,
             samples,
+            adaptive,
             grid,
         })
+    }
+
+    /// The adaptive study's settings: `base` sampled adaptively from 4
+    /// samples a pixel up to the `spp` study's reference (its N x N), so
+    /// the two studies' errors are against the same image and adaptive
+    /// sampling can reach any error uniform sampling does.
+    fn adaptive_base(&self, base: &RenderSettings) -> RenderSettings {
+        let most = self.samples.reference_samples(base).pow(2);
+        RenderSettings {
+            sampling: Sampling::Adaptive(AdaptiveSampling {
+                noise_threshold: 0.0,
+                min_spp: 4.min(most),
+                max_spp: most,
+                budget: None,
+            }),
+            ..base.clone()
+        }
     }
 }
 
@@ -352,8 +387,9 @@ pub fn measure(
             work(&plan.whitted, runs),
             // The scene made opaque: one more plain frame.
             f64::from(base.width) * f64::from(base.height) * runs as f64,
-            study_work(&plan.samples, &base),
-            study_work(&plan.grid, &base),
+            study_work(&plan.samples, &base, true),
+            study_work(&plan.adaptive, &plan.adaptive_base(&base), false),
+            study_work(&plan.grid, &base, true),
             // The chosen pixel and the observer figure: about one frame.
             f64::from(base.width) * f64::from(base.height),
         ],
@@ -412,21 +448,39 @@ pub fn measure(
             outcome.measurements.into_iter().next()
         }
     };
-    let subject = Subject::Scene {
+    let subject = |base: RenderSettings| Subject::Scene {
         world: world.clone(),
-        base: plain(&base, AccelKind::Bvh),
+        base,
     };
+    let plain_base = plain(&base, AccelKind::Bvh);
     let mut studies = Vec::new();
-    for study in [&plan.samples, &plan.grid] {
+    for (study, base) in [
+        (&plan.samples, plain_base.clone()),
+        (&plan.adaptive, plan.adaptive_base(&plain_base)),
+        (&plan.grid, plain_base.clone()),
+    ] {
         tracker.stage += 1;
-        let outcome = study::run(study, &subject, stop, &mut |e| tracker.study(study, e))
-            .with_context(|| format!("the {} study", study.param))?;
+        // The adaptive study is measured against the spp study's
+        // reference: the same image, rendered once.
+        let shared = match (study.param, studies.first()) {
+            (Param::NoiseThreshold, Some(StudyOutcome { reference, .. })) => reference.clone(),
+            _ => None,
+        };
+        let on_event: &mut dyn FnMut(StudyEvent) = &mut |e| tracker.study(study, e);
+        let outcome = match shared {
+            Some(reference) => {
+                study::run_with_reference(study, &subject(base), reference, stop, on_event)
+            }
+            None => study::run(study, &subject(base), stop, on_event),
+        }
+        .with_context(|| format!("the {} study", study.param))?;
         if outcome.cancelled {
             return Ok(None);
         }
         studies.push(outcome);
     }
     let grid = studies.pop().context("the grid study is missing")?;
+    let adaptive = studies.pop().context("the adaptive study is missing")?;
     let samples = studies.pop().context("the samples study is missing")?;
     tracker.stage += 1;
     tracker.report(0.0, "choosing and drawing one pixel");
@@ -443,6 +497,7 @@ pub fn measure(
         whitted,
         opaque,
         samples,
+        adaptive,
         grid,
         pixel,
     }))

@@ -11,6 +11,7 @@ use super::html::{escape, figure, image, table, titled_section};
 use super::svg::{Series, line_chart};
 use super::{Lab, ms};
 use crate::measure::benchmark::{Measurement, SamplingColumn};
+use crate::measure::study::Point;
 
 /// Side of the crop, in pixels of the image, before magnifying.
 const CROP: u32 = 24;
@@ -112,7 +113,7 @@ pub fn section(lab: &Lab) -> Result<String> {
         shown(plain, "Hard shadows")?,
         shown(soft, "Soft shadows without anti-aliasing")?,
         shown(soft_aa, "Soft shadows with anti-aliasing")?,
-        error_charts(lab),
+        error_charts(lab) + &adaptive_charts(lab),
         spp = n * n,
     );
     let how = format!(
@@ -125,6 +126,93 @@ pub fn section(lab: &Lab) -> Result<String> {
         "3. Stochastic sampling",
         &(body + &how),
     ))
+}
+
+/// The `noise-threshold` study beside the `spp` study: PSNR against frame
+/// time for both, against the same reference, and the adaptive points as
+/// a table. Where the adaptive curve lies above the uniform one, it
+/// reaches an error in less time.
+fn adaptive_charts(lab: &Lab) -> String {
+    let Some(reference) = &lab.samples.reference else {
+        return String::new();
+    };
+    let series = |name: &str, colour, points: &[Point]| Series {
+        name: name.to_string(),
+        colour,
+        points: points
+            .iter()
+            .filter_map(|p| Some((p.measurement.median().as_secs_f64() * 1e3, p.error?.psnr)))
+            .filter(|(_, y)| y.is_finite())
+            .collect(),
+    };
+    let points = &lab.adaptive.points;
+    if points.is_empty() {
+        return String::new();
+    }
+    let chart = line_chart(
+        "PSNR against frame time",
+        "frame ms",
+        "PSNR dB",
+        &[
+            series("uniform N x N", [52, 120, 198], &lab.samples.points),
+            series("adaptive", [214, 96, 40], points),
+        ],
+    );
+    let knobs = points
+        .first()
+        .and_then(|p| p.measurement.case.settings.adaptive());
+    let rows: Vec<(String, Vec<String>)> = points
+        .iter()
+        .map(|p| {
+            let spp = p.measurement.stats.adaptive;
+            let metric = |f: &dyn Fn(&crate::measure::ab::Metrics) -> String| {
+                p.error.as_ref().map_or("-".to_string(), f)
+            };
+            (
+                format!("t{}", p.value),
+                vec![
+                    format!("{}", p.value),
+                    spp.map_or("-".into(), |a| format!("{:.1}", a.mean_spp())),
+                    spp.map_or("-".into(), |a| a.max_spp.to_string()),
+                    ms(p.measurement.median()),
+                    metric(&|m| format!("{:.2}", m.mse)),
+                    metric(&|m| format!("{:.2}", m.psnr)),
+                    metric(&|m| format!("{:.4}", m.flip)),
+                ],
+            )
+        })
+        .collect();
+    format!(
+        "<h3>Adaptive sampling</h3>\n<p>Not in the course: each pixel takes samples until its \
+         estimated error (its last pass's mean against its earlier samples', pooled with its \
+         neighbours') is below a noise threshold, from {} up to {} samples, so flat areas stop \
+         early and edges, penumbrae and lens blur refine. Against the same reference as \
+         uniform N x N above; where its curve lies above uniform's, it reaches an error in \
+         less time.</p>\n<div class=\"figures\">{chart}</div>\n{}<p class=\"how\">{}</p>\n",
+        knobs.map_or(0, |a| a.min_spp),
+        knobs.map_or(0, |a| a.max_spp),
+        table(
+            "adaptive",
+            &[
+                "threshold",
+                "samples/px",
+                "most/px",
+                "frame ms",
+                "MSE",
+                "PSNR dB",
+                "FLIP"
+            ],
+            &rows
+        ),
+        escape(&format!(
+            "Reference: N = {} ({} samples per pixel). Frame times: median of {} run(s) on {} \
+             thread(s), the same as the uniform points'.",
+            reference.samples,
+            reference.samples.pow(2),
+            lab.runs,
+            lab.threads
+        ))
+    )
 }
 
 /// The `spp` study: MSE, PSNR and FLIP against the reference, as charts
