@@ -165,21 +165,13 @@ fn adaptive_charts(lab: &Lab) -> String {
         .iter()
         .map(|p| {
             let spp = p.measurement.stats.adaptive;
-            let metric = |f: &dyn Fn(&crate::measure::ab::Metrics) -> String| {
-                p.error.as_ref().map_or("-".to_string(), f)
-            };
-            (
-                format!("t{}", p.value),
-                vec![
-                    format!("{}", p.value),
-                    spp.map_or("-".into(), |a| format!("{:.1}", a.mean_spp())),
-                    spp.map_or("-".into(), |a| a.max_spp.to_string()),
-                    ms(p.measurement.median()),
-                    metric(&|m| format!("{:.2}", m.mse)),
-                    metric(&|m| format!("{:.2}", m.psnr)),
-                    metric(&|m| format!("{:.4}", m.flip)),
-                ],
-            )
+            let mut cells = vec![
+                format!("{}", p.value),
+                spp.map_or("-".into(), |a| format!("{:.1}", a.mean_spp())),
+                spp.map_or("-".into(), |a| a.max_spp.to_string()),
+            ];
+            cells.extend(timed_error_cells(p));
+            (format!("t{}", p.value), cells)
         })
         .collect();
     format!(
@@ -213,6 +205,20 @@ fn adaptive_charts(lab: &Lab) -> String {
             lab.threads
         ))
     )
+}
+
+/// A study point's frame time, MSE, PSNR and FLIP as table cells ("-"
+/// for an error not measured).
+fn timed_error_cells(p: &Point) -> [String; 4] {
+    let metric = |f: &dyn Fn(&crate::measure::ab::Metrics) -> String| {
+        p.error.as_ref().map_or("-".to_string(), f)
+    };
+    [
+        ms(p.measurement.median()),
+        metric(&|m| format!("{:.2}", m.mse)),
+        metric(&|m| format!("{:.2}", m.psnr)),
+        metric(&|m| format!("{:.4}", m.flip)),
+    ]
 }
 
 /// The `spp` study: MSE, PSNR and FLIP against the reference, as charts
@@ -250,21 +256,12 @@ fn error_charts(lab: &Lab) -> String {
     let rows: Vec<(String, Vec<String>)> = points
         .iter()
         .map(|p| {
-            let e = p.error;
-            let metric = |f: &dyn Fn(&crate::measure::ab::Metrics) -> String| {
-                e.as_ref().map_or("-".to_string(), f)
-            };
-            (
-                format!("n{}", p.value),
-                vec![
-                    format!("{}", p.value),
-                    format!("{}", (p.value * p.value) as u64),
-                    ms(p.measurement.median()),
-                    metric(&|m| format!("{:.2}", m.mse)),
-                    metric(&|m| format!("{:.2}", m.psnr)),
-                    metric(&|m| format!("{:.4}", m.flip)),
-                ],
-            )
+            let mut cells = vec![
+                format!("{}", p.value),
+                format!("{}", (p.value * p.value) as u64),
+            ];
+            cells.extend(timed_error_cells(p));
+            (format!("n{}", p.value), cells)
         })
         .collect();
     format!(
