@@ -8,7 +8,7 @@ use tracer::accel::AccelKind;
 use tracer::render::{HeatScale, View, ViewHeatmap};
 
 use super::html::{escape, figure, image, table, titled_section};
-use super::svg::{Bar, Series, bar_chart, line_chart};
+use super::svg::{Bar, Series, YAxis, bar_chart, line_chart};
 use super::{Lab, how_measured, ms};
 use crate::figures::heat_map::{view_image, with_legend};
 use crate::figures::study_plot::colour;
@@ -136,8 +136,20 @@ fn grid_study(lab: &Lab) -> String {
         "<h3>The grid multiplier m</h3>\n<p>Cells per axis = trunc(m · dim · s) + 1: more cells \
          mean fewer tests per ray and more cells to walk. One sample per pixel, hard \
          shadows.</p>\n<div class=\"figures\">{}{}</div>\n{}",
-        line_chart("Frame time against m", "m", "ms", &[series]),
-        line_chart("Tests per ray against m", "m", "tests/ray", &[tests]),
+        line_chart(
+            "Frame time against m",
+            "m",
+            "ms",
+            YAxis::FromZero,
+            &[series]
+        ),
+        line_chart(
+            "Tests per ray against m",
+            "m",
+            "tests/ray",
+            YAxis::FromZero,
+            &[tests]
+        ),
         table(
             "grid",
             &[

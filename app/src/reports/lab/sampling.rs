@@ -8,7 +8,7 @@ use image::RgbImage;
 use tracer::accel::AccelKind;
 
 use super::html::{escape, figure, image, table, titled_section};
-use super::svg::{Series, line_chart};
+use super::svg::{Series, YAxis, line_chart};
 use super::{Lab, ms};
 use crate::measure::benchmark::{Measurement, SamplingColumn};
 use crate::measure::study::Point;
@@ -153,6 +153,7 @@ fn adaptive_charts(lab: &Lab) -> String {
         "PSNR against frame time",
         "frame ms",
         "PSNR dB",
+        YAxis::Fitted,
         &[
             series("uniform N x N", [52, 120, 198], &lab.samples.points),
             series("adaptive", [214, 96, 40], points),
@@ -242,13 +243,21 @@ fn error_charts(lab: &Lab) -> String {
             "MSE (8-bit units)",
             "N",
             "MSE",
+            YAxis::FromZero,
             &[series("MSE", &|m| m.mse)],
         ),
-        line_chart("PSNR (dB)", "N", "dB", &[series("PSNR", &|m| m.psnr)]),
+        line_chart(
+            "PSNR (dB)",
+            "N",
+            "dB",
+            YAxis::Fitted,
+            &[series("PSNR", &|m| m.psnr)],
+        ),
         line_chart(
             "FLIP",
             "N",
             "mean FLIP",
+            YAxis::FromZero,
             &[series("FLIP", &|m| f64::from(m.flip))],
         ),
     ]

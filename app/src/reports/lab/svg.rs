@@ -104,9 +104,27 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-/// A line chart of `series` on linear axes (the y axis from 0 unless a
-/// value is negative), each point marked, with a legend.
-pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+/// Where a line chart's y axis starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum YAxis {
+    /// At 0 (or the lowest value when one is negative): amounts such as
+    /// times and errors, whose ratios the chart should show.
+    FromZero,
+    /// Just below the lowest value: decibels, where 0 means nothing and
+    /// the differences between curves are what is read.
+    Fitted,
+}
+
+/// A line chart of `series` on linear axes, each point marked, with a
+/// legend in the top-right corner, or the bottom-right when a point lies
+/// under the top one.
+pub fn line_chart(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    y_axis: YAxis,
+    series: &[Series],
+) -> String {
     const W: f64 = 360.0;
     const H: f64 = 240.0;
     const LEFT: f64 = 52.0;
@@ -116,9 +134,19 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) 
     let (x0, x1) = all().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (x, _)| {
         (a.min(x), b.max(x))
     });
-    let (y0, y1) = all().fold((0.0_f64, f64::NEG_INFINITY), |(a, b), (_, y)| {
+    let lowest = match y_axis {
+        YAxis::FromZero => 0.0_f64,
+        YAxis::Fitted => f64::INFINITY,
+    };
+    let (y0, y1) = all().fold((lowest, f64::NEG_INFINITY), |(a, b), (_, y)| {
         (a.min(y), b.max(y))
     });
+    let y0 = match y_axis {
+        YAxis::Fitted if y0.is_finite() && y1 > y0 => y0 - 0.05 * (y1 - y0),
+        YAxis::Fitted if y0.is_finite() => y0 - 1.0,
+        YAxis::Fitted => 0.0,
+        YAxis::FromZero => y0,
+    };
     let (x0, x1) = if x0.is_finite() && x1 > x0 {
         (x0, x1)
     } else {
@@ -167,6 +195,17 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) 
         TOP + ph / 2.0,
         escape(y_label)
     );
+    // The legend's entries, 13 px apart, right-aligned in a corner free
+    // of points.
+    const LEGEND_WIDTH: f64 = 110.0;
+    let rows = series.len() as f64;
+    let under_top_legend =
+        all().any(|(x, y)| px(x) >= W - LEGEND_WIDTH - 4.0 && py(y) <= TOP + 12.0 + 13.0 * rows);
+    let legend_top = if under_top_legend {
+        TOP + ph - 13.0 * rows
+    } else {
+        TOP + 12.0
+    };
     for (i, s) in series.iter().enumerate() {
         let colour = rgb(s.colour);
         let path: Vec<String> = s
@@ -187,12 +226,12 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) 
                 py(y)
             );
         }
-        let ly = TOP + 12.0 + 13.0 * i as f64;
+        let ly = legend_top + 13.0 * i as f64;
         let _ = writeln!(
             out,
             "<rect x=\"{}\" y=\"{:.1}\" width=\"10\" height=\"3\" fill=\"{colour}\"/>\
              <text x=\"{}\" y=\"{:.1}\" font-size=\"10\">{}</text>",
-            W - 110.0,
+            W - LEGEND_WIDTH,
             ly - 4.0,
             W - 96.0,
             ly,
@@ -201,4 +240,69 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) 
     }
     out.push_str("</svg>\n");
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The y axis's tick labels, bottom to top.
+    fn y_ticks(svg: &str) -> Vec<String> {
+        svg.split("text-anchor=\"end\">")
+            .skip(1)
+            .map(|s| s[..s.find('<').unwrap()].to_string())
+            .collect()
+    }
+
+    /// The y of the legend's first entry.
+    fn legend_y(svg: &str, name: &str) -> f64 {
+        let before = &svg[..svg.find(&format!(">{name}</text>")).unwrap()];
+        let y = &before[before.rfind("y=\"").unwrap() + 3..];
+        y[..y.find('"').unwrap()].parse().unwrap()
+    }
+
+    fn rising(from: f64) -> Series {
+        Series {
+            name: "rising".into(),
+            colour: [0, 0, 0],
+            points: (0..5)
+                .map(|i| (f64::from(i), from + f64::from(i)))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn a_fitted_axis_starts_below_the_lowest_value_not_at_zero() {
+        let series = [rising(30.0)];
+        let from_zero = y_ticks(&line_chart("t", "x", "y", YAxis::FromZero, &series));
+        let fitted = y_ticks(&line_chart("t", "x", "y", YAxis::Fitted, &series));
+        assert_eq!(from_zero.first().map(String::as_str), Some("0"));
+        let lowest: f64 = fitted[0].parse().unwrap();
+        assert!((29.0..30.0).contains(&lowest), "{fitted:?}");
+        assert_eq!(
+            fitted.last(),
+            from_zero.last(),
+            "the top is the highest value"
+        );
+    }
+
+    #[test]
+    fn the_legend_leaves_the_corner_a_curve_ends_in() {
+        let falling = Series {
+            name: "falling".into(),
+            colour: [0, 0, 0],
+            points: (0..5)
+                .map(|i| (f64::from(i), 10.0 - f64::from(i)))
+                .collect(),
+        };
+        let top = legend_y(
+            &line_chart("t", "x", "y", YAxis::FromZero, &[falling]),
+            "falling",
+        );
+        let bottom = legend_y(
+            &line_chart("t", "x", "y", YAxis::FromZero, &[rising(0.0)]),
+            "rising",
+        );
+        assert!(top < 50.0 && bottom > 150.0, "{top} {bottom}");
+    }
 }
