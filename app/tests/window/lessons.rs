@@ -184,3 +184,42 @@ fn a_lessons_side_b_gets_its_own_edits() {
     let b = app.side_b().unwrap().settings().unwrap();
     assert_eq!(b.samples, 2, "B keeps its own settings");
 }
+
+/// A check that renders (the samples the render took) gets its verdict
+/// with "keep refining" on: the check renders the side to its end, where
+/// the window's render has none.
+#[test]
+fn a_rendering_check_ends_while_the_window_keeps_refining() {
+    let dir = Scratch::new("window-lesson-refining");
+    let path = dir.join("refining.toml");
+    let text = LESSON.replace(
+        r#"check = { kind = "value", of = "aa", is = "on" }"#,
+        r#"check = { kind = "value", of = "samples mean", is = ">= 16" }"#,
+    );
+    std::fs::write(&path, text).unwrap();
+    let mut harness = ready_window(WINDOW);
+    harness
+        .input_mut()
+        .dropped_files
+        .push(Arc::new(DroppedPath(path.clone())));
+    wait_for(&mut harness, "the lesson's scene", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "refining.p3f")
+            && app.engine().settings().is_some()
+    });
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Keep refining (K)")
+        .click();
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Anti-aliasing (A)")
+        .click();
+    wait_for(&mut harness, "the window refining", |app| {
+        app.engine()
+            .settings()
+            .is_some_and(|s| s.keep_refining && s.antialiasing)
+    });
+    wait_for_verdict(&mut harness, "16 samples a pixel, counted", |v| {
+        *v == Verdict::Done("samples mean is 16".into())
+    });
+}

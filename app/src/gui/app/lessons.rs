@@ -173,7 +173,12 @@ fn window_state(sides: &Sides, pixel: Option<(u32, u32)>, layout: Layout) -> Opt
         Some(SideState {
             scene: loaded.scene.clone(),
             world: loaded.world.clone(),
-            settings: s.settings()?.clone(),
+            // A check renders a side to its end (a measurement, the
+            // samples a pixel took): "keep refining" would have none.
+            settings: RenderSettings {
+                keep_refining: false,
+                ..s.settings()?.clone()
+            },
         })
     };
     let b = match &sides.b {
