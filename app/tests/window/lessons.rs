@@ -72,23 +72,37 @@ fn answer(harness: &mut Window, text: &str) {
     harness.run_steps(2);
 }
 
-#[test]
-fn a_student_walks_a_lesson_and_the_progress_stays() {
-    let dir = Scratch::new("window-lesson");
-    let path = dir.join("two_steps.toml");
-    std::fs::write(&path, LESSON).unwrap();
-    let mut harness = ready_window(WINDOW);
-    // A teacher's lesson opens as a scene does: dropped on the window.
+/// Drops the lesson file `path` on the window, as a teacher's lesson
+/// opens: like a scene.
+fn drop_lesson(harness: &mut Window, path: &std::path::Path) {
     harness
         .input_mut()
         .dropped_files
-        .push(Arc::new(DroppedPath(path.clone())));
+        .push(Arc::new(DroppedPath(path.to_path_buf())));
+}
+
+/// A window with lesson `text`, written as `name`.toml in a folder of its
+/// own (kept while the window is used), dropped on it and its scene
+/// loaded and planned.
+fn open_lesson(name: &str, text: &str) -> (Scratch, Window) {
+    let dir = Scratch::new(&format!("window-lesson-{name}"));
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    let mut harness = ready_window(WINDOW);
+    drop_lesson(&mut harness, &path);
+    let scene = format!("{name}.p3f");
     wait_for(&mut harness, "the lesson's scene", |app| {
         app.engine()
             .scene()
-            .is_some_and(|s| s.source.label() == "two_steps.p3f")
+            .is_some_and(|s| s.source.label() == scene)
             && app.engine().settings().is_some()
     });
+    (dir, harness)
+}
+
+#[test]
+fn a_student_walks_a_lesson_and_the_progress_stays() {
+    let (_dir, mut harness) = open_lesson("two_steps", LESSON);
     // Set up as the lesson starts: the lesson's own resolution, no
     // anti-aliasing, the pixel pinned.
     let settings = harness.state().engine().settings().cloned().unwrap();
@@ -165,10 +179,7 @@ fn a_lessons_side_b_gets_its_own_edits() {
     );
     std::fs::write(&path, text).unwrap();
     let mut harness = ready_window(WINDOW);
-    harness
-        .input_mut()
-        .dropped_files
-        .push(Arc::new(DroppedPath(path.clone())));
+    drop_lesson(&mut harness, &path);
     wait_for(&mut harness, "the lesson set up, B edited", |app| {
         app.engine()
             .scene()
@@ -190,24 +201,11 @@ fn a_lessons_side_b_gets_its_own_edits() {
 /// the window's render has none.
 #[test]
 fn a_rendering_check_ends_while_the_window_keeps_refining() {
-    let dir = Scratch::new("window-lesson-refining");
-    let path = dir.join("refining.toml");
     let text = LESSON.replace(
         r#"check = { kind = "value", of = "aa", is = "on" }"#,
         r#"check = { kind = "value", of = "samples mean", is = ">= 16" }"#,
     );
-    std::fs::write(&path, text).unwrap();
-    let mut harness = ready_window(WINDOW);
-    harness
-        .input_mut()
-        .dropped_files
-        .push(Arc::new(DroppedPath(path.clone())));
-    wait_for(&mut harness, "the lesson's scene", |app| {
-        app.engine()
-            .scene()
-            .is_some_and(|s| s.source.label() == "refining.p3f")
-            && app.engine().settings().is_some()
-    });
+    let (_dir, mut harness) = open_lesson("refining", &text);
     harness
         .get_by_role_and_label(Role::CheckBox, "Keep refining (K)")
         .click();
