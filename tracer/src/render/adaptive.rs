@@ -12,7 +12,7 @@
 
 use std::ops::Range;
 
-use glam::Vec3A;
+use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
 
 use crate::sampling::{sobol_second, stratum_order};
@@ -130,10 +130,9 @@ pub struct Refinement {
     pooled: Vec<f32>,
     noisy: Vec<u8>,
     /// What a pixel brings to its neighbours' pooled errors: its squared
-    /// error times its samples, and 1, where it has an estimate; 0 and 0
-    /// where not.
-    weighted: Vec<f32>,
-    estimated: Vec<f32>,
+    /// error times its samples, and 1 (a count), where it has an
+    /// estimate; zero where not. One vector, so one window sum pools both.
+    contributions: Vec<Vec2>,
     /// The rows where the last decision refined a pixel; empty before it.
     refining_rows: Vec<bool>,
     /// The film's mean tests per sample over its pixels, from the first
@@ -240,8 +239,7 @@ impl Refinement {
             self.per_sample = vec![0.0; samples.len()];
             self.pooled = vec![f32::INFINITY; samples.len()];
             self.noisy = vec![0; samples.len()];
-            self.weighted = vec![0.0; samples.len()];
-            self.estimated = vec![0.0; samples.len()];
+            self.contributions = vec![Vec2::ZERO; samples.len()];
         }
         let sampled = if first || self.refining_rows.len() != height {
             vec![true; height]
@@ -252,16 +250,13 @@ impl Refinement {
         for_pixels(width, &sampled, &mut self.per_sample, |i| {
             tests.get(i).copied().unwrap_or(0) as f32 / samples[i].max(1) as f32
         });
-        for_pixels(width, &sampled, &mut self.weighted, |i| {
+        for_pixels(width, &sampled, &mut self.contributions, |i| {
             let error = own(i);
             if error.is_finite() {
-                error * error * samples[i] as f32
+                Vec2::new(error * error * samples[i] as f32, 1.0)
             } else {
-                0.0
+                Vec2::ZERO
             }
-        });
-        for_pixels(width, &sampled, &mut self.estimated, |i| {
-            f32::from(u8::from(own(i).is_finite()))
         });
         if self.mean_per_sample.is_none() {
             // Row by row, the rows' sums added in order: the same bits
@@ -275,10 +270,9 @@ impl Refinement {
             self.mean_per_sample = Some((rows.iter().sum::<f64>() / pixels) as f32);
         }
         let changed = near(&sampled, 1);
-        let (weighted, estimated) = (&self.weighted, &self.estimated);
+        let contributions = &self.contributions;
         for_rows(width, &changed, &mut self.pooled, |y, row| {
-            let sums = window_sums(weighted, width, y);
-            let counts = window_sums(estimated, width, y);
+            let sums = window_sums(contributions, width, y);
             for (x, pooled) in row.iter_mut().enumerate() {
                 let i = y * width + x;
                 let error = own(i);
@@ -286,8 +280,8 @@ impl Refinement {
                 // window, the rest here.
                 let extra = OWN_WEIGHT - 1.0;
                 *pooled = if error.is_finite() {
-                    let weight = (counts[x] + extra) * samples[i] as f32;
-                    ((sums[x] + extra * weighted[i]) / weight).sqrt()
+                    let weight = (sums[x].y + extra) * samples[i] as f32;
+                    ((sums[x].x + extra * contributions[i].x) / weight).sqrt()
                 } else {
                     error
                 };
