@@ -6,7 +6,6 @@
 use glam::{Quat, Vec2, Vec3, Vec3A};
 
 use crate::geometry::Ray;
-use crate::render::RenderSettings;
 use crate::scene::{Lens, Viewpoint};
 
 /// Why a camera cannot be built.
@@ -174,24 +173,24 @@ impl Camera {
         })
     }
 
-    /// The one camera a render of `view` with `settings` uses, so the
-    /// image, its overlays, picking and the figures all agree: the view,
-    /// or the settings' pose when the user moved the camera; the view's
-    /// lens, or the settings' override of it, only with depth of field on
-    /// ([`RenderSettings::lens`]).
-    pub fn for_render(view: &Viewpoint, settings: &RenderSettings) -> Result<Self, CameraError> {
-        let lens = settings.lens(view).unwrap_or(Lens::PINHOLE);
+    /// A camera for `view` moved to `pose` (when the user moved it), with
+    /// `lens` (`None`: a pinhole). [`RenderSettings::render_camera`] says
+    /// which pose and lens a render takes.
+    ///
+    /// [`RenderSettings::render_camera`]: crate::render::RenderSettings::render_camera
+    pub fn posed(
+        view: &Viewpoint,
+        pose: Option<&CameraPose>,
+        lens: Option<Lens>,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, CameraError> {
+        let lens = lens.unwrap_or(Lens::PINHOLE);
         let mut view = view.clone();
-        if let Some(pose) = &settings.camera {
+        if let Some(pose) = pose {
             pose.apply(&mut view);
         }
-        Self::new(
-            &view,
-            settings.width,
-            settings.height,
-            lens.aperture,
-            lens.focal,
-        )
+        Self::new(&view, width, height, lens.aperture, lens.focal)
     }
 
     pub fn width(&self) -> u32 {

@@ -438,7 +438,7 @@ v from {from} at {at} up {up} angle 70 hither 0 resolution 24 16
                 height: 16,
                 ..RenderSettings::default()
             };
-            let camera = crate::camera::Camera::for_render(&world.view, &settings).unwrap();
+            let camera = settings.render_camera(&world.view).unwrap();
             let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
             let (film, _) = render(world, index, settings, Some(1)).unwrap();
             for y in 0..16 {

@@ -5,7 +5,6 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
-use tracer::camera::Camera;
 use tracer::render::{RenderSettings, Sampling};
 
 use crate::cli::{BenchArgs, TableFormat};
@@ -115,7 +114,8 @@ fn rays(args: &BenchArgs, loaded: &Loaded, settings: &RenderSettings) -> Result<
         Some([one]) => *one,
         Some(_) => bail!("--rays measures one structure: give one to --structure"),
     };
-    let camera = Camera::for_render(&loaded.world.view, settings)
+    let camera = settings
+        .render_camera(&loaded.world.view)
         .with_context(|| format!("cannot set up the camera of {}", args.scene.display()))?;
     let options = RayBenchOptions {
         accel,

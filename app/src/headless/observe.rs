@@ -8,7 +8,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use glam::Vec3;
 use serde_json::json;
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer};
-use tracer::camera::{Camera, CameraPose};
+use tracer::camera::CameraPose;
 use tracer::render::{RayTree, RenderSettings};
 
 use crate::cli::{MetricsFormat, ObserveArgs};
@@ -50,9 +50,10 @@ pub fn run(args: &ObserveArgs) -> Result<()> {
     observer_settings
         .validate()
         .map_err(|e| anyhow!("--size {figure_width} {figure_height}: {e}"))?;
-    let observer_camera = Camera::for_render(&world.view, &observer_settings)
+    let observer_camera = observer_settings
+        .render_camera(&world.view)
         .map_err(|e| anyhow!("the observer camera (--from, --at, --up): {e}"))?;
-    let scene_camera = Camera::for_render(&world.view, &settings)?;
+    let scene_camera = settings.render_camera(&world.view)?;
 
     super::warn_brute_force_with(
         &settings,
@@ -132,7 +133,7 @@ fn observer_pose(
     settings: &RenderSettings,
 ) -> Result<CameraPose> {
     let aspect = args.size[1] as f32 / args.size[0].max(1) as f32;
-    let scene_camera = Camera::for_render(&world.view, settings)?;
+    let scene_camera = settings.render_camera(&world.view)?;
     let vector = |v: &Option<Vec<f32>>| v.as_ref().map(|v| Vec3::new(v[0], v[1], v[2]));
     let up = vector(&args.up).unwrap_or_else(|| scene_camera.basis()[1].into());
     let pose = match (vector(&args.from), vector(&args.at)) {

@@ -7,7 +7,6 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use tracer::accel::{AccelKind, SceneIndex, StructureLayer, Visit};
-use tracer::camera::Camera;
 use tracer::render::{Finished, JobOptions, JobState, RenderJob, RenderSettings, ViewSummary};
 use tracer::world::World;
 
@@ -39,7 +38,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             std::fs::create_dir_all(dir)
                 .with_context(|| format!("cannot create folder {}", dir.display()))?;
             let dir = dir.clone();
-            let listener: tracer::render::PassListener = Box::new(move |pass, film| {
+            let listener: tracer::render::PassListener = Box::new(move |pass, film, _| {
                 let path = dir.join(format!("pass_{pass:04}.png"));
                 if let Err(e) = save_png(&film.to_image(encoding), &path) {
                     eprintln!("warning: {e:#}");
@@ -117,7 +116,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         };
         if let Some((layer, index)) = &overlay {
             let world = &loaded.world;
-            let camera = Camera::for_render(&world.view, &settings)
+            let camera = settings
+                .render_camera(&world.view)
                 .with_context(|| format!("cannot draw the overlay on {}", args.scene.display()))?;
             overlay::draw_wireframe(&mut image, &camera, &index.wireframe(*layer));
             if let Some(pixel) = &args.pixel {

@@ -224,7 +224,7 @@ fn renders_through(harness: &mut Harness<'static, WorkbenchApp>, lens: Option<(f
     let settings = app.engine().settings().unwrap();
     let (aperture, focal) = lens.unwrap_or((0.0, 1.0));
     let expected = Camera::new(view, settings.width, settings.height, aperture, focal);
-    Camera::for_render(view, settings) == expected
+    settings.render_camera(view) == expected
 }
 
 /// Whose lens a side renders with: a scene's own, opened or edited, with

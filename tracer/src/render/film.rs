@@ -5,6 +5,7 @@ use glam::{DVec3, Vec3A};
 use rayon::prelude::*;
 
 use super::Encoding;
+use super::estimate::{Spread, display_value, error_estimate};
 
 /// A rectangle of pixels rendered as one unit of work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -63,6 +64,9 @@ impl Tile {
     }
 }
 
+/// Pixels a task resolves at once.
+const BAND: usize = 32 * 1024;
+
 /// Per-pixel sums of linear radiance and sample counts.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Film {
@@ -87,20 +91,6 @@ pub struct Film {
     /// Adaptive sampling: the pixels the next pass refines, set by
     /// [`Film::set_active`] between passes; empty otherwise.
     active: Vec<bool>,
-}
-
-/// A pixel's samples as adaptive sampling sees them: display values
-/// (linear, clamped to 0..1, as the image shows them).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Spread {
-    /// Sums of the display values and of their squares.
-    pub sum: Vec3A,
-    pub squares: Vec3A,
-    /// The display sum before the pixel's last pass, and its sample
-    /// count: the pass's samples are one half of the pixel's, those
-    /// before it the other.
-    pub earlier: Vec3A,
-    pub earlier_samples: u32,
 }
 
 impl Film {
@@ -207,7 +197,7 @@ impl Film {
         self.sum[i] += v.as_dvec3();
         self.samples[i] += 1;
         if let Some(spread) = self.spread.get_mut(i) {
-            let shown = super::adaptive::display_value(v);
+            let shown = display_value(v);
             spread.sum += shown;
             spread.squares += shown * shown;
         }
@@ -217,7 +207,7 @@ impl Film {
     #[inline]
     fn estimate_error(&mut self, i: usize) {
         if let Some(spread) = self.spread.get(i) {
-            self.errors[i] = super::adaptive::error_estimate(self.samples[i], spread);
+            self.errors[i] = error_estimate(self.samples[i], spread);
         }
     }
 
@@ -227,7 +217,7 @@ impl Film {
     }
 
     /// The error of pixel `(x, y)`'s mean estimated from its samples, in
-    /// display units (see [`super::adaptive::error_estimate`]); infinite
+    /// display units (see [`super::estimate::error_estimate`]); infinite
     /// when the film does not estimate it or before two passes gave it
     /// samples.
     pub fn error(&self, x: u32, y: u32) -> f32 {
@@ -301,31 +291,41 @@ impl Film {
     }
 
     /// Resolves the film to RGBA8, row-major from the top-left. Pixels with
-    /// no sample yet are transparent black.
+    /// no sample yet are transparent black. On the calling thread alone:
+    /// a viewer's call, which may come from a thread that must not wait
+    /// for a pool (a web page's main thread).
     pub fn to_rgba8(&self, encoding: Encoding) -> Vec<u8> {
-        self.resolve::<4>(encoding)
+        let mut out = vec![0; self.sum.len() * 4];
+        for (band, out) in out.chunks_mut(BAND * 4).enumerate() {
+            self.resolve_band::<4>(band, out, encoding);
+        }
+        out
     }
 
-    /// Row-major pixels of `CHANNELS` bytes (3: RGB, 4: RGBA with an opaque
-    /// alpha), black for pixels with no sample, a band of rows per task.
-    fn resolve<const CHANNELS: usize>(&self, encoding: Encoding) -> Vec<u8> {
-        const BAND: usize = 32 * 1024;
-        let mut out = vec![0; self.sum.len() * CHANNELS];
-        out.par_chunks_mut(BAND * CHANNELS)
+    /// Resolves the film to an RGB image, a band of rows per task on the
+    /// current pool.
+    pub fn to_image(&self, encoding: Encoding) -> image::RgbImage {
+        let mut out = vec![0; self.sum.len() * 3];
+        out.par_chunks_mut(BAND * 3)
             .enumerate()
-            .for_each(|(band, out)| {
-                for (k, pixel) in out.chunks_exact_mut(CHANNELS).enumerate() {
-                    let i = band * BAND + k;
-                    if self.samples[i] == 0 {
-                        continue;
-                    }
-                    pixel[..3].copy_from_slice(&self.resolve_pixel(i, encoding));
-                    if CHANNELS == 4 {
-                        pixel[3] = u8::MAX;
-                    }
-                }
-            });
-        out
+            .for_each(|(band, out)| self.resolve_band::<3>(band, out, encoding));
+        image::RgbImage::from_raw(self.width, self.height, out)
+            .expect("the buffer holds exactly width * height pixels")
+    }
+
+    /// Band `band`'s pixels of `CHANNELS` bytes (3: RGB, 4: RGBA with an
+    /// opaque alpha), black for pixels with no sample.
+    fn resolve_band<const CHANNELS: usize>(&self, band: usize, out: &mut [u8], encoding: Encoding) {
+        for (k, pixel) in out.chunks_exact_mut(CHANNELS).enumerate() {
+            let i = band * BAND + k;
+            if self.samples[i] == 0 {
+                continue;
+            }
+            pixel[..3].copy_from_slice(&self.resolve_pixel(i, encoding));
+            if CHANNELS == 4 {
+                pixel[3] = u8::MAX;
+            }
+        }
     }
 
     /// Writes `tile`'s pixels, resolved as [`Film::to_image`] resolves
@@ -360,12 +360,6 @@ impl Film {
         image::Rgb32FImage::from_fn(self.width, self.height, |x, y| {
             image::Rgb(self.pixel(x, y).unwrap_or_default().to_array())
         })
-    }
-
-    /// Resolves the film to an RGB image.
-    pub fn to_image(&self, encoding: Encoding) -> image::RgbImage {
-        image::RgbImage::from_raw(self.width, self.height, self.resolve::<3>(encoding))
-            .expect("the buffer holds exactly width * height pixels")
     }
 }
 

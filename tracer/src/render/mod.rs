@@ -3,11 +3,17 @@
 //! the same passes run to completion, so both give the same bits.
 
 pub mod adaptive;
+mod control;
+pub mod driver;
+pub mod estimate;
 mod film;
 mod job;
+mod outputs;
+mod passes;
 mod plan;
 mod ray_tree;
 mod settings;
+pub mod strategy;
 #[cfg(test)]
 mod tests;
 mod trace;
@@ -15,8 +21,10 @@ mod view;
 
 use std::sync::Arc;
 
+pub use control::ProgressListener;
 pub use film::{Film, Tile, rgba_to_rgb_image};
-pub use job::{Finished, JobOptions, JobState, PassListener, RenderError, RenderJob, Snapshot};
+pub use job::{Finished, JobOptions, JobState, RenderError, RenderJob, Snapshot};
+pub use passes::PassListener;
 pub use plan::{PlannedSamples, RenderPlan, TILE_SIZE};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{

@@ -54,7 +54,7 @@ impl RenderPlan {
         index: Arc<SceneIndex>,
         settings: RenderSettings,
     ) -> Result<Self, CameraError> {
-        let camera = Camera::for_render(&world.view, &settings)?;
+        let camera = settings.render_camera(&world.view)?;
         let spp = settings.samples_per_pixel();
         let n = settings.strata();
         Ok(Self {

@@ -5,7 +5,7 @@
 use glam::Vec3A;
 
 use crate::accel::AccelKind;
-use crate::camera::CameraPose;
+use crate::camera::{Camera, CameraError, CameraPose};
 use crate::scene::{Lens, Scene, Viewpoint};
 
 /// What to render and how.
@@ -271,6 +271,21 @@ impl RenderSettings {
         self.depth_of_field.then(|| self.chosen_lens(view))
     }
 
+    /// The one camera a render of `view` with these settings uses, so the
+    /// image, its overlays, picking and the figures all agree: the view,
+    /// or the settings' pose when the user moved the camera; the view's
+    /// lens, or the settings' override of it, only with depth of field on
+    /// ([`RenderSettings::lens`]).
+    pub fn render_camera(&self, view: &Viewpoint) -> Result<Camera, CameraError> {
+        Camera::posed(
+            view,
+            self.camera.as_ref(),
+            self.lens(view),
+            self.width,
+            self.height,
+        )
+    }
+
     /// Samples per pixel to reach the target: N x N when anti-aliasing or
     /// depth of field spread samples over the pixel or the lens, else one;
     /// adaptive sampling's maximum (the most a pixel may take).
@@ -329,79 +344,48 @@ impl RenderSettings {
     /// Checks every value, so that a bad command line or slider can never
     /// allocate absurdly or produce NaN images.
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let fail = |name: &'static str, value: String, expected: String| {
-            Err(SettingsError {
-                name,
-                value,
-                expected,
-            })
-        };
-        let side = 1..=MAX_IMAGE_SIDE;
-        if !side.contains(&self.width) {
-            return fail(
-                "width",
-                self.width.to_string(),
-                format!("1 to {MAX_IMAGE_SIDE}"),
-            );
-        }
-        if !side.contains(&self.height) {
-            return fail(
-                "height",
-                self.height.to_string(),
-                format!("1 to {MAX_IMAGE_SIDE}"),
-            );
-        }
-        let pixels = self.width as u64 * self.height as u64;
-        if pixels > MAX_IMAGE_PIXELS {
-            return fail(
-                "width x height",
-                pixels.to_string(),
-                format!("at most {MAX_IMAGE_PIXELS} pixels"),
-            );
-        }
-        if !(1..=MAX_SAMPLES).contains(&self.samples) {
-            return fail(
-                "samples",
-                self.samples.to_string(),
-                format!("1 to {MAX_SAMPLES}"),
-            );
-        }
+        self.validate_image()?;
         if let Sampling::Adaptive(a) = &self.sampling {
-            let most = MAX_SAMPLES * MAX_SAMPLES;
-            if !(1..=most).contains(&a.max_spp) {
-                return fail("max spp", a.max_spp.to_string(), format!("1 to {most}"));
-            }
-            if !(1..=a.max_spp).contains(&a.min_spp) {
-                return fail(
-                    "min spp",
-                    a.min_spp.to_string(),
-                    format!("1 to the max spp, {}", a.max_spp),
-                );
-            }
-            if !(a.noise_threshold >= 0.0 && a.noise_threshold.is_finite()) {
-                return fail(
-                    "noise threshold",
-                    a.noise_threshold.to_string(),
-                    "a number >= 0".into(),
-                );
-            }
+            a.validate()?;
         }
-        if self.max_depth > MAX_DEPTH {
-            return fail(
-                "depth",
-                self.max_depth.to_string(),
-                format!("0 to {MAX_DEPTH}"),
-            );
-        }
+        self.validate_numbers()
+    }
+
+    /// The image's size and samples a pixel.
+    fn validate_image(&self) -> Result<(), SettingsError> {
+        let side = 1..=MAX_IMAGE_SIDE;
+        let sides = format!("1 to {MAX_IMAGE_SIDE}");
+        require(side.contains(&self.width), "width", self.width, &sides)?;
+        require(side.contains(&self.height), "height", self.height, &sides)?;
+        let pixels = self.width as u64 * self.height as u64;
+        require(
+            pixels <= MAX_IMAGE_PIXELS,
+            "width x height",
+            pixels,
+            format!("at most {MAX_IMAGE_PIXELS} pixels"),
+        )?;
+        require(
+            (1..=MAX_SAMPLES).contains(&self.samples),
+            "samples",
+            self.samples,
+            format!("1 to {MAX_SAMPLES}"),
+        )
+    }
+
+    /// The depth, and the shading, lens and grid numbers: finite, in
+    /// their ranges.
+    fn validate_numbers(&self) -> Result<(), SettingsError> {
+        require(
+            self.max_depth <= MAX_DEPTH,
+            "depth",
+            self.max_depth,
+            format!("0 to {MAX_DEPTH}"),
+        )?;
+        let aperture = self.lens_override.aperture.unwrap_or(0.0);
         let checks = [
             ("ambient", self.ambient, 0.0, f32::MAX),
             ("light size", self.light_size, 0.0, f32::MAX),
-            (
-                "aperture",
-                self.lens_override.aperture.unwrap_or(0.0),
-                0.0,
-                f32::MAX,
-            ),
+            ("aperture", aperture, 0.0, f32::MAX),
             (
                 "grid multiplier",
                 self.grid_multiplier,
@@ -410,20 +394,63 @@ impl RenderSettings {
             ),
         ];
         for (name, value, min, max) in checks {
-            if !(value >= min && value <= max) {
-                return fail(
-                    name,
-                    value.to_string(),
-                    format!("a number from {min} to {max}"),
-                );
-            }
+            let expected = format!("a number from {min} to {max}");
+            require(value >= min && value <= max, name, value, expected)?;
         }
-        if let Some(focal) = self.lens_override.focal
-            && !(focal > 0.0 && focal.is_finite())
-        {
-            return fail("focal", focal.to_string(), "a number > 0".into());
+        match self.lens_override.focal {
+            Some(focal) => require(
+                focal > 0.0 && focal.is_finite(),
+                "focal",
+                focal,
+                "a number > 0",
+            ),
+            None => Ok(()),
         }
+    }
+}
+
+impl AdaptiveSampling {
+    /// The sample bounds and the threshold.
+    fn validate(&self) -> Result<(), SettingsError> {
+        let most = MAX_SAMPLES * MAX_SAMPLES;
+        require(
+            (1..=most).contains(&self.max_spp),
+            "max spp",
+            self.max_spp,
+            format!("1 to {most}"),
+        )?;
+        require(
+            (1..=self.max_spp).contains(&self.min_spp),
+            "min spp",
+            self.min_spp,
+            format!("1 to the max spp, {}", self.max_spp),
+        )?;
+        let threshold = self.noise_threshold;
+        require(
+            threshold >= 0.0 && threshold.is_finite(),
+            "noise threshold",
+            threshold,
+            "a number >= 0",
+        )
+    }
+}
+
+/// `Ok` when `ok`, else the error naming setting `name`, its `value` and
+/// what was `expected`.
+fn require(
+    ok: bool,
+    name: &'static str,
+    value: impl ToString,
+    expected: impl Into<String>,
+) -> Result<(), SettingsError> {
+    if ok {
         Ok(())
+    } else {
+        Err(SettingsError {
+            name,
+            value: value.to_string(),
+            expected: expected.into(),
+        })
     }
 }
 

@@ -121,6 +121,35 @@ enum ShadowMode {
 /// it), so scenes of any scale are free of acne without visible gaps.
 const RELATIVE_OFFSET: f32 = 3e-5;
 
+/// Where a ray met a surface: the point, the geometric and shading
+/// normals turned towards the ray's side, and how far rays leaving it
+/// start off the surface.
+struct Contact {
+    point: Vec3A,
+    ng: Vec3A,
+    ns: Vec3A,
+    /// The ray came from the side the geometric normal points to.
+    outside: bool,
+    offset: f32,
+}
+
+impl Contact {
+    /// The point lifted off the surface on the ray's side.
+    #[inline(always)]
+    fn above(&self) -> Vec3A {
+        self.point + self.ng * self.offset
+    }
+}
+
+/// A surface point that light reaches: where its shadow rays start, its
+/// shading normal, the way back to the viewer and its material.
+struct Receiver<'a> {
+    origin: Vec3A,
+    normal: Vec3A,
+    to_viewer: Vec3A,
+    surface: &'a Surface,
+}
+
 /// Traces rays through one world with one set of settings.
 ///
 /// A tracer belongs to one thread (each render thread makes its own per
@@ -288,79 +317,106 @@ impl<'a> Tracer<'a> {
         recorder: &mut R,
     ) -> Vec3A {
         let surface = self.world.surface(hit.shape);
-        let p = ray.at(hit.t);
-        let normals = self.world.shapes[hit.shape as usize].normal_at(p);
-        // Orient both normals towards the side the ray came from.
-        let outside = ray.dir.dot(normals.geometric) < 0.0;
-        let ng = if outside {
-            normals.geometric
-        } else {
-            -normals.geometric
+        let contact = self.contact(ray, &hit);
+        let lit = Receiver {
+            origin: contact.above(),
+            normal: contact.ns,
+            to_viewer: -ray.dir,
+            surface,
         };
-        let mut ns = if outside {
-            normals.shading
-        } else {
-            -normals.shading
-        };
-        if ns.dot(ng) <= 0.0 {
-            ns = ng;
-        }
-        let offset = self.min_offset + RELATIVE_OFFSET * p.abs().max_element();
-        let above = p + ng * offset;
-
         let mut color = surface.diffuse * self.ambient;
         // Without shadows no ray leaves for the lights: the local shading is
         // light the hit adds directly, as the ambient term is, so a ray
         // tree's contributions still sum to the pixel's colour.
         let shadows = self.shadow_mode != ShadowMode::Off;
         if !shadows {
-            color += self.direct_light(above, ns, -ray.dir, surface, rng, counters, &mut NoRecord);
+            color += self.direct_light(&lit, rng, counters, &mut NoRecord);
         }
         recorder.hit(
             &SurfaceHit {
                 t: hit.t,
                 shape: hit.shape,
-                point: p,
-                normal: ns,
-                outside,
+                point: contact.point,
+                normal: contact.ns,
+                outside: contact.outside,
             },
             color,
         );
         if shadows {
-            color += self.direct_light(above, ns, -ray.dir, surface, rng, counters, recorder);
+            color += self.direct_light(&lit, rng, counters, recorder);
         }
         if depth >= self.settings.max_depth {
             return color;
         }
+        color + self.secondary(ray, &contact, surface, depth, rng, counters, recorder)
+    }
 
+    /// Where `ray` met the surface of `hit`, its normals turned towards
+    /// the side the ray came from.
+    #[inline(always)]
+    fn contact(&self, ray: &Ray, hit: &Hit) -> Contact {
+        let point = ray.at(hit.t);
+        let normals = self.world.shapes[hit.shape as usize].normal_at(point);
+        let outside = ray.dir.dot(normals.geometric) < 0.0;
+        let (ng, mut ns) = if outside {
+            (normals.geometric, normals.shading)
+        } else {
+            (-normals.geometric, -normals.shading)
+        };
+        if ns.dot(ng) <= 0.0 {
+            ns = ng;
+        }
+        Contact {
+            point,
+            ng,
+            ns,
+            outside,
+            offset: self.min_offset + RELATIVE_OFFSET * point.abs().max_element(),
+        }
+    }
+
+    /// The light the reflected and refracted rays bring back from a
+    /// contact, Fresnel-weighted for transparent surfaces.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn secondary<R: TraceRecorder>(
+        &self,
+        ray: &Ray,
+        contact: &Contact,
+        surface: &Surface,
+        depth: u32,
+        rng: &mut SampleStream,
+        counters: &mut Counters,
+        recorder: &mut R,
+    ) -> Vec3A {
+        let (ng, ns) = (contact.ng, contact.ns);
         let mut reflect_weight = surface.specular;
         let mut refraction = None;
         if surface.transmittance > 0.0 {
             let ior = if surface.ior > 0.0 { surface.ior } else { 1.0 };
-            let eta = if outside { 1.0 / ior } else { ior };
-            let cos_i = -ray.dir.dot(ns);
-            let kr = fresnel(cos_i, eta);
+            let eta = if contact.outside { 1.0 / ior } else { ior };
+            let kr = fresnel(-ray.dir.dot(ns), eta);
             reflect_weight += Vec3A::splat(surface.transmittance * kr);
             if let Some(dir) = refract(ray.dir, ns, eta).filter(|t| t.dot(ng) < 0.0) {
                 refraction = Some((dir, surface.transmittance * (1.0 - kr)));
             }
             recorder.fresnel(kr, refraction.is_none());
         }
-
+        let mut color = Vec3A::ZERO;
         if reflect_weight.max_element() > 0.0 {
             let mut dir = reflect(ray.dir, ns);
             if dir.dot(ng) <= 0.0 {
                 dir = reflect(ray.dir, ng);
             }
             counters.reflection_rays += 1;
-            let bounce = Ray::new(above, dir);
+            let bounce = Ray::new(contact.above(), dir);
             recorder.ray(RayKind::Reflection, depth + 1, &bounce, reflect_weight);
             let bounced = self.trace(&bounce, 0.0, depth + 1, rng, counters, recorder);
             color += reflect_weight * bounced;
         }
         if let Some((dir, weight)) = refraction.filter(|(_, w)| *w > 0.0) {
             counters.refraction_rays += 1;
-            let below = Ray::new(p - ng * offset, dir);
+            let below = Ray::new(contact.point - ng * contact.offset, dir);
             recorder.ray(RayKind::Refraction, depth + 1, &below, Vec3A::splat(weight));
             let through = self.trace(&below, 0.0, depth + 1, rng, counters, recorder);
             color += through * weight;
@@ -369,81 +425,32 @@ impl<'a> Tracer<'a> {
     }
 
     /// Diffuse and specular light from every light the surface faces, with
-    /// shadow rays from `origin` (already lifted off the surface), unless
-    /// shadows are off.
-    #[allow(clippy::too_many_arguments)]
+    /// shadow rays from the receiver's origin (already lifted off the
+    /// surface), unless shadows are off.
     fn direct_light<R: TraceRecorder>(
         &self,
-        origin: Vec3A,
-        n: Vec3A,
-        to_viewer: Vec3A,
-        surface: &Surface,
+        at: &Receiver,
         rng: &mut SampleStream,
         counters: &mut Counters,
         recorder: &mut R,
     ) -> Vec3A {
         let mut total = Vec3A::ZERO;
-        let has_highlight = surface.specular.max_element() > 0.0;
         for (light_index, light) in self.world.lights.iter().enumerate() {
             let mut from_light = Vec3A::ZERO;
-            let mut add_sample =
+            let mut add =
                 |target: Vec3A, weight: f32, counters: &mut Counters, recorder: &mut R| {
-                    let to_light = target - origin;
-                    let distance = to_light.length();
-                    if distance <= 0.0 {
-                        return;
-                    }
-                    // The shadow ray's unit direction is the light's: one
-                    // normalisation, not a division by the distance and
-                    // then the ray's own (a chain of two square roots and
-                    // three divisions on every shadow ray, measured in
-                    // docs/PERFORMANCE.md).
-                    let shadow = Ray::new(origin, to_light);
-                    let l = shadow.dir;
-                    // A sample point beyond f32's range (on a huge `al`
-                    // light) leaves a NaN direction: nothing to shade with.
-                    let cos = n.dot(l);
-                    if cos.is_nan() || cos <= 0.0 {
-                        return;
-                    }
-                    let mut sample = ShadowSample {
-                        light: light_index,
-                        ray: shadow,
-                        distance,
-                        blocked: true,
-                        radiance: Vec3A::ZERO,
-                    };
-                    if self.shadow_mode != ShadowMode::Off {
-                        counters.shadow_rays += 1;
-                        if self.shadowed(light_index, &shadow, distance, counters) {
-                            recorder.shadow(&sample);
-                            return;
-                        }
-                    }
-                    // The highlight's power is the costliest term: only lit
-                    // points of specular surfaces pay for it.
-                    let (diffuse, specular) = if has_highlight {
-                        blinn_phong(n, l, to_viewer, surface.shine)
-                    } else {
-                        (n.dot(l), 0.0)
-                    };
-                    let lit = (surface.diffuse * diffuse + surface.specular * specular) * weight;
-                    sample.blocked = false;
-                    sample.radiance = lit * light.color;
-                    recorder.shadow(&sample);
-                    from_light += lit;
+                    from_light +=
+                        self.light_point(at, light_index, target, weight, counters, recorder);
                 };
             match self.shadow_mode {
-                ShadowMode::Off | ShadowMode::Hard => {
-                    add_sample(light.position, 1.0, counters, recorder)
-                }
+                ShadowMode::Off | ShadowMode::Hard => add(light.position, 1.0, counters, recorder),
                 ShadowMode::Stratified(n) => {
-                    let (u, v) = self.light_area(light, origin);
+                    let (u, v) = self.light_area(light, at.origin);
                     let weight = 1.0 / (n * n) as f32;
                     let pattern = rng.next_u32();
                     for k in 0..n * n {
                         let s = multi_jittered(k, n, pattern) - 0.5;
-                        add_sample(
+                        add(
                             light.position + u * s.x + v * s.y,
                             weight,
                             counters,
@@ -452,7 +459,7 @@ impl<'a> Tracer<'a> {
                     }
                 }
                 ShadowMode::OnePerSample(n) => {
-                    let (u, v) = self.light_area(light, origin);
+                    let (u, v) = self.light_area(light, at.origin);
                     let early = self.early_light_points[light_index];
                     let indices = |rank| match self.settings.adaptive() {
                         Some(a) => adaptive::light_points(rank, early, a),
@@ -460,7 +467,7 @@ impl<'a> Tracer<'a> {
                     };
                     rng.next_light_points(n, indices, |s, weight| {
                         let s = s - 0.5;
-                        add_sample(
+                        add(
                             light.position + u * s.x + v * s.y,
                             weight,
                             counters,
@@ -472,6 +479,65 @@ impl<'a> Tracer<'a> {
             total += from_light * light.color;
         }
         total
+    }
+
+    /// What point `target` of light `light_index` adds at `at`, `weight`
+    /// times its shading (before the light's colour), tracing its shadow
+    /// ray unless shadows are off: nothing when blocked or behind.
+    #[inline(always)]
+    fn light_point<R: TraceRecorder>(
+        &self,
+        at: &Receiver,
+        light_index: usize,
+        target: Vec3A,
+        weight: f32,
+        counters: &mut Counters,
+        recorder: &mut R,
+    ) -> Vec3A {
+        let to_light = target - at.origin;
+        let distance = to_light.length();
+        if distance <= 0.0 {
+            return Vec3A::ZERO;
+        }
+        // The shadow ray's unit direction is the light's: one
+        // normalisation, not a division by the distance and then the ray's
+        // own (a chain of two square roots and three divisions on every
+        // shadow ray, measured in docs/PERFORMANCE.md).
+        let shadow = Ray::new(at.origin, to_light);
+        let l = shadow.dir;
+        // A sample point beyond f32's range (on a huge `al` light) leaves
+        // a NaN direction: nothing to shade with.
+        let cos = at.normal.dot(l);
+        if cos.is_nan() || cos <= 0.0 {
+            return Vec3A::ZERO;
+        }
+        let mut sample = ShadowSample {
+            light: light_index,
+            ray: shadow,
+            distance,
+            blocked: true,
+            radiance: Vec3A::ZERO,
+        };
+        if self.shadow_mode != ShadowMode::Off {
+            counters.shadow_rays += 1;
+            if self.shadowed(light_index, &shadow, distance, counters) {
+                recorder.shadow(&sample);
+                return Vec3A::ZERO;
+            }
+        }
+        let surface = at.surface;
+        // The highlight's power is the costliest term: only lit points of
+        // specular surfaces pay for it.
+        let (diffuse, specular) = if surface.specular.max_element() > 0.0 {
+            blinn_phong(at.normal, l, at.to_viewer, surface.shine)
+        } else {
+            (at.normal.dot(l), 0.0)
+        };
+        let lit = (surface.diffuse * diffuse + surface.specular * specular) * weight;
+        sample.blocked = false;
+        sample.radiance = lit * self.world.lights[light_index].color;
+        recorder.shadow(&sample);
+        lit
     }
 
     /// The two edge vectors of a light's area as seen from `point`: an area

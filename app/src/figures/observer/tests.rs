@@ -45,7 +45,7 @@ fn tree_of(world: &Arc<World>, settings: &RenderSettings, pixel: (u32, u32)) -> 
 #[test]
 fn the_eye_segment_starts_at_the_camera_through_its_pixel() {
     let (world, settings) = world_and_settings(0.0);
-    let camera = Camera::for_render(&world.view, &settings).unwrap();
+    let camera = settings.render_camera(&world.view).unwrap();
     let tree = tree_of(&world, &settings, (17, 12));
     let segments = ray_segments(&tree, stub_length(&world), 0);
     let eye = segments[0];
@@ -135,7 +135,7 @@ fn a_blocked_shadow_ray_ends_at_its_occluder() {
 #[test]
 fn the_frustum_runs_through_the_images_corners() {
     let (world, settings) = world_and_settings(6.0);
-    let camera = Camera::for_render(&world.view, &settings).unwrap();
+    let camera = settings.render_camera(&world.view).unwrap();
     let segments = camera_segments(&camera);
     let frustum: Vec<&Segment> = segments
         .iter()
@@ -172,7 +172,10 @@ fn the_frustum_runs_through_the_images_corners() {
         assert!((r - camera.lens_radius()).abs() < 1e-5, "{r}");
     }
     assert!(segments.iter().any(|s| s.part == Part::FocalPlane));
-    let pinhole = Camera::for_render(&world.view, &world_and_settings(0.0).1).unwrap();
+    let pinhole = world_and_settings(0.0)
+        .1
+        .render_camera(&world.view)
+        .unwrap();
     assert!(
         camera_segments(&pinhole)
             .iter()
@@ -183,7 +186,7 @@ fn the_frustum_runs_through_the_images_corners() {
 #[test]
 fn a_segment_behind_a_sphere_is_hidden_from_the_observer() {
     let (world, settings) = world_and_settings(0.0);
-    let scene_camera = Camera::for_render(&world.view, &settings).unwrap();
+    let scene_camera = settings.render_camera(&world.view).unwrap();
     // The observer looks at the mirror sphere from the side, along +x.
     let pose = CameraPose {
         from: glam::Vec3::new(-6.0, 0.0, 0.8),
@@ -196,7 +199,7 @@ fn a_segment_behind_a_sphere_is_hidden_from_the_observer() {
         camera: Some(pose),
         ..settings.clone()
     };
-    let camera = Camera::for_render(&world.view, &observer).unwrap();
+    let camera = observer.render_camera(&world.view).unwrap();
     let projector = Projector::new(&camera);
     let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
     let (_, depth) = render_with_depth(world.clone(), index, observer, Some(1)).unwrap();
@@ -217,7 +220,7 @@ fn a_segment_behind_a_sphere_is_hidden_from_the_observer() {
         camera: Some(framed),
         ..settings
     };
-    let framed_camera = Camera::for_render(&world.view, &framed_settings).unwrap();
+    let framed_camera = framed_settings.render_camera(&world.view).unwrap();
     let p = Projector::new(&framed_camera)
         .point(scene_camera.eye())
         .unwrap();
@@ -230,12 +233,12 @@ fn the_framing_takes_in_a_light_above_the_scene_but_not_a_far_sun() {
     let scene = parse_scene(&text, None, &Limits::default()).unwrap();
     let world = Arc::new(World::build(&scene));
     let settings = RenderSettings::from_scene(&scene);
-    let scene_camera = Camera::for_render(&world.view, &settings).unwrap();
+    let scene_camera = settings.render_camera(&world.view).unwrap();
     let framed = RenderSettings {
         camera: Some(framing(&world, &scene_camera, 40.0, 0.75)),
         ..settings
     };
-    let camera = Camera::for_render(&world.view, &framed).unwrap();
+    let camera = framed.render_camera(&world.view).unwrap();
     let inside = |p: Vec3A| {
         Projector::new(&camera)
             .point(p)
@@ -257,7 +260,7 @@ fn the_observer_renders_the_scenes_settings_sharp_from_its_pose() {
     scene.keep_refining = true;
     scene.accel = AccelKind::None;
     scene.max_depth = 3;
-    let camera = Camera::for_render(&world.view, &scene).unwrap();
+    let camera = scene.render_camera(&world.view).unwrap();
     let pose = framing(&world, &camera, 40.0, 0.75);
     let observer = render_settings(&scene, pose, 320, 240);
     assert_eq!(

@@ -85,7 +85,7 @@ impl Editor {
         let (Some(scene), Some(settings)) = (engine.scene(), engine.settings()) else {
             return;
         };
-        if let Ok(camera) = Camera::for_render(&scene.world.view, settings) {
+        if let Ok(camera) = settings.render_camera(&scene.world.view) {
             self.paint_outline_through(ui, &scene.world, &camera, rect);
         }
     }
@@ -154,7 +154,7 @@ impl Editor {
         let (Some(scene), Some(settings)) = (side.engine.scene(), side.engine.settings()) else {
             return (gestures, None);
         };
-        let Ok(camera) = Camera::for_render(&scene.world.view, settings) else {
+        let Ok(camera) = settings.render_camera(&scene.world.view) else {
             return (gestures, None);
         };
         self.drag_object(&scene.world, object, &camera, rect, gestures)

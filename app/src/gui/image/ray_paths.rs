@@ -3,7 +3,6 @@
 
 use egui::{Color32, Pos2, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
-use tracer::camera::Camera;
 use tracer::render::{Outcome, RayKind, RayNode, RayTree};
 
 use crate::gui::sides::Engine;
@@ -17,7 +16,7 @@ pub fn paint(ui: &Ui, tree: &RayTree, engine: &Engine, image_rect: Rect) -> usiz
     let (Some(settings), Some(scene)) = (engine.settings(), engine.scene()) else {
         return 0;
     };
-    let Ok(camera) = Camera::for_render(&scene.world.view, settings) else {
+    let Ok(camera) = settings.render_camera(&scene.world.view) else {
         return 0;
     };
     let size = egui::vec2(settings.width as f32, settings.height as f32);

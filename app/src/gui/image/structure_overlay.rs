@@ -7,7 +7,6 @@
 use egui::{Color32, Rect, Stroke, Ui, pos2};
 use glam::Vec3A;
 use tracer::accel::{AccelKind, StructureLayer, Visit};
-use tracer::camera::Camera;
 
 use crate::figures::overlay::{Colour, VisitStep};
 use crate::figures::projection::Projector;
@@ -94,7 +93,7 @@ impl StructureOverlay {
         if self.cache.as_ref().is_none_or(|(k, _)| *k != key) {
             self.cache = Some((key, index.wireframe(layer)));
         }
-        let Ok(camera) = Camera::for_render(&scene.world.view, settings) else {
+        let Ok(camera) = settings.render_camera(&scene.world.view) else {
             return;
         };
         let size = egui::vec2(settings.width as f32, settings.height as f32);

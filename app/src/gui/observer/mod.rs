@@ -122,7 +122,7 @@ impl Observer {
             camera: Some(self.pose?),
             ..self.engine.settings()?.clone()
         };
-        Camera::for_render(&world.view, &settings).ok()
+        settings.render_camera(&world.view).ok()
     }
 
     /// The observer's engine (what it renders; picks read its pixels).
@@ -162,8 +162,9 @@ impl Observer {
         let pose = match self.pose {
             Some(pose) => pose,
             None => {
-                let camera =
-                    Camera::for_render(&scene.world.view, target).map_err(|e| e.to_string())?;
+                let camera = target
+                    .render_camera(&scene.world.view)
+                    .map_err(|e| e.to_string())?;
                 *self.pose.insert(observer::framing(
                     &scene.world,
                     &camera,

@@ -6,7 +6,6 @@
 use egui::epaint::{Mesh, Vertex};
 use egui::{Color32, Pos2, Rect, Stroke, Ui, pos2};
 use glam::Vec2;
-use tracer::camera::Camera;
 
 use super::Observer;
 use crate::figures::observer::{self, Part};
@@ -42,7 +41,7 @@ pub fn paint(
     let (Some(camera), Some(a_settings)) = (observer.camera(world), a.engine.settings()) else {
         return 0;
     };
-    let Ok(scene_camera) = Camera::for_render(&world.view, a_settings) else {
+    let Ok(scene_camera) = a_settings.render_camera(&world.view) else {
         return 0;
     };
     let projector = Projector::new(&camera);

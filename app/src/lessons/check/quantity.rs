@@ -9,7 +9,6 @@ use std::sync::Arc;
 
 use serde::Deserialize;
 use tracer::accel::{AccelKind, SceneIndex};
-use tracer::camera::Camera;
 use tracer::geometry::Ray;
 use tracer::render::{Film, Outcome, RayKind, RayTree, Sampling, View, render};
 use tracer::scene::{Primitive, Scene};
@@ -329,7 +328,9 @@ impl Quantity {
                     side.settings.accel,
                     side.settings.grid_multiplier,
                 );
-                let hither = Camera::for_render(&side.world.view, &side.settings)
+                let hither = side
+                    .settings
+                    .render_camera(&side.world.view)
                     .map_err(|e| e.to_string())?
                     .hither();
                 let ray = Ray::new(eye.origin, eye.dir);

@@ -6,7 +6,6 @@ use std::sync::Arc;
 
 use anyhow::{Result, anyhow, bail};
 use image::RgbImage;
-use tracer::camera::Camera;
 use tracer::render::{Outcome, RayKind, RayTree, RenderSettings};
 
 use super::html::{escape, figure, image, titled_section};
@@ -82,14 +81,15 @@ pub fn explain(
         }
     };
     let tree = ray_tree::inspect(world, Some(index.clone()), settings, pixel, 0)?;
-    let scene_camera = Camera::for_render(&world.view, settings)?;
+    let scene_camera = settings.render_camera(&world.view)?;
     let aspect = FIGURE.1 as f32 / FIGURE.0 as f32;
     let pose = tracer::camera::CameraPose {
         up: scene_camera.basis()[1].into(),
         ..observer::framing(world, &scene_camera, world.view.angle, aspect)
     };
     let observer_settings = observer::render_settings(settings, pose, FIGURE.0, FIGURE.1);
-    let observer_camera = Camera::for_render(&world.view, &observer_settings)
+    let observer_camera = observer_settings
+        .render_camera(&world.view)
         .map_err(|e| anyhow!("the observer camera: {e}"))?;
     let mut segments = observer::camera_segments(&scene_camera);
     segments.extend(observer::light_segments(world, settings));

@@ -218,7 +218,7 @@ fn pixels_below_the_threshold_get_no_more_samples() {
         settings,
         JobOptions {
             threads: Some(2),
-            on_pass: Some(Box::new(move |_, film| {
+            on_pass: Some(Box::new(move |_, film, _| {
                 record.lock().unwrap().push(film.clone())
             })),
             ..JobOptions::default()
@@ -255,8 +255,10 @@ fn pixels_below_the_threshold_get_no_more_samples() {
                     assert!(
                         n < a.min_spp
                             || adaptive::is_active(n, errors[i], measured.relative_cost(i), &a)
-                            || adaptive::variance_estimate(n, before.spread(x, y).unwrap())
-                                >= adaptive::threshold_at(n, measured.relative_cost(i), &a),
+                            || crate::render::estimate::variance_estimate(
+                                n,
+                                before.spread(x, y).unwrap()
+                            ) >= adaptive::threshold_at(n, measured.relative_cost(i), &a),
                         "pixel ({x}, {y}) active though converged"
                     );
                     assert_eq!(after.samples(x, y), adaptive::next_count(n, &a));
@@ -321,7 +323,7 @@ fn a_jobs_active_pixels_go_from_all_to_none() {
         JobOptions {
             threads: Some(2),
             paused: true,
-            on_pass: Some(Box::new(move |_, film| {
+            on_pass: Some(Box::new(move |_, film, _| {
                 let mask = film.active_pixels().expect("an adaptive film").to_vec();
                 record.lock().unwrap().push(mask);
             })),
@@ -389,4 +391,59 @@ fn a_spent_time_budget_ends_the_render_after_its_first_pass() {
     let (film, stats) = render(w, idx, settings, Some(2)).unwrap();
     assert_eq!((stats.passes_done, stats.passes_target), (1, 1));
     assert!(counts(&film).iter().all(|&n| n == 1));
+}
+
+/// A clock that moves only when told: each tile recorded takes one second.
+#[derive(Default)]
+struct TileClock(std::sync::atomic::AtomicU64);
+
+impl crate::render::driver::Clock for TileClock {
+    fn now(&self) -> std::time::Duration {
+        std::time::Duration::from_secs(self.0.load(std::sync::atomic::Ordering::SeqCst))
+    }
+}
+
+/// A time budget is the job's clock's: with one thread and a clock that
+/// ticks a second per tile (4 tiles a pass), a budget of 6 s lets the first
+/// pass's 4 tiles and then 2 of the second pass's in, the time recorded is
+/// the budget, and the pass that spent it is the last.
+#[test]
+fn a_time_budget_stops_the_tiles_once_the_job_clock_reaches_it() {
+    let settings = RenderSettings {
+        width: 64,
+        height: 64,
+        sampling: Sampling::Adaptive(AdaptiveSampling {
+            budget: Some(Budget::Time(std::time::Duration::from_secs(6))),
+            ..*adaptive(0.0, 4, 64).adaptive().unwrap()
+        }),
+        ..adaptive(0.0, 4, 64)
+    };
+    let clock = Arc::new(TileClock::default());
+    let ticks = clock.clone();
+    let w = world(SCENE);
+    let job = RenderJob::start(
+        w.clone(),
+        Some(index(&w, AccelKind::Bvh)),
+        settings,
+        JobOptions {
+            threads: Some(1),
+            clock: Some(clock),
+            on_progress: Some(Box::new(move || {
+                ticks.0.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            })),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    let (film, stats, state) = job.wait();
+    assert_eq!(state, JobState::Done);
+    assert_eq!((stats.passes_done, stats.passes_target), (2, 2));
+    let counts = counts(&film);
+    // The first pass gives every pixel 1 sample, the second 1 more to the
+    // pixels of its first two tiles (the top 64 x 32 pixels).
+    let twice = counts.iter().filter(|&&n| n == 2).count();
+    assert_eq!(twice, 64 * 32, "{counts:?}");
+    assert!(counts.iter().all(|&n| n == 1 || n == 2));
+    assert!(counts[..64 * 32].iter().all(|&n| n == 2));
+    assert_eq!(stats.render_time, std::time::Duration::from_secs(6));
 }

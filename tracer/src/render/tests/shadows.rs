@@ -9,7 +9,6 @@ use glam::Vec2;
 
 use super::{index, world};
 use crate::accel::AccelKind;
-use crate::camera::Camera;
 use crate::render::{Film, RenderSettings, render};
 
 /// Light height, occluder height and light side.
@@ -92,7 +91,7 @@ fn measured(light: &str, settings: &RenderSettings) -> Vec<(f32, f32)> {
     let shadowed = film(&scene(light, true), settings);
     let open = film(&scene(light, false), settings);
     let w = world(&scene(light, false));
-    let camera = Camera::for_render(&w.view, settings).unwrap();
+    let camera = settings.render_camera(&w.view).unwrap();
     let row = HEIGHT / 2;
     (0..WIDTH)
         .map(|px| {

@@ -28,7 +28,7 @@ pub enum Effect {
     /// The lights (and the default colour of the colourless ones).
     Lights,
     /// The camera block: the world's view, which owns the lens renders see
-    /// through ([`crate::camera::Camera::for_render`]).
+    /// through ([`crate::render::RenderSettings::render_camera`]).
     Camera,
 }
 

@@ -6,7 +6,8 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use tracer::accel::SceneIndex;
-use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings, adaptive};
+use tracer::render::driver::{Priority, render_pool};
+use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
 use tracer::world::ShapeChange;
 
 use crate::load::{Loaded, SceneSource};
@@ -57,6 +58,9 @@ pub struct Engine {
     pause_after_tiles: Option<u64>,
     /// Jobs render only in the time the other engines leave.
     idle_priority: bool,
+    /// The render threads every job of this engine runs on, made with its
+    /// first job at the engine's priority, instead of a pool per job.
+    pool: Option<Arc<rayon::ThreadPool>>,
     /// Whether the current job's failure was handed out already.
     failure_taken: bool,
     /// Jobs started so far: part of [`Engine::version`], as every job
@@ -94,6 +98,7 @@ impl Engine {
             paused: false,
             pause_after_tiles: None,
             idle_priority: false,
+            pool: None,
             failure_taken: false,
             jobs_started: 0,
             views: false,
@@ -213,14 +218,13 @@ impl Engine {
         let (last_pass_in, done) = (complete.clone(), complete.clone());
         self.restart_waiting.store(false, Ordering::Relaxed);
         let waiting = self.restart_waiting.clone();
-        let last_pass = (!settings.keep_refining).then(|| settings.samples_per_pixel());
-        let adaptive = settings.adaptive().copied();
+        let pool = self.render_pool()?;
         let job = RenderJob::start(
             world,
             self.index.clone(),
             settings.clone(),
             JobOptions {
-                threads: None,
+                pool: Some(pool),
                 on_progress: Some(Box::new(move || {
                     count_render_thread_cpu();
                     if done.load(Ordering::Relaxed) || waiting.load(Ordering::Relaxed) {
@@ -229,24 +233,15 @@ impl Engine {
                         wake();
                     }
                 })),
-                on_pass: Some(Box::new(move |pass, film| {
-                    // An adaptive render's last pass is the one that leaves
-                    // no pixel active.
-                    let last = match &adaptive {
-                        Some(_) => adaptive::summary(film).active_pixels == 0,
-                        None => Some(pass) == last_pass,
-                    };
+                on_pass: Some(Box::new(move |_, _, last| {
                     if last {
                         last_pass_in.store(true, Ordering::Relaxed);
                     }
                 })),
-                yield_to_viewer: true,
-                idle_priority: self.idle_priority,
                 views: self.views,
                 paused: self.paused,
                 pause_after_tiles: self.pause_after_tiles,
-                finished_image: None,
-                image_only: false,
+                ..JobOptions::default()
             },
         )
         .map_err(|e| e.to_string())?;
@@ -289,7 +284,26 @@ impl Engine {
     /// The next jobs render only in the time the other engines' renders
     /// leave (the observer's, beside the sides').
     pub fn set_idle_priority(&mut self, idle: bool) {
+        if idle != self.idle_priority {
+            self.pool = None;
+        }
         self.idle_priority = idle;
+    }
+
+    /// The engine's render threads, made on first use: they let the
+    /// window's threads run first, or run only when the cores are idle.
+    fn render_pool(&mut self) -> Result<Arc<rayon::ThreadPool>, String> {
+        if let Some(pool) = &self.pool {
+            return Ok(pool.clone());
+        }
+        let priority = if self.idle_priority {
+            Priority::Idle
+        } else {
+            Priority::YieldToViewer
+        };
+        let pool = render_pool(None, priority).map_err(|e| e.to_string())?;
+        self.pool = Some(pool.clone());
+        Ok(pool)
     }
 
     /// The next jobs pause themselves once `tiles` tiles are in (`None`:

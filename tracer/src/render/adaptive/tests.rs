@@ -1,0 +1,261 @@
+use glam::Vec3A;
+
+use super::*;
+use crate::render::estimate::{Spread, display_value, error_estimate, variance_estimate};
+use crate::sampling::stratum_order;
+
+fn settings(threshold: f32, min_spp: u32, max_spp: u32) -> AdaptiveSampling {
+    AdaptiveSampling {
+        noise_threshold: threshold,
+        min_spp,
+        max_spp,
+        budget: None,
+    }
+}
+
+/// What a film knows of a pixel whose passes gave it `earlier`, then
+/// `last`.
+fn spread(earlier: &[f32], last: &[f32]) -> (u32, Spread) {
+    let mut spread = Spread::default();
+    for (k, &v) in earlier.iter().chain(last).enumerate() {
+        if k == earlier.len() {
+            spread.earlier = spread.sum;
+            spread.earlier_samples = k as u32;
+        }
+        let v = display_value(Vec3A::splat(v));
+        spread.sum += v;
+        spread.squares += v * v;
+    }
+    ((earlier.len() + last.len()) as u32, spread)
+}
+
+fn estimate(earlier: &[f32], last: &[f32]) -> f32 {
+    let (n, spread) = spread(earlier, last);
+    error_estimate(n, &spread)
+}
+
+#[test]
+fn a_constant_pixel_stops_after_the_minimum() {
+    let a = settings(0.01, 8, 64);
+    // Zero but for the halves' rounding.
+    let error = estimate(&[0.4; 4], &[0.4; 4]);
+    assert!(error < 1e-6, "{error}");
+    assert!(
+        is_active(4, estimate(&[0.4; 2], &[0.4; 2]), 1.0, &a),
+        "below the minimum"
+    );
+    assert!(!is_active(8, error, 1.0, &a));
+    // Bright beyond the display's range is as constant as it shows.
+    assert_eq!(estimate(&[1.5, 3.0], &[1.0, 2.0]), 0.0);
+}
+
+#[test]
+fn a_pixel_split_by_an_edge_keeps_refining_until_its_halves_agree() {
+    let a = settings(0.01, 8, 64);
+    // A quarter of the pixel is a bright object: the first 8 samples
+    // see it once, the next 8 three times.
+    let first = [0.9, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1];
+    let last = [0.9, 0.1, 0.9, 0.1, 0.9, 0.1, 0.1, 0.1];
+    let error = estimate(&first, &last);
+    // The means differ by 0.2, halves of 8: 0.2 / 2.
+    assert!((error - 0.1).abs() < 1e-6, "{error}");
+    assert!(is_active(16, error, 1.0, &a));
+    assert!(!is_active(64, error, 1.0, &a), "the maximum ends it");
+    assert!(!is_active(16, error, 1.0, &settings(0.2, 8, 64)));
+    // The error a pixel may keep grows in proportion to its samples:
+    // 0.1 keeps refining at 16 against 0.08 (twice 0.04), not at 32
+    // (0.16).
+    assert!(is_active(16, error, 1.0, &settings(0.04, 8, 64)));
+    assert!(!is_active(32, error, 1.0, &settings(0.04, 8, 64)));
+    assert_eq!(
+        threshold_at(4, 1.0, &settings(0.03, 8, 64)),
+        0.03,
+        "below the minimum"
+    );
+    // And to what its samples cost: at 16 a pixel whose samples cost
+    // 4 times the average may keep 0.32, one whose cost a quarter of
+    // it 0.02.
+    assert!(!is_active(16, error, 4.0, &settings(0.04, 8, 64)));
+    assert!(is_active(16, error, 0.25, &settings(0.04, 8, 64)));
+    // Stratified halves that each see the quarter twice agree: the
+    // mean has converged though the samples vary as much as ever.
+    let even = [0.9, 0.1, 0.1, 0.1, 0.9, 0.1, 0.1, 0.1];
+    assert_eq!(estimate(&even, &even), 0.0);
+    let (n, spread) = spread(&even, &even);
+    assert!(variance_estimate(n, &spread) > 0.08);
+    // Unequal halves weigh the difference by sqrt(a b) / n.
+    let unequal = estimate(&[0.5, 0.5], &[0.2; 6]);
+    assert!(
+        (unequal - 0.3 * 12f32.sqrt() / 8.0).abs() < 1e-6,
+        "{unequal}"
+    );
+}
+
+#[test]
+fn one_pass_says_nothing_and_threshold_zero_refines_to_the_maximum() {
+    let a = settings(0.5, 1, 16);
+    assert!(estimate(&[], &[0.3]).is_infinite());
+    assert!(estimate(&[], &[0.3, 0.3]).is_infinite());
+    assert!(is_active(1, estimate(&[], &[0.3]), 1.0, &a));
+    let zero = settings(0.0, 1, 16);
+    assert!(is_active(15, 0.0, 1.0, &zero));
+    assert!(!is_active(16, 0.0, 1.0, &zero));
+}
+
+#[test]
+fn the_schedule_doubles_to_the_minimum_then_to_the_maximum() {
+    let a = settings(0.01, 4, 64);
+    let mut counts = vec![0];
+    while *counts.last().unwrap() < a.max_spp {
+        counts.push(next_count(*counts.last().unwrap(), &a));
+    }
+    assert_eq!(counts, [0, 1, 2, 4, 8, 16, 32, 64]);
+    assert_eq!(passes(&a), 7);
+    assert_eq!(passes(&settings(0.0, 1, 1)), 1);
+    // A minimum or maximum that is not a power of two is met exactly.
+    assert_eq!(next_count(4, &settings(0.0, 6, 9)), 6);
+    assert_eq!(next_count(6, &settings(0.0, 6, 9)), 9);
+}
+
+#[test]
+fn early_samples_take_a_prefix_of_light_points_in_proportion_to_power() {
+    assert_eq!(early_light_points(3.0, 3.0), 4);
+    assert_eq!(early_light_points(0.8, 2.4), 1, "a third of the power");
+    assert_eq!(early_light_points(1.5, 3.0), 2);
+    assert_eq!(early_light_points(0.0, 3.0), 1, "at least one");
+    assert_eq!(early_light_points(0.0, 0.0), 4, "all dark: all alike");
+    assert_eq!(early_light_points(f32::INFINITY, f32::INFINITY), 1);
+    let a = settings(0.01, 4, 64);
+    for early in [1, 2, 4] {
+        let ranges: Vec<Range<u32>> = (0..64).map(|k| light_points(k, early, &a)).collect();
+        // Each sample's points follow the last's, with no gap.
+        assert_eq!(ranges[0].start, 0);
+        for pair in ranges.windows(2) {
+            assert_eq!(pair[0].end, pair[1].start, "{early}: {pair:?}");
+        }
+        // The minimum's samples take the first 4 early points, twice
+        // the minimum's twice as many; later samples one each.
+        assert_eq!(ranges[3].end, 4 * early);
+        assert_eq!(ranges[7].end, 8 * early);
+        assert!(ranges[8..].iter().all(|r| r.len() == 1));
+    }
+}
+
+/// A film of `width` x 1 pixels whose passes gave each pixel
+/// `earlier[i]`, then `last[i]`.
+fn film(pixels: &[(&[f32], &[f32])]) -> Film {
+    let mut film = Film::with_error_estimate(pixels.len() as u32, 1);
+    for pass in 0..2 {
+        let halves: Vec<&[f32]> = pixels
+            .iter()
+            .map(|p| if pass == 0 { p.0 } else { p.1 })
+            .collect();
+        add_pass(&mut film, &halves);
+    }
+    film
+}
+
+/// Gives each pixel of `film` (row-major) its samples in `pass`.
+fn add_pass(film: &mut Film, pass: &[&[f32]]) {
+    let tile = Tile {
+        x: 0,
+        y: 0,
+        width: film.width(),
+        height: film.height(),
+    };
+    let counts: Vec<u32> = pass.iter().map(|h| h.len() as u32).collect();
+    let values: Vec<Vec3A> = pass
+        .iter()
+        .flat_map(|h| h.iter().map(|&v| Vec3A::splat(v)))
+        .collect();
+    // Synthetic samples cost nothing.
+    film.add_samples(&tile, &counts, &values, &vec![0; counts.len()]);
+}
+
+/// A column of three pixels: an edge A above a flat pixel B above a
+/// pixel C whose samples vary but whose halves agree. Only A refines
+/// after the minimum, and its error grows: B, two rows from C and
+/// never sampled again, becomes noisy through A, and C refines for
+/// B's sake. A decision that re-pooled only the rows sampled, or
+/// decided only the rows it re-pooled, would leave both stopped; one
+/// that took the rows to re-measure from the film's active pixels
+/// would stop A when a budget cut it from a pass.
+#[test]
+fn a_pass_changes_decisions_two_rows_away_as_a_fresh_decision_does() {
+    let a = settings(0.05, 4, 64);
+    let mut film = Film::with_error_estimate(1, 3);
+    add_pass(&mut film, &[&[0.5], &[0.3], &[0.9]]);
+    add_pass(&mut film, &[&[0.5], &[0.3], &[0.1]]);
+    add_pass(&mut film, &[&[0.7, 0.7], &[0.3, 0.3], &[0.1, 0.9]]);
+    let mut refinement = Refinement::default();
+    let first = refinement.decide(&film, &a);
+    assert_eq!(first, [true, false, false]);
+    // A budget that cut every pixel from the pass: nothing changed,
+    // and A is still above the threshold.
+    film.set_active(vec![false; 3]);
+    assert_eq!(refinement.decide(&film, &a), first);
+    film.set_active(first);
+    add_pass(&mut film, &[&[0.0; 4], &[], &[]]);
+    let second = refinement.decide(&film, &a);
+    assert_eq!(second, [true, true, true]);
+    let mean = refinement.mean_per_sample().expect("measured");
+    assert_eq!(Refinement::relative_to(mean).decide(&film, &a), second);
+}
+
+#[test]
+fn a_varying_pixel_next_to_a_noisy_one_refines_too() {
+    let a = settings(0.05, 8, 64);
+    let edge: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.9, 0.9, 0.1]);
+    let lucky: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.1, 0.1, 0.1]);
+    let flat: (&[f32], &[f32]) = (&[0.3; 4], &[0.3; 4]);
+    let active = Refinement::default().decide(&film(&[edge, lucky, flat, lucky]), &a);
+    // The edge on its own account, its lucky neighbour for it; the
+    // flat pixel never, the lucky pixel beside it alone stops.
+    assert_eq!(active, [true, true, false, false]);
+}
+
+#[test]
+fn a_round_takes_every_uniform_pass_once_with_stratified_prefixes() {
+    for m in [1, 2, 3, 4, 5, 8, 12, 16] {
+        let round = RoundOrder::new(m);
+        let mut sorted: Vec<u32> = (0..round.len())
+            .map(|k| round.pass(k, 0x0007_0009))
+            .collect();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..m * m).collect::<Vec<_>>(), "m = {m}");
+    }
+    // Back to strata: each prefix of 2^j samples of an 8 x 8 round
+    // falls once in every box of area 2^-j (columns, rows, blocks),
+    // whatever the pixel's random digits.
+    let uniform = stratum_order(8);
+    let order = RoundOrder::new(8);
+    for shift in [0, 0x0005_0003, 0xdead_beef] {
+        let strata: Vec<(u32, u32)> = (0..64)
+            .map(|k| order.pass(k, shift))
+            .map(|p| (uniform[p as usize] % 8, uniform[p as usize] / 8))
+            .collect();
+        for j in 0..=6u32 {
+            let prefix = &strata[..1 << j];
+            for a in 0..=j {
+                // Boxes 8 / 2^a strata wide, 8 / 2^(j - a) tall.
+                let (across, down) = (1u32 << a, 1u32 << (j - a));
+                if across > 8 || down > 8 {
+                    continue;
+                }
+                let mut boxes: Vec<u32> = prefix
+                    .iter()
+                    .map(|&(x, y)| (y * down / 8) * across + x * across / 8)
+                    .collect();
+                boxes.sort_unstable();
+                assert_eq!(
+                    boxes,
+                    (0..1 << j).collect::<Vec<_>>(),
+                    "shift {shift:x}, prefix {}: {across} x {down} boxes",
+                    1 << j
+                );
+            }
+        }
+    }
+    let pattern = |shift| (0..8).map(|k| order.pass(k, shift)).collect::<Vec<_>>();
+    assert_ne!(pattern(1), pattern(0x0002_0000), "pixels differ");
+}
