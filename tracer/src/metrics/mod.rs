@@ -2,7 +2,7 @@
 //! heat maps of where images differ, on 8-bit RGB images. Used by the
 //! golden-image tests and for comparing two renders (A/B) of the same scene.
 
-use std::sync::OnceLock;
+mod flip;
 
 use image::{Rgb, RgbImage};
 
@@ -95,38 +95,20 @@ impl Palette {
                 Rgb([channel(0.0), channel(1.0), channel(2.0)])
             }
             Palette::Magma => {
-                let lut = magma();
+                let lut = &flip::MAGMA_LUT;
                 let i = (t * (lut.len() - 1) as f32 + 0.5) as usize;
-                lut[i.min(lut.len() - 1)]
+                Rgb(lut[i.min(lut.len() - 1)])
             }
         }
     }
 }
 
-/// The 256 colours of FLIP's magma map, read once from the reference code.
-fn magma() -> &'static [Rgb<u8>] {
-    static LUT: OnceLock<Vec<Rgb<u8>>> = OnceLock::new();
-    LUT.get_or_init(|| {
-        nv_flip::magma_lut()
-            .to_vec()
-            .chunks_exact(3)
-            .map(|c| Rgb([c[0], c[1], c[2]]))
-            .collect()
-    })
-}
-
-/// Per-pixel FLIP errors in 0..=1, row-major, by NVIDIA's reference code.
-/// Images are taken as sRGB-encoded, as they are displayed.
+/// Per-pixel FLIP errors in 0..=1, row-major, by the port of NVIDIA's
+/// reference code (the `flip` module). Images are taken as sRGB-encoded,
+/// as they are displayed.
 fn flip_errors(a: &RgbImage, b: &RgbImage) -> Result<Vec<f32>, SizeMismatch> {
     same_size(a, b)?;
-    let (w, h) = a.dimensions();
-    // The reference code is not written for empty images.
-    if w == 0 || h == 0 {
-        return Ok(Vec::new());
-    }
-    let image = |i: &RgbImage| nv_flip::FlipImageRgb8::with_data(w, h, i.as_raw());
-    let errors = nv_flip::flip(image(a), image(b), nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-    Ok(errors.to_vec())
+    Ok(flip::error_map(a, b, flip::DEFAULT_PIXELS_PER_DEGREE))
 }
 
 /// Mean FLIP error (NVIDIA's perceptual difference, 0 for identical images,
