@@ -25,15 +25,9 @@ pub const COMMANDS: [&str; 18] = [
 
 /// Every field of the camera (`v`) block, as [`ParseErrorKind::UnknownViewField`]
 /// lists them and the scene-file guide documents them.
+#[rustfmt::skip]
 pub const VIEW_FIELDS: [&str; 8] = [
-    "from",
-    "at",
-    "up",
-    "angle",
-    "hither",
-    "resolution",
-    "aperture",
-    "focal",
+    "from", "at", "up", "angle", "hither", "resolution", "aperture", "focal",
 ];
 
 /// Parses scene text; `file` only labels errors and sets `base_dir` (its
