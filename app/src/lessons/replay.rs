@@ -157,6 +157,10 @@ pub struct StepReplay {
     pub before: Verdict,
     /// The check once the solution is applied: it must hold.
     pub after: Verdict,
+    /// When the solution's answer is wrong, the value the workbench
+    /// computed, in the format's words: for the teacher, to tell a wrong
+    /// question from a wrong answer (the student's panel never shows it).
+    pub computed: Option<String>,
 }
 
 impl StepReplay {
@@ -168,8 +172,10 @@ impl StepReplay {
                 self.before.reason()
             ))
         } else if !self.after.is_done() {
+            let computed = (self.computed.as_ref())
+                .map_or_else(String::new, |v| format!(" (the workbench computes {v})"));
             Some(format!(
-                "the solution does not pass the check: {}",
+                "the solution does not pass the check: {}{computed}",
                 self.after.reason()
             ))
         } else {
@@ -193,10 +199,18 @@ pub fn replay(
         let before = evaluate(&step.check.value, &state);
         state.apply(&step.solution, &lesson.file)?;
         let after = evaluate(&step.check.value, &state);
+        let computed = match (&after, step.check.value.answer_of()) {
+            (Verdict::Wrong(_), Some((of, side))) => Some(
+                of.read(&state, side)
+                    .map_or_else(|why| why, |v| of.reads().show(&v)),
+            ),
+            _ => None,
+        };
         let replay = StepReplay {
             title: step.title.clone(),
             before,
             after,
+            computed,
         };
         on_step(i, &replay);
         replays.push(replay);

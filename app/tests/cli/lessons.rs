@@ -342,3 +342,27 @@ fn a_failing_all_says_every_part_in_the_formats_words() {
         "{out}"
     );
 }
+
+/// A wrong recorded answer shows the teacher the value the workbench
+/// computed; the verdict itself (what a student sees) does not.
+#[test]
+fn a_wrong_recorded_answer_shows_the_computed_value() {
+    let dir = Scratch::new("lesson-wrong-answer");
+    let text = TEMPLATE.replace(
+        r#"check = { kind = "all", checks = [
+    { kind = "value", of = "aa", is = "on" },
+    { kind = "value", of = "spp", is = ">= 4" },
+] }
+solution = { settings = "{solution}" }"#,
+        r#"check = { kind = "answer", question = "Objects in the scene:", of = "objects" }
+solution = { answer = 3 }"#,
+    );
+    let (_, out) = check_fails(&dir, "answer.toml", &text);
+    assert!(
+        out.contains(
+            "FAIL: the solution does not pass the check: 3 is not right \
+             (the workbench computes 1)"
+        ),
+        "{out}"
+    );
+}

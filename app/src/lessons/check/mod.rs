@@ -78,6 +78,17 @@ impl Verdict {
 }
 
 impl Check {
+    /// What an answer check (or one inside an `all`) grades against, and
+    /// on which side: what `lesson check` shows a teacher when a recorded
+    /// answer is wrong.
+    pub fn answer_of(&self) -> Option<(&Quantity, Which)> {
+        match self {
+            Check::Answer { of, side, .. } => Some((of, *side)),
+            Check::All { checks } => checks.iter().find_map(Check::answer_of),
+            _ => None,
+        }
+    }
+
     /// The question a step asks, when its check is an answer (or holds one).
     pub fn question(&self) -> Option<(&str, &[String])> {
         match self {
