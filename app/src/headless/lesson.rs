@@ -10,7 +10,7 @@ use anyhow::{Result, anyhow, bail};
 use crate::cli::{LessonArgs, LessonCommand, MetricsFormat};
 use crate::lessons::format::read_lesson_file;
 use crate::lessons::replay::replay;
-use crate::lessons::{Lesson, bundled};
+use crate::lessons::{Lesson, LessonErrors, bundled};
 
 pub fn run(args: &LessonArgs) -> Result<()> {
     match &args.command {
@@ -83,7 +83,7 @@ fn check(names: &[String]) -> Result<()> {
         let lesson = match lesson {
             Ok(lesson) => lesson,
             Err(e) => {
-                println!("error: {e:#}");
+                print_error("", &e);
                 failures += 1;
                 continue;
             }
@@ -103,7 +103,7 @@ fn check(names: &[String]) -> Result<()> {
                 failures += replays.iter().filter(|r| r.failure().is_some()).count();
             }
             Err(e) => {
-                println!("  error: {e:#}");
+                print_error("  ", &e);
                 failures += 1;
             }
         }
@@ -113,4 +113,16 @@ fn check(names: &[String]) -> Result<()> {
     }
     println!("all {steps} steps pass");
     Ok(())
+}
+
+/// An error on its own lines, each of a lesson's mistakes on one.
+fn print_error(indent: &str, error: &anyhow::Error) {
+    match error.downcast_ref::<LessonErrors>() {
+        Some(LessonErrors(errors)) => {
+            for error in errors {
+                println!("{indent}error: {error}");
+            }
+        }
+        None => println!("{indent}error: {error:#}"),
+    }
 }

@@ -3,7 +3,7 @@
 
 use crate::bundled::{BundledLesson, LESSONS};
 
-use super::format::{Lesson, LessonError, read_bundled};
+use super::format::{Lesson, LessonErrors, read_bundled};
 
 /// The bundled lesson called `name`.
 pub fn find(name: &str) -> Option<&'static BundledLesson> {
@@ -17,7 +17,7 @@ pub fn names() -> Vec<&'static str> {
 
 /// Every bundled lesson read, in chapter order (then by name); the first
 /// one that does not read is the error.
-pub fn all() -> Result<Vec<Lesson>, LessonError> {
+pub fn all() -> Result<Vec<Lesson>, LessonErrors> {
     let mut lessons = LESSONS
         .iter()
         .map(read_bundled)

@@ -14,18 +14,41 @@ use crate::bundled;
 use crate::cli::SettingsArgs;
 
 use super::check::Check;
+use super::check::written::{Part, Reader, WrittenCheck, WrittenValue};
+use super::state::Which;
 
 /// Where a lesson file could not be read, and why.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{file}:{line}:{column}: {message}")]
+#[error("{file}{}: {message}", place(*.line, *.column))]
 pub struct LessonError {
     /// The file's path, or `lessons/NAME.toml` for a bundled lesson.
     pub file: String,
-    /// 1-based line; 1 when the whole file is at fault.
+    /// 1-based line; 0 when the whole file is at fault (it cannot be read).
     pub line: usize,
-    /// 1-based column, in characters.
+    /// 1-based column, in characters; 0 with line 0.
     pub column: usize,
     pub message: String,
+}
+
+/// `:line:column`, or nothing for the whole file.
+fn place(line: usize, column: usize) -> String {
+    if line == 0 {
+        String::new()
+    } else {
+        format!(":{line}:{column}")
+    }
+}
+
+/// Every mistake found in a lesson, in the file's order: a teacher fixes
+/// them in one pass.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n"))]
+pub struct LessonErrors(pub Vec<LessonError>);
+
+impl From<LessonError> for LessonErrors {
+    fn from(error: LessonError) -> Self {
+        LessonErrors(vec![error])
+    }
 }
 
 /// A value with the place in the lesson file it was read from, so a
@@ -60,8 +83,9 @@ pub struct Lesson {
 pub enum LessonScene {
     /// One of the scenes embedded in the binary, by name.
     Bundled(String),
-    /// A scene file, its path made from the lesson file's folder.
-    File(PathBuf),
+    /// A scene file, its path made from the lesson file's folder, where
+    /// the lesson names it.
+    File(Located<PathBuf>),
     /// P3F written in the lesson; `first_line` is the lesson file's line
     /// holding the scene's line 1, so its errors name the lesson's lines.
     Inline { text: String, first_line: usize },
@@ -80,6 +104,9 @@ pub struct Step {
     /// Applied over the earlier steps' solutions when the step is set up.
     pub setup: Actions,
     pub check: Located<Check>,
+    /// The objects, materials and lights its check names, with the side
+    /// read, checked against the scene when the lesson opens.
+    pub references: Vec<Located<(Part, Which)>>,
     /// What a student who solved the step did: `lesson check` applies it
     /// and expects the check to pass.
     pub solution: Actions,
@@ -157,30 +184,9 @@ struct RawActions {
     #[serde(default, rename = "compare-edits")]
     compare_edits: Vec<Spanned<String>>,
     pixel: Option<[u32; 2]>,
-    answer: Option<Spanned<RawAnswer>>,
+    answer: Option<Spanned<WrittenValue>>,
     view: Option<Spanned<String>>,
     observer: Option<bool>,
-}
-
-/// An answer as a teacher writes it: `answer = 3`, `answer = "sphere"`.
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum RawAnswer {
-    Integer(i64),
-    Float(f64),
-    Bool(bool),
-    Text(String),
-}
-
-impl RawAnswer {
-    fn into_text(self) -> String {
-        match self {
-            RawAnswer::Integer(i) => i.to_string(),
-            RawAnswer::Float(f) => f.to_string(),
-            RawAnswer::Bool(b) => b.to_string(),
-            RawAnswer::Text(t) => t,
-        }
-    }
 }
 
 #[derive(Deserialize)]
@@ -193,7 +199,7 @@ struct RawStep {
     #[serde(default = "required_by_default")]
     required: bool,
     setup: Option<Spanned<RawActions>>,
-    check: Spanned<Check>,
+    check: Spanned<WrittenCheck>,
     solution: Spanned<RawActions>,
 }
 
@@ -201,13 +207,14 @@ fn required_by_default() -> bool {
     true
 }
 
-/// Reads a lesson file from disk.
-pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonError> {
+/// Reads a lesson file from disk. A file that cannot be read is an error
+/// about the whole file, with no line.
+pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| LessonError {
         file: file.clone(),
-        line: 1,
-        column: 1,
+        line: 0,
+        column: 0,
         message: format!("cannot read the lesson: {e}"),
     })?;
     let name = path
@@ -217,53 +224,71 @@ pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonError> {
 }
 
 /// The bundled lesson `name`, read.
-pub fn read_bundled(lesson: &bundled::BundledLesson) -> Result<Lesson, LessonError> {
+pub fn read_bundled(lesson: &bundled::BundledLesson) -> Result<Lesson, LessonErrors> {
     let file = format!("lessons/{}.toml", lesson.name);
     parse_lesson(lesson.text, lesson.name, &file, None)
 }
 
 /// Reads lesson `text`, named `name`, from `file` (as errors name it);
-/// a scene `file = ...` is found from `dir`.
+/// a scene `file = ...` is found from `dir`. A file TOML cannot read is
+/// one error; past that, every mistake is collected.
 pub fn parse_lesson(
     text: &str,
     name: &str,
     file: &str,
     dir: Option<&Path>,
-) -> Result<Lesson, LessonError> {
+) -> Result<Lesson, LessonErrors> {
     let source = Source { file, text };
     let raw: RawLesson = toml::from_str(text)
         .map_err(|e| source.error(e.span().unwrap_or(0..0), e.message().trim_end().to_string()))?;
-    let title = nonempty(&source, raw.title, "the lesson's `title`")?;
+    let mut errors = Vec::new();
+    let title = keep(
+        &mut errors,
+        nonempty(&source, raw.title, "the lesson's `title`"),
+    );
     let chapter = *raw.chapter.get_ref();
     if !(1..=99).contains(&chapter) {
-        return Err(source.error(
+        errors.push(source.error(
             raw.chapter.span(),
             format!("expected a chapter from 1 to 99, found {chapter}"),
         ));
     }
-    let scene = source.scene(raw.scene, dir)?;
+    let scene = keep(&mut errors, source.scene(raw.scene, dir));
     let start = match raw.start {
-        Some(actions) => source.actions(actions, Role::Setup)?,
-        None => Actions::default(),
+        Some(actions) => keep(&mut errors, source.actions(actions, Role::Setup)),
+        None => Some(Actions::default()),
     };
     if raw.steps.is_empty() {
-        return Err(source.error(0..0, "expected at least one `[[step]]` table".to_string()));
+        errors.push(source.error(0..0, "expected at least one `[[step]]` table".to_string()));
     }
-    let steps = raw
-        .steps
-        .into_iter()
-        .map(|step| source.step(step))
-        .collect::<Result<_, _>>()?;
-    Ok(Lesson {
-        name: name.to_string(),
-        file: file.to_string(),
-        title,
-        chapter,
-        summary: raw.summary.trim().to_string(),
-        scene,
-        start,
-        steps,
-    })
+    let mut steps = Vec::new();
+    for step in raw.steps {
+        match source.step(step) {
+            Ok(step) => steps.push(step),
+            Err(LessonErrors(mut more)) => errors.append(&mut more),
+        }
+    }
+    match (title, scene, start) {
+        (Some(title), Some(scene), Some(start)) if errors.is_empty() => Ok(Lesson {
+            name: name.to_string(),
+            file: file.to_string(),
+            title,
+            chapter,
+            summary: raw.summary.trim().to_string(),
+            scene,
+            start,
+            steps,
+        }),
+        _ => {
+            errors.sort_by_key(|e| (e.line, e.column));
+            Err(LessonErrors(errors))
+        }
+    }
+}
+
+/// `result`'s value, or `None` with its error kept among `errors`.
+fn keep<T>(errors: &mut Vec<LessonError>, result: Result<T, LessonError>) -> Option<T> {
+    result.map_err(|e| errors.push(e)).ok()
 }
 
 /// The text of `value`, trimmed; an error when it is empty.
@@ -343,14 +368,23 @@ impl Source<'_> {
             given.push(LessonScene::Bundled(name.into_inner()));
         }
         if let Some(file) = raw.file {
-            let path = dir.unwrap_or(Path::new(".")).join(file.get_ref());
-            if dir.is_none() {
+            let Some(dir) = dir else {
                 return Err(self.error(
                     file.span(),
                     "a bundled lesson cannot name a scene file; use `bundled` or `p3f`".into(),
                 ));
+            };
+            let path = dir.join(file.get_ref());
+            if !path.is_file() {
+                return Err(self.error(
+                    file.span(),
+                    format!(
+                        "no scene file {} (`file` is read from the lesson's folder)",
+                        path.display()
+                    ),
+                ));
             }
-            given.push(LessonScene::File(path));
+            given.push(LessonScene::File(self.located(file.span(), path)));
         }
         if let Some(p3f) = raw.p3f {
             let span = p3f.span();
@@ -379,35 +413,51 @@ impl Source<'_> {
         }
     }
 
-    fn step(&self, raw: Spanned<RawStep>) -> Result<Step, LessonError> {
+    /// A step, with every mistake of its check, its actions and its texts.
+    fn step(&self, raw: Spanned<RawStep>) -> Result<Step, LessonErrors> {
         let (line, _) = self.locate(raw.span().start);
         let raw = raw.into_inner();
         let check_span = raw.check.span();
-        let check = raw.check.into_inner();
-        check
-            .validate()
-            .map_err(|message| self.error(check_span.clone(), message))?;
+        let mut reader = Reader::new(self.text);
+        let check = reader.check(raw.check);
+        let mut errors: Vec<LessonError> = (reader.mistakes.into_iter())
+            .map(|(span, why)| self.error(span, why))
+            .collect();
         let solution_span = raw.solution.span();
-        let solution = self.actions(raw.solution, Role::Solution)?;
-        if solution.is_empty() {
-            return Err(self.error(
+        let solution = keep(&mut errors, self.actions(raw.solution, Role::Solution));
+        if solution.as_ref().is_some_and(Actions::is_empty) {
+            errors.push(self.error(
                 solution_span,
                 "the solution is empty: expected what a student does to pass the check".into(),
             ));
         }
-        Ok(Step {
-            title: nonempty(self, raw.title, "the step's `title`")?,
-            text: nonempty(self, raw.text, "the step's `text`")?,
-            hints: raw.hints,
-            required: raw.required,
-            setup: match raw.setup {
-                Some(setup) => self.actions(setup, Role::Setup)?,
-                None => Actions::default(),
-            },
-            check: self.located(check_span, check),
-            solution,
-            line,
-        })
+        let title = keep(&mut errors, nonempty(self, raw.title, "the step's `title`"));
+        let text = keep(&mut errors, nonempty(self, raw.text, "the step's `text`"));
+        let setup = match raw.setup {
+            Some(setup) => keep(&mut errors, self.actions(setup, Role::Setup)),
+            None => Some(Actions::default()),
+        };
+        let references = (reader.references.into_iter())
+            .map(|r| self.located(r.span, (r.part, r.side)))
+            .collect();
+        match (check, solution, title, text, setup) {
+            (Some(check), Some(solution), Some(title), Some(text), Some(setup))
+                if errors.is_empty() =>
+            {
+                Ok(Step {
+                    title,
+                    text,
+                    hints: raw.hints,
+                    required: raw.required,
+                    setup,
+                    check: self.located(check_span, check),
+                    references,
+                    solution,
+                    line,
+                })
+            }
+            _ => Err(LessonErrors(errors)),
+        }
     }
 
     fn actions(&self, raw: Spanned<RawActions>, role: Role) -> Result<Actions, LessonError> {
@@ -489,8 +539,9 @@ check = { kind = "value", of = "aa", is = "on" }
 solution = { settings = "--aa" }
 "#;
 
+    /// The lesson, or its first mistake.
     fn parse(text: &str) -> Result<Lesson, LessonError> {
-        parse_lesson(text, "test", "test.toml", None)
+        parse_lesson(text, "test", "test.toml", None).map_err(|LessonErrors(mut e)| e.remove(0))
     }
 
     #[test]

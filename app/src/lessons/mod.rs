@@ -12,5 +12,5 @@ pub mod replay;
 pub mod state;
 
 pub use check::{Check, Verdict, evaluate};
-pub use format::{Actions, Lesson, LessonError, LessonScene, Step};
+pub use format::{Actions, Lesson, LessonError, LessonErrors, LessonScene, Step};
 pub use state::{LessonState, SideState, Which};

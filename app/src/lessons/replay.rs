@@ -7,24 +7,47 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use anyhow::{Context, Result};
-use tracer::scene::{Limits, Scene, parse_scene};
+use anyhow::Result;
+use tracer::scene::{Limits, ParseError, Scene, parse_scene};
 use tracer::world::World;
 
 use crate::load::{self, Loaded, SceneSource};
 
+use super::check::written::Part;
 use super::check::{Verdict, evaluate};
-use super::format::{Lesson, LessonError, LessonScene, Step};
+use super::format::{Lesson, LessonError, LessonErrors, LessonScene, Step};
 use super::state::LessonState;
 
-/// The lesson's scene and the world built from it. An inline scene's
-/// parse error names the lesson file's line.
+/// The lesson's scene and the world built from it, the lesson's
+/// references to its objects, materials and lights checked. An inline
+/// scene's parse error names the lesson file's line; a scene file that
+/// cannot be read, the lesson's `file =` line.
 pub fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
+    let (scene, world) = load_scene(lesson)?;
+    check_references(lesson, &scene, &world)?;
+    Ok((scene, world))
+}
+
+fn load_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
     let read = |source| Loaded::read(source, &[], &mut |_| {});
     let loaded = match &lesson.scene {
         LessonScene::Bundled(name) => read(SceneSource::Bundled(name.clone()))?,
-        LessonScene::File(path) => read(SceneSource::File(path.clone()))
-            .with_context(|| format!("{}: the lesson's scene", lesson.file))?,
+        LessonScene::File(path) => read(SceneSource::File(path.value.clone())).map_err(|e| {
+            // A problem with the whole file is the lesson's, at its line;
+            // a mistake inside the scene keeps the scene's own place.
+            match e.downcast_ref::<ParseError>() {
+                Some(parse) if parse.line == 0 => anyhow::Error::new(LessonError {
+                    file: lesson.file.clone(),
+                    line: path.line,
+                    column: path.column,
+                    message: format!("the scene {}: {}", path.value.display(), parse.kind),
+                }),
+                _ => e.context(format!(
+                    "{}:{}:{}: the lesson's scene",
+                    lesson.file, path.line, path.column
+                )),
+            }
+        })?,
         LessonScene::Inline { text, first_line } => {
             let dir = Path::new(&lesson.file).parent();
             let mut scene = parse_scene(text, None, &Limits::default()).map_err(|e| {
@@ -66,6 +89,53 @@ pub fn state_at_step(
     Ok(state)
 }
 
+/// Every object, material and light a step's check names exists once
+/// the step is solved (a solution may add a light its check reads), on the
+/// side the check reads; every one that does not is an error at its
+/// number in the lesson file, all of them at once.
+fn check_references(lesson: &Lesson, scene: &Scene, world: &Arc<World>) -> Result<()> {
+    let mut state = start(lesson, scene.clone(), world.clone())?;
+    let mut errors = Vec::new();
+    for step in &lesson.steps {
+        enter(&mut state, step, &lesson.file)?;
+        state.apply(&step.solution, &lesson.file)?;
+        for reference in &step.references {
+            let (part, which) = reference.value;
+            // Without side B the check itself says compare mode is off.
+            let Ok(side) = state.side(which) else {
+                continue;
+            };
+            let scene = &side.scene;
+            let (index, count, what) = match part {
+                Part::Object(n) => (n, scene.objects.len(), "object"),
+                Part::Material(n) => (n, scene.materials.len(), "material"),
+                Part::Light(n) => (n, scene.lights.len(), "light"),
+            };
+            if index >= count {
+                let numbers = match count {
+                    0 => "none".to_string(),
+                    1 => format!("{what} 0"),
+                    _ => format!("{what}s 0 to {}", count - 1),
+                };
+                errors.push(LessonError {
+                    file: lesson.file.clone(),
+                    line: reference.line,
+                    column: reference.column,
+                    message: format!(
+                        "no {what} {index}: once this step is solved, the scene has {numbers} \
+                         (counted from 0 in the scene's order)"
+                    ),
+                });
+            }
+        }
+    }
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(LessonErrors(errors).into())
+    }
+}
+
 /// The lesson's scene with its `[start]` applied.
 fn start(lesson: &Lesson, scene: Scene, world: Arc<World>) -> Result<LessonState> {
     let mut state = LessonState::new(scene, world);
@@ -87,6 +157,10 @@ pub struct StepReplay {
     pub before: Verdict,
     /// The check once the solution is applied: it must hold.
     pub after: Verdict,
+    /// When the solution's answer is wrong, the value the workbench
+    /// computed, in the format's words: for the teacher, to tell a wrong
+    /// question from a wrong answer (the student's panel never shows it).
+    pub computed: Option<String>,
 }
 
 impl StepReplay {
@@ -98,8 +172,10 @@ impl StepReplay {
                 self.before.reason()
             ))
         } else if !self.after.is_done() {
+            let computed = (self.computed.as_ref())
+                .map_or_else(String::new, |v| format!(" (the workbench computes {v})"));
             Some(format!(
-                "the solution does not pass the check: {}",
+                "the solution does not pass the check: {}{computed}",
                 self.after.reason()
             ))
         } else {
@@ -123,10 +199,18 @@ pub fn replay(
         let before = evaluate(&step.check.value, &state);
         state.apply(&step.solution, &lesson.file)?;
         let after = evaluate(&step.check.value, &state);
+        let computed = match (&after, step.check.value.answer_of()) {
+            (Verdict::Wrong(_), Some((of, side))) => Some(
+                of.read(&state, side)
+                    .map_or_else(|why| why, |v| of.reads().show(&v)),
+            ),
+            _ => None,
+        };
         let replay = StepReplay {
             title: step.title.clone(),
             before,
             after,
+            computed,
         };
         on_step(i, &replay);
         replays.push(replay);

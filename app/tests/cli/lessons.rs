@@ -81,10 +81,10 @@ fn a_check_that_holds_before_the_student_acts_fails() {
 fn a_malformed_lesson_gets_a_located_error() {
     let dir = Scratch::new("lesson-malformed");
     let cases = [
-        // A check of no kind the workbench knows: line 21, where it starts.
+        // A check of no kind the workbench knows: at the kind's value.
         (
             TEMPLATE.replace("kind = \"all\"", "kind = \"every\""),
-            ":18:18: unknown variant `every`, expected one of `value`, `answer`, `measure`, `all`",
+            ":18:18: no check kind `every`; expected one of value, answer, measure, all",
         ),
         // A quantity that names nothing.
         (
@@ -221,6 +221,148 @@ solution = { compare-edits = ["object 0 kd 0.25"] }"#,
     let out = String::from_utf8_lossy(&run.stdout);
     assert!(
         out.contains(&format!("b.toml:{line}:")) && out.contains("compare mode is off"),
+        "{out}"
+    );
+}
+
+/// Where `needle` first appears in `text`: `:line:column` (1-based,
+/// columns in characters), as the messages write it.
+fn place(text: &str, needle: &str) -> String {
+    let offset = text.find(needle).expect("the needle is in the text");
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let column = before[before.rfind('\n').map_or(0, |i| i + 1)..]
+        .chars()
+        .count()
+        + 1;
+    format!(":{line}:{column}")
+}
+
+/// `lesson check` on `text` written as `name` in `dir`: it fails, and its
+/// output.
+fn check_fails(dir: &Scratch, name: &str, text: &str) -> (String, String) {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    let file = path.display().to_string();
+    let run = workbench(&["lesson", "check", &file]);
+    assert!(!run.status.success(), "{name} passed");
+    (file, String::from_utf8_lossy(&run.stdout).into_owned())
+}
+
+/// A mistake inside a check is reported at its own value, and every
+/// mistake of the file at once, before anything is replayed.
+#[test]
+fn every_mistake_in_a_check_is_reported_at_its_value() {
+    let dir = Scratch::new("lesson-check-typos");
+    let text = TEMPLATE
+        .replace("of = \"aa\"", "of = \"tree refracions\"")
+        .replace("is = \">= 4\"", "is = \"at least 4\"")
+        .replace("{solution}", "--aa --spp 4");
+    let (file, out) = check_fails(&dir, "typos.toml", &text);
+    let typo = format!(
+        "error: {file}{}: no tree figure `refracions`",
+        place(&text, "\"tree refracions\"")
+    );
+    let words = format!(
+        "error: {file}{}: `spp` is a number: `at least 4` can never match it",
+        place(&text, "\"at least 4\"")
+    );
+    assert!(out.contains(&typo), "expected {typo:?} in {out}");
+    assert!(out.contains(&words), "expected {words:?} in {out}");
+    assert!(!out.contains("step 1/1"), "{out}");
+}
+
+/// An object the scene does not have is the lesson's mistake, at the
+/// number, before the steps are replayed; not a failing solution.
+#[test]
+fn an_object_the_scene_lacks_is_refused_at_its_number() {
+    let dir = Scratch::new("lesson-no-object");
+    let text = TEMPLATE
+        .replace("of = \"aa\", is = \"on\"", "of = \"object 99 kd\", is = 1")
+        .replace("{solution}", "--aa --spp 4");
+    let (file, out) = check_fails(&dir, "object.toml", &text);
+    let expected = format!(
+        "error: {file}{}: no object 99: once this step is solved, the scene has object 0",
+        place(&text, "99")
+    );
+    assert!(out.contains(&expected), "expected {expected:?} in {out}");
+    assert!(!out.contains("FAIL"), "{out}");
+}
+
+/// A scene file that is not there is reported at the lesson's `file =`
+/// value with the path it was looked for at; a lesson file that is not
+/// there, with no line or column.
+#[test]
+fn missing_files_are_reported_where_they_are_named() {
+    let dir = Scratch::new("lesson-missing-files");
+    let start = TEMPLATE.find("p3f = ").unwrap();
+    let end = TEMPLATE.find("\"\"\"\n\n[start]").unwrap() + 3;
+    let text = format!(
+        "{}file = \"scenes/gone.p3f\"{}",
+        &TEMPLATE[..start],
+        &TEMPLATE[end..]
+    )
+    .replace("{solution}", "--aa --spp 4");
+    let (file, out) = check_fails(&dir, "scene.toml", &text);
+    let resolved = dir.join("scenes/gone.p3f");
+    let expected = format!(
+        "error: {file}{}: no scene file {}",
+        place(&text, "\"scenes/gone.p3f\""),
+        resolved.display()
+    );
+    assert!(out.contains(&expected), "expected {expected:?} in {out}");
+
+    let absent = dir.join("absent.toml").display().to_string();
+    let run = workbench(&["lesson", "check", &absent]);
+    assert!(!run.status.success());
+    let out = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        out.contains(&format!("error: {absent}: cannot read the lesson")),
+        "{out}"
+    );
+}
+
+/// An `all` check that fails says every part that fails, and yes/no
+/// quantities are said in yes and no.
+#[test]
+fn a_failing_all_says_every_part_in_the_formats_words() {
+    let dir = Scratch::new("lesson-all-parts");
+    let text = TEMPLATE
+        .replace(
+            "{ kind = \"value\", of = \"aa\", is = \"on\" },",
+            "{ kind = \"value\", of = \"aa\", is = \"on\" },\n    { kind = \"value\", of = \"observer\", is = \"yes\" },",
+        )
+        .replace("{solution}", "--spp 3");
+    let (_, out) = check_fails(&dir, "all.toml", &text);
+    assert!(
+        out.contains(
+            "FAIL: the solution does not pass the check: aa is off, expected on; \
+             observer is no, expected yes; spp is 3, expected >= 4"
+        ),
+        "{out}"
+    );
+}
+
+/// A wrong recorded answer shows the teacher the value the workbench
+/// computed; the verdict itself (what a student sees) does not.
+#[test]
+fn a_wrong_recorded_answer_shows_the_computed_value() {
+    let dir = Scratch::new("lesson-wrong-answer");
+    let text = TEMPLATE.replace(
+        r#"check = { kind = "all", checks = [
+    { kind = "value", of = "aa", is = "on" },
+    { kind = "value", of = "spp", is = ">= 4" },
+] }
+solution = { settings = "{solution}" }"#,
+        r#"check = { kind = "answer", question = "Objects in the scene:", of = "objects" }
+solution = { answer = 3 }"#,
+    );
+    let (_, out) = check_fails(&dir, "answer.toml", &text);
+    assert!(
+        out.contains(
+            "FAIL: the solution does not pass the check: 3 is not right \
+             (the workbench computes 1)"
+        ),
         "{out}"
     );
 }

@@ -18,6 +18,7 @@ mod golden;
 mod lessons;
 mod meshes_and_images;
 mod observe;
+mod reference_docs;
 mod render;
 mod report;
 mod sweep;

@@ -31,6 +31,14 @@ fn command_prefix(command: &Option<String>) -> String {
         .map_or_else(String::new, |c| format!("in `{c}`: "))
 }
 
+/// The camera's fields as a sentence: `from, at, ... and focal`.
+fn view_fields() -> String {
+    match super::VIEW_FIELDS.split_last() {
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
 /// What went wrong. Texts are owned or static so the error stays `Clone` and
 /// comparable in tests.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -45,9 +53,7 @@ pub enum ParseErrorKind {
     )]
     UnexpectedNumber(String),
     /// A word after the `v` fields that is neither a field nor a command.
-    #[error(
-        "unknown camera field `{0}` (`v` takes from, at, up, angle, hither, resolution, aperture and focal)"
-    )]
+    #[error("unknown camera field `{0}` (`v` takes {fields})", fields = view_fields())]
     UnknownViewField(String),
     /// The input ended where a value was needed.
     #[error("missing {expected}: the input ends here")]

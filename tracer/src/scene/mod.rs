@@ -15,7 +15,7 @@ mod tests;
 
 pub use error::{ParseError, ParseErrorKind};
 pub use limits::Limits;
-pub use parse::{parse_scene, parse_scene_file};
+pub use parse::{COMMANDS, VIEW_FIELDS, parse_scene, parse_scene_file};
 pub use write::{write_p3f, write_p3f_in};
 
 use std::path::PathBuf;

@@ -109,8 +109,7 @@ impl Display for Tolerance {
 }
 
 /// What a check expects of a value.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(try_from = "RawExpect")]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Expect {
     /// Equal (numbers up to rounding).
     Is(Value),
@@ -122,10 +121,10 @@ pub enum Expect {
     Below(f64),
 }
 
-/// An expectation as TOML gives it.
+/// An expectation as TOML gives it: `is = 4`, `is = true`, `is = ">= 4"`.
 #[derive(Deserialize)]
 #[serde(untagged)]
-enum RawExpect {
+pub enum RawExpect {
     Bool(bool),
     Integer(i64),
     Float(f64),

@@ -7,29 +7,26 @@
 mod expect;
 mod measurement;
 mod quantity;
+pub mod written;
 
 #[cfg(test)]
 mod tests;
 
-use anyhow::Result;
-use serde::Deserialize;
-
 pub use expect::{Expect, Tolerance, Value};
 pub use measurement::{By, Metric};
-pub use quantity::Quantity;
+pub use quantity::{Quantity, Reads};
 
 use super::state::{LessonState, Which};
 
-/// One check, as a lesson file writes it (`kind = "value"`, ...).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+/// One check, as a lesson file describes it (`kind = "value"`, ...), read
+/// by [`written::Reader`].
+#[derive(Debug, Clone, PartialEq)]
 pub enum Check {
     /// A value of the state (a setting, the scene, the pinned pixel's ray
     /// tree, the structure) meets an expectation.
     Value {
         of: Quantity,
         is: Expect,
-        #[serde(default)]
         side: Which,
     },
     /// The student's answer equals a value the workbench computes when it
@@ -41,19 +38,15 @@ pub enum Check {
         /// How close a number must be (`"2%"`, `"0.01"`; default exact).
         tolerance: Option<String>,
         /// The answers to pick from; none for a typed answer.
-        #[serde(default)]
         choices: Vec<String>,
-        #[serde(default)]
         side: Which,
     },
     /// A rendered measurement meets an expectation.
     Measure {
         metric: Metric,
         is: Expect,
-        #[serde(default)]
         by: By,
         /// The grid multipliers a `grid-sweep` tries.
-        #[serde(default)]
         values: Vec<f32>,
     },
     /// Every one of these.
@@ -85,52 +78,14 @@ impl Verdict {
 }
 
 impl Check {
-    /// What makes a check well-formed beyond its fields' types: a sweep
-    /// has values, a tolerance reads, choices are distinct.
-    pub fn validate(&self) -> Result<(), String> {
+    /// What an answer check (or one inside an `all`) grades against, and
+    /// on which side: what `lesson check` shows a teacher when a recorded
+    /// answer is wrong.
+    pub fn answer_of(&self) -> Option<(&Quantity, Which)> {
         match self {
-            Check::Value { .. } => Ok(()),
-            Check::Answer {
-                question,
-                tolerance,
-                choices,
-                ..
-            } => {
-                if question.trim().is_empty() {
-                    return Err("the answer check's `question` is empty".into());
-                }
-                if let Some(t) = tolerance {
-                    Tolerance::parse(t)?;
-                }
-                let mut seen = Vec::new();
-                for choice in choices {
-                    let value = Value::parse(choice)
-                        .ok_or("a choice is empty: expected the text of each answer")?;
-                    if seen.contains(&value) {
-                        return Err(format!("the choice `{choice}` is given twice"));
-                    }
-                    seen.push(value);
-                }
-                Ok(())
-            }
-            Check::Measure { metric, values, .. } => match metric {
-                Metric::GridSweep if values.is_empty() => Err(
-                    "a `grid-sweep` needs `values`: the grid multipliers to try, e.g. [0.5, 1, 2, 4]"
-                        .into(),
-                ),
-                Metric::GridSweep => match values.iter().find(|m| !(**m > 0.0 && m.is_finite())) {
-                    Some(m) => Err(format!("a grid multiplier must be above 0, found {m}")),
-                    None => Ok(()),
-                },
-                _ if !values.is_empty() => {
-                    Err("only a `grid-sweep` takes `values`".into())
-                }
-                _ => Ok(()),
-            },
-            Check::All { checks } if checks.is_empty() => {
-                Err("`all` needs at least one check in `checks`".into())
-            }
-            Check::All { checks } => checks.iter().try_for_each(Check::validate),
+            Check::Answer { of, side, .. } => Some((of, *side)),
+            Check::All { checks } => checks.iter().find_map(Check::answer_of),
+            _ => None,
         }
     }
 
@@ -155,11 +110,12 @@ pub fn evaluate(check: &Check, state: &LessonState) -> Verdict {
                 Ok(value) => value,
                 Err(why) => return Verdict::NotYet(why),
             };
-            let seen = format!("{}{of} is {value}", side_prefix(*side));
+            let reads = of.reads();
+            let seen = format!("{}{of} is {}", side_prefix(*side), reads.show(&value));
             if is.holds(&value) {
                 Verdict::Done(seen)
             } else {
-                Verdict::NotYet(format!("{seen}, expected {is}"))
+                Verdict::NotYet(format!("{seen}, expected {}", reads.show_expect(is)))
             }
         }
         Check::Answer {
@@ -182,14 +138,24 @@ pub fn evaluate(check: &Check, state: &LessonState) -> Verdict {
             Err(why) => Verdict::NotYet(why),
         },
         Check::All { checks } => {
-            let mut seen = Vec::new();
-            for check in checks {
-                match evaluate(check, state) {
-                    Verdict::Done(words) => seen.push(words),
-                    not_yet => return not_yet,
+            // Every part is said, once: the ones not done, or all of them
+            // done ("no pixel is pinned" is said once for all the parts
+            // that need one).
+            let verdicts: Vec<Verdict> = checks.iter().map(|c| evaluate(c, state)).collect();
+            let mut failing: Vec<&str> = Vec::new();
+            for verdict in verdicts.iter().filter(|v| !v.is_done()) {
+                if !failing.contains(&verdict.reason()) {
+                    failing.push(verdict.reason());
                 }
             }
-            Verdict::Done(seen.join("; "))
+            if failing.is_empty() {
+                let seen: Vec<&str> = verdicts.iter().map(Verdict::reason).collect();
+                Verdict::Done(seen.join("; "))
+            } else if verdicts.iter().any(|v| matches!(v, Verdict::Wrong(_))) {
+                Verdict::Wrong(failing.join("; "))
+            } else {
+                Verdict::NotYet(failing.join("; "))
+            }
         }
     }
 }
@@ -231,6 +197,7 @@ fn evaluate_answer(
         (Value::Number(g), Value::Number(c)) => tolerance.holds(*g, *c),
         (g, c) => g == c,
     };
+    let given = of.reads().show(&given);
     if right {
         Verdict::Done(format!("{given} is right"))
     } else {

@@ -7,7 +7,6 @@
 use std::fmt::{self, Display, Formatter};
 use std::sync::Arc;
 
-use serde::Deserialize;
 use tracer::accel::{AccelKind, SceneIndex};
 use tracer::geometry::Ray;
 use tracer::render::{Film, Outcome, RayKind, RayTree, Sampling, View, render};
@@ -16,7 +15,8 @@ use tracer::scene::{Primitive, Scene};
 use crate::reports::ray_tree;
 
 use super::super::state::{LessonState, SideState, Which};
-use super::expect::Value;
+use super::expect::{Expect, Value};
+use super::written::Part;
 
 /// A render setting, by its `workbench render` flag's name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -127,8 +127,7 @@ const TREE_FIGURES: [(&str, TreeFigure); 12] = [
 ];
 
 /// Something a check reads.
-#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
-#[serde(try_from = "String")]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Quantity {
     Setting(Setting),
     /// `object N FIELD`.
@@ -174,14 +173,6 @@ pub enum Quantity {
     SamplesMean,
     /// `samples max`: the most samples one pixel of the render took.
     SamplesMax,
-}
-
-impl TryFrom<String> for Quantity {
-    type Error = String;
-
-    fn try_from(text: String) -> Result<Self, String> {
-        Quantity::parse(&text)
-    }
 }
 
 fn lookup<T: Copy>(table: &[(&str, T)], word: &str, what: &str) -> Result<T, String> {
@@ -253,6 +244,39 @@ impl Quantity {
             }
         };
         Ok(quantity)
+    }
+
+    /// What kind of value it reads, for checking a lesson's `is` and
+    /// choices when it loads and for saying its values in the format's
+    /// words.
+    pub fn reads(&self) -> Reads {
+        match self {
+            Quantity::Setting(Setting::Aa | Setting::SoftShadows | Setting::Dof) => Reads::OnOff,
+            Quantity::Setting(Setting::Accel) => Reads::Word(vec!["none", "grid", "bvh"]),
+            Quantity::Setting(Setting::Sampling) => Reads::Word(vec!["uniform", "adaptive"]),
+            Quantity::Setting(Setting::NoiseThreshold) => Reads::NumberOrOff,
+            Quantity::Object(_, Field::Kind) => Reads::Word(OBJECT_KINDS.to_vec()),
+            Quantity::Tree(TreeFigure::EyeKind) => {
+                Reads::Word(OBJECT_KINDS.iter().copied().chain(["none"]).collect())
+            }
+            Quantity::View => Reads::Word(View::ALL.iter().map(|v| v.name()).collect()),
+            Quantity::Observer | Quantity::Tree(TreeFigure::Tir | TreeFigure::EyeOutside) => {
+                Reads::YesNo
+            }
+            Quantity::Tree(TreeFigure::EyeObject) | Quantity::Blocker(_) => Reads::ObjectOrNone,
+            _ => Reads::Number,
+        }
+    }
+
+    /// The part of the scene it names and which of its words is the
+    /// number: `object 3 kd` names object 3 in word 1.
+    pub fn part(&self) -> Option<(Part, usize)> {
+        match *self {
+            Quantity::Object(n, _) | Quantity::FocusError(n) => Some((Part::Object(n), 1)),
+            Quantity::Material(n, _) => Some((Part::Material(n), 1)),
+            Quantity::Blocker(light) => Some((Part::Light(light), 2)),
+            _ => None,
+        }
     }
 
     /// Whether reading it needs a pinned pixel.
@@ -391,6 +415,95 @@ impl Display for Quantity {
             Quantity::PixelSamples => f.write_str("pixel samples"),
             Quantity::SamplesMean => f.write_str("samples mean"),
             Quantity::SamplesMax => f.write_str("samples max"),
+        }
+    }
+}
+
+/// What `object N kind` and `tree eye-kind` read: a three-sided polygon
+/// is a triangle.
+const OBJECT_KINDS: [&str; 8] = [
+    "sphere", "plane", "triangle", "polygon", "patch", "box", "cone", "mesh",
+];
+
+/// What kind of value a quantity reads.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Reads {
+    Number,
+    /// A switch: on or off.
+    OnOff,
+    /// A fact: yes or no.
+    YesNo,
+    /// One of these words.
+    Word(Vec<&'static str>),
+    /// An object's number, or `none`.
+    ObjectOrNone,
+    /// A number, or `off` (the noise threshold under uniform sampling).
+    NumberOrOff,
+}
+
+impl Reads {
+    /// Whether a tolerance means something for it.
+    pub fn is_numeric(&self) -> bool {
+        matches!(self, Reads::Number | Reads::NumberOrOff)
+    }
+
+    /// Its values in the lesson format's words.
+    pub fn words(&self) -> String {
+        match self {
+            Reads::Number => "a number".into(),
+            Reads::OnOff => "on or off".into(),
+            Reads::YesNo => "yes or no".into(),
+            Reads::Word(words) => format!("one of {}", words.join(", ")),
+            Reads::ObjectOrNone => "an object's number or none".into(),
+            Reads::NumberOrOff => "a number or off".into(),
+        }
+    }
+
+    /// Whether `expect` can hold for one of its values; the error says
+    /// what it is and what to write.
+    pub fn accepts(&self, expect: &Expect) -> Result<(), String> {
+        let comparison = !matches!(expect, Expect::Is(_));
+        let fits = match (self, expect) {
+            (Reads::Number | Reads::NumberOrOff, _) if comparison => true,
+            (Reads::Number, Expect::Is(Value::Number(_))) => true,
+            (Reads::NumberOrOff, Expect::Is(Value::Number(_) | Value::Bool(false))) => true,
+            (Reads::OnOff | Reads::YesNo, Expect::Is(Value::Bool(_))) => true,
+            (Reads::Word(words), Expect::Is(Value::Word(w))) => words.contains(&w.as_str()),
+            (Reads::ObjectOrNone, Expect::Is(Value::Number(n))) => n.fract() == 0.0 && *n >= 0.0,
+            (Reads::ObjectOrNone, Expect::Is(Value::Word(w))) => w == "none",
+            _ => false,
+        };
+        if fits {
+            return Ok(());
+        }
+        let hint = match self {
+            Reads::Number | Reads::NumberOrOff => {
+                "; write a number, or a comparison such as `>= 5` or `1.5 +- 2%`"
+            }
+            _ => "",
+        };
+        Err(format!(
+            "is {}: `{}` can never match it{hint}",
+            self.words(),
+            self.show_expect(expect)
+        ))
+    }
+
+    /// A value as the format says it: yes/no for facts, on/off for
+    /// switches.
+    pub fn show(&self, value: &Value) -> String {
+        match (self, value) {
+            (Reads::YesNo, Value::Bool(true)) => "yes".into(),
+            (Reads::YesNo, Value::Bool(false)) => "no".into(),
+            _ => value.to_string(),
+        }
+    }
+
+    /// An expectation in the same words.
+    pub fn show_expect(&self, expect: &Expect) -> String {
+        match expect {
+            Expect::Is(value) => self.show(value),
+            other => other.to_string(),
         }
     }
 }

@@ -146,9 +146,12 @@ fn a_ray_tree_check_reads_the_pinned_pixels_tree() {
     // Move the sphere out of the light's way: lit, blocked by nothing.
     state.a = edited(&state, "object 1 centre 5 -4 2");
     let verdict = evaluate(&blocked, &state);
+    // Every failing part is said, not only the first.
     assert_eq!(
         verdict,
-        Verdict::NotYet("tree blocked-shadow-rays is 0, expected 1".into())
+        Verdict::NotYet(
+            "tree blocked-shadow-rays is 0, expected 1; tree blocker 0 is none, expected 1".into()
+        )
     );
     assert!(done(&value("tree blocker 0", "none"), &state));
 }
@@ -359,29 +362,98 @@ fn a_grid_sweep_finds_the_cheapest_multiplier() {
     );
 }
 
+/// A check written as a lesson writes it, read: the check, or every
+/// mistake with the column of its token (the check on line 1).
+fn read(check: &str) -> Result<Check, Vec<(usize, String)>> {
+    #[derive(serde::Deserialize)]
+    struct Line {
+        check: toml::Spanned<written::WrittenCheck>,
+    }
+    let text = format!("check = {check}");
+    let line: Line = toml::from_str(&text).map_err(|e| vec![(0, e.to_string())])?;
+    let mut reader = written::Reader::new(&text);
+    let check = reader.check(line.check);
+    match check {
+        Some(check) if reader.mistakes.is_empty() => Ok(check),
+        _ => Err(reader
+            .mistakes
+            .into_iter()
+            .map(|(span, why)| (span.start + 1, why))
+            .collect()),
+    }
+}
+
 #[test]
-fn malformed_checks_are_refused() {
-    let sweep = Check::Measure {
-        metric: Metric::GridSweep,
-        is: Expect::parse("<= 20").unwrap(),
-        by: By::Work,
-        values: vec![],
-    };
-    assert!(sweep.validate().unwrap_err().contains("needs `values`"));
-    let twice = Check::Answer {
-        question: "?".into(),
-        of: Quantity::Lights,
-        tolerance: None,
-        choices: vec!["1".into(), "1.0".into()],
-        side: Which::A,
-    };
-    assert!(twice.validate().unwrap_err().contains("twice"));
-    assert!(
-        Quantity::parse("tree colour")
-            .unwrap_err()
-            .contains("shadow-rays")
-    );
+fn malformed_checks_are_refused_at_their_token() {
+    let sweep = read(r#"{ kind = "measure", metric = "grid-sweep", is = "<= 20" }"#);
+    assert!(sweep.unwrap_err()[0].1.contains("needs `values`"));
+    let twice = read(r#"{ kind = "answer", question = "?", of = "lights", choices = ["1", 1.0] }"#);
+    assert_eq!(twice.unwrap_err()[0].0, 75);
+    let typo = read(r#"{ kind = "value", of = "tree refracions", is = 2 }"#);
+    let mistakes = typo.unwrap_err();
+    assert_eq!(mistakes[0].0, 32, "{mistakes:?}");
+    assert!(mistakes[0].1.contains("shadow-rays"), "{mistakes:?}");
     assert!(Quantity::parse("material 0 radius").is_err());
+}
+
+#[test]
+fn an_expectation_must_be_able_to_match_what_is_read() {
+    let words = read(r#"{ kind = "value", of = "tree depth", is = "at least 5" }"#);
+    let mistakes = words.unwrap_err();
+    assert_eq!(mistakes[0].0, 51, "{mistakes:?}");
+    assert!(
+        mistakes[0].1.contains("`tree depth` is a number") && mistakes[0].1.contains("`>= 5`"),
+        "{mistakes:?}"
+    );
+    let yes_no = read(r#"{ kind = "value", of = "tree tir", is = "grid" }"#);
+    assert!(yes_no.unwrap_err()[0].1.contains("is yes or no"));
+    let word = read(r#"{ kind = "value", of = "accel", is = "octree" }"#);
+    assert!(word.unwrap_err()[0].1.contains("one of none, grid, bvh"));
+    assert!(read(r#"{ kind = "value", of = "tree tir", is = "yes" }"#).is_ok());
+    assert!(read(r#"{ kind = "value", of = "tree depth", is = ">= 5" }"#).is_ok());
+    assert!(read(r#"{ kind = "value", of = "noise-threshold", is = "off" }"#).is_ok());
+}
+
+#[test]
+fn every_mistake_of_a_check_is_reported() {
+    let check = r#"{ kind = "all", checks = [
+        { kind = "value", of = "tree refracions", is = 1 },
+        { kind = "value", of = "spp", is = "many", metric = "flip" },
+        { kind = "measure", metric = "speed" },
+    ] }"#;
+    let mistakes = read(check).unwrap_err();
+    let words: Vec<&str> = mistakes.iter().map(|(_, why)| why.as_str()).collect();
+    assert_eq!(mistakes.len(), 5, "{words:#?}");
+    assert!(
+        words[0].contains("no tree figure `refracions`"),
+        "{words:#?}"
+    );
+    assert!(words[1].contains("takes no `metric`"), "{words:#?}");
+    assert!(words[2].contains("`spp` is a number"), "{words:#?}");
+    assert!(words[3].contains("needs `is`"), "{words:#?}");
+    assert!(words[4].contains("no metric `speed`"), "{words:#?}");
+}
+
+#[test]
+fn numbers_naming_the_scene_are_kept_with_their_place() {
+    let text = r#"check = { kind = "value", of = "tree blocker 12", is = 3 }"#;
+    #[derive(serde::Deserialize)]
+    struct Line {
+        check: toml::Spanned<written::WrittenCheck>,
+    }
+    let line: Line = toml::from_str(text).unwrap();
+    let mut reader = written::Reader::new(text);
+    assert!(reader.check(line.check).is_some());
+    let found: Vec<(written::Part, &str)> = (reader.references.iter())
+        .map(|r| (r.part, &text[r.span.clone()]))
+        .collect();
+    assert_eq!(
+        found,
+        [
+            (written::Part::Light(12), "12"),
+            (written::Part::Object(3), "3")
+        ]
+    );
 }
 
 /// Timed measurements read frame times (never compared with a bound here:

@@ -14,12 +14,20 @@ use self::cursor::{Cursor, looks_numeric};
 use super::lexer::{Pos, Token};
 use super::{Limits, Object, ParseError, ParseErrorKind, Primitive, Scene, rules};
 
-/// Every command word, for telling a misspelt `v` field from the next
-/// command. `#` comments are removed by the lexer.
+/// Every command word: the parser tells a misspelt `v` field from the next
+/// command by it, and the scene-file guide is checked against it. `#`
+/// comments are removed by the lexer.
 #[rustfmt::skip]
-pub(super) const COMMANDS: [&str; 18] = [
+pub const COMMANDS: [&str; 18] = [
     "v", "b", "bclr", "env", "l", "al", "f", "s", "pl", "p", "pp", "c", "box", "mesh", "mesh_file",
     "accel", "spp", "adaptive",
+];
+
+/// Every field of the camera (`v`) block, as [`ParseErrorKind::UnknownViewField`]
+/// lists them and the scene-file guide documents them.
+#[rustfmt::skip]
+pub const VIEW_FIELDS: [&str; 8] = [
+    "from", "at", "up", "angle", "hither", "resolution", "aperture", "focal",
 ];
 
 /// Parses scene text; `file` only labels errors and sets `base_dir` (its

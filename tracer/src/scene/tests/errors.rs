@@ -52,6 +52,17 @@ fn every_command_word_is_dispatched() {
 }
 
 #[test]
+fn every_view_field_is_dispatched() {
+    for field in crate::scene::VIEW_FIELDS {
+        let kind = parse_scene(&format!("v {field}"), None, &Limits::default()).map_err(|e| e.kind);
+        assert!(
+            !matches!(kind, Err(ParseErrorKind::UnknownViewField(_))),
+            "{field}: {kind:?}"
+        );
+    }
+}
+
+#[test]
 fn unknown_view_field() {
     assert_eq!(
         parse_err("v\nfrom 0 0 5\n  fov 45", 3, 3, Some("v")),
