@@ -163,6 +163,10 @@ mod tests {
         assert!((s2 - h.dot(n).powf(10.0)).abs() < EPS);
         // A light behind the surface contributes nothing.
         assert_eq!(blinn_phong(n, -l, v, 10.0), (0.0, 0.0));
+        // Nor one behind it whose halfway vector still leans towards n.
+        let behind = Vec3A::new(0.6, -0.8, 0.0);
+        assert!(n.dot((behind + Vec3A::Y).normalize()) > 0.0);
+        assert_eq!(blinn_phong(n, behind, Vec3A::Y, 10.0), (0.0, 0.0));
     }
 
     /// In the mirror configuration rounding can make `n . h` a hair above

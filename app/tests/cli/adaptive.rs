@@ -122,6 +122,19 @@ fn compare_puts_uniform_against_adaptive() {
     let text = json.to_string();
     assert!(text.contains("AA 3x3"), "{text}");
     assert!(text.contains("adaptive AA, threshold 0.03"), "{text}");
+    // What the labels say is what was rendered: A takes 3 x 3 everywhere,
+    // B refines some pixels past its floor of 4 and stops others below its
+    // cap of (2N)^2 = 36.
+    let pixels = 32 * 24;
+    let taken = |side: &str| json[side]["samples_taken"].as_u64().expect("samples_taken");
+    assert_eq!(taken("a"), 9 * pixels, "{text}");
+    assert!(
+        taken("b") > 4 * pixels && taken("b") < 36 * pixels,
+        "{text}"
+    );
+    // A uniform B would take exactly A's 3 x 3 a pixel.
+    assert_ne!(taken("b"), taken("a"), "{text}");
+    assert!(json["mse"].as_f64().expect("mse") > 0.0, "{text}");
 }
 
 /// `compare` of `scene` as JSON at N = 3: A uniform with anti-aliasing,
@@ -162,11 +175,22 @@ fn compare_matches_adaptive_b_to_a() {
             .contains(&format!("at most {} samples", taken("a"))),
         "B's label names its budget: {equal}"
     );
+    // At A's time: B's label names a time budget, and B's first pass (the
+    // floor of 4 samples a pixel) always completes, however short A was.
     let timed = run("time", adaptive);
+    let label = timed["b"]["label"].as_str().expect("B's label");
+    let budget = label
+        .split("at most ")
+        .nth(1)
+        .and_then(|rest| rest.split([',', ')']).next())
+        .unwrap_or_else(|| panic!("B's label names no budget: {label}"));
+    let seconds = budget.strip_suffix(" s");
     assert!(
-        timed["b"]["samples_taken"].as_u64().unwrap() >= 32 * 24,
-        "{timed}"
+        seconds.is_some_and(|s| s.parse::<f64>().is_ok()),
+        "B's budget is not a time: {label}"
     );
+    let b_taken = timed["b"]["samples_taken"].as_u64().expect("samples_taken");
+    assert!((4 * 32 * 24..=36 * 32 * 24).contains(&b_taken), "{timed}");
     assert!(workbench_fails(&args("samples", "--aa")).contains("needs B adaptive"));
 }
 
@@ -193,12 +217,17 @@ fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
     // The target is uniform 2 x 2's own error; adaptive reaches it.
     assert_eq!(uniform["samples"], 2);
     assert_eq!(uniform["mse"], found["target_mse"]);
+    let number = |value: &serde_json::Value, what: &str| -> f64 {
+        value
+            .as_f64()
+            .unwrap_or_else(|| panic!("{what} is not a number: {found}"))
+    };
     assert!(
-        adaptive["mse"].as_f64() <= found["target_mse"].as_f64(),
+        number(&adaptive["mse"], "adaptive mse") <= number(&found["target_mse"], "target_mse"),
         "{found}"
     );
     assert!(
-        adaptive["flip"].as_f64() <= found["target_flip"].as_f64(),
+        number(&adaptive["flip"], "adaptive flip") <= number(&found["target_flip"], "target_flip"),
         "{found}"
     );
     assert!(adaptive["noise_threshold"].as_f64().unwrap() > 0.0);
@@ -225,18 +254,25 @@ fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
     // The threshold found is the largest that reaches it: every larger one
     // tried missed (searched upwards when the first already reaches it).
     let found_threshold = easier["adaptive"]["noise_threshold"].as_f64().unwrap();
+    // Every attempt is a uniform N or an adaptive T: a label of another
+    // form fails here rather than dropping out of the list checked.
     let tried = |found: &serde_json::Value| -> Vec<(f64, bool)> {
-        found["attempts"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .filter_map(|a| {
-                let t = a["label"].as_str()?.strip_prefix("adaptive T = ")?;
-                Some((t.parse().unwrap(), a["reached"].as_bool().unwrap()))
-            })
-            .collect()
+        let mut adaptive = Vec::new();
+        for a in found["attempts"].as_array().unwrap() {
+            let label = a["label"].as_str().expect("a label");
+            let reached = a["reached"].as_bool().expect("reached");
+            if let Some(t) = label.strip_prefix("adaptive T = ") {
+                adaptive.push((t.parse().expect("a threshold"), reached));
+            } else {
+                assert!(label.starts_with("uniform N = "), "{label}: {found}");
+            }
+        }
+        adaptive
     };
-    for (t, reached) in tried(&easier) {
+    // The first threshold and at least one more were tried.
+    let easier_tried = tried(&easier);
+    assert!(easier_tried.len() >= 2, "{easier}");
+    for (t, reached) in easier_tried {
         assert!(t <= found_threshold * 1.0001 || !reached, "{easier}");
     }
     // A target any render meets: the largest threshold there is.
@@ -246,7 +282,10 @@ fn bench_to_error_times_uniform_and_adaptive_at_one_error() {
         Some(1.0),
         "{any}"
     );
-    assert!(tried(&any).iter().all(|&(_, reached)| reached), "{any}");
+    // Doubled from the first threshold up to the largest, each reaching it.
+    let any_tried = tried(&any);
+    assert!(any_tried.len() >= 2, "{any}");
+    assert!(any_tried.iter().all(|&(_, reached)| reached), "{any}");
 
     let refused = workbench_fails(&[
         "bench",
@@ -305,12 +344,20 @@ fn sweep_noise_threshold_gives_samples_and_error() {
     let points = points.as_array().unwrap();
     assert_eq!(points.len(), 2);
     let (tight, loose) = (&points[0], &points[1]);
+    let number = |point: &serde_json::Value, key: &str| -> f64 {
+        point[key]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{key} is not a number: {json}"))
+    };
+    // The loose threshold still refines some pixels past the floor of 4,
+    // so "more samples when tighter" is not met by the floor alone.
+    assert!(number(loose, "spp_mean") > 4.0, "{json}");
     assert!(
-        tight["spp_mean"].as_f64() > loose["spp_mean"].as_f64(),
+        number(tight, "spp_mean") > number(loose, "spp_mean"),
         "{json}"
     );
     assert!(tight["spp_max"].as_u64().unwrap() <= 36, "{json}");
-    assert!(tight["mse"].as_f64() < loose["mse"].as_f64(), "{json}");
+    assert!(number(tight, "mse") < number(loose, "mse"), "{json}");
 }
 
 /// What a `render` run produced: the PNG's bytes, and the statistics that

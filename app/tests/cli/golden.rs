@@ -560,6 +560,36 @@ fn every_scene_and_variant_matches_its_golden_image() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Every reference has its case: a golden whose scene was deleted or
+/// renamed (or whose variant is gone) would otherwise drop out of the
+/// comparison without a word.
+#[test]
+fn every_golden_image_has_its_scene() {
+    if scenes().is_empty() {
+        tracer::optional_input::missing("scenes/ (the goldens' scenes)");
+        return;
+    }
+    let cases = cases();
+    let mut orphans = Vec::new();
+    let mut checked = 0;
+    for entry in std::fs::read_dir(golden_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.file_name().is_some_and(|n| n == "README.md") {
+            continue;
+        }
+        checked += 1;
+        if !cases.iter().any(|case| case.reference() == path) {
+            orphans.push(path.display().to_string());
+        }
+    }
+    assert!(
+        orphans.is_empty(),
+        "golden images without a scene or variant (delete them, or bring the scene back): {}",
+        orphans.join(", ")
+    );
+    assert_eq!(checked, cases.len(), "one reference per case");
+}
+
 /// A variant must change the image its scene gives with its own settings
 /// at the same size, or a setting the renderer ignored would be blessed as
 /// a golden of nothing new; the grid instead must give exactly the image

@@ -116,6 +116,30 @@ fn compare_viewport(shot: &RgbImage, reference: &RgbImage) -> usize {
         .expect("a candidate position")
 }
 
+/// Where the window's line (`saved screenshot ... drawn at X0,Y0 to
+/// X1,Y1`) says it drew the image, in the screenshot's pixels.
+fn drawn_at(said: &str) -> [f64; 4] {
+    let corners = said
+        .split("drawn at ")
+        .nth(1)
+        .and_then(|rest| rest.lines().next())
+        .unwrap_or_else(|| panic!("the window said not where the image is: {said}"));
+    let numbers: Vec<f64> = corners
+        .split([',', ' '])
+        .filter_map(|word| word.parse().ok())
+        .collect();
+    let rect: [f64; 4] = numbers
+        .try_into()
+        .unwrap_or_else(|n| panic!("not two corners in {corners:?}: {n:?}"));
+    assert!(rect[0] < rect[2] && rect[1] < rect[3], "{said}");
+    rect
+}
+
+/// The screenshot's pixel at (`x`, `y`) in its own pixels.
+fn pixel(shot: &RgbImage, x: f64, y: f64) -> [u8; 3] {
+    shot.get_pixel(x as u32, y as u32).0
+}
+
 /// Opens the window on a scene, leaves it alone, and lets it photograph
 /// itself once the render is done and on screen (no fixed delay): the
 /// viewport must show what `workbench render` makes of the same scene with
@@ -181,30 +205,56 @@ fn a_screenshot_after_a_delay_waits_for_the_delay() {
 fn the_window_opens_with_the_observer_on_when_asked() {
     let dir = Scratch::new("window-observer");
     let (plain, observed) = (dir.join("plain.png"), dir.join("observed.png"));
-    for (shot, extra) in [(&plain, None), (&observed, Some("--observer"))] {
+    let said = [(&plain, None), (&observed, Some("--observer"))].map(|(shot, extra)| {
         let mut window = workbench(&dir);
         window.args(["--scene", SCENE, "--screenshot"]).arg(shot);
         window.args(extra);
         let said = String::from_utf8_lossy(&run_bounded(window).stdout).into_owned();
         assert!(said.contains("spp"), "{said}");
-    }
-    let plain = image::open(&plain).unwrap().to_rgb8();
-    let observed = image::open(&observed).unwrap().to_rgb8();
-    // Near the top left of the image area: inside the square render in the
-    // plain window, where it fills the area's width or height; with the
-    // observer beside it the render has half the width, is centred
-    // vertically, and the background shows above it. A hundred points in
-    // and down, as the area's edges move with the side panels, which the
-    // scene list's counts and the sampling controls widen (x = 300 was the
-    // panel itself once, in CI; y = 20 fell in the margin once the left
-    // panel's width left the plain render narrower than the area's height).
-    let probe = |shot: &RgbImage| shot.get_pixel(400, 120).0;
-    assert_ne!(probe(&plain), BACKGROUND, "the plain window's image");
-    assert_eq!(probe(&observed), BACKGROUND, "the halved image's margin");
+        said
+    });
+    let [plain_said, observed_said] = said;
+    let plain_shot = image::open(&plain).unwrap().to_rgb8();
+    let observed_shot = image::open(&observed).unwrap().to_rgb8();
+    // Probed where each window says it drew the image (the side panels,
+    // which the scene list's counts and the sampling controls widen, move
+    // it): the image is there in both, and with the observer beside it
+    // the render has at most half the width it had, centred vertically
+    // with the background above it.
+    let plain = drawn_at(&plain_said);
+    let observed = drawn_at(&observed_said);
+    let centre = |r: [f64; 4]| ((r[0] + r[2]) / 2.0, (r[1] + r[3]) / 2.0);
+    let (x, y) = centre(plain);
+    assert_ne!(
+        pixel(&plain_shot, x, y),
+        BACKGROUND,
+        "the plain window's image"
+    );
+    let (x, y) = centre(observed);
+    assert_ne!(
+        pixel(&observed_shot, x, y),
+        BACKGROUND,
+        "the observed window's image"
+    );
+    let width = |r: [f64; 4]| r[2] - r[0];
+    assert!(
+        width(observed) <= width(plain) / 2.0 + 1.0,
+        "the image beside the observer is not halved: {observed:?} against {plain:?}"
+    );
+    assert!(
+        observed[1] > plain[1] + 2.0,
+        "{observed:?} against {plain:?}"
+    );
+    assert_eq!(
+        pixel(&observed_shot, x, observed[1] - 2.0),
+        BACKGROUND,
+        "the halved image's margin"
+    );
 }
 
 /// `--lesson FILE`: the window opens with the lesson's first step set up,
-/// its scene rendered at the lesson's own resolution.
+/// its scene rendered at the lesson's own resolution: the red sphere in
+/// the middle of the image, the lesson's black sky at its corners.
 #[test]
 #[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
 fn the_window_opens_a_lesson_set_up() {
@@ -240,6 +290,21 @@ solution = { pixel = [20, 15] }
         .arg(&shot);
     let said = String::from_utf8_lossy(&run_bounded(window).stdout).into_owned();
     assert!(said.contains("of 40 x 30"), "{said}");
+    let shot = image::open(&shot).expect("the screenshot").to_rgb8();
+    let [x0, y0, x1, y1] = drawn_at(&said);
+    // Half a lesson pixel in from the corner, and the image's centre.
+    let inset = (x1 - x0) / 80.0;
+    let [r, g, b] = pixel(&shot, (x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    assert!(
+        r > 100 && g < 40 && b < 40,
+        "not the lesson's red sphere at the centre: {:?}",
+        [r, g, b]
+    );
+    let corner = pixel(&shot, x0 + inset, y0 + inset);
+    assert!(
+        corner.iter().all(|&c| c < 40),
+        "not the lesson's sky in the corner: {corner:?}"
+    );
 }
 
 /// Every file under `dir`, recursively.

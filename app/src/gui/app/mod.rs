@@ -228,6 +228,9 @@ impl WorkbenchApp {
             .frame(unfilled(egui::Frame::central_panel(ui.style())))
             .show(ui, |ui| central::show(ui, view))
             .inner;
+        if let Some(request) = &mut self.screenshot {
+            request.saw_image_at(outcome.viewport.image_rect);
+        }
         self.move_selected(&mut outcome.viewport);
         self.apply_observer_edits(outcome.observer_edits);
         let scene = self.sides.a.engine.scene().map(|s| &s.scene);

@@ -271,6 +271,8 @@ pub struct ScreenshotRequest {
     pub outcome: ScreenshotOutcome,
     opened_at: Instant,
     requested: bool,
+    /// Where side A's image was drawn in the last frame, in points.
+    image_rect: Option<egui::Rect>,
 }
 
 impl ScreenshotRequest {
@@ -280,7 +282,14 @@ impl ScreenshotRequest {
             outcome,
             opened_at: Instant::now(),
             requested: false,
+            image_rect: None,
         }
+    }
+
+    /// Keeps where the viewport drew side A's image this frame, for the
+    /// line that reports the screenshot.
+    pub fn saw_image_at(&mut self, rect: Option<egui::Rect>) {
+        self.image_rect = rect;
     }
 
     /// Asks egui for the screenshot once it is due: after the plan's delay,
@@ -310,7 +319,15 @@ impl ScreenshotRequest {
         }
         self.requested = true;
         let path = self.plan.path.clone();
-        let shown = a.image.shown().map(screenshot::describe);
+        let shown = a.image.shown().map(|shown| {
+            let drawn = self
+                .image_rect
+                .map(|rect| screenshot::describe_rect(rect, ctx.pixels_per_point()));
+            match drawn {
+                Some(drawn) => format!("{}, {drawn}", screenshot::describe(shown)),
+                None => screenshot::describe(shown),
+            }
+        });
         let reply = dialogs.sender.clone();
         let wake = ctx.clone();
         ctx.request_screenshot(move |image| {

@@ -33,6 +33,17 @@ pub fn describe(shown: &Snapshot) -> String {
     )
 }
 
+/// Where the image is on the screenshot, in its pixels (`rect` in points,
+/// `pixels_per_point` the display's scale): a test then probes the image
+/// where the layout put it, not where it used to be.
+pub fn describe_rect(rect: egui::Rect, pixels_per_point: f32) -> String {
+    let r = rect * pixels_per_point;
+    format!(
+        "drawn at {:.0},{:.0} to {:.0},{:.0}",
+        r.min.x, r.min.y, r.max.x, r.max.y
+    )
+}
+
 /// Writes the window's pixels to `path` as an RGB PNG.
 pub fn save(image: &egui::ColorImage, path: &Path) -> Result<()> {
     let [width, height] = image.size;

@@ -17,6 +17,9 @@ pub(super) struct SceneLoad {
     per_mille: Arc<AtomicU32>,
 }
 
+/// The loading thread's name (the tests tell its wakes from a render's).
+pub const THREAD_NAME: &str = "scene-loader";
+
 /// A load that has reported no progress (a scene file, a small mesh).
 const NO_FRACTION: u32 = u32::MAX;
 
@@ -29,7 +32,7 @@ impl SceneLoad {
         let per_mille = Arc::new(AtomicU32::new(NO_FRACTION));
         let progress = per_mille.clone();
         let spawned = std::thread::Builder::new()
-            .name("scene-loader".into())
+            .name(THREAD_NAME.into())
             .spawn(move || {
                 let mut on_progress = |p: tracer::mesh_io::LoadProgress| {
                     let fraction = p.bytes_read as f64 / p.total_bytes.max(1) as f64;
