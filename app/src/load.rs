@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
-use tracer::mesh_io::{self, LoadProgress, MeshFormat};
 use tracer::scene::edit::Edit;
+use tracer::scene::mesh_io::{self, LoadProgress, MeshFormat};
 use tracer::scene::{Limits, Scene, parse_scene, parse_scene_file};
 use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;

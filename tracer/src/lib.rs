@@ -38,7 +38,6 @@ pub mod accel;
 pub mod camera;
 pub mod generate;
 pub mod geometry;
-pub mod mesh_io;
 pub mod metrics;
 pub mod optics;
 pub mod ray_set;

@@ -10,12 +10,13 @@ use crate::camera::CameraError;
 use crate::stats::RenderStats;
 use crate::world::World;
 
+use super::adaptive::Adaptive;
 use super::control::{Control, ProgressListener, lock, lock_spinning};
 use super::driver::{Clock, FailureSlot, Host, Priority, SystemClock, WorkingFor};
 use super::outputs::{Outputs, Recording};
 use super::passes::{LoopContext, PassListener};
 use super::settings::SettingsError;
-use super::strategy::{self, SamplingStrategy};
+use super::strategy::{SamplingStrategy, Uniform};
 use super::view::{View, ViewFilm, ViewHeatmap, view_rgba8};
 use super::{Encoding, Film, RenderPlan, RenderSettings, driver, passes};
 
@@ -215,7 +216,7 @@ impl RenderJob {
         settings: RenderSettings,
         options: JobOptions,
     ) -> Result<RenderJob, RenderError> {
-        let strategy = strategy::for_settings(&settings);
+        let strategy = strategy_for(&settings);
         Self::start_with(world, index, settings, strategy, options)
     }
 
@@ -513,5 +514,14 @@ impl Job {
         *lock(&shared.state) = JobState::Rendering;
         shared.control.notify();
         Ok(built)
+    }
+}
+
+/// The strategy `settings` ask for: adaptive sampling when it is in force,
+/// else uniform N x N.
+fn strategy_for(settings: &RenderSettings) -> Box<dyn SamplingStrategy> {
+    match settings.adaptive() {
+        Some(adaptive) => Box::new(Adaptive::new(*adaptive)),
+        None => Box::new(Uniform::new(settings)),
     }
 }

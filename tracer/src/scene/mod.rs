@@ -6,6 +6,7 @@ pub mod edit;
 mod error;
 mod lexer;
 mod limits;
+pub mod mesh_io;
 mod parse;
 mod rules;
 mod write;
