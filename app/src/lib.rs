@@ -3,6 +3,7 @@
 
 pub mod bundled;
 pub mod cli;
+pub mod describe;
 pub mod figures;
 #[cfg(feature = "window")]
 pub mod gui;

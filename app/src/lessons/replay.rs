@@ -13,7 +13,7 @@ use tracer::world::World;
 
 use crate::load::{self, Loaded, SceneSource};
 
-use super::check::written::Part;
+use super::check::Part;
 use super::check::{Verdict, evaluate};
 use super::format::{Lesson, LessonError, LessonErrors, LessonScene, Step};
 use super::state::LessonState;

@@ -14,10 +14,10 @@ use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
+use crate::describe::si;
 use crate::image_file::save_png;
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
 use crate::reports::bench_table::{self, Columns, Format};
-use crate::reports::render_stats::si;
 
 use super::background::Measuring;
 

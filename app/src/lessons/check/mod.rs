@@ -14,7 +14,7 @@ mod tests;
 
 pub use expect::{Expect, Tolerance, Value};
 pub use measurement::{By, Metric};
-pub use quantity::{Quantity, Reads};
+pub use quantity::{Part, Quantity, Reads};
 
 use super::state::{LessonState, Which};
 

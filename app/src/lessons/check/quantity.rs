@@ -16,7 +16,6 @@ use crate::reports::ray_tree;
 
 use super::super::state::{LessonState, SideState, Which};
 use super::expect::{Expect, Value};
-use super::written::Part;
 
 /// A render setting, by its `workbench render` flag's name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -125,6 +124,15 @@ const TREE_FIGURES: [(&str, TreeFigure); 12] = [
     ("eye-t", TreeFigure::EyeT),
     ("eye-outside", TreeFigure::EyeOutside),
 ];
+
+/// A numbered part of the scene that a quantity, or a check's reference,
+/// names: validated against the scene when the lesson loads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    Object(usize),
+    Material(usize),
+    Light(usize),
+}
 
 /// Something a check reads.
 #[derive(Debug, Clone, PartialEq, Eq)]
