@@ -5,9 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::{AccelKind, StructureLayer};
-use tracer::render::{
-    AdaptiveSampling, Encoding, HeatScale, RenderSettings, Sampling, View, ViewHeatmap,
-};
+use tracer::render::{Encoding, HeatScale, RenderSettings, Sampling, View, ViewHeatmap};
 
 use crate::measure::ab::Heatmap;
 use crate::measure::study::Param;
@@ -861,24 +859,18 @@ impl SettingsArgs {
             None if !knobs => return,
             _ => {}
         }
-        let mut adaptive = match s.sampling {
-            Sampling::Adaptive(a) => a,
-            _ => AdaptiveSampling::for_samples(
-                s.samples,
-                AdaptiveSampling::default().noise_threshold,
-            ),
-        };
-        if let Some(t) = self.noise_threshold {
-            adaptive.noise_threshold = t;
-        }
-        if let Some(max) = self.max_spp {
-            adaptive.max_spp = max;
-            adaptive.min_spp = adaptive.min_spp.min(max);
-        }
-        if let Some(min) = self.min_spp {
-            adaptive.min_spp = min;
-        }
-        s.sampling = Sampling::Adaptive(adaptive);
+        s.sample_adaptively(|adaptive| {
+            if let Some(t) = self.noise_threshold {
+                adaptive.noise_threshold = t;
+            }
+            if let Some(max) = self.max_spp {
+                adaptive.max_spp = max;
+                adaptive.min_spp = adaptive.min_spp.min(max);
+            }
+            if let Some(min) = self.min_spp {
+                adaptive.min_spp = min;
+            }
+        });
         s.antialiasing = true;
     }
 }

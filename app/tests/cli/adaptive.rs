@@ -392,3 +392,79 @@ fn render_to(scene: &str, out: &std::path::Path, flags: &[&str]) -> Rendered {
         stats,
     }
 }
+
+/// A lesson starting from `settings` whose one step asks for adaptive
+/// sampling at noise threshold `threshold`, and gets it.
+fn threshold_lesson(threshold: f32) -> String {
+    format!(
+        r#"title = "Threshold"
+chapter = 13
+
+[scene]
+p3f = """
+v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 8 8
+l 0 5 5 1 1 1
+f 1 0 0 1 0 0 0 0 1 0 1
+s 0 0 0 1
+"""
+
+[start]
+settings = "--spp 2"
+
+[[step]]
+title = "Set the threshold"
+text = "Sample adaptively at the threshold."
+check = {{ kind = "value", of = "sampling", is = "adaptive" }}
+solution = {{ settings = "--sampling adaptive --noise-threshold={threshold}" }}
+"#
+    )
+}
+
+/// The noise threshold's valid range has one home (`tracer::scene::
+/// NOISE_THRESHOLD`): a scene file's `adaptive`, `--noise-threshold` and a
+/// lesson's settings accept its ends and refuse just beyond them (the
+/// window's slider is held inside it by a unit test).
+#[test]
+fn every_entry_point_takes_the_same_noise_thresholds() {
+    let dir = scratch("threshold-range");
+    let scene = scene(&dir);
+    let (low, high) = tracer::scene::NOISE_THRESHOLD.into_inner();
+    let out = dir.join("out.png");
+    let out = out.to_str().unwrap();
+    for (threshold, valid) in [
+        (low, true),
+        (high, true),
+        (low - 0.5, false),
+        (high + 0.5, false),
+    ] {
+        let text = spheres_on_a_floor(32, 24, "", "")
+            .replace("bclr", &format!("spp 2\nadaptive {threshold}\nbclr"));
+        let file = write(&dir, "file.p3f", &text);
+        let file = file.to_str().unwrap();
+        let flag = format!("--noise-threshold={threshold}");
+        let lesson = write(&dir, "threshold.toml", &threshold_lesson(threshold));
+        let lesson = lesson.to_str().unwrap();
+        let runs = [
+            ("scene file", vec!["render", file, "-o", out]),
+            (
+                "flag",
+                vec!["render", &scene, "-o", out, "--spp", "2", &flag],
+            ),
+            ("lesson", vec!["lesson", "check", lesson]),
+        ];
+        for (entry, args) in runs {
+            let run = crate::support::workbench(&args);
+            let said = String::from_utf8_lossy(&run.stderr).into_owned()
+                + &String::from_utf8_lossy(&run.stdout);
+            assert_eq!(
+                run.status.success(),
+                valid,
+                "{entry} at {threshold}: {said}"
+            );
+            if !valid {
+                assert!(said.contains("noise threshold"), "{entry}: {said}");
+                assert!(said.contains(&format!("{high}")), "{entry}: {said}");
+            }
+        }
+    }
+}

@@ -6,7 +6,8 @@ use glam::Vec3A;
 
 use crate::accel::AccelKind;
 use crate::camera::{Camera, CameraError, CameraPose};
-use crate::scene::{Lens, Scene, Viewpoint};
+use crate::scene::{DEFAULT_NOISE_THRESHOLD, Lens, NOISE_THRESHOLD, Scene, Viewpoint};
+pub use crate::scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 /// What to render and how.
 #[derive(Debug, Clone, PartialEq)]
@@ -170,7 +171,7 @@ pub enum Budget {
 
 impl Default for AdaptiveSampling {
     fn default() -> Self {
-        Self::for_samples(4, 0.01)
+        Self::for_samples(4, DEFAULT_NOISE_THRESHOLD)
     }
 }
 
@@ -244,6 +245,23 @@ impl RenderSettings {
                 ..AdaptiveSampling::for_samples(n, adaptive.noise_threshold)
             };
         }
+    }
+
+    /// Samples adaptively, with the knobs in force (or, when sampling
+    /// uniformly, adaptive sampling in place of N x N: N's bounds, the
+    /// default threshold) changed by `edit`: what a checkbox,
+    /// `--sampling adaptive` and a threshold study all start from. Whether
+    /// anti-aliasing turns on is the caller's: adaptive sampling spreads
+    /// the samples anti-aliasing or depth of field takes.
+    pub fn sample_adaptively(&mut self, edit: impl FnOnce(&mut AdaptiveSampling)) {
+        let mut knobs = match self.sampling {
+            Sampling::Adaptive(knobs) => knobs,
+            Sampling::Uniform => {
+                AdaptiveSampling::for_samples(self.samples, DEFAULT_NOISE_THRESHOLD)
+            }
+        };
+        edit(&mut knobs);
+        self.sampling = Sampling::Adaptive(knobs);
     }
 
     /// Renders through `view`'s own lens again, with depth of field when
@@ -320,12 +338,6 @@ impl RenderSettings {
     }
 }
 
-/// Largest N (N x N samples per pixel).
-pub const MAX_SAMPLES: u32 = 64;
-/// Largest image side, in pixels.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-/// Largest image, in pixels (64 Mi: about 1.3 GB of film).
-pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
 /// Deepest recursion allowed.
 pub const MAX_DEPTH: u32 = 64;
 /// Largest grid multiplier (cells grow with its cube).
@@ -426,11 +438,12 @@ impl AdaptiveSampling {
             format!("1 to the max spp, {}", self.max_spp),
         )?;
         let threshold = self.noise_threshold;
+        let (low, high) = NOISE_THRESHOLD.into_inner();
         require(
-            threshold >= 0.0 && threshold.is_finite(),
+            NOISE_THRESHOLD.contains(&threshold),
             "noise threshold",
             threshold,
-            "a number >= 0",
+            format!("a number from {low} to {high}"),
         )
     }
 }

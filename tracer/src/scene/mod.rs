@@ -17,6 +17,9 @@ mod tests;
 pub use error::{ParseError, ParseErrorKind};
 pub use limits::Limits;
 pub use parse::{COMMANDS, VIEW_FIELDS, parse_scene, parse_scene_file};
+pub use rules::{
+    DEFAULT_NOISE_THRESHOLD, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, NOISE_THRESHOLD,
+};
 pub use write::{write_p3f, write_p3f_in};
 
 use std::path::PathBuf;
