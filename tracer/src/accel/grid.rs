@@ -8,7 +8,7 @@ use glam::{IVec3, Vec3A};
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::visits::{NoLog, Step, VisitLog};
+use super::visits::{NoLog, TraversalStep, VisitLog};
 use super::{Hit, Nearest, first_occluder, offer_each};
 
 /// Most cells a grid may have, whatever the multiplier: 16 Mi cells take
@@ -233,7 +233,7 @@ impl Grid {
         let mut nearest = f32::INFINITY;
         loop {
             counters.nodes_visited += 1;
-            log.step(Step::Cell(cell), counters.intersection_tests);
+            log.step(TraversalStep::Cell(cell), counters.intersection_tests);
             let i = (cell.x + self.cells.x * (cell.y + self.cells.y * cell.z)) as usize;
             let (from, to) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
             for &id in &self.refs[from..to] {

@@ -14,7 +14,7 @@ use super::{Hit, SceneIndex, Structure};
 /// One step of a traversal, as cheap to tell as possible: indices only,
 /// turned into boxes afterwards.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Step {
+pub(super) enum TraversalStep {
     /// The grid walk entered this cell.
     Cell(IVec3),
     /// The BVH descent visited this 8-wide node (tested its children's boxes).
@@ -28,7 +28,7 @@ pub(super) trait VisitLog {
     /// `step` begins after `tests` primitive tests by this traversal: the
     /// difference to the next step's is what this one tested (the grid's
     /// mailbox makes that less than a cell lists).
-    fn step(&mut self, step: Step, tests: u64);
+    fn step(&mut self, step: TraversalStep, tests: u64);
 }
 
 /// The render's log: keeps nothing, costs nothing (the counts it is told
@@ -37,11 +37,11 @@ pub(super) struct NoLog;
 
 impl VisitLog for NoLog {
     #[inline(always)]
-    fn step(&mut self, _: Step, _: u64) {}
+    fn step(&mut self, _: TraversalStep, _: u64) {}
 }
 
-impl VisitLog for Vec<(Step, u64)> {
-    fn step(&mut self, step: Step, tests: u64) {
+impl VisitLog for Vec<(TraversalStep, u64)> {
+    fn step(&mut self, step: TraversalStep, tests: u64) {
         self.push((step, tests));
     }
 }
@@ -160,7 +160,7 @@ impl SceneIndex {
                     .iter()
                     .zip(ends)
                     .filter_map(|(&(step, before), after)| match step {
-                        Step::Cell(c) => Some(Visit::Cell {
+                        TraversalStep::Cell(c) => Some(Visit::Cell {
                             cell: c.as_uvec3().to_array(),
                             bounds: grid.cell_bounds(c),
                             tested: (after - before) as u32,

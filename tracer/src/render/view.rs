@@ -737,12 +737,12 @@ s 0 0 0 1
         let scene = parse_scene(ONE_SPHERE, None, &Limits::default()).unwrap();
         let world = Arc::new(crate::world::World::build(&scene));
         let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
-        let frame = RenderPlan::new(world, index, plain(9, 9)).unwrap();
-        let tile = frame.tiles[0];
+        let plan = RenderPlan::new(world, index, plain(9, 9)).unwrap();
+        let tile = plan.tiles[0];
         let mut a = Counters::default();
         let mut b = Counters::default();
-        let (values, samples) = frame.render_tile_with_views(0, &tile, &mut a);
-        assert_eq!(values, frame.render_tile(0, &tile, &mut b));
+        let (values, samples) = plan.render_tile_with_views(0, &tile, &mut a);
+        assert_eq!(values, plan.render_tile(0, &tile, &mut b));
         assert_eq!(a, b);
         assert_eq!(samples.len(), 81);
     }

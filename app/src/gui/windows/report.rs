@@ -8,13 +8,13 @@ use std::sync::mpsc::{Receiver, channel};
 
 use egui::Ui;
 
-use crate::reports::lab::{self, Progress, Request};
+use crate::reports::lab::{self, ReportProgress, Request};
 
 use super::background::Background;
 
 /// What the export thread tells the window.
 enum Update {
-    Progress(Progress),
+    Progress(ReportProgress),
     /// Where the page went; `None` when cancelled.
     Finished(Result<Option<PathBuf>, String>),
 }
@@ -25,7 +25,7 @@ enum Update {
 pub struct ReportExport {
     choosing: Option<Receiver<Option<PathBuf>>>,
     task: Option<Background<Update>>,
-    progress: Option<Progress>,
+    progress: Option<ReportProgress>,
     /// Where the running export writes.
     target: Option<PathBuf>,
     /// What the last export did, shown until the next.
@@ -38,7 +38,7 @@ impl ReportExport {
     }
 
     /// How far the running export has come.
-    pub fn progress(&self) -> Option<&Progress> {
+    pub fn progress(&self) -> Option<&ReportProgress> {
         self.progress.as_ref()
     }
 
