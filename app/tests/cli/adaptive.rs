@@ -2,6 +2,7 @@
 //! `compare`, `bench` and `sweep`, what `render --stats json` says of the
 //! samples, and `bench --to-error`.
 
+use crate::lessons::lesson_file;
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{Scratch, scratch, workbench_fails, workbench_ok, write};
 
@@ -393,33 +394,6 @@ fn render_to(scene: &str, out: &std::path::Path, flags: &[&str]) -> Rendered {
     }
 }
 
-/// A lesson starting from `settings` whose one step asks for adaptive
-/// sampling at noise threshold `threshold`, and gets it.
-fn threshold_lesson(threshold: f32) -> String {
-    format!(
-        r#"title = "Threshold"
-chapter = 13
-
-[scene]
-p3f = """
-v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 8 8
-l 0 5 5 1 1 1
-f 1 0 0 1 0 0 0 0 1 0 1
-s 0 0 0 1
-"""
-
-[start]
-settings = "--spp 2"
-
-[[step]]
-title = "Set the threshold"
-text = "Sample adaptively at the threshold."
-check = {{ kind = "value", of = "sampling", is = "adaptive" }}
-solution = {{ settings = "--sampling adaptive --noise-threshold={threshold}" }}
-"#
-    )
-}
-
 /// The noise threshold's valid range has one home (`tracer::scene::
 /// NOISE_THRESHOLD`): a scene file's `adaptive`, `--noise-threshold` and a
 /// lesson's settings accept its ends and refuse just beyond them (the
@@ -442,15 +416,15 @@ fn every_entry_point_takes_the_same_noise_thresholds() {
         let file = write(&dir, "file.p3f", &text);
         let file = file.to_str().unwrap();
         let flag = format!("--noise-threshold={threshold}");
-        let lesson = write(&dir, "threshold.toml", &threshold_lesson(threshold));
-        let lesson = lesson.to_str().unwrap();
+        let solution = format!("--spp 4 --sampling adaptive {flag}");
+        let lesson = lesson_file(&dir, "threshold.toml", &solution);
         let runs = [
             ("scene file", vec!["render", file, "-o", out]),
             (
                 "flag",
                 vec!["render", &scene, "-o", out, "--spp", "2", &flag],
             ),
-            ("lesson", vec!["lesson", "check", lesson]),
+            ("lesson", vec!["lesson", "check", &lesson]),
         ];
         for (entry, args) in runs {
             let run = crate::support::workbench(&args);

@@ -31,7 +31,9 @@ check = { kind = "all", checks = [
 solution = { settings = "{solution}" }
 "#;
 
-fn lesson_file(dir: &Scratch, name: &str, solution: &str) -> String {
+/// A one-step lesson (anti-aliasing on with N >= 4) written as `name` in
+/// `dir`, solved by the `render` flags `solution`: its path.
+pub(crate) fn lesson_file(dir: &Scratch, name: &str, solution: &str) -> String {
     let path = dir.join(name);
     std::fs::write(&path, TEMPLATE.replace("{solution}", solution)).unwrap();
     path.display().to_string()
