@@ -109,7 +109,8 @@ impl Refinement {
         active
     }
 
-    /// Each pixel's error (row-major) as [`error_estimate`] gives it,
+    /// Each pixel's error (row-major) as
+    /// [`error_estimate`](crate::render::estimate::error_estimate) gives it,
     /// pooled over its 3 x 3 neighbourhood: the mean of the squared
     /// errors, its own weighing four times a neighbour's, a neighbour's
     /// scaled to the pixel's sample count (as 1 / n). Two halves of 2
