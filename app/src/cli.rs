@@ -185,6 +185,41 @@ pub enum LessonCommand {
         #[arg(value_name = "NAME|FILE")]
         lessons: Vec<String>,
     },
+    /// The state a step starts from (settings, compare mode, the pinned
+    /// pixel and its ray tree, the check's verdict) and every quantity a
+    /// check can read there with its value; with --find, the pixels where
+    /// tree figures hold, to choose one to pin.
+    Explain(ExplainArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+  workbench lesson explain refraction --step 3
+  workbench lesson explain refraction --step 3 --find eye-object=2 --find tir=yes
+  workbench lesson explain my_lesson.toml --step 2 --pixel 40 27
+
+--find takes a tree figure as a check's `of` names it (the `tree ` in front
+may be left out) and what it must be as a check's `is` writes it: tir=yes,
+eye-object=2, rays>=6, \"blocker 0=1\". Every --find must hold. The pixels
+are listed row by row, read on side A's first sample as the step starts.")]
+pub struct ExplainArgs {
+    /// A bundled lesson's name or a lesson file (.toml).
+    #[arg(value_name = "NAME|FILE")]
+    pub lesson: String,
+    /// The step, counted from 1 as `lesson check` numbers them.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub step: usize,
+    /// List the pixels where this tree figure holds (repeat to ask for
+    /// several at once), instead of explaining the step.
+    #[arg(long, value_name = "QUANTITY=VALUE", value_parser = find_condition)]
+    pub find: Vec<crate::lessons::explain::Condition>,
+    /// Explain the step with this pixel pinned instead of the step's own.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], conflicts_with = "find")]
+    pub pixel: Option<Vec<u32>>,
+}
+
+fn find_condition(text: &str) -> Result<crate::lessons::explain::Condition, String> {
+    crate::lessons::explain::Condition::parse(text)
 }
 
 #[derive(Args, Debug)]

@@ -1,13 +1,15 @@
-//! `workbench lesson list` and `workbench lesson check`: lessons tested like
+//! `workbench lesson list`, `check` and `explain`: lessons tested like
 //! code. `check` reads each lesson, opens its scene and replays its steps,
 //! one line per step, and fails when any step's check already holds before
-//! the student acts or does not hold after the step's solution.
+//! the student acts or does not hold after the step's solution. `explain`
+//! says what a step starts from and where its tree figures hold.
 
 use std::path::Path;
 
 use anyhow::{Result, anyhow, bail};
 
-use crate::cli::{LessonArgs, LessonCommand, MetricsFormat};
+use crate::cli::{ExplainArgs, LessonArgs, LessonCommand, MetricsFormat};
+use crate::lessons::explain;
 use crate::lessons::format::read_lesson_file;
 use crate::lessons::replay::replay;
 use crate::lessons::{Lesson, LessonErrors, bundled};
@@ -16,7 +18,20 @@ pub fn run(args: &LessonArgs) -> Result<()> {
     match &args.command {
         LessonCommand::List { format } => list(*format),
         LessonCommand::Check { lessons } => check(lessons),
+        LessonCommand::Explain(args) => explain(args),
     }
+}
+
+fn explain(args: &ExplainArgs) -> Result<()> {
+    let lesson = read(&args.lesson)?;
+    let text = if args.find.is_empty() {
+        let pixel = args.pixel.as_deref().map(|p| (p[0], p[1]));
+        explain::explain(&lesson, args.step, pixel)?
+    } else {
+        explain::find(&lesson, args.step, &args.find)?
+    };
+    print!("{text}");
+    Ok(())
 }
 
 fn list(format: MetricsFormat) -> Result<()> {

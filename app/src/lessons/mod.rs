@@ -7,6 +7,7 @@
 
 pub mod bundled;
 pub mod check;
+pub mod explain;
 pub mod format;
 pub mod replay;
 pub mod state;

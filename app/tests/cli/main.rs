@@ -15,6 +15,7 @@ mod docs;
 mod edits;
 mod flags;
 mod golden;
+mod lesson_explain;
 mod lessons;
 mod meshes_and_images;
 mod observe;
