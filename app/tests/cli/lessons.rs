@@ -3,7 +3,7 @@
 //! or whose check holds before the student acts, fails; a malformed file
 //! gets a located error.
 
-use crate::support::{Scratch, workbench, workbench_ok};
+use crate::support::{Scratch, workbench, workbench_fails, workbench_ok};
 
 /// A one-step lesson on an inline scene, `{check}` and `{solution}` filled
 /// in by each test.
@@ -365,4 +365,28 @@ solution = { answer = 3 }"#,
         ),
         "{out}"
     );
+}
+
+/// A lesson given where a scene is expected is named for what it is, with
+/// the commands that open it, whichever headless command was run.
+#[test]
+fn a_lesson_given_as_a_scene_says_how_to_open_it() {
+    let lesson = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/lessons/shadows.toml"
+    );
+    for command in [
+        &["render", lesson, "-o", "never.png"][..],
+        &["inspect", lesson, "--pixel", "1", "1"],
+    ] {
+        let err = workbench_fails(command);
+        assert!(
+            err.contains(&format!("{lesson} is a lesson, not a scene: open it in the window with `workbench --lesson {lesson}`")),
+            "{err}"
+        );
+        assert!(
+            err.contains(&format!("`workbench lesson check {lesson}`")),
+            "{err}"
+        );
+    }
 }

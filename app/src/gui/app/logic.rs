@@ -5,6 +5,7 @@
 
 use tracer::render::{JobState, RenderSettings};
 
+use crate::lessons::format::is_lesson_file;
 use crate::load::SceneSource;
 
 use super::WorkbenchApp;
@@ -327,10 +328,4 @@ impl WorkbenchApp {
             self.apply_study_point(&applied);
         }
     }
-}
-
-/// Whether `path` names a lesson file (docs/LESSONS.md): TOML.
-fn is_lesson_file(path: &std::path::Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }
