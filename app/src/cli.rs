@@ -184,6 +184,17 @@ pub enum LessonCommand {
         /// bundled lesson.
         #[arg(value_name = "NAME|FILE")]
         lessons: Vec<String>,
+        /// One line per step, or JSON for a teacher's CI: each lesson's
+        /// steps with pass or what failed, its mistakes with line and column.
+        #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+        format: MetricsFormat,
+    },
+    /// Write a commented starting lesson, NAME.toml, that passes `lesson
+    /// check` as written: edit it from there. Never overwrites a file.
+    New {
+        /// The lesson's name or file (`light_and_shadow` writes
+        /// light_and_shadow.toml, titled "Light and shadow").
+        name: String,
     },
     /// The state a step starts from (settings, compare mode, the pinned
     /// pixel and its ray tree, the check's verdict) and every quantity a

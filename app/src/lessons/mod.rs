@@ -9,6 +9,7 @@ pub mod bundled;
 pub mod check;
 pub mod explain;
 pub mod format;
+pub mod new;
 pub mod replay;
 pub mod state;
 
