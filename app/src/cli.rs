@@ -169,19 +169,24 @@ pub struct LessonArgs {
 
 #[derive(Subcommand, Debug)]
 pub enum LessonCommand {
-    /// The bundled lessons: name, chapter, title and steps.
+    /// The bundled lessons, or a folder's: name, chapter, title and steps,
+    /// in chapter order.
     List {
         /// A table, or JSON for scripts.
         #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
         format: MetricsFormat,
+        /// A folder of lessons (its `.toml` files, or those its
+        /// lessons.index names) instead of the bundled ones.
+        #[arg(value_name = "DIR")]
+        folder: Option<PathBuf>,
     },
     /// Validate lessons (the file reads, the scene loads, the settings and
     /// edits apply), then replay each step: its starting state must fail
     /// its check and its `solution` must pass it. One line per step; the
     /// exit status is non-zero on any failure.
     Check {
-        /// Bundled lesson names or lesson files (.toml); default: every
-        /// bundled lesson.
+        /// Bundled lesson names, lesson files (.toml) or folders of
+        /// lessons; default: every bundled lesson.
         #[arg(value_name = "NAME|FILE")]
         lessons: Vec<String>,
         /// One line per step, or JSON for a teacher's CI: each lesson's

@@ -1,5 +1,5 @@
-//! `workbench lesson list`, `check` and `explain`: lessons tested like
-//! code. `check` reads each lesson, opens its scene and replays its steps,
+//! `workbench lesson list`, `check`, `new` and `explain`: lessons tested like
+//! code, one at a time or a folder at once. `check` reads each lesson, opens its scene and replays its steps,
 //! one line per step, and fails when any step's check already holds before
 //! the student acts or does not hold after the step's solution. `explain`
 //! says what a step starts from and where its tree figures hold.
@@ -9,14 +9,14 @@ use std::path::Path;
 use anyhow::{Result, anyhow, bail};
 
 use crate::cli::{ExplainArgs, LessonArgs, LessonCommand, MetricsFormat};
-use crate::lessons::explain;
 use crate::lessons::format::read_lesson_file;
 use crate::lessons::replay::replay;
 use crate::lessons::{Lesson, LessonErrors, bundled};
+use crate::lessons::{explain, folder};
 
 pub fn run(args: &LessonArgs) -> Result<()> {
     match &args.command {
-        LessonCommand::List { format } => list(*format),
+        LessonCommand::List { format, folder } => list(*format, folder.as_deref()),
         LessonCommand::Check { lessons, format } => check(lessons, *format),
         LessonCommand::New { name } => new(name),
         LessonCommand::Explain(args) => explain(args),
@@ -35,12 +35,37 @@ fn explain(args: &ExplainArgs) -> Result<()> {
     Ok(())
 }
 
-fn list(format: MetricsFormat) -> Result<()> {
-    let lessons = bundled::all()?;
+/// The bundled lessons, or a folder's in the panel's order; a file of the
+/// folder that does not read is said on stderr and fails the command once
+/// the others are listed.
+fn list(format: MetricsFormat, folder: Option<&Path>) -> Result<()> {
+    let Some(dir) = folder else {
+        return print_list(format, &bundled::all()?);
+    };
+    let mut lessons = Vec::new();
+    let mut broken = 0;
+    for (_, lesson) in folder::read(dir)? {
+        match lesson {
+            Ok(lesson) => lessons.push(lesson),
+            Err(LessonErrors(errors)) => {
+                broken += 1;
+                errors.iter().for_each(|e| eprintln!("error: {e}"));
+            }
+        }
+    }
+    folder::in_chapter_order(&mut lessons);
+    print_list(format, &lessons)?;
+    if broken > 0 {
+        bail!("{broken} lesson file(s) in {} do not read", dir.display());
+    }
+    Ok(())
+}
+
+fn print_list(format: MetricsFormat, lessons: &[Lesson]) -> Result<()> {
     match format {
         MetricsFormat::Text => {
             let width = lessons.iter().map(|l| l.name.len()).max().unwrap_or(0);
-            for lesson in &lessons {
+            for lesson in lessons {
                 println!(
                     "{:>2}  {:width$}  {} ({} steps)",
                     lesson.chapter,
@@ -56,6 +81,7 @@ fn list(format: MetricsFormat) -> Result<()> {
                 .map(|l| {
                     serde_json::json!({
                         "name": l.name,
+                        "file": l.file,
                         "chapter": l.chapter,
                         "title": l.title,
                         "summary": l.summary,
@@ -94,7 +120,17 @@ fn check(names: &[String], format: MetricsFormat) -> Result<()> {
             .map(|l| (l.name.clone(), Ok(l)))
             .collect()
     } else {
-        names.iter().map(|n| (n.clone(), read(n))).collect()
+        let mut lessons = Vec::new();
+        for name in names {
+            match Path::new(name) {
+                dir if dir.is_dir() => lessons.extend(
+                    (folder::read(dir)?.into_iter())
+                        .map(|(path, l)| (path.display().to_string(), l.map_err(Into::into))),
+                ),
+                _ => lessons.push((name.clone(), read(name))),
+            }
+        }
+        lessons
     };
     let print = format == MetricsFormat::Text;
     let (mut steps, mut failures, mut report) = (0, 0, Vec::new());

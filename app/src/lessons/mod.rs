@@ -8,6 +8,7 @@
 pub mod bundled;
 pub mod check;
 pub mod explain;
+pub mod folder;
 pub mod format;
 pub mod new;
 pub mod replay;
