@@ -39,6 +39,11 @@ pub struct Cli {
     /// step set up.
     #[arg(long, value_name = "TOML", conflicts_with = "scene")]
     pub lesson: Option<PathBuf>,
+    /// Add a folder of lessons (its .toml files, or those its
+    /// lessons.index names) to the Lessons panel's list, by chapter after
+    /// the bundled ones of the same chapter.
+    #[arg(long, value_name = "DIR")]
+    pub lesson_folder: Option<PathBuf>,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]
     pub screenshot_after: Option<f64>,
