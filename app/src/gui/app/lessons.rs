@@ -77,6 +77,9 @@ impl WorkbenchApp {
         if asked.set_up {
             self.set_up_lesson_step();
         }
+        if asked.folder && !self.dialogs.open_lesson_folder() {
+            self.messages.notify("cannot open a file dialog");
+        }
         let looked_at = self.looked_at();
         let (sides, tools, observer) = (&self.sides, &self.tools, &self.observer);
         let layout = Layout {
