@@ -48,7 +48,7 @@ pub fn run() -> std::process::ExitCode {
 #[cfg(feature = "window")]
 fn window(cli: cli::Cli) -> anyhow::Result<()> {
     cli.screenshot_plan()
-        .and_then(|plan| gui::run(cli.scene, plan, cli.observer, cli.lesson))
+        .and_then(|plan| gui::run(cli.scene, plan, cli.observer, cli.lesson, cli.lesson_folder))
 }
 
 /// Built without the window (cargo feature `window`): the flags are still

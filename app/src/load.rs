@@ -16,6 +16,7 @@ use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;
 
 use crate::bundled;
+use crate::lessons::format::is_lesson_file;
 
 /// Where a scene comes from.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -88,6 +89,15 @@ impl Loaded {
     /// commands, with `--set` edits applied before the world is built;
     /// warnings, and progress while a large mesh is read, go to stderr.
     pub fn for_command(path: &Path, edits: &[String]) -> Result<Self> {
+        if is_lesson_file(path) {
+            let path = path.display();
+            anyhow::bail!(
+                "{path} is a lesson, not a scene: open it in the window with \
+                 `workbench --lesson {path}` (or Ctrl+O), test it with \
+                 `workbench lesson check {path}`, see a step's state with \
+                 `workbench lesson explain {path} --step N`"
+            );
+        }
         let source = SceneSource::File(path.to_path_buf());
         let mut progress = MeshProgress::new(path);
         let loaded = Self::read(source, edits, &mut |p| progress.show(p))?;

@@ -40,14 +40,16 @@ pub use windows::studies::{Applied, StudiesWindow};
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
-/// with the observer view on when `observer` and the lesson file `lesson`
-/// open, and runs until it is closed,
+/// with the observer view on when `observer`, the lesson file `lesson`
+/// open and the lessons of `lesson_folder` listed, and runs until it is
+/// closed,
 /// or until the screenshot of `screenshot` is taken.
 pub fn run(
     scene: Option<PathBuf>,
     screenshot: Option<ScreenshotPlan>,
     observer: bool,
     lesson: Option<PathBuf>,
+    lesson_folder: Option<PathBuf>,
 ) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -79,6 +81,9 @@ pub fn run(
             }
             let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
             app.show_observer(observer);
+            if let Some(dir) = &lesson_folder {
+                app.open_lesson_folder(dir);
+            }
             if let Some(path) = &lesson {
                 app.open_lesson(path);
             }

@@ -121,9 +121,26 @@ impl Actions {
     }
 }
 
+/// The lesson format this workbench reads: a file's `format-version`,
+/// absent meaning this one. A later change to the format's names raises
+/// it, so that an older workbench refuses a newer file clearly rather than
+/// at its first unknown key.
+pub const FORMAT_VERSION: i64 = 1;
+
+/// The version alone, read before the rest (whose keys a later version
+/// may have changed).
+#[derive(Deserialize)]
+struct RawVersion {
+    #[serde(rename = "format-version")]
+    version: Option<Spanned<i64>>,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLesson {
+    /// Read by [`RawVersion`] first.
+    #[serde(rename = "format-version")]
+    _version: Option<i64>,
     title: Spanned<String>,
     chapter: Spanned<u32>,
     #[serde(default)]
@@ -176,6 +193,13 @@ fn required_by_default() -> bool {
     true
 }
 
+/// Whether `path` names a lesson file: TOML, as the window's Open and
+/// drop tell a lesson from a scene, and the headless commands refuse one.
+pub fn is_lesson_file(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+}
+
 /// Reads a lesson file from disk. A file that cannot be read is an error
 /// about the whole file, with no line.
 pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {
@@ -208,6 +232,7 @@ pub fn parse_lesson(
     dir: Option<&Path>,
 ) -> Result<Lesson, LessonErrors> {
     let source = Source { file, text };
+    source.check_version()?;
     let raw: RawLesson = toml::from_str(text)
         .map_err(|e| source.error(e.span().unwrap_or(0..0), e.message().trim_end().to_string()))?;
     let mut errors = Vec::new();
@@ -302,6 +327,27 @@ impl Source<'_> {
             column,
             message,
         }
+    }
+
+    /// A `format-version` other than this workbench's is the one error
+    /// said, at its value: a newer file's other keys may mean other
+    /// things. A file TOML cannot read is left to the full reading.
+    fn check_version(&self) -> Result<(), LessonError> {
+        let Ok(RawVersion {
+            version: Some(version),
+        }) = toml::from_str(self.text)
+        else {
+            return Ok(());
+        };
+        let message = match *version.get_ref() {
+            FORMAT_VERSION => return Ok(()),
+            later if later > FORMAT_VERSION => format!(
+                "format-version {later} is newer than this workbench reads (up to \
+                 {FORMAT_VERSION}): open the lesson with a newer workbench"
+            ),
+            other => format!("expected format-version {FORMAT_VERSION}, found {other}"),
+        };
+        Err(self.error(version.span(), message))
     }
 
     fn located<T>(&self, span: Range<usize>, value: T) -> Located<T> {
@@ -588,6 +634,20 @@ solution = { settings = "--aa" }
         let broken = MINIMAL.replace("pixel = [3, 4]", "answer = 3");
         let e = parse(&broken).unwrap_err();
         assert!(e.message.contains("only a step's `solution`"), "{e}");
+    }
+
+    #[test]
+    fn a_later_format_version_is_the_one_error_said() {
+        let current = format!("format-version = {FORMAT_VERSION}\n{MINIMAL}");
+        assert!(parse(&current).is_ok());
+        let later = format!("format-version = 2\nnew-key = 1\n{MINIMAL}");
+        let LessonErrors(errors) = parse_lesson(&later, "t", "t.toml", None).unwrap_err();
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        let e = &errors[0];
+        assert_eq!((e.line, e.column), (1, 18), "{e}");
+        assert!(e.message.contains("format-version 2 is newer"), "{e}");
+        let e = parse(&format!("format-version = 0\n{MINIMAL}")).unwrap_err();
+        assert_eq!(e.message, "expected format-version 1, found 0");
     }
 
     #[test]

@@ -9,7 +9,10 @@
 pub mod actions;
 pub mod bundled;
 pub mod check;
+pub mod explain;
+pub mod folder;
 pub mod format;
+pub mod new;
 pub mod replay;
 pub mod state;
 
