@@ -230,15 +230,11 @@ pub struct ExplainArgs {
     pub step: usize,
     /// List the pixels where this tree figure holds (repeat to ask for
     /// several at once), instead of explaining the step.
-    #[arg(long, value_name = "QUANTITY=VALUE", value_parser = find_condition)]
-    pub find: Vec<crate::lessons::explain::Condition>,
+    #[arg(long, value_name = "QUANTITY=VALUE")]
+    pub find: Vec<String>,
     /// Explain the step with this pixel pinned instead of the step's own.
     #[arg(long, num_args = 2, value_names = ["X", "Y"], conflicts_with = "find")]
     pub pixel: Option<Vec<u32>>,
-}
-
-fn find_condition(text: &str) -> Result<crate::lessons::explain::Condition, String> {
-    crate::lessons::explain::Condition::parse(text)
 }
 
 #[derive(Args, Debug)]

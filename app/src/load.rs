@@ -16,7 +16,6 @@ use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;
 
 use crate::bundled;
-use crate::lessons::format::is_lesson_file;
 
 /// Where a scene comes from.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -290,6 +289,13 @@ impl<'a> MeshProgress<'a> {
             took.as_secs_f64()
         );
     }
+}
+
+/// Whether `path` names a lesson file: TOML, as the window's Open and
+/// drop tell a lesson from a scene, and the headless commands refuse one.
+pub fn is_lesson_file(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }
 
 #[cfg(test)]

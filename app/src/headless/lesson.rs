@@ -29,7 +29,10 @@ fn explain(args: &ExplainArgs) -> Result<()> {
         let pixel = args.pixel.as_deref().map(|p| (p[0], p[1]));
         explain::explain(&lesson, args.step, pixel)?
     } else {
-        explain::find(&lesson, args.step, &args.find)?
+        let conditions = (args.find.iter())
+            .map(|text| explain::Condition::parse(text).map_err(|e| anyhow!("--find {e}")))
+            .collect::<Result<Vec<_>>>()?;
+        explain::find(&lesson, args.step, &conditions)?
     };
     print!("{text}");
     Ok(())

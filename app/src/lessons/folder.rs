@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
-use super::format::{Lesson, LessonErrors, is_lesson_file, read_lesson_file};
+use super::format::{Lesson, LessonErrors, read_lesson_file};
+use crate::load::is_lesson_file;
 
 /// The index file's name: one lesson file a line, relative to the folder;
 /// blank lines and lines starting with `#` are skipped.

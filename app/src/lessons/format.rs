@@ -193,13 +193,6 @@ fn required_by_default() -> bool {
     true
 }
 
-/// Whether `path` names a lesson file: TOML, as the window's Open and
-/// drop tell a lesson from a scene, and the headless commands refuse one.
-pub fn is_lesson_file(path: &Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
-}
-
 /// Reads a lesson file from disk. A file that cannot be read is an error
 /// about the whole file, with no line.
 pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {

@@ -5,8 +5,8 @@
 
 use tracer::render::{JobState, RenderSettings};
 
-use crate::lessons::format::is_lesson_file;
 use crate::load::SceneSource;
+use crate::load::is_lesson_file;
 
 use super::WorkbenchApp;
 use super::saving::Reply;

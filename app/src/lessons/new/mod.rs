@@ -15,7 +15,7 @@ const TEMPLATE: &str = include_str!("template.toml");
 /// ends in `.toml`.
 pub fn path_for(name: &str) -> PathBuf {
     let path = Path::new(name);
-    if super::format::is_lesson_file(path) {
+    if crate::load::is_lesson_file(path) {
         path.to_path_buf()
     } else {
         PathBuf::from(format!("{name}.toml"))
