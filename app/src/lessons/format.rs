@@ -68,7 +68,7 @@ pub struct Lesson {
     pub scene: LessonScene,
     /// Settings, edits and layout before the first step.
     pub start: Actions,
-    pub steps: Vec<Step>,
+    pub steps: Vec<LessonStep>,
 }
 
 /// Where a lesson's scene comes from.
@@ -86,7 +86,7 @@ pub enum LessonScene {
 
 /// One step: what to read, what to do, and the check that says it is done.
 #[derive(Debug, Clone)]
-pub struct Step {
+pub struct LessonStep {
     pub title: String,
     /// The why, with the formula where the course gives one (Markdown).
     pub text: String,
@@ -422,7 +422,7 @@ impl Source<'_> {
     }
 
     /// A step, with every mistake of its check, its actions and its texts.
-    fn step(&self, raw: Spanned<RawStep>) -> Result<Step, LessonErrors> {
+    fn step(&self, raw: Spanned<RawStep>) -> Result<LessonStep, LessonErrors> {
         let (line, _) = self.locate(raw.span().start);
         let raw = raw.into_inner();
         let check_span = raw.check.span();
@@ -452,7 +452,7 @@ impl Source<'_> {
             (Some(check), Some(solution), Some(title), Some(text), Some(setup))
                 if errors.is_empty() =>
             {
-                Ok(Step {
+                Ok(LessonStep {
                     title,
                     text,
                     hints: raw.hints,

@@ -18,5 +18,5 @@ pub mod state;
 
 pub use actions::Actions;
 pub use check::{Check, Verdict, evaluate};
-pub use format::{Lesson, LessonError, LessonErrors, LessonScene, Step};
+pub use format::{Lesson, LessonError, LessonErrors, LessonScene, LessonStep};
 pub use state::{LessonState, SideState, Which};

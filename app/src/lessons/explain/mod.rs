@@ -17,14 +17,14 @@ use crate::reports::ray_tree;
 
 use super::check::catalogue::{self, LISTED_PARTS};
 use super::check::{By, Check, Metric, Verdict, evaluate, measure};
-use super::format::{Lesson, Step};
+use super::format::{Lesson, LessonStep};
 use super::replay::{open_scene, state_at_step};
 use super::state::{LessonState, SideState, Which};
 
 /// Step `number` (counted from 1, as `lesson check` prints it) of
 /// `lesson`, and the state it starts from: the start, every earlier step
 /// set up and solved, its own setup.
-pub fn step_state(lesson: &Lesson, number: usize) -> Result<(&Step, LessonState)> {
+pub fn step_state(lesson: &Lesson, number: usize) -> Result<(&LessonStep, LessonState)> {
     let count = lesson.steps.len();
     let Some(step) = number.checked_sub(1).and_then(|i| lesson.steps.get(i)) else {
         bail!("{} has steps 1 to {count}, no step {number}", lesson.name);
@@ -36,7 +36,7 @@ pub fn step_state(lesson: &Lesson, number: usize) -> Result<(&Step, LessonState)
 
 /// The lesson and step as `lesson check` names them: `refraction
 /// (chapter 6): Refraction` then `step 3/6 The cube traps light`.
-fn heading(lesson: &Lesson, number: usize, step: &Step) -> String {
+fn heading(lesson: &Lesson, number: usize, step: &LessonStep) -> String {
     format!(
         "{} (chapter {}): {}\nstep {number}/{} {}",
         lesson.name,
