@@ -178,7 +178,7 @@ impl Camera {
     /// which pose and lens a render takes.
     ///
     /// [`RenderSettings::render_camera`]: crate::render::RenderSettings::render_camera
-    pub fn posed(
+    pub(crate) fn posed(
         view: &Viewpoint,
         pose: Option<&CameraPose>,
         lens: Option<Lens>,
@@ -207,7 +207,7 @@ impl Camera {
     }
 
     /// True when the lens has a size, so depth of field is visible.
-    pub fn has_lens(&self) -> bool {
+    pub(crate) fn has_lens(&self) -> bool {
         self.lens_radius > 0.0
     }
 

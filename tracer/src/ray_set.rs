@@ -20,11 +20,11 @@ use crate::stats::Counters;
 use crate::world::World;
 
 /// Side of the square tiles eye rays are cast in, in pixels.
-pub const RAY_TILE: u32 = 16;
+pub(crate) const RAY_TILE: u32 = 16;
 
 /// How far shadow rays start off the surface, along its normal (the
 /// Embree benchmark's offset, in scene units).
-pub const SHADOW_OFFSET: f32 = 1e-4;
+pub(crate) const SHADOW_OFFSET: f32 = 1e-4;
 
 /// A shadow ray and the distance to its light, where it stops.
 #[derive(Debug, Clone, Copy, PartialEq)]

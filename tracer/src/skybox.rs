@@ -205,7 +205,7 @@ impl Skybox {
 /// The face index (in [`FACE_NAMES`] order) and the `(s, t)` coordinates in
 /// `[0, 1]` (s to the right, t downwards in the image) that OpenGL's cube-map
 /// rules give for `dir`.
-pub fn cube_face(dir: Vec3A) -> (usize, f32, f32) {
+pub(crate) fn cube_face(dir: Vec3A) -> (usize, f32, f32) {
     let a = dir.abs();
     let (face, sc, tc, ma) = if a.x >= a.y && a.x >= a.z {
         if dir.x > 0.0 {

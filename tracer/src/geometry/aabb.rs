@@ -53,7 +53,7 @@ impl Aabb {
     }
 
     /// Half the surface area (the SAH only needs ratios).
-    pub fn half_area(&self) -> f32 {
+    pub(crate) fn half_area(&self) -> f32 {
         if self.is_empty() {
             return 0.0;
         }

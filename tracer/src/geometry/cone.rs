@@ -115,7 +115,7 @@ impl Cone {
     /// radial direction tilted back along the axis by the slope. At the tip
     /// of a true cone, where the radial direction is undefined, some
     /// perpendicular of the axis stands in.
-    pub fn normal_at(&self, point: Vec3A) -> Vec3A {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> Vec3A {
         let q = point - self.base;
         let radial = q - self.axis * q.dot(self.axis);
         let u = radial.normalize_or(self.axis.any_orthonormal_vector());

@@ -42,7 +42,7 @@ impl Shape {
     }
 
     /// Normals at `point`, a point on the surface found by [`Shape::intersect`].
-    pub fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
         match self {
             Shape::Sphere(s) => SurfaceNormal::flat(s.normal_at(point)),
             Shape::Plane(p) => SurfaceNormal::flat(p.normal()),

@@ -32,7 +32,7 @@ impl Sphere {
 
     /// The outward unit normal at a point on the surface.
     #[inline]
-    pub fn normal_at(&self, point: Vec3A) -> Vec3A {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> Vec3A {
         (point - self.centre) * self.radius.abs().recip()
     }
 

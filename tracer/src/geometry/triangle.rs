@@ -52,7 +52,7 @@ impl Triangle {
     /// `(b - a) x (c - a)`, the winding is reversed (b and c swapped, with
     /// their normals) so the geometric normal lies on the same side as the
     /// shading normals, as [`SurfaceNormal`] promises.
-    pub fn with_normals(a: Vec3A, b: Vec3A, c: Vec3A, normals: [Vec3A; 3]) -> Option<Self> {
+    pub(crate) fn with_normals(a: Vec3A, b: Vec3A, c: Vec3A, normals: [Vec3A; 3]) -> Option<Self> {
         let mut t = Self::new(a, b, c)?;
         let geometric = t.e1.cross(t.e2).normalize();
         let mut ns = normals.map(|n| n.normalize_or(geometric));
@@ -90,7 +90,7 @@ impl Triangle {
     /// The geometric normal `normalize(e1 x e2)` and, for patches, the
     /// vertex normals interpolated with the barycentric coordinates of
     /// `point` (clamped to the triangle) and normalised.
-    pub fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
         let n = self.e1.cross(self.e2);
         let geometric = n * n.length_recip();
         let Some(ns) = &self.normals else {

@@ -45,7 +45,7 @@ pub fn error_estimate(n: u32, spread: &Spread) -> f32 {
 /// the channels' mean unbiased variance over `n`, in display units.
 /// Stratified samples do better, so it only says whether a pixel *may*
 /// still be noisy; infinite before two samples.
-pub fn variance_estimate(n: u32, spread: &Spread) -> f32 {
+pub(crate) fn variance_estimate(n: u32, spread: &Spread) -> f32 {
     if n < 2 {
         return f32::INFINITY;
     }

@@ -35,13 +35,13 @@ impl Tile {
         tiles
     }
 
-    pub fn pixel_count(&self) -> usize {
+    pub(crate) fn pixel_count(&self) -> usize {
         self.width as usize * self.height as usize
     }
 
     /// Copies the tile's RGB bytes (`rgb`, row-major within the tile) into
     /// `image`, row-major RGB bytes of an image `image_width` wide.
-    pub fn copy_rgb_into(&self, image_width: u32, rgb: &[u8], image: &mut [u8]) {
+    pub(crate) fn copy_rgb_into(&self, image_width: u32, rgb: &[u8], image: &mut [u8]) {
         let pixels: &[[u8; 3]] = bytemuck::cast_slice(rgb);
         let image: &mut [[u8; 3]] = bytemuck::cast_slice_mut(image);
         for (start, row) in self.rows(image_width, pixels) {
@@ -112,7 +112,7 @@ impl Film {
     }
 
     /// A film that also estimates each pixel's error ([`Film::error`]).
-    pub fn with_error_estimate(width: u32, height: u32) -> Self {
+    pub(crate) fn with_error_estimate(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
         Self {
             spread: vec![Spread::default(); n],
@@ -129,7 +129,7 @@ impl Film {
     /// page and flushing the other cores' TLBs by interrupt (perf:
     /// `do_wp_page`, `flush_tlb_mm_range`). Done once, by whoever has a
     /// spare core: a job does it while its structure builds.
-    pub fn prefault(&mut self) {
+    pub(crate) fn prefault(&mut self) {
         self.sum.fill(DVec3::ZERO);
         self.samples.fill(0);
     }
@@ -144,7 +144,7 @@ impl Film {
 
     /// Adds one sample to each pixel of `tile`; `values` is row-major
     /// within the tile.
-    pub fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
+    pub(crate) fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
         for (start, chunk) in tile.rows(self.width, values) {
             if self.spread.is_empty() {
                 let sums = &mut self.sum[start..start + chunk.len()];
@@ -168,7 +168,13 @@ impl Film {
     /// after pixel, each pixel's in the order they were taken, and
     /// `tests` the intersection tests each pixel's samples made (one entry
     /// a pixel, as `counts`).
-    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], values: &[Vec3A], tests: &[u64]) {
+    pub(crate) fn add_samples(
+        &mut self,
+        tile: &Tile,
+        counts: &[u32],
+        values: &[Vec3A],
+        tests: &[u64],
+    ) {
         debug_assert_eq!(tests.len(), counts.len(), "one test count a pixel");
         let mut values = values.iter();
         let mut tests = tests.iter();
@@ -261,7 +267,7 @@ impl Film {
     /// Whether the next adaptive pass refines pixel `(x, y)`: every pixel
     /// before [`Film::set_active`] first runs; never when the film does
     /// not estimate errors.
-    pub fn is_active(&self, x: u32, y: u32) -> bool {
+    pub(crate) fn is_active(&self, x: u32, y: u32) -> bool {
         self.active
             .get(y as usize * self.width as usize + x as usize)
             .copied()
@@ -278,7 +284,7 @@ impl Film {
     /// Sets which pixels the next pass refines (row-major): decided
     /// between passes, over the whole film, so that a pixel may look at
     /// its neighbours and still not depend on the order tiles ran in.
-    pub fn set_active(&mut self, active: Vec<bool>) {
+    pub(crate) fn set_active(&mut self, active: Vec<bool>) {
         debug_assert_eq!(active.len(), self.samples.len());
         self.active = active;
     }
@@ -330,7 +336,7 @@ impl Film {
 
     /// Writes `tile`'s pixels, resolved as [`Film::to_image`] resolves
     /// them, into `rgb`, a row-major RGB buffer of the whole film.
-    pub fn resolve_tile(&self, tile: &Tile, encoding: Encoding, rgb: &mut [u8]) {
+    pub(crate) fn resolve_tile(&self, tile: &Tile, encoding: Encoding, rgb: &mut [u8]) {
         for y in tile.y..tile.y + tile.height {
             let start = y as usize * self.width as usize + tile.x as usize;
             let end = start + tile.width as usize;

@@ -495,7 +495,7 @@ impl Encoding {
     /// (turning a film into bytes is a visible part of a whole `workbench
     /// render`).
     #[inline]
-    pub fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
+    pub(crate) fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
         match self {
             Encoding::Linear => {
                 // `max` takes its second operand when the first is NaN,

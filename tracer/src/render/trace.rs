@@ -89,7 +89,7 @@ pub trait TraceRecorder {
 }
 
 /// The recorder of a plain render: records nothing, costs nothing.
-pub struct NoRecord;
+pub(crate) struct NoRecord;
 
 impl TraceRecorder for NoRecord {}
 
@@ -265,7 +265,7 @@ impl<'a> Tracer<'a> {
 
     /// [`Tracer::trace_eye`], telling `recorder` every ray it traces.
     #[inline]
-    pub fn trace_eye_recorded<R: TraceRecorder>(
+    pub(crate) fn trace_eye_recorded<R: TraceRecorder>(
         &self,
         ray: &Ray,
         t_min: f32,

@@ -127,7 +127,7 @@ impl Refinement {
     /// them (half the film's mean tests per sample), over the film's mean
     /// of that ([`Refinement::mean_per_sample`]). 1 when nothing was
     /// tested.
-    pub fn relative_cost(&self, i: usize) -> f32 {
+    pub(crate) fn relative_cost(&self, i: usize) -> f32 {
         let mean = self.mean_per_sample.unwrap_or(0.0);
         if mean <= 0.0 {
             return 1.0;
