@@ -207,6 +207,7 @@ struct PixelSums {
 /// What [`ViewFilm::totals`] sums over a film.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ViewTotals {
+    /// Shadow rays traced, over all samples.
     pub shadow_rays: f64,
     /// Shadow rays that met an occluder.
     pub blocked: f64,
@@ -223,6 +224,7 @@ pub struct ViewFilm {
 }
 
 impl ViewFilm {
+    /// An empty film of `width` x `height` pixels, no sample recorded yet.
     pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
@@ -231,10 +233,12 @@ impl ViewFilm {
         }
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
@@ -396,7 +400,9 @@ pub enum HeatScale {
 /// on `log(1 + v)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ViewHeatmap {
+    /// The value that takes the palette's last colour; larger values clamp to it.
     pub top: f32,
+    /// Scale by `log(1 + v)`, so small values stay apart when a few are large.
     pub log: bool,
 }
 
@@ -442,6 +448,7 @@ impl ViewHeatmap {
         t.clamp(0.0, 1.0)
     }
 
+    /// The palette colour of `value` on this scale.
     pub fn colour(&self, value: f32) -> Rgb<u8> {
         HEAT_PALETTE.colour(self.position(value))
     }
@@ -488,10 +495,15 @@ impl ViewFilm {
 /// Summary numbers of a view over the pixels that have a value.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ViewSummary {
+    /// Pixels with a value (those summarised).
     pub pixels: usize,
+    /// Mean value.
     pub mean: f32,
+    /// Median value.
     pub median: f32,
+    /// 99th percentile: a scale top that ignores the rarest extremes.
     pub p99: f32,
+    /// Largest value.
     pub max: f32,
 }
 
