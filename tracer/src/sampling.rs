@@ -8,7 +8,7 @@ use std::ops::Range;
 use glam::Vec2;
 
 /// Where a random number is used: the pixel, the sample index within it and
-/// the seed. Each call to [`SampleStream::next_1d`] moves to the next
+/// the seed. Each call to `SampleStream::next_1d` moves to the next
 /// dimension, so a path through the tracer draws its numbers in a fixed order.
 #[derive(Debug, Clone, Copy)]
 pub struct SampleStream {

@@ -7,6 +7,7 @@ use super::{Aabb, Ray};
 /// A solid axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AaBox {
+    /// The box's extent, which is also its bounding box.
     pub bounds: Aabb,
 }
 

@@ -11,9 +11,13 @@ use super::{Aabb, Ray};
 /// once in [`Cone::new`]: build cones with it, not with a struct literal.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cone {
+    /// Centre of the base circle.
     pub base: Vec3A,
+    /// Radius at the base.
     pub base_radius: f32,
+    /// Centre of the apex circle.
     pub apex: Vec3A,
+    /// Radius at the apex; equal radii make a cylinder.
     pub apex_radius: f32,
     /// Unit vector from base to apex.
     axis: Vec3A,

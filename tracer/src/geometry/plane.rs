@@ -7,6 +7,7 @@ use super::Ray;
 /// The infinite plane `dot(p - point, normal) = 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Plane {
+    /// A point on the plane.
     pub point: Vec3A,
     normal: Vec3A,
 }

@@ -20,10 +20,15 @@ pub struct SurfaceNormal {
 /// a match instead of a virtual call.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
+    /// A sphere.
     Sphere(Sphere),
+    /// An infinite plane: unbounded, so outside any grid or BVH.
     Plane(Plane),
+    /// A triangle, flat or with vertex normals (polygons and meshes become these).
     Triangle(Triangle),
+    /// An axis-aligned box.
     Box(AaBox),
+    /// An open cone or cylinder.
     Cone(Cone),
 }
 

@@ -8,7 +8,9 @@ use super::{Aabb, Ray};
 /// A sphere; hit from outside or from inside.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sphere {
+    /// The centre.
     pub centre: Vec3A,
+    /// The radius, > 0.
     pub radius: f32,
 }
 

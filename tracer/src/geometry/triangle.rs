@@ -15,8 +15,11 @@ const DEGENERATE_SINE: f32 = 1e-6;
 /// A triangle, stored as one vertex and two edges as Moller-Trumbore wants.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Triangle {
+    /// The first vertex.
     pub v0: Vec3A,
+    /// Edge from `v0` to the second vertex.
     pub e1: Vec3A,
+    /// Edge from `v0` to the third vertex.
     pub e2: Vec3A,
     /// Unit vertex normals of a patch; boxed so a flat triangle stays at
     /// 64 bytes (this and `parallel_eps` fill the padding after `e2`).

@@ -10,9 +10,13 @@ use super::estimate::{Spread, display_value, error_estimate};
 /// A rectangle of pixels rendered as one unit of work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Tile {
+    /// Left column, in pixels.
     pub x: u32,
+    /// Top row, in pixels.
     pub y: u32,
+    /// Width in pixels; edge tiles may be narrower than [`TILE_SIZE`](super::TILE_SIZE).
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
 }
 
@@ -95,7 +99,7 @@ pub struct Film {
 
 impl Film {
     /// A film with no sample yet. Its memory comes zeroed from the
-    /// allocator, lazily: no page is touched until [`Film::prefault`] or a
+    /// allocator, lazily: no page is touched until `Film::prefault` or a
     /// first sample, so making even a large film is instant.
     pub fn new(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
@@ -112,7 +116,7 @@ impl Film {
     }
 
     /// A film that also estimates each pixel's error ([`Film::error`]).
-    pub(crate) fn with_error_estimate(width: u32, height: u32) -> Self {
+    pub fn with_error_estimate(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
         Self {
             spread: vec![Spread::default(); n],
@@ -134,10 +138,12 @@ impl Film {
         self.samples.fill(0);
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
@@ -267,7 +273,7 @@ impl Film {
     /// Whether the next adaptive pass refines pixel `(x, y)`: every pixel
     /// before [`Film::set_active`] first runs; never when the film does
     /// not estimate errors.
-    pub(crate) fn is_active(&self, x: u32, y: u32) -> bool {
+    pub fn is_active(&self, x: u32, y: u32) -> bool {
         self.active
             .get(y as usize * self.width as usize + x as usize)
             .copied()
@@ -284,7 +290,7 @@ impl Film {
     /// Sets which pixels the next pass refines (row-major): decided
     /// between passes, over the whole film, so that a pixel may look at
     /// its neighbours and still not depend on the order tiles ran in.
-    pub(crate) fn set_active(&mut self, active: Vec<bool>) {
+    pub fn set_active(&mut self, active: Vec<bool>) {
         debug_assert_eq!(active.len(), self.samples.len());
         self.active = active;
     }

@@ -63,7 +63,7 @@ pub struct Snapshot {
     pub rgba: Vec<u8>,
     /// The statistics so far.
     pub stats: RenderStats,
-    /// Running, done or failed.
+    /// Building, rendering, done, cancelled or failed.
     pub state: JobState,
     /// The job is paused: the image will not change until it resumes.
     pub paused: bool,
@@ -167,7 +167,7 @@ pub struct Finished {
     pub image: Option<image::RgbImage>,
     /// The statistics of the whole render.
     pub stats: RenderStats,
-    /// How the job ended: done, stopped by a budget or failed.
+    /// How the job ended: done, cancelled or failed.
     pub state: JobState,
 }
 

@@ -36,10 +36,15 @@ pub(crate) struct PlannedSamples {
 
 /// A render's plan, shared by the threads that execute it.
 pub struct RenderPlan {
+    /// The prepared scene.
     pub world: Arc<World>,
+    /// The acceleration structure over its shapes.
     pub index: Arc<SceneIndex>,
+    /// The settings the render follows.
     pub settings: RenderSettings,
+    /// The camera, with the settings' lens.
     pub camera: Camera,
+    /// The image cut into tiles, the unit of work of a pass.
     pub tiles: Vec<Tile>,
     /// Stratum visited by each pass within one round of N x N passes.
     order: Vec<u32>,
@@ -49,6 +54,7 @@ pub struct RenderPlan {
 }
 
 impl RenderPlan {
+    /// Plans a render: the camera from `settings`, the image cut into tiles.
     pub fn new(
         world: Arc<World>,
         index: Arc<SceneIndex>,

@@ -74,7 +74,7 @@ pub struct ShadowSample {
 /// Watches a trace as it happens, so the cost views and the ray-tree
 /// inspector read the very rays the shaded render traces instead of a
 /// second tracer that could drift from it. Every method does nothing by
-/// default: the render's [`NoRecord`] compiles away entirely.
+/// default: the render's `NoRecord` compiles away entirely.
 ///
 /// Calls nest: [`TraceRecorder::ray`] opens a ray, then come its hit (or
 /// background), its shadow samples and its child rays, and

@@ -27,7 +27,7 @@ pub use refinement::Refinement;
 
 /// Adaptive sampling as a render's strategy: each pass refines the pixels
 /// the last decision left active, from their sample count to
-/// [`next_count`]; between passes [`Refinement::decide`] chooses the next
+/// `next_count`; between passes [`Refinement::decide`] chooses the next
 /// ones, cut to a sample budget when there is one. Done once no pixel is
 /// active, or the budget is spent.
 #[derive(Debug, Clone)]
@@ -39,6 +39,7 @@ pub struct Adaptive {
 }
 
 impl Adaptive {
+    /// The strategy for these adaptive settings, before its first pass.
     pub fn new(settings: AdaptiveSampling) -> Self {
         Self {
             settings,
