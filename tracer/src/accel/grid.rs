@@ -24,7 +24,9 @@ const MAX_REFERENCES: u64 = 1 << 27;
 /// What the grid looks like, for the statistics panel.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridStats {
+    /// Cells along x, y and z.
     pub cells: [u32; 3],
+    /// Cells that list no shape.
     pub empty_cells: u64,
     /// Object references summed over all cells.
     pub references: u64,
@@ -129,6 +131,7 @@ impl Grid {
         }
     }
 
+    /// Its resolution and occupancy.
     pub fn stats(&self) -> GridStats {
         let cells = self.offsets.len() - 1;
         let empty = self.offsets.windows(2).filter(|w| w[0] == w[1]).count();

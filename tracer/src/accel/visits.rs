@@ -53,22 +53,31 @@ pub enum Visit {
     /// the objects tested in it: those it lists that the per-ray mailbox
     /// had not seen tested in an earlier cell.
     Cell {
+        /// The cell's (x, y, z) in the grid.
         cell: [u32; 3],
+        /// The cell's box.
         bounds: Aabb,
+        /// Objects tested in it for the first time.
         tested: u32,
     },
     /// An 8-wide BVH node whose `boxes` (its children's, all at once) were
     /// tested against the ray. `depth` counts as the overlay's does: the
     /// root's box (the scene's) is 0, the root's children 1.
     Node {
+        /// The node's box.
         bounds: Aabb,
+        /// Levels below the root's box (0).
         depth: u32,
+        /// Child boxes tested.
         boxes: u32,
     },
     /// A BVH leaf whose `primitives` were all tested.
     Leaf {
+        /// The leaf's box.
         bounds: Aabb,
+        /// Levels below the root's box (0).
         depth: u32,
+        /// Primitives tested.
         primitives: u32,
     },
 }
@@ -126,6 +135,7 @@ impl Tally {
 /// One closest-hit query with everything its traversal visited.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Traversal {
+    /// The closest hit, if the ray met anything.
     pub hit: Option<Hit>,
     /// In visiting order. The grid's cells and the BVH's nodes (not its
     /// leaves) are what `counters.nodes_visited` counts, one for one.

@@ -17,12 +17,15 @@ use super::{RenderPlan, Tracer};
 /// One sample's rays, parents before their children.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RayTree {
+    /// Pixel column, 0 at the left.
     pub x: u32,
+    /// Pixel row, 0 at the top.
     pub y: u32,
     /// The sample (the pass that traced it).
     pub sample: u32,
     /// The radiance the render traced for this sample.
     pub colour: Vec3A,
+    /// The rays; a node's `parent` is an index into this list.
     pub nodes: Vec<RayNode>,
     /// The grid cells, or BVH nodes and leaves, the eye ray's traversal
     /// visited, in order (none with brute force).
@@ -49,15 +52,20 @@ impl RayTree {
 /// One ray of the tree.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RayNode {
+    /// Eye, reflected, refracted or shadow ray.
     pub kind: RayKind,
     /// Bounces above it: the eye ray and its shadow rays are depth 0.
     pub depth: u32,
+    /// Index of the ray that spawned it in [`RayTree::nodes`]; `None` for the eye ray.
     pub parent: Option<usize>,
+    /// Where the ray starts, in world space.
     pub origin: Vec3A,
+    /// Its direction, unit length.
     pub dir: Vec3A,
     /// The product of the weights from the eye to this ray: what one unit
     /// of its radiance is worth in the pixel.
     pub weight: Vec3A,
+    /// What it met.
     pub outcome: Outcome,
     /// What this node itself adds to the pixel, after its weights: the
     /// ambient term at a hit (with shadows off, its whole local shading),
@@ -72,6 +80,7 @@ pub struct RayNode {
 /// What a ray met.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
+    /// It hit a surface.
     Surface(SurfaceRecord),
     /// The ray left the scene and took the background (or sky).
     Background,
@@ -79,6 +88,7 @@ pub enum Outcome {
     Light {
         /// Index into the world's lights.
         light: usize,
+        /// Distance from the ray's origin to the light sample.
         distance: f32,
         /// What blocked it (the nearest occluder), `None` when lit.
         occluder: Option<Occluder>,
@@ -88,18 +98,23 @@ pub enum Outcome {
 /// A surface hit with its material.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceRecord {
+    /// Distance along the ray to the hit.
     pub t: f32,
     /// Index into the world's shapes.
     pub shape: u32,
-    /// Index into the scene's objects, the object's kind, and where the
-    /// file declared it (line, column).
+    /// Index into the scene's objects.
     pub object: u32,
+    /// The object's kind: "sphere", "mesh", ...
     pub object_kind: &'static str,
+    /// Where the file declared the object (line, column); `None` for scenes built in code.
     pub object_position: Option<(u32, u32)>,
+    /// The hit point, in world space.
     pub point: Vec3A,
     /// Shading normal, facing the incoming ray.
     pub normal: Vec3A,
+    /// The ray came from outside the object (it enters a transmitter).
     pub outside: bool,
+    /// The material at the hit.
     pub surface: Surface,
     /// For transmitters: the Fresnel reflectance and whether the refraction
     /// was lost to total internal reflection.
@@ -109,9 +124,13 @@ pub struct SurfaceRecord {
 /// The object that blocked a shadow ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Occluder {
+    /// Distance along the shadow ray to the occluder.
     pub t: f32,
+    /// Index into the world's shapes.
     pub shape: u32,
+    /// Index into the scene's objects.
     pub object: u32,
+    /// The object's kind: "sphere", "mesh", ...
     pub object_kind: &'static str,
     /// Where the file declared it (line, column).
     pub object_position: Option<(u32, u32)>,

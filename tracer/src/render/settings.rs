@@ -17,7 +17,9 @@ pub use crate::scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
     serde(default)
 )]
 pub struct RenderSettings {
+    /// Image width in pixels, 1..=[`MAX_IMAGE_SIDE`].
     pub width: u32,
+    /// Image height in pixels, 1..=[`MAX_IMAGE_SIDE`].
     pub height: u32,
     /// Secondary generations: depth 4 is an eye ray plus up to four bounces,
     /// as in the course and the SPD's "maximum tree depth 5".
@@ -49,6 +51,7 @@ pub struct RenderSettings {
     /// settings only say what the user chose instead (a slider, a flag, a
     /// study's level).
     pub lens_override: LensOverride,
+    /// The acceleration structure: none, grid or BVH.
     pub accel: AccelKind,
     /// The grid's cell multiplier m (cells per axis = trunc(m * dim * s) + 1).
     pub grid_multiplier: f32,
@@ -141,7 +144,7 @@ pub struct AdaptiveSampling {
     /// clamped to 0..1, as the image is written: 0.01 is 2.55 levels of
     /// 255); with more or costlier samples, below this times its samples
     /// over `min_spp` times their relative cost
-    /// ([`crate::render::adaptive::threshold_at`]). 0 never stops a
+    /// (`adaptive::threshold_at`). 0 never stops a
     /// pixel before `max_spp`.
     pub noise_threshold: f32,
     /// Samples every pixel takes before its error is trusted.
@@ -347,8 +350,11 @@ pub const MAX_GRID_MULTIPLIER: f32 = 32.0;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{name} = {value} is out of range: {expected}")]
 pub struct SettingsError {
+    /// The setting, e.g. "samples".
     pub name: &'static str,
+    /// The value given.
     pub value: String,
+    /// The valid range.
     pub expected: String,
 }
 
@@ -495,7 +501,7 @@ impl Encoding {
     /// (turning a film into bytes is a visible part of a whole `workbench
     /// render`).
     #[inline]
-    pub fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
+    pub(crate) fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
         match self {
             Encoding::Linear => {
                 // `max` takes its second operand when the first is NaN,
