@@ -590,10 +590,10 @@ mod tests {
 
     #[test]
     fn each_draw_is_a_new_dimension() {
-        let mut s = SampleStream::new(7, 3, 1);
+        let mut s = SampleStream::new(7, 3, 1); // patterns first, from dimension 0
+        let points: Vec<Vec2> = (0..4).map(|_| s.next_2d_across_samples(4)).collect();
         let bits: Vec<u32> = (0..4).map(|_| s.next_u32()).collect();
         let units: Vec<f32> = (0..4).map(|_| s.next_1d()).collect();
-        let points: Vec<Vec2> = (0..4).map(|_| s.next_2d_across_samples(4)).collect();
         for k in 1..4 {
             assert!(
                 !bits[..k].contains(&bits[k]) && !units[..k].contains(&units[k]),
