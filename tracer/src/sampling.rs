@@ -573,4 +573,58 @@ mod tests {
             assert_eq!(order, (0..n * n).collect::<Vec<_>>());
         }
     }
+
+    #[test]
+    fn mix64_is_splitmix64() {
+        // SplitMix64's outputs from seed 0: its state steps by the gamma.
+        let gamma = 0x9E37_79B9_7F4A_7C15u64;
+        let outputs = [
+            0xE220_A839_7B1D_CDAF,
+            0x6E78_9E6A_A1B9_65F4,
+            0x06C4_5D18_8009_454F,
+        ];
+        for (k, want) in outputs.into_iter().enumerate() {
+            assert_eq!(mix64(gamma.wrapping_mul(k as u64)), want, "output {k}");
+        }
+    }
+
+    #[test]
+    fn each_draw_is_a_new_dimension() {
+        let mut s = SampleStream::new(7, 3, 1); // patterns first, from dimension 0
+        let points: Vec<Vec2> = (0..4).map(|_| s.next_2d_across_samples(4)).collect();
+        let bits: Vec<u32> = (0..4).map(|_| s.next_u32()).collect();
+        let units: Vec<f32> = (0..4).map(|_| s.next_1d()).collect();
+        for k in 1..4 {
+            assert!(
+                !bits[..k].contains(&bits[k]) && !units[..k].contains(&units[k]),
+                "{bits:?} {units:?}"
+            );
+            assert!(!points[..k].contains(&points[k]), "{points:?}");
+        }
+    }
+
+    #[test]
+    fn patterns_across_samples_change_with_the_round_and_the_pixel() {
+        let first = |pixel, sample| SampleStream::new(5, pixel, sample).next_2d_across_samples(4);
+        // Sample 16 starts the second round of a 4 x 4 pattern: another one.
+        assert!((0..64).all(|p| first(p, 0) != first(p, 16)));
+        // Sample 0's cell is a shuffled one, not the same in every pixel.
+        let cell = |p| (first(p, 0) * 4.0).floor();
+        assert!((1..64).any(|p| cell(p) != cell(0)));
+    }
+
+    #[test]
+    fn every_bit_of_the_seed_and_pixel_moves_the_digits() {
+        for seed in [0, u64::MAX, 0x1234_5678_9abc_def0] {
+            let mut digits: Vec<u32> = (0..256).map(|p| pixel_digits(seed, p)).collect();
+            digits.sort_unstable();
+            digits.dedup();
+            assert_eq!(digits.len(), 256, "seed {seed:x}");
+        }
+        assert!((0..64).all(|b| pixel_digits(1 << b, 5) != pixel_digits(0, 5)));
+        // Sobol's x scramble takes the seed's high half: seeds differing
+        // there give other points.
+        let xs: Vec<f32> = (1..17u64).map(|i| scrambled_sobol(0, i << 32).x).collect();
+        assert!(xs.windows(2).all(|w| w[0] != w[1]), "{xs:?}");
+    }
 }

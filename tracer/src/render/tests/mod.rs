@@ -2,6 +2,7 @@
 
 mod aa;
 mod adaptive;
+mod estimate;
 mod lens;
 mod shadows;
 
