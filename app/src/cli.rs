@@ -39,8 +39,9 @@ pub struct Cli {
     pub lesson: Option<PathBuf>,
     /// Add a folder of lessons (its .toml files, or those its
     /// lessons.index names) to the Lessons panel's list, by chapter after
-    /// the bundled ones of the same chapter.
-    #[arg(long, value_name = "DIR")]
+    /// the bundled ones of the same chapter, and set up the folder's first
+    /// (or the --lesson file, if given).
+    #[arg(long, value_name = "DIR", conflicts_with = "scene")]
     pub lesson_folder: Option<PathBuf>,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]

@@ -40,10 +40,10 @@ pub use windows::studies::{Applied, StudiesWindow};
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
-/// with the observer view on when `observer`, the lesson file `lesson`
-/// open and the lessons of `lesson_folder` listed, and runs until it is
-/// closed,
-/// or until the screenshot of `screenshot` is taken.
+/// with the observer view on when `observer`, the lessons of
+/// `lesson_folder` listed and the first set up, the lesson file `lesson`
+/// (if given) set up instead, and runs until it is closed or until the
+/// screenshot of `screenshot` is taken.
 pub fn run(
     scene: Option<PathBuf>,
     screenshot: Option<ScreenshotPlan>,
@@ -82,7 +82,7 @@ pub fn run(
             let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
             app.show_observer(observer);
             if let Some(dir) = &lesson_folder {
-                app.open_lesson_folder(dir);
+                app.open_class(dir);
             }
             if let Some(path) = &lesson {
                 app.open_lesson(path);

@@ -223,7 +223,8 @@ fn a_rendering_check_ends_while_the_window_keeps_refining() {
 }
 
 /// `--lesson-folder`: a folder's lessons join the panel's list by chapter,
-/// each after the bundled ones of its chapter, and the panel opens.
+/// each after the bundled ones of its chapter, and the panel opens on the
+/// folder's first lesson in that order.
 #[test]
 fn a_lesson_folder_joins_the_list_by_chapter() {
     let dir = Scratch::new("window-lesson-folder");
@@ -246,4 +247,10 @@ fn a_lesson_folder_joins_the_list_by_chapter() {
     let bundled_up_to = |chapter: u32| chapters.iter().filter(|&&c| c <= chapter).count();
     assert_eq!(at("mine_one"), bundled_up_to(1), "{names:?}");
     assert_eq!(at("mine_seven"), bundled_up_to(7) + 1, "{names:?}");
+    let shown = lessons.lesson().map(|l| l.name.as_str());
+    assert_eq!(
+        shown,
+        Some("mine_one"),
+        "the folder's first lesson is shown"
+    );
 }

@@ -42,15 +42,25 @@ impl WorkbenchApp {
         }
     }
 
-    /// Adds the lessons of folder `dir` to the Lessons window's list
-    /// (`workbench --lesson-folder DIR`) and opens it; the files that do
-    /// not read are said, the others still listed.
-    pub fn open_lesson_folder(&mut self, dir: &Path) {
+    /// Opens the lessons of folder `dir` as a class does
+    /// (`workbench --lesson-folder DIR`): listed, and the folder's first
+    /// lesson set up at its first step not done.
+    pub fn open_class(&mut self, dir: &Path) {
+        if self.open_lesson_folder(dir) {
+            self.set_up_lesson_step();
+        }
+    }
+
+    /// Adds the lessons of folder `dir` to the Lessons window's list (the
+    /// "Lesson folder..." button), opens it on the folder's first lesson,
+    /// and says whether the folder gave any; the files that do not read
+    /// are said, the others still listed.
+    pub fn open_lesson_folder(&mut self, dir: &Path) -> bool {
         let read = match crate::lessons::folder::read(dir) {
             Ok(read) => read,
             Err(e) => {
                 self.messages.error = Some(format!("{e:#}"));
-                return;
+                return false;
             }
         };
         let mut problems = Vec::new();
@@ -61,11 +71,13 @@ impl WorkbenchApp {
                 Err(e) => problems.push(e.to_string()),
             }
         }
+        let any = !lessons.is_empty();
         self.lessons.add_folder(lessons);
         self.lessons.open = true;
         if !problems.is_empty() {
             self.messages.error = Some(problems.join("\n"));
         }
+        any
     }
 
     /// The Lessons window, what it asked for, and the check kept current.

@@ -28,7 +28,9 @@ impl WorkbenchApp {
         for reply in self.dialogs.take() {
             match reply {
                 Reply::Open(path) => self.open_file(&path),
-                Reply::LessonFolder(dir) => self.open_lesson_folder(&dir),
+                Reply::LessonFolder(dir) => {
+                    self.open_lesson_folder(&dir);
+                }
                 Reply::Notice(text) => self.messages.notify(text),
                 Reply::Error(text) => self.messages.error = Some(text),
                 Reply::SceneSaved { side, path, state } => self.scene_saved(side, &path, state),

@@ -93,9 +93,11 @@ impl Lessons {
 
     /// Adds a folder's lessons to the list (one of the same name is
     /// replaced), in chapter order after the bundled ones of the same
-    /// chapter; the lesson shown stays shown.
+    /// chapter, and shows the folder's first: the teacher's class opens on
+    /// the teacher's lesson. A folder with none keeps the lesson shown.
     pub fn add_folder(&mut self, lessons: Vec<Lesson>) {
         let shown = self.lesson().map(|l| l.name.clone());
+        let added: Vec<String> = lessons.iter().map(|l| l.name.clone()).collect();
         for lesson in lessons {
             match self.lessons.iter().position(|l| l.name == lesson.name) {
                 Some(i) => self.lessons[i] = lesson,
@@ -103,7 +105,9 @@ impl Lessons {
             }
         }
         lessons::folder::in_chapter_order(&mut self.lessons);
-        let at = shown.and_then(|name| self.lessons.iter().position(|l| l.name == name));
+        let position = |name: &String| self.lessons.iter().position(|l| &l.name == name);
+        let first_added = self.lessons.iter().position(|l| added.contains(&l.name));
+        let at = first_added.or_else(|| shown.as_ref().and_then(position));
         self.choose(at.unwrap_or(0));
     }
 
