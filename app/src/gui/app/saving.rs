@@ -303,6 +303,11 @@ pub struct ScreenshotRequest {
     requested: bool,
     /// Where side A's image was drawn in the last frame, in points.
     image_rect: Option<egui::Rect>,
+    /// Whether the last two frames drew it at the same place: the
+    /// screenshot is of a later frame, so a layout still settling (panels
+    /// sized on their first frames, the observer's split) would put the
+    /// image elsewhere than the line says.
+    layout_settled: bool,
 }
 
 impl ScreenshotRequest {
@@ -313,12 +318,14 @@ impl ScreenshotRequest {
             opened_at: Instant::now(),
             requested: false,
             image_rect: None,
+            layout_settled: false,
         }
     }
 
     /// Keeps where the viewport drew side A's image this frame, for the
     /// line that reports the screenshot.
     pub fn saw_image_at(&mut self, rect: Option<egui::Rect>) {
+        self.layout_settled = rect == self.image_rect;
         self.image_rect = rect;
     }
 
@@ -338,10 +345,14 @@ impl ScreenshotRequest {
                 elapsed >= delay
             }
             None => {
-                !a.engine.is_loading()
+                let finished = !a.engine.is_loading()
                     && (error
                         || (a.engine.activity() == Activity::Job(JobState::Done)
-                            && a.image.is_current(&a.engine)))
+                            && a.image.is_current(&a.engine)));
+                if finished && !self.layout_settled {
+                    ctx.request_repaint();
+                }
+                finished && self.layout_settled
             }
         };
         if !due {
