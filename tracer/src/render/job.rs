@@ -11,7 +11,7 @@ use crate::stats::RenderStats;
 use crate::world::World;
 
 use super::control::{Control, ProgressListener, lock, lock_spinning};
-use super::driver::{Clock, FailureSlot, Host, Priority, SystemClock, WorkingFor};
+use super::driver::{Clock, FailureSlot, Host, JobPool, Priority, SystemClock, WorkingFor};
 use super::outputs::{Outputs, Recording};
 use super::passes::{LoopContext, PassListener};
 use super::settings::SettingsError;
@@ -112,6 +112,7 @@ pub struct JobOptions {
     pub image_only: bool,
     /// The pool the job renders on, made once for many jobs; `None`: a
     /// pool of its own, of `threads` threads at the priority above.
+    /// Unused with [`Host::Global`], which renders on rayon's global pool.
     pub pool: Option<Arc<rayon::ThreadPool>>,
     /// The clock its passes and time budget read; `None`: the system's.
     pub clock: Option<Arc<dyn Clock>>,
@@ -231,9 +232,10 @@ impl RenderJob {
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
         settings.render_camera(&world.view)?;
-        let pool = match &options.pool {
-            Some(pool) => pool.clone(),
-            None => driver::render_pool(options.threads, options.priority())?,
+        let pool = match (options.host, &options.pool) {
+            (Host::Global, _) => JobPool::Global,
+            (_, Some(pool)) => JobPool::Own(pool.clone()),
+            (_, None) => JobPool::Own(driver::render_pool(options.threads, options.priority())?),
         };
         let index = index.filter(|i| i.matches(settings.accel, settings.grid_multiplier));
         let recording = options.recording(&settings);
@@ -440,7 +442,7 @@ struct Job {
     index: Option<Arc<SceneIndex>>,
     settings: RenderSettings,
     strategy: Box<dyn SamplingStrategy>,
-    pool: Arc<rayon::ThreadPool>,
+    pool: JobPool,
 }
 
 impl Job {
