@@ -20,6 +20,7 @@ mod platform;
 mod sides;
 mod windows;
 
+#[cfg(not(target_family = "wasm"))]
 use std::path::PathBuf;
 
 pub use app::{FileDialog, FileQuestion, WorkbenchApp};
@@ -37,12 +38,14 @@ pub use windows::benchmark::BenchWindow;
 pub use windows::ray_tree::Inspector;
 pub use windows::studies::{Applied, StudiesWindow};
 
+#[cfg(not(target_family = "wasm"))]
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
 /// with the observer view on when `observer` and the lesson file `lesson`
 /// open, and runs until it is closed,
 /// or until the screenshot of `screenshot` is taken.
+#[cfg(not(target_family = "wasm"))]
 pub fn run(
     scene: Option<PathBuf>,
     screenshot: Option<ScreenshotPlan>,
@@ -116,6 +119,7 @@ pub fn run(
 /// fading in as the panels fill drew more than twice the frames the
 /// progress pace asked for during a short first render. Transitions are
 /// instant instead. With a GPU, frames are cheap and animations stay.
+#[cfg(not(target_family = "wasm"))]
 fn settle_animations(ctx: &egui::Context, device: eframe::wgpu::DeviceType) {
     if device == eframe::wgpu::DeviceType::Cpu {
         ctx.all_styles_mut(|style| style.animation_time = 0.0);

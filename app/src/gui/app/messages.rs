@@ -1,7 +1,9 @@
 //! What the window tells the user: the error shown above the image until
 //! dismissed or replaced, and short notices that fade after a few seconds.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use crate::gui::platform::clock::Clock;
 

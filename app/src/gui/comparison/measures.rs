@@ -9,6 +9,7 @@ use image::RgbImage;
 use tracer::metrics;
 use tracer::render::{JobState, Snapshot, View};
 
+use crate::gui::platform::target;
 use crate::measure::ab::{Heatmap, Metrics, measure};
 use crate::measure::value_difference::ValueDifference;
 
@@ -130,16 +131,14 @@ fn measure_in_background(
     ctx: egui::Context,
 ) -> Option<Receiver<Result<Metrics, String>>> {
     let (tx, rx) = channel();
-    std::thread::Builder::new()
-        .name("compare-metrics".into())
-        .spawn(move || {
-            let result = measure(&a, &b, Heatmap::Absolute)
-                .map(|(metrics, _)| metrics)
-                .map_err(|e| format!("{e:#}"));
-            let _ = tx.send(result);
-            ctx.request_repaint();
-        })
-        .ok()?;
+    target::spawn("compare-metrics", move || {
+        let result = measure(&a, &b, Heatmap::Absolute)
+            .map(|(metrics, _)| metrics)
+            .map_err(|e| format!("{e:#}"));
+        let _ = tx.send(result);
+        ctx.request_repaint();
+    })
+    .ok()?;
     Some(rx)
 }
 

@@ -4,9 +4,12 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use crate::gui::platform::clock::Clock;
+use crate::gui::platform::target;
 
 use egui::{RichText, Ui};
 use tracer::scene::{Limits, Primitive, Scene, parse_scene};
@@ -91,24 +94,20 @@ impl Catalog {
         let summaries = self.summaries.clone();
         let lowest_priority = self.lowest_priority;
         // Without the thread the list simply shows no counts.
-        let _ = std::thread::Builder::new()
-            .name("scene-catalog".into())
-            .spawn(move || {
-                // Counting can wait: a render must not.
-                if lowest_priority {
-                    let _ = thread_priority::set_current_thread_priority(
-                        thread_priority::ThreadPriority::Min,
-                    );
+        let _ = target::spawn("scene-catalog", move || {
+            // Counting can wait: a render must not.
+            if lowest_priority {
+                target::lowest_priority();
+            }
+            for scene in bundled::SCENES {
+                let parsed =
+                    parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());
+                if let Ok(mut summaries) = summaries.lock() {
+                    summaries.insert(scene.name, parsed.ok().map(|s| summary(&s)));
                 }
-                for scene in bundled::SCENES {
-                    let parsed =
-                        parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());
-                    if let Ok(mut summaries) = summaries.lock() {
-                        summaries.insert(scene.name, parsed.ok().map(|s| summary(&s)));
-                    }
-                    wake();
-                }
-            });
+                wake();
+            }
+        });
     }
 
     /// Whether [`Catalog::start`] was called.

@@ -1,0 +1,160 @@
+//! The web page's side of what differs from the desktop
+//! ([`super::target`]): the page's entry point, its workers, and what a
+//! page cannot do. A page can start no thread and its main thread may
+//! never wait: background work and every render run on rayon's global
+//! pool, which `wasm-bindgen-rayon` fills with Web Workers before the
+//! window starts (`initThreadPool`, called by `web/index.html`).
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use tracer::render::JobState;
+use tracer::render::driver::Priority;
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+use super::super::WorkbenchApp;
+
+/// Runs `work` in the background on one of the page's workers.
+pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+    rayon::spawn(work);
+    Ok(())
+}
+
+/// No pool of the engine's own: a page's jobs render on the global pool
+/// of its workers (`Host::Global`, the tracer's default on the web).
+pub fn render_pool(_priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>, String> {
+    Ok(None)
+}
+
+/// Workers have no priorities.
+pub fn lowest_priority() {}
+
+/// A page has no synchronous file dialog and no folder picker: every
+/// question is unanswered, which the window reports where it was asked
+/// as a dialog cancelled.
+#[derive(Debug, Default)]
+pub struct FileDialog;
+
+impl FileDialog {
+    pub fn new() -> Self {
+        Self
+    }
+
+    pub fn add_filter(self, _name: &str, _extensions: &[&str]) -> Self {
+        self
+    }
+
+    pub fn set_directory(self, _folder: impl Into<PathBuf>) -> Self {
+        self
+    }
+
+    pub fn set_file_name(self, _name: impl Into<String>) -> Self {
+        self
+    }
+
+    pub fn set_title(self, _title: impl Into<String>) -> Self {
+        self
+    }
+
+    pub fn pick_file(self) -> Option<PathBuf> {
+        None
+    }
+
+    pub fn pick_folder(self) -> Option<PathBuf> {
+        None
+    }
+
+    pub fn save_file(self) -> Option<PathBuf> {
+        None
+    }
+}
+
+/// Starts the window on the page's canvas `canvas_id`, on the bundled
+/// default scene. The page calls it once its workers are up.
+#[wasm_bindgen]
+pub async fn start(canvas_id: String) -> Result<(), JsValue> {
+    let canvas = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id(&canvas_id))
+        .ok_or_else(|| JsValue::from_str(&format!("no element #{canvas_id} on the page")))?
+        .dyn_into::<web_sys::HtmlCanvasElement>()?;
+    let options = eframe::WebOptions {
+        // As on the desktop: the render is shown exactly as computed.
+        dithering: false,
+        ..eframe::WebOptions::default()
+    };
+    eframe::WebRunner::new()
+        .start(
+            canvas,
+            options,
+            Box::new(|cc| {
+                Ok(Box::new(Page {
+                    app: WorkbenchApp::new(&cc.egui_ctx, cc.storage, None),
+                    said: String::new(),
+                }))
+            }),
+        )
+        .await
+}
+
+/// The window on a page, which says how side A's render stands in the
+/// page's `<body data-…>` attributes: for a script driving the page (the
+/// smoke test, `scripts/check_web_page.py`), as the desktop's tests ask
+/// the window itself.
+struct Page {
+    app: WorkbenchApp,
+    /// The attributes last written, so unchanged frames write nothing.
+    said: String,
+}
+
+impl Page {
+    fn tell_page(&mut self) {
+        let (state, passes) = match self.app.shown() {
+            Some(shown) => (
+                match &shown.state {
+                    JobState::Building => "building".to_string(),
+                    JobState::Rendering => "rendering".to_string(),
+                    JobState::Done => "done".to_string(),
+                    JobState::Cancelled => "cancelled".to_string(),
+                    JobState::Failed(message) => format!("failed: {message}"),
+                },
+                shown.stats.passes_done,
+            ),
+            None => ("starting".to_string(), 0),
+        };
+        let state = match self.app.error() {
+            Some(error) => format!("error: {error}"),
+            None => state,
+        };
+        let said = format!("{state}|{passes}");
+        if said == self.said {
+            return;
+        }
+        if let Some(body) = web_sys::window()
+            .and_then(|w| w.document())
+            .and_then(|d| d.body())
+        {
+            let _ = body.set_attribute("data-render", &state);
+            let _ = body.set_attribute("data-passes", &passes.to_string());
+            let workers = rayon::current_num_threads().to_string();
+            let _ = body.set_attribute("data-workers", &workers);
+        }
+        self.said = said;
+    }
+}
+
+impl eframe::App for Page {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        self.app.ui(ui, frame);
+        self.tell_page();
+    }
+
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        self.app.clear_color(visuals)
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        self.app.save(storage);
+    }
+}
