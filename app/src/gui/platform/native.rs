@@ -9,6 +9,10 @@ use tracer::render::driver::{Priority, render_pool as pool_of};
 /// The desktop's own file dialogs, asked from a background thread.
 pub use rfd::FileDialog;
 
+/// Background work wakes the window itself (egui's repaint works from
+/// any thread).
+pub const WORK_WAKES_WINDOW: bool = true;
+
 /// Runs `work` in the background on a thread called `name`.
 pub fn spawn(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
     std::thread::Builder::new()

@@ -15,6 +15,12 @@ use wasm_bindgen::prelude::*;
 
 use super::super::WorkbenchApp;
 
+/// Work on a worker cannot wake the window: eframe's repaint callback
+/// reads the page's clock through `window`, which a worker lacks (it
+/// panicked "should have a Window"). The page polls instead while a
+/// render runs ([`Page`]).
+pub const WORK_WAKES_WINDOW: bool = false;
+
 /// Runs `work` in the background on one of the page's workers.
 pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
     rayon::spawn(work);
@@ -98,6 +104,9 @@ pub async fn start(canvas_id: String) -> Result<(), JsValue> {
         .await
 }
 
+/// How often the page looks at a running render.
+const POLL: std::time::Duration = std::time::Duration::from_millis(100);
+
 /// The window on a page, which says how side A's render stands in the
 /// page's `<body data-…>` attributes: for a script driving the page (the
 /// smoke test, `scripts/check_web_page.py`), as the desktop's tests ask
@@ -148,6 +157,15 @@ impl eframe::App for Page {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         self.app.ui(ui, frame);
         self.tell_page();
+        // Workers do not wake the page (WORK_WAKES_WINDOW): it looks again
+        // while side A's render runs.
+        let running = self
+            .app
+            .shown()
+            .is_none_or(|shown| matches!(shown.state, JobState::Building | JobState::Rendering));
+        if running {
+            ui.ctx().request_repaint_after(POLL);
+        }
     }
 
     fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
