@@ -40,8 +40,15 @@ if [ ${#files[@]} -eq 0 ]; then
     exit 1
 fi
 
+# `--in-place` runs one mutant at a time in the tree itself, and
+# cargo-mutants refuses `--jobs` beside it.
+jobs=(--jobs "${MUTANTS_JOBS:-1}")
+for arg in "${options[@]}"; do
+    [ "$arg" = --in-place ] && jobs=()
+done
+
 exec cargo mutants \
-    --jobs "${MUTANTS_JOBS:-1}" \
+    "${jobs[@]}" \
     --timeout "${MUTANTS_TIMEOUT:-300}" \
     --output "${MUTANTS_OUT:-target/mutants}" \
     "${files[@]}" "${options[@]}"

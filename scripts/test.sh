@@ -14,6 +14,12 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
     export XDG_RUNTIME_DIR
 fi
 
+echo "== lock files"
+# The fuzz crate has its own lock file, which CI's fuzz stage reads with
+# --locked: a tracer dependency added or dropped must show up there too.
+# Checked first, in seconds, not after twenty minutes of tests.
+cargo metadata --locked --format-version 1 --manifest-path fuzz/Cargo.toml >/dev/null
+
 echo "== cargo test"
 # --locked: the tests run on the versions Cargo.lock names, or fail.
 cargo test --locked

@@ -5,9 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::{AccelKind, StructureLayer};
-use tracer::render::{
-    AdaptiveSampling, Encoding, HeatScale, RenderSettings, Sampling, View, ViewHeatmap,
-};
+use tracer::render::{Encoding, HeatScale, RenderSettings, Sampling, View, ViewHeatmap};
 
 use crate::measure::ab::Heatmap;
 use crate::measure::study::Param;
@@ -39,6 +37,12 @@ pub struct Cli {
     /// step set up.
     #[arg(long, value_name = "TOML", conflicts_with = "scene")]
     pub lesson: Option<PathBuf>,
+    /// Add a folder of lessons (its .toml files, or those its
+    /// lessons.index names) to the Lessons panel's list, by chapter after
+    /// the bundled ones of the same chapter, and set up the folder's first
+    /// (or the --lesson file, if given).
+    #[arg(long, value_name = "DIR", conflicts_with = "scene")]
+    pub lesson_folder: Option<PathBuf>,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]
     pub screenshot_after: Option<f64>,
@@ -169,22 +173,69 @@ pub struct LessonArgs {
 
 #[derive(Subcommand, Debug)]
 pub enum LessonCommand {
-    /// The bundled lessons: name, chapter, title and steps.
+    /// The bundled lessons, or a folder's: name, chapter, title and steps,
+    /// in chapter order.
     List {
         /// A table, or JSON for scripts.
         #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
         format: MetricsFormat,
+        /// A folder of lessons (its `.toml` files, or those its
+        /// lessons.index names) instead of the bundled ones.
+        #[arg(value_name = "DIR")]
+        folder: Option<PathBuf>,
     },
     /// Validate lessons (the file reads, the scene loads, the settings and
     /// edits apply), then replay each step: its starting state must fail
     /// its check and its `solution` must pass it. One line per step; the
     /// exit status is non-zero on any failure.
     Check {
-        /// Bundled lesson names or lesson files (.toml); default: every
-        /// bundled lesson.
+        /// Bundled lesson names, lesson files (.toml) or folders of
+        /// lessons; default: every bundled lesson.
         #[arg(value_name = "NAME|FILE")]
         lessons: Vec<String>,
+        /// One line per step, or JSON for a teacher's CI: each lesson's
+        /// steps with pass or what failed, its mistakes with line and column.
+        #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
+        format: MetricsFormat,
     },
+    /// Write a commented starting lesson, NAME.toml, that passes `lesson
+    /// check` as written: edit it from there. Never overwrites a file.
+    New {
+        /// The lesson's name or file (`light_and_shadow` writes
+        /// light_and_shadow.toml, titled "Light and shadow").
+        name: String,
+    },
+    /// The state a step starts from (settings, compare mode, the pinned
+    /// pixel and its ray tree, the check's verdict) and every quantity a
+    /// check can read there with its value; with --find, the pixels where
+    /// tree figures hold, to choose one to pin.
+    Explain(ExplainArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+  workbench lesson explain refraction --step 3
+  workbench lesson explain refraction --step 3 --find eye-object=2 --find tir=yes
+  workbench lesson explain my_lesson.toml --step 2 --pixel 40 27
+
+--find takes a tree figure as a check's `of` names it (the `tree ` in front
+may be left out) and what it must be as a check's `is` writes it: tir=yes,
+eye-object=2, rays>=6, \"blocker 0=1\". Every --find must hold. The pixels
+are listed row by row, read on side A's first sample as the step starts.")]
+pub struct ExplainArgs {
+    /// A bundled lesson's name or a lesson file (.toml).
+    #[arg(value_name = "NAME|FILE")]
+    pub lesson: String,
+    /// The step, counted from 1 as `lesson check` numbers them.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub step: usize,
+    /// List the pixels where this tree figure holds (repeat to ask for
+    /// several at once), instead of explaining the step.
+    #[arg(long, value_name = "QUANTITY=VALUE")]
+    pub find: Vec<String>,
+    /// Explain the step with this pixel pinned instead of the step's own.
+    #[arg(long, num_args = 2, value_names = ["X", "Y"], conflicts_with = "find")]
+    pub pixel: Option<Vec<u32>>,
 }
 
 #[derive(Args, Debug)]
@@ -861,24 +912,18 @@ impl SettingsArgs {
             None if !knobs => return,
             _ => {}
         }
-        let mut adaptive = match s.sampling {
-            Sampling::Adaptive(a) => a,
-            _ => AdaptiveSampling::for_samples(
-                s.samples,
-                AdaptiveSampling::default().noise_threshold,
-            ),
-        };
-        if let Some(t) = self.noise_threshold {
-            adaptive.noise_threshold = t;
-        }
-        if let Some(max) = self.max_spp {
-            adaptive.max_spp = max;
-            adaptive.min_spp = adaptive.min_spp.min(max);
-        }
-        if let Some(min) = self.min_spp {
-            adaptive.min_spp = min;
-        }
-        s.sampling = Sampling::Adaptive(adaptive);
+        s.sample_adaptively(|adaptive| {
+            if let Some(t) = self.noise_threshold {
+                adaptive.noise_threshold = t;
+            }
+            if let Some(max) = self.max_spp {
+                adaptive.max_spp = max;
+                adaptive.min_spp = adaptive.min_spp.min(max);
+            }
+            if let Some(min) = self.min_spp {
+                adaptive.min_spp = min;
+            }
+        });
         s.antialiasing = true;
     }
 }

@@ -3,6 +3,7 @@
 
 pub mod bundled;
 pub mod cli;
+pub mod describe;
 pub mod figures;
 #[cfg(feature = "window")]
 pub mod gui;
@@ -54,7 +55,7 @@ pub fn run() -> std::process::ExitCode {
 #[cfg(all(feature = "window", not(target_family = "wasm")))]
 fn window(cli: cli::Cli) -> anyhow::Result<()> {
     cli.screenshot_plan()
-        .and_then(|plan| gui::run(cli.scene, plan, cli.observer, cli.lesson))
+        .and_then(|plan| gui::run(cli.scene, plan, cli.observer, cli.lesson, cli.lesson_folder))
 }
 
 /// Built without the window (cargo feature `window`): the flags are still

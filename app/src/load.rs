@@ -11,8 +11,8 @@ use web_time::Instant;
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
-use tracer::mesh_io::{self, LoadProgress, MeshFormat};
 use tracer::scene::edit::Edit;
+use tracer::scene::mesh_io::{self, LoadProgress, MeshFormat};
 use tracer::scene::{Limits, Scene, parse_scene, parse_scene_file};
 use tracer::skybox::{Skybox, SkyboxError};
 use tracer::world::World;
@@ -90,6 +90,15 @@ impl Loaded {
     /// commands, with `--set` edits applied before the world is built;
     /// warnings, and progress while a large mesh is read, go to stderr.
     pub fn for_command(path: &Path, edits: &[String]) -> Result<Self> {
+        if is_lesson_file(path) {
+            let path = path.display();
+            anyhow::bail!(
+                "{path} is a lesson, not a scene: open it in the window with \
+                 `workbench --lesson {path}` (or Ctrl+O), test it with \
+                 `workbench lesson check {path}`, see a step's state with \
+                 `workbench lesson explain {path} --step N`"
+            );
+        }
         let source = SceneSource::File(path.to_path_buf());
         let mut progress = MeshProgress::new(path);
         let loaded = Self::read(source, edits, &mut |p| progress.show(p))?;
@@ -282,6 +291,13 @@ impl<'a> MeshProgress<'a> {
             took.as_secs_f64()
         );
     }
+}
+
+/// Whether `path` names a lesson file: TOML, as the window's Open and
+/// drop tell a lesson from a scene, and the headless commands refuse one.
+pub fn is_lesson_file(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }
 
 #[cfg(test)]

@@ -19,11 +19,11 @@ fn frames(c: &mut Criterion) {
         ("grid", AccelKind::Grid),
         ("none", AccelKind::None),
     ] {
-        let frame = common::bench_frame(&scene, &world, accel);
-        let rays = common::render_frame(&frame).total_rays();
+        let plan = common::bench_frame(&scene, &world, accel);
+        let rays = common::render_frame(&plan).total_rays();
         group.throughput(Throughput::Elements(rays));
         group.bench_function(BenchmarkId::from_parameter(name), |b| {
-            b.iter(|| black_box(common::render_frame(&frame)))
+            b.iter(|| black_box(common::render_frame(&plan)))
         });
     }
     group.finish();

@@ -37,8 +37,8 @@ fn rays(c: &mut Criterion) {
 
 fn scene_rays(c: &mut Criterion, scene_name: &str, structures: &[(&str, AccelKind)]) {
     let (scene, world) = common::load(&format!("{scene_name}.p3f"));
-    let frame = common::bench_frame(&scene, &world, AccelKind::Bvh);
-    let set = RaySet::new(&world, &frame.index, &frame.camera);
+    let plan = common::bench_frame(&scene, &world, AccelKind::Bvh);
+    let set = RaySet::new(&world, &plan.index, &plan.camera);
     for &(name, accel) in structures {
         let index = SceneIndex::build(&world.shapes, accel, 2.0);
         let mut group = c.benchmark_group(format!("rays/{scene_name}/closest_hit"));

@@ -48,11 +48,11 @@ fn follow(index: &Arc<SceneIndex>, world: &World, change: &ShapeChange) -> (Arc<
 }
 
 /// One frame over `index`: its time and work.
-fn frame_time(frame: &RenderPlan) -> (Duration, Counters) {
+fn frame_time(plan: &RenderPlan) -> (Duration, Counters) {
     let mut counters = Counters::default();
     let start = Instant::now();
-    for tile in &frame.tiles {
-        std::hint::black_box(frame.render_tile(0, tile, &mut counters));
+    for tile in &plan.tiles {
+        std::hint::black_box(plan.render_tile(0, tile, &mut counters));
     }
     (start.elapsed(), counters)
 }

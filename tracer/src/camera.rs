@@ -11,14 +11,19 @@ use crate::scene::{Lens, Viewpoint};
 /// Why a camera cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CameraError {
+    /// A zero width or height (width, height).
     #[error("the image must be at least 1x1 pixels, got {0}x{1}")]
     EmptyImage(u32, u32),
+    /// The eye and the point looked at are the same.
     #[error("`from` and `at` coincide, so there is no view direction")]
     NoViewDirection,
+    /// `up` gives no sideways direction.
     #[error("`up` is parallel to the view direction")]
     UpParallel,
+    /// A field of view outside 0..180 degrees (the angle given).
     #[error("the field of view must be between 0 and 180 degrees, got {0}")]
     BadAngle(f32),
+    /// A negative aperture or a focal ratio <= 0 (aperture, focal).
     #[error("the aperture must be >= 0 and the focal ratio > 0, got {0} and {1}")]
     BadLens(f32, f32),
 }
@@ -28,8 +33,11 @@ pub enum CameraError {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CameraPose {
+    /// The eye's position.
     pub from: Vec3,
+    /// The point seen at the image's centre.
     pub at: Vec3,
+    /// Which way is up in the image; not parallel to `at - from`.
     pub up: Vec3,
 }
 
@@ -178,7 +186,7 @@ impl Camera {
     /// which pose and lens a render takes.
     ///
     /// [`RenderSettings::render_camera`]: crate::render::RenderSettings::render_camera
-    pub fn posed(
+    pub(crate) fn posed(
         view: &Viewpoint,
         pose: Option<&CameraPose>,
         lens: Option<Lens>,
@@ -193,10 +201,12 @@ impl Camera {
         Self::new(&view, width, height, lens.aperture, lens.focal)
     }
 
+    /// Image width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Image height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
@@ -207,7 +217,7 @@ impl Camera {
     }
 
     /// True when the lens has a size, so depth of field is visible.
-    pub fn has_lens(&self) -> bool {
+    pub(crate) fn has_lens(&self) -> bool {
         self.lens_radius > 0.0
     }
 

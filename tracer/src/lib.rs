@@ -34,11 +34,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+#![deny(missing_docs)]
+
 pub mod accel;
 pub mod camera;
 pub mod generate;
 pub mod geometry;
-pub mod mesh_io;
 pub mod metrics;
 pub mod optics;
 pub mod ray_set;

@@ -15,7 +15,7 @@ use glam::Vec3A;
 /// file's huge but finite numbers (`f 1e30 1e30 1e30 3e38 ...`) thus
 /// render as very bright, never as infinity or as the NaN that `inf * 0`
 /// or `inf - inf` would make.
-pub const MAX_RADIANCE: f32 = 1e12;
+pub(crate) const MAX_RADIANCE: f32 = 1e12;
 
 /// `v` with every component clamped to `-MAX_RADIANCE..=MAX_RADIANCE`, and
 /// NaN (which only an unbounded computation makes) as 0.
@@ -28,7 +28,7 @@ pub fn bounded(v: Vec3A) -> Vec3A {
 /// Mirror reflection of the incoming direction `d` about the normal `n`
 /// (both unit; `n` may face either way): `r = d - 2 (d . n) n`.
 #[inline]
-pub fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
+pub(crate) fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
     d - n * (2.0 * d.dot(n))
 }
 
@@ -36,7 +36,7 @@ pub fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
 /// with unit normal `n` facing the incoming side (`d . n < 0`), with
 /// `eta = n_incident / n_transmitted`. `None` on total internal reflection.
 #[inline]
-pub fn refract(d: Vec3A, n: Vec3A, eta: f32) -> Option<Vec3A> {
+pub(crate) fn refract(d: Vec3A, n: Vec3A, eta: f32) -> Option<Vec3A> {
     let cos_i = -d.dot(n);
     let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
     if sin2_t >= 1.0 {
@@ -68,7 +68,7 @@ pub fn fresnel(cos_i: f32, eta: f32) -> f32 {
 /// Both are at most 1: `n . h` is clamped, as rounding can put it just
 /// above 1, which a huge exponent would raise to infinity.
 #[inline]
-pub fn blinn_phong(n: Vec3A, l: Vec3A, v: Vec3A, shine: f32) -> (f32, f32) {
+pub(crate) fn blinn_phong(n: Vec3A, l: Vec3A, v: Vec3A, shine: f32) -> (f32, f32) {
     let n_dot_l = n.dot(l).max(0.0);
     let h = (l + v).normalize_or_zero();
     let n_dot_h = n.dot(h).clamp(0.0, 1.0);

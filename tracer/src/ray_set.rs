@@ -7,7 +7,7 @@
 //!   neighbouring rays follow each other as in a frame;
 //! - shadow rays: for each eye ray that hits, one per light the surface
 //!   faces (its geometric normal, turned towards the eye, has N . L > 0),
-//!   from the hit point lifted [`SHADOW_OFFSET`] along that normal, ending
+//!   from the hit point lifted `SHADOW_OFFSET` along that normal, ending
 //!   at the light; any hit.
 
 use glam::Vec3A;
@@ -20,16 +20,18 @@ use crate::stats::Counters;
 use crate::world::World;
 
 /// Side of the square tiles eye rays are cast in, in pixels.
-pub const RAY_TILE: u32 = 16;
+pub(crate) const RAY_TILE: u32 = 16;
 
 /// How far shadow rays start off the surface, along its normal (the
 /// Embree benchmark's offset, in scene units).
-pub const SHADOW_OFFSET: f32 = 1e-4;
+pub(crate) const SHADOW_OFFSET: f32 = 1e-4;
 
 /// A shadow ray and the distance to its light, where it stops.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadowRay {
+    /// From the surface towards the light sample.
     pub ray: Ray,
+    /// Distance to the light sample: occluders beyond it do not count.
     pub distance: f32,
 }
 
@@ -37,13 +39,14 @@ pub struct ShadowRay {
 /// hits, in the same order (a hit's rays light by light).
 #[derive(Debug, Clone)]
 pub struct RaySet {
-    /// One per pixel, tile after tile ([`RAY_TILE`] pixels square).
+    /// One per pixel, tile after tile (`RAY_TILE` pixels square).
     pub eye: Vec<Ray>,
     /// Eye rays ignore hits nearer than this (the camera's hither).
     pub hither: f32,
     /// How many eye rays each tile has, in order: tile `i`'s rays follow
     /// tile `i - 1`'s.
     pub tile_rays: Vec<usize>,
+    /// The shadow rays, tile by tile.
     pub shadow: Vec<ShadowRay>,
 }
 

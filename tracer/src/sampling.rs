@@ -8,7 +8,7 @@ use std::ops::Range;
 use glam::Vec2;
 
 /// Where a random number is used: the pixel, the sample index within it and
-/// the seed. Each call to [`SampleStream::next_1d`] moves to the next
+/// the seed. Each call to `SampleStream::next_1d` moves to the next
 /// dimension, so a path through the tracer draws its numbers in a fixed order.
 #[derive(Debug, Clone, Copy)]
 pub struct SampleStream {
@@ -42,7 +42,7 @@ impl SampleStream {
     /// This stream for the `rank`-th sample a pixel takes in adaptive
     /// order: its patterns across samples become prefix-stratified (see
     /// [`SampleStream::next_2d_across_samples`]).
-    pub fn ranked(self, rank: u32) -> Self {
+    pub(crate) fn ranked(self, rank: u32) -> Self {
         Self {
             rank: Some(rank),
             ..self
@@ -51,7 +51,7 @@ impl SampleStream {
 
     /// The next 32 random bits: picks a pattern for [`multi_jittered`].
     #[inline]
-    pub fn next_u32(&mut self) -> u32 {
+    pub(crate) fn next_u32(&mut self) -> u32 {
         let bits = mix64(self.key.wrapping_add(self.dimension as u64));
         self.dimension += 1;
         (bits >> 32) as u32
@@ -73,7 +73,7 @@ impl SampleStream {
     /// sampling may stop, fall once in each of the 2^j boxes of every
     /// elementary shape, as a whole multi-jittered round does, and the
     /// dimensions (light samples, lens) stay independent of each other.
-    pub fn next_2d_across_samples(&mut self, n: u32) -> Vec2 {
+    pub(crate) fn next_2d_across_samples(&mut self, n: u32) -> Vec2 {
         if let Some(rank) = self.rank {
             return scrambled_sobol(rank, self.sobol_seed());
         }
@@ -95,7 +95,7 @@ impl SampleStream {
     /// own, so a pixel whose few samples take several points each
     /// averages as many well spread points as one that took a sample a
     /// point. Takes two dimensions.
-    pub fn next_light_points(
+    pub(crate) fn next_light_points(
         &mut self,
         n: u32,
         indices: impl FnOnce(u32) -> Range<u32>,
@@ -123,7 +123,7 @@ impl SampleStream {
 
     /// The next number in `[0, 1)`.
     #[inline]
-    pub fn next_1d(&mut self) -> f32 {
+    pub(crate) fn next_1d(&mut self) -> f32 {
         let bits = mix64(self.key.wrapping_add(self.dimension as u64));
         self.dimension += 1;
         // 24 high bits give every float in [0, 1) with spacing 2^-24.
@@ -132,14 +132,14 @@ impl SampleStream {
 
     /// Two numbers in `[0, 1)`.
     #[inline]
-    pub fn next_2d(&mut self) -> Vec2 {
+    pub(crate) fn next_2d(&mut self) -> Vec2 {
         Vec2::new(self.next_1d(), self.next_1d())
     }
 }
 
 /// 32 random bits of pixel `pixel` under `seed`, the same for all its
 /// samples: the digits that shift a pixel's adaptive sample pattern.
-pub fn pixel_digits(seed: u64, pixel: u32) -> u32 {
+pub(crate) fn pixel_digits(seed: u64, pixel: u32) -> u32 {
     (mix64(seed ^ 0x5ca1_ab1e_0000_0000 ^ u64::from(pixel)) >> 32) as u32
 }
 
@@ -148,7 +148,7 @@ pub fn pixel_digits(seed: u64, pixel: u32) -> u32 {
 /// (aligned blocks of 2^j indices stay aligned blocks, and an aligned
 /// block of a (0, 2)-sequence is a (0, j, 2)-net), each coordinate by
 /// Owen scrambling, which keeps every net a net.
-pub fn scrambled_sobol(index: u32, seed: u64) -> Vec2 {
+pub(crate) fn scrambled_sobol(index: u32, seed: u64) -> Vec2 {
     let index = nested_uniform_scramble(index, seed as u32);
     let x = nested_uniform_scramble(index.reverse_bits(), (seed >> 32) as u32);
     let y = nested_uniform_scramble(sobol_second(index), mix64(seed) as u32);
@@ -246,7 +246,7 @@ const MAX_N: u32 = 64;
 /// columns give, so the `n * n` points fill every cell, every one of the
 /// `n * n` columns of width `1 / n^2` and every such row once each, then
 /// jitter inside that sub-cell. Computed alone, in O(1), for any index.
-pub fn multi_jittered(index: u32, n: u32, pattern: u32) -> Vec2 {
+pub(crate) fn multi_jittered(index: u32, n: u32, pattern: u32) -> Vec2 {
     let n = n.clamp(1, MAX_N);
     let (col, row) = (index % n, (index / n) % n);
     let sub_col = permute(row, n, pattern ^ 0xa511_e9b3);
@@ -266,7 +266,7 @@ pub fn multi_jittered(index: u32, n: u32, pattern: u32) -> Vec2 {
 /// A permutation of `0..len` chosen by `key`: a bijection of the smallest
 /// power-of-two range holding `len` (xor, odd multiplies and xorshifts, each
 /// invertible), walked until it lands inside `0..len`.
-pub fn permute(i: u32, len: u32, key: u32) -> u32 {
+pub(crate) fn permute(i: u32, len: u32, key: u32) -> u32 {
     if len <= 1 {
         return 0;
     }
@@ -288,7 +288,7 @@ pub fn permute(i: u32, len: u32, key: u32) -> u32 {
 
 /// Maps the unit square onto the unit disk preserving strata (Shirley and
 /// Chiu's concentric mapping), so jittered lens samples stay well spread.
-pub fn concentric_disk(u: Vec2) -> Vec2 {
+pub(crate) fn concentric_disk(u: Vec2) -> Vec2 {
     let p = u * 2.0 - Vec2::ONE;
     if p == Vec2::ZERO {
         return Vec2::ZERO;
@@ -307,7 +307,7 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
 /// The order in which the `n * n` strata of a pixel are visited by
 /// progressive passes: each prefix is spread over the pixel (a bit-reversed
 /// walk), so the first passes already approximate the final average.
-pub fn stratum_order(n: u32) -> Vec<u32> {
+pub(crate) fn stratum_order(n: u32) -> Vec<u32> {
     let count = n.max(1) * n.max(1);
     let bits = u32::BITS - (count - 1).leading_zeros();
     let mut order: Vec<u32> = (0..1u32 << bits)
@@ -572,5 +572,59 @@ mod tests {
             order.sort_unstable();
             assert_eq!(order, (0..n * n).collect::<Vec<_>>());
         }
+    }
+
+    #[test]
+    fn mix64_is_splitmix64() {
+        // SplitMix64's outputs from seed 0: its state steps by the gamma.
+        let gamma = 0x9E37_79B9_7F4A_7C15u64;
+        let outputs = [
+            0xE220_A839_7B1D_CDAF,
+            0x6E78_9E6A_A1B9_65F4,
+            0x06C4_5D18_8009_454F,
+        ];
+        for (k, want) in outputs.into_iter().enumerate() {
+            assert_eq!(mix64(gamma.wrapping_mul(k as u64)), want, "output {k}");
+        }
+    }
+
+    #[test]
+    fn each_draw_is_a_new_dimension() {
+        let mut s = SampleStream::new(7, 3, 1); // patterns first, from dimension 0
+        let points: Vec<Vec2> = (0..4).map(|_| s.next_2d_across_samples(4)).collect();
+        let bits: Vec<u32> = (0..4).map(|_| s.next_u32()).collect();
+        let units: Vec<f32> = (0..4).map(|_| s.next_1d()).collect();
+        for k in 1..4 {
+            assert!(
+                !bits[..k].contains(&bits[k]) && !units[..k].contains(&units[k]),
+                "{bits:?} {units:?}"
+            );
+            assert!(!points[..k].contains(&points[k]), "{points:?}");
+        }
+    }
+
+    #[test]
+    fn patterns_across_samples_change_with_the_round_and_the_pixel() {
+        let first = |pixel, sample| SampleStream::new(5, pixel, sample).next_2d_across_samples(4);
+        // Sample 16 starts the second round of a 4 x 4 pattern: another one.
+        assert!((0..64).all(|p| first(p, 0) != first(p, 16)));
+        // Sample 0's cell is a shuffled one, not the same in every pixel.
+        let cell = |p| (first(p, 0) * 4.0).floor();
+        assert!((1..64).any(|p| cell(p) != cell(0)));
+    }
+
+    #[test]
+    fn every_bit_of_the_seed_and_pixel_moves_the_digits() {
+        for seed in [0, u64::MAX, 0x1234_5678_9abc_def0] {
+            let mut digits: Vec<u32> = (0..256).map(|p| pixel_digits(seed, p)).collect();
+            digits.sort_unstable();
+            digits.dedup();
+            assert_eq!(digits.len(), 256, "seed {seed:x}");
+        }
+        assert!((0..64).all(|b| pixel_digits(1 << b, 5) != pixel_digits(0, 5)));
+        // Sobol's x scramble takes the seed's high half: seeds differing
+        // there give other points.
+        let xs: Vec<f32> = (1..17u64).map(|i| scrambled_sobol(0, i << 32).x).collect();
+        assert!(xs.windows(2).all(|w| w[0] != w[1]), "{xs:?}");
     }
 }

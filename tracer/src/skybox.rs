@@ -16,20 +16,36 @@ pub const FACE_NAMES: [&str; 6] = ["right", "left", "top", "bottom", "front", "b
 /// Why a skybox could not be loaded.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SkyboxError {
+    /// The `env` folder does not exist.
     #[error("skybox folder {0} not found")]
     MissingFolder(PathBuf),
+    /// A face image is missing from the folder.
     #[error("skybox face `{face}` not found in {dir} (looked for .png, .jpg, .jpeg)")]
-    MissingFace { dir: PathBuf, face: &'static str },
+    MissingFace {
+        /// The skybox folder.
+        dir: PathBuf,
+        /// The face's file stem, e.g. "px".
+        face: &'static str,
+    },
+    /// A face image that cannot be decoded.
     #[error("skybox face {file}: {message}")]
-    Unreadable { file: PathBuf, message: String },
+    Unreadable {
+        /// The image file.
+        file: PathBuf,
+        /// The decoder's message.
+        message: String,
+    },
 }
 
 /// One face of a sky decoded ahead of time: `width * height` texels of
 /// three bytes (red, green, blue), row by row from the top left.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rgb8Face {
+    /// Width in texels.
     pub width: u32,
+    /// Height in texels.
     pub height: u32,
+    /// `width * height * 3` bytes, RGB, row by row.
     pub bytes: &'static [u8],
 }
 
@@ -205,7 +221,7 @@ impl Skybox {
 /// The face index (in [`FACE_NAMES`] order) and the `(s, t)` coordinates in
 /// `[0, 1]` (s to the right, t downwards in the image) that OpenGL's cube-map
 /// rules give for `dir`.
-pub fn cube_face(dir: Vec3A) -> (usize, f32, f32) {
+pub(crate) fn cube_face(dir: Vec3A) -> (usize, f32, f32) {
     let a = dir.abs();
     let (face, sc, tc, ma) = if a.x >= a.y && a.x >= a.z {
         if dir.x > 0.0 {

@@ -9,9 +9,13 @@ use std::time::Duration;
 /// they compare on equal terms.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Counters {
+    /// Rays from the camera, one per sample.
     pub eye_rays: u64,
+    /// Rays towards light samples.
     pub shadow_rays: u64,
+    /// Mirror rays spawned at specular surfaces.
     pub reflection_rays: u64,
+    /// Rays bent into or out of transmitters.
     pub refraction_rays: u64,
     /// Ray-primitive intersection tests.
     pub intersection_tests: u64,
@@ -51,7 +55,9 @@ pub struct SceneCounts {
     pub objects_by_kind: Vec<(&'static str, usize)>,
     /// Primitives the renderer intersects (polygons and meshes become triangles).
     pub primitives: usize,
+    /// Triangles among the primitives.
     pub triangles: usize,
+    /// Lights, point and area.
     pub lights: usize,
 }
 
@@ -65,12 +71,15 @@ impl SceneCounts {
 /// A snapshot of a render's progress and cost.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RenderStats {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Passes completed; each adds one sample to every pixel.
     pub passes_done: u32,
     /// Passes that make the target sample count.
     pub passes_target: u32,
+    /// Rays traced, by kind.
     pub counters: Counters,
     /// Duration of each completed pass.
     pub pass_times: Vec<Duration>,
@@ -88,6 +97,7 @@ pub struct RenderStats {
 /// Where an adaptive render stands after a pass.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct AdaptiveStats {
+    /// Pixels in the image.
     pub pixels: u64,
     /// Pixels that take more samples in the next pass.
     pub active_pixels: u64,

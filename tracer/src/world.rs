@@ -32,7 +32,7 @@ pub enum ShapeChange {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Surface {
     /// Diffuse colour times Kd, each component within
-    /// [`crate::optics::MAX_RADIANCE`] (a product of two huge but finite
+    /// `optics::MAX_RADIANCE` (a product of two huge but finite
     /// numbers would be infinite).
     pub diffuse: Vec3A,
     /// Specular colour times Ks, bounded the same way: weights both the
@@ -41,7 +41,9 @@ pub struct Surface {
     /// The Blinn-Phong exponent, at least 0: a negative one would make the
     /// highlight grow without bound away from the mirror direction.
     pub shine: f32,
+    /// Share of light passing through, 0..1; > 0 refracts.
     pub transmittance: f32,
+    /// Index of refraction, used when `transmittance > 0`.
     pub ior: f32,
 }
 
@@ -62,7 +64,7 @@ impl From<&Material> for Surface {
 pub struct Light {
     /// The point light's position, or the centre of an area light.
     pub position: Vec3A,
-    /// Within [`crate::optics::MAX_RADIANCE`], like a surface's colours.
+    /// Within `optics::MAX_RADIANCE`, like a surface's colours.
     pub color: Vec3A,
     /// For `al` lights, the rectangle's two edge vectors (full width and
     /// height); point lights get a square of the "light size" setting when
@@ -73,7 +75,9 @@ pub struct Light {
 /// Everything the tracer needs about a scene, independent of render settings.
 #[derive(Debug, Clone)]
 pub struct World {
+    /// The scene's camera block.
     pub view: Viewpoint,
+    /// The shapes rays test; acceleration structures index into this list.
     pub shapes: Vec<Shape>,
     /// Index into `surfaces` for each shape.
     pub shape_surface: Vec<u32>,
@@ -84,14 +88,18 @@ pub struct World {
     pub object_kinds: Vec<&'static str>,
     /// Where each scene object was declared in its file (line, column).
     pub object_positions: crate::scene::ObjectPositions,
+    /// The materials; `shape_surface` gives each shape's.
     pub surfaces: Vec<Surface>,
+    /// The lights, each with its colour decided.
     pub lights: Vec<Light>,
+    /// Colour of rays that hit nothing, without a sky; linear RGB.
     pub background: Vec3A,
     /// Shared, so that a world cloned to follow an edit does not copy
     /// the sky's six faces (most of a material edit's time, before).
     pub skybox: Option<Arc<Skybox>>,
     /// Bounds of all bounded shapes (empty when there are none).
     pub bounds: Aabb,
+    /// What the scene holds, for the statistics.
     pub counts: SceneCounts,
     /// Things the user should know that did not stop the build (a missing
     /// skybox, degenerate triangles skipped).

@@ -42,15 +42,17 @@ pub use windows::studies::{Applied, StudiesWindow};
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
-/// with the observer view on when `observer` and the lesson file `lesson`
-/// open, and runs until it is closed,
-/// or until the screenshot of `screenshot` is taken.
+/// with the observer view on when `observer`, the lessons of
+/// `lesson_folder` listed and the first set up, the lesson file `lesson`
+/// (if given) set up instead, and runs until it is closed or until the
+/// screenshot of `screenshot` is taken.
 #[cfg(not(target_family = "wasm"))]
 pub fn run(
     scene: Option<PathBuf>,
     screenshot: Option<ScreenshotPlan>,
     observer: bool,
     lesson: Option<PathBuf>,
+    lesson_folder: Option<PathBuf>,
 ) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -82,6 +84,9 @@ pub fn run(
             }
             let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, initial);
             app.show_observer(observer);
+            if let Some(dir) = &lesson_folder {
+                app.open_class(dir);
+            }
             if let Some(path) = &lesson {
                 app.open_lesson(path);
             }

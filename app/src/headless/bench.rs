@@ -165,7 +165,7 @@ fn to_error(args: &BenchArgs, loaded: &Loaded, mut settings: RenderSettings) -> 
         args.scene.display(),
         plan.base.width,
         plan.base.height,
-        reports::describe::describe(&plan.base, &loaded.scene.view),
+        crate::describe::describe(&plan.base, &loaded.scene.view),
         plan.runs,
         args.threads.map_or_else(
             || rayon::current_num_threads().to_string(),

@@ -10,12 +10,12 @@ use tracer::render::{RenderSettings, View, ViewSummary};
 use tracer::world::World;
 
 use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
+use crate::describe::si;
 use crate::figures::heat_map;
 use crate::image_file::save_png;
 use crate::load::Loaded;
 use crate::measure::ab::{self, Heatmap, ImageComparison, RenderComparison, SideOptions};
 use crate::measure::benchmark::{Case, Measurement};
-use crate::reports::render_stats::si;
 use crate::reports::view_summary;
 
 /// One side: its case, the world it renders (the scene with the side's own
@@ -175,7 +175,7 @@ fn against_image(
         ),
         &args.output,
     )?;
-    let settings = crate::reports::describe::describe(&c.a.case.settings, &world.view);
+    let settings = crate::describe::describe(&c.a.case.settings, &world.view);
     let label = [settings]
         .into_iter()
         .chain(edits)

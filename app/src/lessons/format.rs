@@ -13,8 +13,10 @@ use tracer::render::View;
 use crate::bundled;
 use crate::cli::SettingsArgs;
 
+use super::actions::{Actions, Located};
 use super::check::Check;
-use super::check::written::{Part, Reader, WrittenCheck, WrittenValue};
+use super::check::Part;
+use super::check::written::{Reader, WrittenCheck, WrittenValue};
 use super::state::Which;
 
 /// Where a lesson file could not be read, and why.
@@ -51,15 +53,6 @@ impl From<LessonError> for LessonErrors {
     }
 }
 
-/// A value with the place in the lesson file it was read from, so a
-/// problem found later (an edit the scene refuses) still names its line.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Located<T> {
-    pub value: T,
-    pub line: usize,
-    pub column: usize,
-}
-
 /// One lesson: a scene, where it starts, and its ordered steps.
 #[derive(Debug, Clone)]
 pub struct Lesson {
@@ -75,7 +68,7 @@ pub struct Lesson {
     pub scene: LessonScene,
     /// Settings, edits and layout before the first step.
     pub start: Actions,
-    pub steps: Vec<Step>,
+    pub steps: Vec<LessonStep>,
 }
 
 /// Where a lesson's scene comes from.
@@ -93,7 +86,7 @@ pub enum LessonScene {
 
 /// One step: what to read, what to do, and the check that says it is done.
 #[derive(Debug, Clone)]
-pub struct Step {
+pub struct LessonStep {
     pub title: String,
     /// The why, with the formula where the course gives one (Markdown).
     pub text: String,
@@ -114,30 +107,6 @@ pub struct Step {
     pub line: usize,
 }
 
-/// What a lesson's start, a step's setup or a solution does to the state.
-#[derive(Debug, Clone, Default)]
-pub struct Actions {
-    /// Side A's settings, as `workbench render` flags; their `--set` lines
-    /// edit A's scene.
-    pub settings: Option<Located<SettingsArgs>>,
-    /// Scene edits of side A in the `--set` language, in order.
-    pub edits: Vec<Located<String>>,
-    /// Compare mode on, side B being A with these flags over it (their
-    /// `--set` lines edit B's scene).
-    pub compare: Option<Located<SettingsArgs>>,
-    /// Scene edits of side B alone, in the `--set` language, after
-    /// `compare`: B's scene differs from A's, the point of the layout.
-    pub compare_edits: Vec<Located<String>>,
-    /// The pixel pinned for the ray tree and the observer.
-    pub pixel: Option<(u32, u32)>,
-    /// The answer typed or picked (solutions only).
-    pub answer: Option<String>,
-    /// The image view to show (window layout).
-    pub view: Option<View>,
-    /// The observer view on or off (window layout).
-    pub observer: Option<bool>,
-}
-
 impl Actions {
     /// Whether it does nothing at all.
     pub fn is_empty(&self) -> bool {
@@ -152,9 +121,26 @@ impl Actions {
     }
 }
 
+/// The lesson format this workbench reads: a file's `format-version`,
+/// absent meaning this one. A later change to the format's names raises
+/// it, so that an older workbench refuses a newer file clearly rather than
+/// at its first unknown key.
+pub const FORMAT_VERSION: i64 = 1;
+
+/// The version alone, read before the rest (whose keys a later version
+/// may have changed).
+#[derive(Deserialize)]
+struct RawVersion {
+    #[serde(rename = "format-version")]
+    version: Option<Spanned<i64>>,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLesson {
+    /// Read by [`RawVersion`] first.
+    #[serde(rename = "format-version")]
+    _version: Option<i64>,
     title: Spanned<String>,
     chapter: Spanned<u32>,
     #[serde(default)]
@@ -239,6 +225,7 @@ pub fn parse_lesson(
     dir: Option<&Path>,
 ) -> Result<Lesson, LessonErrors> {
     let source = Source { file, text };
+    source.check_version()?;
     let raw: RawLesson = toml::from_str(text)
         .map_err(|e| source.error(e.span().unwrap_or(0..0), e.message().trim_end().to_string()))?;
     let mut errors = Vec::new();
@@ -335,6 +322,27 @@ impl Source<'_> {
         }
     }
 
+    /// A `format-version` other than this workbench's is the one error
+    /// said, at its value: a newer file's other keys may mean other
+    /// things. A file TOML cannot read is left to the full reading.
+    fn check_version(&self) -> Result<(), LessonError> {
+        let Ok(RawVersion {
+            version: Some(version),
+        }) = toml::from_str(self.text)
+        else {
+            return Ok(());
+        };
+        let message = match *version.get_ref() {
+            FORMAT_VERSION => return Ok(()),
+            later if later > FORMAT_VERSION => format!(
+                "format-version {later} is newer than this workbench reads (up to \
+                 {FORMAT_VERSION}): open the lesson with a newer workbench"
+            ),
+            other => format!("expected format-version {FORMAT_VERSION}, found {other}"),
+        };
+        Err(self.error(version.span(), message))
+    }
+
     fn located<T>(&self, span: Range<usize>, value: T) -> Located<T> {
         let (line, column) = self.locate(span.start);
         Located {
@@ -414,7 +422,7 @@ impl Source<'_> {
     }
 
     /// A step, with every mistake of its check, its actions and its texts.
-    fn step(&self, raw: Spanned<RawStep>) -> Result<Step, LessonErrors> {
+    fn step(&self, raw: Spanned<RawStep>) -> Result<LessonStep, LessonErrors> {
         let (line, _) = self.locate(raw.span().start);
         let raw = raw.into_inner();
         let check_span = raw.check.span();
@@ -444,7 +452,7 @@ impl Source<'_> {
             (Some(check), Some(solution), Some(title), Some(text), Some(setup))
                 if errors.is_empty() =>
             {
-                Ok(Step {
+                Ok(LessonStep {
                     title,
                     text,
                     hints: raw.hints,
@@ -619,6 +627,20 @@ solution = { settings = "--aa" }
         let broken = MINIMAL.replace("pixel = [3, 4]", "answer = 3");
         let e = parse(&broken).unwrap_err();
         assert!(e.message.contains("only a step's `solution`"), "{e}");
+    }
+
+    #[test]
+    fn a_later_format_version_is_the_one_error_said() {
+        let current = format!("format-version = {FORMAT_VERSION}\n{MINIMAL}");
+        assert!(parse(&current).is_ok());
+        let later = format!("format-version = 2\nnew-key = 1\n{MINIMAL}");
+        let LessonErrors(errors) = parse_lesson(&later, "t", "t.toml", None).unwrap_err();
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        let e = &errors[0];
+        assert_eq!((e.line, e.column), (1, 18), "{e}");
+        assert!(e.message.contains("format-version 2 is newer"), "{e}");
+        let e = parse(&format!("format-version = 0\n{MINIMAL}")).unwrap_err();
+        assert_eq!(e.message, "expected format-version 1, found 0");
     }
 
     #[test]

@@ -1,16 +1,22 @@
 //! Lessons: the course's chapters as guided tasks, each step checking what
-//! the student achieved. `format` reads a lesson file, `check` says whether
-//! a step is done, `state` is what a check looks at, `replay` walks a
+//! the student achieved. `format` reads a lesson file into steps and
+//! `actions` (what a start, setup or solution does), `check` says whether a
+//! step is done, `state` is what a check looks at, `replay` walks a
 //! lesson's steps the way a student would (for `workbench lesson check`
 //! and the window's "Set up this step"), `bundled` is the set shipped in
 //! the binary.
 
+pub mod actions;
 pub mod bundled;
 pub mod check;
+pub mod explain;
+pub mod folder;
 pub mod format;
+pub mod new;
 pub mod replay;
 pub mod state;
 
+pub use actions::Actions;
 pub use check::{Check, Verdict, evaluate};
-pub use format::{Actions, Lesson, LessonError, LessonErrors, LessonScene, Step};
+pub use format::{Lesson, LessonError, LessonErrors, LessonScene, LessonStep};
 pub use state::{LessonState, SideState, Which};

@@ -13,9 +13,9 @@ use tracer::world::World;
 
 use crate::load::{self, Loaded, SceneSource};
 
-use super::check::written::Part;
+use super::check::Part;
 use super::check::{Verdict, evaluate};
-use super::format::{Lesson, LessonError, LessonErrors, LessonScene, Step};
+use super::format::{Lesson, LessonError, LessonErrors, LessonScene, LessonStep};
 use super::state::LessonState;
 
 /// The lesson's scene and the world built from it, the lesson's
@@ -144,7 +144,7 @@ fn start(lesson: &Lesson, scene: Scene, world: Arc<World>) -> Result<LessonState
 }
 
 /// A step begins: its setup applied, the last step's answer forgotten.
-fn enter(state: &mut LessonState, step: &Step, file: &str) -> Result<()> {
+fn enter(state: &mut LessonState, step: &LessonStep, file: &str) -> Result<()> {
     state.answer = None;
     state.apply(&step.setup, file)
 }

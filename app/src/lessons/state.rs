@@ -13,7 +13,7 @@ use tracer::world::World;
 use crate::cli::SettingsArgs;
 use crate::load::with_edits;
 
-use super::format::{Actions, Located};
+use super::actions::{Actions, Located};
 
 /// One side: its scene as edited, the world built from it, its settings.
 #[derive(Debug, Clone)]

@@ -14,8 +14,8 @@ use tracer::render::{Budget, Encoding, RenderSettings, Sampling};
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
+use crate::describe::side_labels;
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
-use crate::reports::describe::side_labels;
 
 /// How the difference panel is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -17,7 +17,7 @@ use tracer::scene::{Lens, Viewpoint};
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
-use crate::reports::describe::describe;
+use crate::describe::describe;
 
 /// One configuration to measure.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,7 +7,7 @@ use tracer::accel::AccelKind;
 use tracer::render::RenderSettings;
 use tracer::stats::SceneCounts;
 
-use crate::reports::render_stats::si;
+use crate::describe::si;
 
 /// Ray-primitive tests per frame above which brute force is worth a
 /// warning: at roughly 10^8 tests a second per core, several seconds to

@@ -3,8 +3,8 @@
 
 use std::time::Duration;
 
+use crate::describe::si;
 use crate::measure::benchmark::Measurement;
-use crate::reports::render_stats::si;
 
 /// Which columns a table shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,7 +6,6 @@
 //! prints them, the window shows and exports them.
 
 pub mod bench_table;
-pub mod describe;
 pub mod lab;
 pub mod ray_tree;
 pub mod render_stats;

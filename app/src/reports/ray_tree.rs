@@ -113,8 +113,17 @@ pub fn describe_node(node: &RayNode) -> String {
     }
 }
 
-/// The tree indented two spaces per generation, children under parents.
+/// The tree indented two spaces per generation, children under parents,
+/// then what the eye ray's traversal visited.
 pub fn text(tree: &RayTree) -> String {
+    let mut out = nodes_text(tree);
+    out.push_str(&visits_text(&tree.eye_visits));
+    out
+}
+
+/// The headline and the rays, without the traversal (which can run to a
+/// line per BVH node).
+pub fn nodes_text(tree: &RayTree) -> String {
     let mut out = headline(tree);
     out.push('\n');
     let mut stack: Vec<(usize, usize)> = tree.children(None).map(|i| (i, 0)).collect();
@@ -126,7 +135,6 @@ pub fn text(tree: &RayTree) -> String {
         let children: Vec<usize> = tree.children(Some(i)).collect();
         stack.extend(children.into_iter().rev().map(|c| (c, level + 1)));
     }
-    out.push_str(&visits_text(&tree.eye_visits));
     out
 }
 

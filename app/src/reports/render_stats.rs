@@ -2,6 +2,8 @@
 
 use tracer::stats::{RenderStats, SceneCounts};
 
+use crate::describe::si;
+
 /// Objects by kind, e.g. "91 spheres, 2 polygons".
 pub fn describe_objects(counts: &SceneCounts) -> String {
     if counts.objects_by_kind.is_empty() {
@@ -13,16 +15,6 @@ pub fn describe_objects(counts: &SceneCounts) -> String {
         .map(|(kind, n)| format!("{n} {kind}{}", if *n == 1 { "" } else { "s" }))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// A count with a metric suffix: 1234567 -> "1.23M".
-pub fn si(n: f64) -> String {
-    match n {
-        n if n >= 1e9 => format!("{:.2}G", n / 1e9),
-        n if n >= 1e6 => format!("{:.2}M", n / 1e6),
-        n if n >= 1e3 => format!("{:.1}k", n / 1e3),
-        n => format!("{n:.0}"),
-    }
 }
 
 /// Samples per pixel, mean and max: an adaptive render's own, else one

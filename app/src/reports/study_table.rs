@@ -3,10 +3,10 @@
 
 use std::time::Duration;
 
+use crate::describe::si;
 use crate::measure::study::analysis::{self, Best};
 use crate::measure::study::{Knob, Param, Point, values};
 use crate::reports::bench_table::{self, Format};
-use crate::reports::render_stats::si;
 
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3

@@ -2,6 +2,7 @@
 //! `compare`, `bench` and `sweep`, what `render --stats json` says of the
 //! samples, and `bench --to-error`.
 
+use crate::lessons::lesson_file;
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{Scratch, scratch, workbench_fails, workbench_ok, write};
 
@@ -390,5 +391,54 @@ fn render_to(scene: &str, out: &std::path::Path, flags: &[&str]) -> Rendered {
     Rendered {
         png: std::fs::read(out).unwrap(),
         stats,
+    }
+}
+
+/// The noise threshold's valid range has one home (`tracer::scene::
+/// NOISE_THRESHOLD`): a scene file's `adaptive`, `--noise-threshold` and a
+/// lesson's settings accept its ends and refuse just beyond them (the
+/// window's slider is held inside it by a unit test).
+#[test]
+fn every_entry_point_takes_the_same_noise_thresholds() {
+    let dir = scratch("threshold-range");
+    let scene = scene(&dir);
+    let (low, high) = tracer::scene::NOISE_THRESHOLD.into_inner();
+    let out = dir.join("out.png");
+    let out = out.to_str().unwrap();
+    for (threshold, valid) in [
+        (low, true),
+        (high, true),
+        (low - 0.5, false),
+        (high + 0.5, false),
+    ] {
+        let text = spheres_on_a_floor(32, 24, "", "")
+            .replace("bclr", &format!("spp 2\nadaptive {threshold}\nbclr"));
+        let file = write(&dir, "file.p3f", &text);
+        let file = file.to_str().unwrap();
+        let flag = format!("--noise-threshold={threshold}");
+        let solution = format!("--spp 4 --sampling adaptive {flag}");
+        let lesson = lesson_file(&dir, "threshold.toml", &solution);
+        let runs = [
+            ("scene file", vec!["render", file, "-o", out]),
+            (
+                "flag",
+                vec!["render", &scene, "-o", out, "--spp", "2", &flag],
+            ),
+            ("lesson", vec!["lesson", "check", &lesson]),
+        ];
+        for (entry, args) in runs {
+            let run = crate::support::workbench(&args);
+            let said = String::from_utf8_lossy(&run.stderr).into_owned()
+                + &String::from_utf8_lossy(&run.stdout);
+            assert_eq!(
+                run.status.success(),
+                valid,
+                "{entry} at {threshold}: {said}"
+            );
+            if !valid {
+                assert!(said.contains("noise threshold"), "{entry}: {said}");
+                assert!(said.contains(&format!("{high}")), "{entry}: {said}");
+            }
+        }
     }
 }

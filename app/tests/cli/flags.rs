@@ -33,6 +33,11 @@ const CHECKED: &[(&str, &str, &str)] = &[
     ),
     (
         "",
+        "lesson-folder",
+        "real_window::the_window_opens_a_lesson_folders_first_lesson_set_up",
+    ),
+    (
+        "",
         "screenshot-after",
         "screenshot_after_takes_a_delay_in_seconds",
     ),

@@ -14,9 +14,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use tracer::accel::{AccelKind, SceneIndex};
-use tracer::mesh_io::MeshFormat;
 use tracer::metrics::{diff_heatmap, psnr};
 use tracer::render::{AdaptiveSampling, Encoding, RenderSettings, Sampling, render};
+use tracer::scene::mesh_io::MeshFormat;
 use workbench::load::{Loaded, SceneSource};
 
 /// Lowest PSNR that passes, in dB. Renders are deterministic, so with one

@@ -3,7 +3,7 @@
 //! or whose check holds before the student acts, fails; a malformed file
 //! gets a located error.
 
-use crate::support::{Scratch, workbench, workbench_ok};
+use crate::support::{Scratch, workbench, workbench_fails, workbench_ok};
 
 /// A one-step lesson on an inline scene, `{check}` and `{solution}` filled
 /// in by each test.
@@ -31,7 +31,9 @@ check = { kind = "all", checks = [
 solution = { settings = "{solution}" }
 "#;
 
-fn lesson_file(dir: &Scratch, name: &str, solution: &str) -> String {
+/// A one-step lesson (anti-aliasing on with N >= 4) written as `name` in
+/// `dir`, solved by the `render` flags `solution`: its path.
+pub(crate) fn lesson_file(dir: &Scratch, name: &str, solution: &str) -> String {
     let path = dir.join(name);
     std::fs::write(&path, TEMPLATE.replace("{solution}", solution)).unwrap();
     path.display().to_string()
@@ -365,4 +367,105 @@ solution = { answer = 3 }"#,
         ),
         "{out}"
     );
+}
+
+/// A lesson given where a scene is expected is named for what it is, with
+/// the commands that open it, whichever headless command was run.
+#[test]
+fn a_lesson_given_as_a_scene_says_how_to_open_it() {
+    let lesson = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/lessons/shadows.toml"
+    );
+    for command in [
+        &["render", lesson, "-o", "never.png"][..],
+        &["inspect", lesson, "--pixel", "1", "1"],
+    ] {
+        let err = workbench_fails(command);
+        assert!(
+            err.contains(&format!("{lesson} is a lesson, not a scene: open it in the window with `workbench --lesson {lesson}`")),
+            "{err}"
+        );
+        assert!(
+            err.contains(&format!("`workbench lesson check {lesson}`")),
+            "{err}"
+        );
+    }
+}
+
+/// `lesson new` writes a starting file that passes `lesson check` as
+/// written, titled from its name, and never writes over a file.
+#[test]
+fn a_new_lesson_passes_its_check_and_is_never_written_twice() {
+    let dir = Scratch::new("lesson-new");
+    let name = dir.join("light_and_shadow").display().to_string();
+    let out = workbench_ok(&["lesson", "new", &name]);
+    let file = format!("{name}.toml");
+    assert!(out.contains(&format!("wrote {file}")), "{out}");
+    let check = workbench_ok(&["lesson", "check", &file]);
+    assert!(
+        check.contains("light_and_shadow (chapter 1): Light and shadow"),
+        "{check}"
+    );
+    assert!(check.contains("all 2 steps pass"), "{check}");
+    std::fs::write(&file, "kept").unwrap();
+    let err = workbench_fails(&["lesson", "new", &file]);
+    assert!(
+        err.contains(&format!("{file} exists already: nothing written")),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+}
+
+/// `lesson check --format json`: each lesson's steps with pass or what
+/// failed, and each mistake with its file, line and column.
+#[test]
+fn lesson_check_speaks_json_for_a_teachers_ci() {
+    let dir = Scratch::new("lesson-check-json");
+    let good = lesson_file(&dir, "good.toml", "--aa --spp 4");
+    let short = lesson_file(&dir, "short.toml", "--aa --spp 3");
+    let text = (TEMPLATE.replace("\"spp\"", "\"spq\"")).replace("{solution}", "--aa --spp 4");
+    let (broken, _) = check_fails(&dir, "broken.toml", &text);
+    let run = workbench(&[
+        "lesson", "check", &good, &short, &broken, "--format", "json",
+    ]);
+    assert!(!run.status.success());
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(
+        (json["steps"].as_u64(), json["failures"].as_u64()),
+        (Some(2), Some(2)),
+        "{json}"
+    );
+    let lessons = json["lessons"].as_array().unwrap();
+    assert_eq!(lessons[0]["steps"][0]["pass"], true, "{json}");
+    assert_eq!(lessons[1]["steps"][0]["pass"], false, "{json}");
+    let failure = lessons[1]["steps"][0]["failure"].as_str().unwrap();
+    assert!(failure.contains("spp is 3, expected >= 4"), "{failure}");
+    let error = &lessons[2]["errors"][0];
+    let at = format!(":{}:{}", error["line"], error["column"]);
+    assert_eq!(at, place(&text, "\"spq\""), "{json}");
+    assert!(
+        error["message"]
+            .as_str()
+            .unwrap()
+            .contains("no setting `spq`"),
+        "{json}"
+    );
+}
+
+/// A lesson written for a later format is refused at its `format-version`,
+/// that error alone, before any key the later format may have renamed.
+#[test]
+fn a_later_format_version_is_refused_at_its_value() {
+    let dir = Scratch::new("lesson-format-version");
+    let text = TEMPLATE.replace("{solution}", "--aa --spp 4");
+    let later = format!("format-version = 2\nrenamed-key = 1\n{text}");
+    let (file, out) = check_fails(&dir, "later.toml", &later);
+    assert!(
+        out.contains(&format!(
+            "error: {file}:1:18: format-version 2 is newer than this workbench reads (up to 1)"
+        )),
+        "{out}"
+    );
+    assert!(!out.contains("renamed-key"), "{out}");
 }

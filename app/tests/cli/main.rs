@@ -15,6 +15,8 @@ mod docs;
 mod edits;
 mod flags;
 mod golden;
+mod lesson_explain;
+mod lesson_folders;
 mod lessons;
 mod meshes_and_images;
 mod observe;

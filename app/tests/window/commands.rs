@@ -369,3 +369,41 @@ solution = { settings = "--aa" }
     let settings = app.engine().settings().unwrap();
     assert_eq!((settings.width, settings.height), (20, 16));
 }
+
+/// The Lessons window's "Lesson folder..." asks for a folder and adds its
+/// lessons to the list.
+#[test]
+fn lesson_folder_in_the_lessons_window_adds_a_folders_lessons() {
+    let dir = scratch("command-lesson-folder");
+    let text = r#"title = "From a folder"
+chapter = 7
+
+[scene]
+bundled = "glass"
+
+[[step]]
+title = "Anti-aliasing"
+text = "Turn it on."
+check = { kind = "value", of = "aa", is = "on" }
+solution = { settings = "--aa" }
+"#;
+    write(&dir, "from_a_folder.toml", text);
+    let mut harness = small_window_sized(Harness::builder(), WINDOW);
+    let answers = Arc::new(Answers::default());
+    harness
+        .state_mut()
+        .answer_file_dialogs_with(answers.clone());
+    wait_for_scene(&mut harness);
+    harness.state_mut().lessons_mut().open = true;
+    harness.run_steps(2);
+    answers.next(Some(&dir));
+    harness.get_by_label("Lesson folder...").click();
+    wait_for(&mut harness, "the folder's lesson listed", |app| {
+        app.lessons().names().contains(&"from_a_folder")
+    });
+    let asked = answers.asked.lock().unwrap();
+    assert!(
+        asked.iter().any(|q| q.pick_folder),
+        "a folder was asked for"
+    );
+}

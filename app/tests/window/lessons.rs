@@ -221,3 +221,36 @@ fn a_rendering_check_ends_while_the_window_keeps_refining() {
         *v == Verdict::Done("samples mean is 16".into())
     });
 }
+
+/// `--lesson-folder`: a folder's lessons join the panel's list by chapter,
+/// each after the bundled ones of its chapter, and the panel opens on the
+/// folder's first lesson in that order.
+#[test]
+fn a_lesson_folder_joins_the_list_by_chapter() {
+    let dir = Scratch::new("window-lesson-folder");
+    std::fs::write(dir.join("mine_seven.toml"), LESSON).unwrap();
+    let chapter_one = LESSON.replace("chapter = 7", "chapter = 1");
+    std::fs::write(dir.join("mine_one.toml"), chapter_one).unwrap();
+    let mut harness = ready_window(WINDOW);
+    harness.state_mut().open_lesson_folder(&dir);
+    let lessons = harness.state().lessons();
+    assert!(lessons.open, "the panel opens");
+    let names = lessons.names();
+    let at = |name: &str| {
+        (names.iter().position(|n| *n == name)).unwrap_or_else(|| panic!("{name}: {names:?}"))
+    };
+    let chapters: Vec<u32> = workbench::lessons::bundled::all()
+        .unwrap()
+        .iter()
+        .map(|l| l.chapter)
+        .collect();
+    let bundled_up_to = |chapter: u32| chapters.iter().filter(|&&c| c <= chapter).count();
+    assert_eq!(at("mine_one"), bundled_up_to(1), "{names:?}");
+    assert_eq!(at("mine_seven"), bundled_up_to(7) + 1, "{names:?}");
+    let shown = lessons.lesson().map(|l| l.name.as_str());
+    assert_eq!(
+        shown,
+        Some("mine_one"),
+        "the folder's first lesson is shown"
+    );
+}

@@ -252,17 +252,9 @@ fn the_window_opens_with_the_observer_on_when_asked() {
     );
 }
 
-/// `--lesson FILE`: the window opens with the lesson's first step set up,
-/// its scene rendered at the lesson's own resolution: the red sphere in
-/// the middle of the image, the lesson's black sky at its corners.
-#[test]
-#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
-fn the_window_opens_a_lesson_set_up() {
-    let dir = Scratch::new("window-lesson");
-    let lesson = dir.join("eye_rays.toml");
-    std::fs::write(
-        &lesson,
-        r#"title = "Eye rays"
+/// A one-step lesson on a red sphere under a black sky, rendered at
+/// 40 x 30: what [`assert_lesson_set_up`] looks for.
+const RED_SPHERE_LESSON: &str = r#"title = "Eye rays"
 chapter = 1
 
 [scene]
@@ -278,16 +270,16 @@ title = "Pin a pixel"
 text = "Pin a pixel on the sphere."
 check = { kind = "value", of = "tree eye-object", is = 0 }
 solution = { pixel = [20, 15] }
-"#,
-    )
-    .unwrap();
+"#;
+
+/// Runs the window with `args` and a screenshot, and checks that it shows
+/// [`RED_SPHERE_LESSON`] set up: its scene rendered at the lesson's own
+/// resolution, the red sphere in the middle of the image, the lesson's
+/// black sky at its corners.
+fn assert_lesson_set_up(dir: &Scratch, args: &[&std::ffi::OsStr]) {
     let shot = dir.join("window.png");
-    let mut window = workbench(&dir);
-    window
-        .arg("--lesson")
-        .arg(&lesson)
-        .arg("--screenshot")
-        .arg(&shot);
+    let mut window = workbench(dir);
+    window.args(args).arg("--screenshot").arg(&shot);
     let said = String::from_utf8_lossy(&run_bounded(window).stdout).into_owned();
     assert!(said.contains("of 40 x 30"), "{said}");
     let shot = image::open(&shot).expect("the screenshot").to_rgb8();
@@ -305,6 +297,34 @@ solution = { pixel = [20, 15] }
         corner.iter().all(|&c| c < 40),
         "not the lesson's sky in the corner: {corner:?}"
     );
+}
+
+/// `--lesson FILE`: the window opens with the lesson's first step set up.
+#[test]
+#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
+fn the_window_opens_a_lesson_set_up() {
+    let dir = Scratch::new("window-lesson");
+    let lesson = dir.join("eye_rays.toml");
+    std::fs::write(&lesson, RED_SPHERE_LESSON).unwrap();
+    assert_lesson_set_up(&dir, &["--lesson".as_ref(), lesson.as_os_str()]);
+}
+
+/// `--lesson-folder DIR`: the window opens with the folder's first lesson
+/// (by chapter) set up, not the bundled lesson listed before it.
+#[test]
+#[ignore = "needs a display: scripts/test.sh runs it under Xvfb"]
+fn the_window_opens_a_lesson_folders_first_lesson_set_up() {
+    let dir = Scratch::new("window-lesson-folder");
+    let class = dir.join("class");
+    std::fs::create_dir(&class).unwrap();
+    std::fs::write(class.join("a_eye_rays.toml"), RED_SPHERE_LESSON).unwrap();
+    let later = RED_SPHERE_LESSON.replace("chapter = 1", "chapter = 2");
+    std::fs::write(
+        class.join("b_later.toml"),
+        later.replace("1 0 0 1", "0 1 0 1"),
+    )
+    .unwrap();
+    assert_lesson_set_up(&dir, &["--lesson-folder".as_ref(), class.as_os_str()]);
 }
 
 /// Every file under `dir`, recursively.

@@ -44,10 +44,10 @@ pub fn bench_frame(scene: &Scene, world: &Arc<World>, accel: AccelKind) -> Rende
 
 /// Renders every tile of the first pass on the calling thread: the work of
 /// one frame without the thread pool, so instruction counts are stable.
-pub fn render_frame(frame: &RenderPlan) -> Counters {
+pub fn render_frame(plan: &RenderPlan) -> Counters {
     let mut counters = Counters::default();
-    for tile in &frame.tiles {
-        std::hint::black_box(frame.render_tile(0, tile, &mut counters));
+    for tile in &plan.tiles {
+        std::hint::black_box(plan.render_tile(0, tile, &mut counters));
     }
     counters
 }

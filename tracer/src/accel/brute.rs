@@ -13,6 +13,7 @@ pub struct BruteForce {
 }
 
 impl BruteForce {
+    /// Tests every one of `shapes` (indices into the world's shapes) for each ray.
     pub fn new(shapes: Vec<u32>) -> Self {
         Self { shapes }
     }
@@ -23,6 +24,7 @@ impl BruteForce {
     }
 
     #[inline]
+    /// The nearest hit of `ray` among the shapes, testing them all.
     pub fn closest_hit(
         &self,
         shapes: &[Shape],

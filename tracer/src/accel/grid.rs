@@ -8,7 +8,7 @@ use glam::{IVec3, Vec3A};
 use crate::geometry::{Aabb, Ray, Shape};
 use crate::stats::Counters;
 
-use super::visits::{NoLog, Step, VisitLog};
+use super::visits::{NoLog, TraversalStep, VisitLog};
 use super::{Hit, Nearest, first_occluder, offer_each};
 
 /// Most cells a grid may have, whatever the multiplier: 16 Mi cells take
@@ -24,7 +24,9 @@ const MAX_REFERENCES: u64 = 1 << 27;
 /// What the grid looks like, for the statistics panel.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridStats {
+    /// Cells along x, y and z.
     pub cells: [u32; 3],
+    /// Cells that list no shape.
     pub empty_cells: u64,
     /// Object references summed over all cells.
     pub references: u64,
@@ -51,6 +53,12 @@ const MAILBOX_SLOTS: usize = 16;
 impl Grid {
     /// Builds the grid over shapes `ids` with cell multiplier `m`.
     pub fn build(shapes: &[Shape], ids: &[u32], m: f32) -> Grid {
+        Self::build_within(shapes, ids, m, MAX_REFERENCES)
+    }
+
+    /// [`Grid::build`] holding at most `max_references` object references
+    /// (unless one cell is all it has left): the tests give a small limit.
+    fn build_within(shapes: &[Shape], ids: &[u32], m: f32, max_references: u64) -> Grid {
         let boxes: Vec<(u32, Aabb)> = ids
             .iter()
             .filter_map(|&id| Some((id, shapes[id as usize].bounds()?)))
@@ -82,10 +90,10 @@ impl Grid {
                     (hi - lo + 1).as_i64vec3().element_product() as u64
                 })
                 .sum();
-            if refs <= MAX_REFERENCES || cells == IVec3::ONE {
+            if refs <= max_references || cells == IVec3::ONE {
                 break;
             }
-            let shrink = (MAX_REFERENCES as f64 / refs as f64).cbrt().min(0.9);
+            let shrink = (max_references as f64 / refs as f64).cbrt().min(0.9);
             cells = (cells.as_dvec3() * shrink).as_ivec3().max(IVec3::ONE);
         }
         let cell_size = bounds.extent() / cells.as_vec3a();
@@ -129,6 +137,7 @@ impl Grid {
         }
     }
 
+    /// Its resolution and occupancy.
     pub fn stats(&self) -> GridStats {
         let cells = self.offsets.len() - 1;
         let empty = self.offsets.windows(2).filter(|w| w[0] == w[1]).count();
@@ -233,7 +242,7 @@ impl Grid {
         let mut nearest = f32::INFINITY;
         loop {
             counters.nodes_visited += 1;
-            log.step(Step::Cell(cell), counters.intersection_tests);
+            log.step(TraversalStep::Cell(cell), counters.intersection_tests);
             let i = (cell.x + self.cells.x * (cell.y + self.cells.y * cell.z)) as usize;
             let (from, to) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
             for &id in &self.refs[from..to] {
@@ -339,19 +348,6 @@ mod tests {
     }
 
     #[test]
-    fn many_overlapping_objects_get_coarser_cells_not_billions_of_references() {
-        use crate::geometry::Sphere;
-        let shapes: Vec<Shape> = (0..30_000)
-            .map(|_| Shape::Sphere(Sphere::new(Vec3A::ZERO, 1.0)))
-            .collect();
-        let ids: Vec<u32> = (0..shapes.len() as u32).collect();
-        let grid = Grid::build(&shapes, &ids, 2.0);
-        let stats = grid.stats();
-        assert!(stats.references <= MAX_REFERENCES, "{stats:?}");
-        assert!(stats.references >= 30_000, "{stats:?}");
-    }
-
-    #[test]
     fn cell_counts_of_absurd_extents_are_finite() {
         for dim in [
             Vec3A::INFINITY,
@@ -371,6 +367,124 @@ mod tests {
     #[test]
     fn cell_counts_are_capped() {
         let n = cell_counts(Vec3A::ONE, 10_000_000, 32.0);
-        assert!(n.x as u64 * n.y as u64 * n.z as u64 <= MAX_CELLS);
+        let total = n.x as u64 * n.y as u64 * n.z as u64;
+        assert!(total <= MAX_CELLS);
+        // Each step takes a tenth off every axis: the first count that
+        // fits is more than half the cap, not one cell.
+        assert!(total > MAX_CELLS / 2, "{n}");
+    }
+
+    fn spheres(spheres: &[(Vec3A, f32)]) -> (Vec<Shape>, Vec<u32>) {
+        use crate::geometry::Sphere;
+        let shapes: Vec<Shape> = spheres
+            .iter()
+            .map(|&(c, r)| Shape::Sphere(Sphere::new(c, r)))
+            .collect();
+        let ids = (0..shapes.len() as u32).collect();
+        (shapes, ids)
+    }
+
+    /// Three spheres in a box 4 wide: 2 cells a side (s = cbrt(3 / 4^3)
+    /// = 0.36, m = 1), the faces at 1.5. One sphere per far corner cell,
+    /// one across the face between cells (0, 0, 0) and (1, 0, 0).
+    #[test]
+    fn stats_and_memory_count_the_cells_by_hand() {
+        let (shapes, ids) = spheres(&[
+            (Vec3A::ZERO, 0.5),
+            (Vec3A::splat(3.0), 0.5),
+            (Vec3A::new(1.5, 0.0, 0.0), 0.2),
+        ]);
+        let grid = Grid::build(&shapes, &ids, 1.0);
+        let stats = grid.stats();
+        assert_eq!(stats.cells, [2, 2, 2]);
+        assert_eq!((stats.references, stats.empty_cells), (4, 5));
+        assert_eq!(stats.mean_per_cell, 4.0 / 3.0);
+        // 9 offsets and 4 references of 4 bytes.
+        assert_eq!(grid.memory_bytes(), (9 + 4) * 4);
+        // Padded by a ten-thousandth of the width: -0.5004 to 3.5004.
+        let cell = grid.cell_bounds(IVec3::new(1, 0, 1));
+        let (lo, hi) = (-0.5004, 3.5004);
+        let want = Aabb::new(Vec3A::new(1.5, lo, 1.5), Vec3A::new(hi, 1.5, hi));
+        assert!(
+            (cell.min - want.min).abs().max_element() < 1e-5
+                && (cell.max - want.max).abs().max_element() < 1e-5,
+            "{cell:?}"
+        );
+    }
+
+    /// Each sphere's references counted apart: the cells whose boxes
+    /// (from the lattice) its box overlaps.
+    fn references_by_hand(grid: &Grid, shapes: &[Shape]) -> u64 {
+        let (bounds, cells) = grid.lattice();
+        let size = bounds.extent() / Vec3A::from(cells.map(|c| c as f32));
+        let cells_over = |lo: f32, hi: f32, axis: usize| {
+            (0..cells[axis])
+                .filter(|&i| {
+                    let start = bounds.min[axis] + i as f32 * size[axis];
+                    lo < start + size[axis] && hi >= start
+                })
+                .count() as u64
+        };
+        shapes
+            .iter()
+            .map(|s| {
+                let b = s.bounds().unwrap();
+                (0..3)
+                    .map(|a| cells_over(b.min[a], b.max[a], a))
+                    .product::<u64>()
+            })
+            .sum()
+    }
+
+    /// A 20 x 20 x 20 lattice of spheres of radius `r`, 1 apart.
+    fn lattice_of_spheres(r: f32) -> (Vec<Shape>, Vec<u32>) {
+        let centres: Vec<(Vec3A, f32)> = (0..8000)
+            .map(|i| {
+                let c = Vec3A::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32);
+                (c, r)
+            })
+            .collect();
+        spheres(&centres)
+    }
+
+    #[test]
+    fn references_within_the_limit_keep_the_formulas_cells() {
+        // Small spheres, one or two cells each (about 12 000 references),
+        // far below the limit: the cells are the formula's, however far
+        // from the grid's corner a sphere lies.
+        let (shapes, ids) = lattice_of_spheres(0.1);
+        let grid = Grid::build(&shapes, &ids, 2.0);
+        let (bounds, cells) = grid.lattice();
+        assert_eq!(
+            IVec3::from_array(cells.map(|c| c as i32)),
+            cell_counts(bounds.extent(), 8000, 2.0)
+        );
+        assert_eq!(grid.stats().references, references_by_hand(&grid, &shapes));
+    }
+
+    #[test]
+    fn references_above_the_limit_make_the_cells_coarser() {
+        // Spheres of radius 0.3 cover about 2 x 2 x 2 of the formula's
+        // cells: some 60 000 references against a limit of 20 000.
+        let (shapes, ids) = lattice_of_spheres(0.3);
+        let unlimited = Grid::build(&shapes, &ids, 2.0).stats().references;
+        assert!(unlimited > 50_000, "{unlimited}");
+        let grid = Grid::build_within(&shapes, &ids, 2.0, 20_000);
+        let references = grid.stats().references;
+        assert!(references <= 20_000, "{references}");
+        assert_eq!(references, references_by_hand(&grid, &shapes));
+        // One step of cbrt(limit / references), not tenths until one cell.
+        assert!(references > 8000, "{:?}", grid.stats());
+    }
+
+    #[test]
+    fn many_overlapping_objects_shrink_in_one_step_to_the_limit() {
+        // 30 000 identical spheres fill every cell: 63 a side (7.5 G
+        // references) shrunk by cbrt(2^27 / 7.5 G) to 16 (123 M; 17 would
+        // be 147 M, 15 is a second, needless step).
+        let (shapes, ids) = spheres(&[(Vec3A::ZERO, 1.0); 30_000]);
+        let stats = Grid::build(&shapes, &ids, 2.0).stats();
+        assert_eq!(stats.cells, [16; 3]);
+        assert_eq!(stats.references, 30_000 * 16 * 16 * 16);
     }
 }

@@ -81,6 +81,7 @@ impl AccelKind {
 /// The closest surface a ray meets.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {
+    /// Distance along the ray to the hit.
     pub t: f32,
     /// Index into the world's shapes.
     pub shape: u32,
@@ -216,9 +217,11 @@ enum Structure {
 /// change needs a rebuild.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AccelInfo {
+    /// Which structure: none, grid or BVH.
     pub kind: AccelKind,
     /// The grid multiplier the grid was built with (grid only).
     pub grid_multiplier: Option<f32>,
+    /// How long the build took.
     pub build_time: Duration,
     /// Bytes of the structure itself (not the world's shapes).
     pub memory_bytes: usize,
@@ -325,6 +328,7 @@ impl SceneIndex {
         self.info.kind
     }
 
+    /// How long the build took.
     pub fn build_time(&self) -> Duration {
         self.info.build_time
     }

@@ -14,7 +14,7 @@ use super::{Hit, SceneIndex, Structure};
 /// One step of a traversal, as cheap to tell as possible: indices only,
 /// turned into boxes afterwards.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Step {
+pub(super) enum TraversalStep {
     /// The grid walk entered this cell.
     Cell(IVec3),
     /// The BVH descent visited this 8-wide node (tested its children's boxes).
@@ -28,7 +28,7 @@ pub(super) trait VisitLog {
     /// `step` begins after `tests` primitive tests by this traversal: the
     /// difference to the next step's is what this one tested (the grid's
     /// mailbox makes that less than a cell lists).
-    fn step(&mut self, step: Step, tests: u64);
+    fn step(&mut self, step: TraversalStep, tests: u64);
 }
 
 /// The render's log: keeps nothing, costs nothing (the counts it is told
@@ -37,11 +37,11 @@ pub(super) struct NoLog;
 
 impl VisitLog for NoLog {
     #[inline(always)]
-    fn step(&mut self, _: Step, _: u64) {}
+    fn step(&mut self, _: TraversalStep, _: u64) {}
 }
 
-impl VisitLog for Vec<(Step, u64)> {
-    fn step(&mut self, step: Step, tests: u64) {
+impl VisitLog for Vec<(TraversalStep, u64)> {
+    fn step(&mut self, step: TraversalStep, tests: u64) {
         self.push((step, tests));
     }
 }
@@ -53,22 +53,31 @@ pub enum Visit {
     /// the objects tested in it: those it lists that the per-ray mailbox
     /// had not seen tested in an earlier cell.
     Cell {
+        /// The cell's (x, y, z) in the grid.
         cell: [u32; 3],
+        /// The cell's box.
         bounds: Aabb,
+        /// Objects tested in it for the first time.
         tested: u32,
     },
     /// An 8-wide BVH node whose `boxes` (its children's, all at once) were
     /// tested against the ray. `depth` counts as the overlay's does: the
     /// root's box (the scene's) is 0, the root's children 1.
     Node {
+        /// The node's box.
         bounds: Aabb,
+        /// Levels below the root's box (0).
         depth: u32,
+        /// Child boxes tested.
         boxes: u32,
     },
     /// A BVH leaf whose `primitives` were all tested.
     Leaf {
+        /// The leaf's box.
         bounds: Aabb,
+        /// Levels below the root's box (0).
         depth: u32,
+        /// Primitives tested.
         primitives: u32,
     },
 }
@@ -126,6 +135,7 @@ impl Tally {
 /// One closest-hit query with everything its traversal visited.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Traversal {
+    /// The closest hit, if the ray met anything.
     pub hit: Option<Hit>,
     /// In visiting order. The grid's cells and the BVH's nodes (not its
     /// leaves) are what `counters.nodes_visited` counts, one for one.
@@ -160,7 +170,7 @@ impl SceneIndex {
                     .iter()
                     .zip(ends)
                     .filter_map(|(&(step, before), after)| match step {
-                        Step::Cell(c) => Some(Visit::Cell {
+                        TraversalStep::Cell(c) => Some(Visit::Cell {
                             cell: c.as_uvec3().to_array(),
                             bounds: grid.cell_bounds(c),
                             tested: (after - before) as u32,

@@ -28,16 +28,27 @@ use crate::scene::Scene;
 /// The scene families the workbench can generate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum GeneratorName {
+    /// The sphereflake: spheres with nine smaller children, recursively.
     Balls,
+    /// A fractal mountain by midpoint displacement.
     Mount,
+    /// The Sierpinski tetrahedron.
     Tetra,
+    /// Interlocking rings of cylinders and spheres.
     Rings,
+    /// A recursive tree of tapering cones.
     Tree,
+    /// Layers of meshing spur gears.
     Gears,
+    /// A seashell of spheres along a logarithmic spiral.
     Shells,
+    /// A cube of balls joined by thin cylinders.
     Lattice,
+    /// The children's toy: crossed cylinders with balls on their ends.
     Jacks,
+    /// A damped cosine ripple as one triangle mesh.
     Sombrero,
+    /// Newell's teapot, its Bezier patches tessellated.
     Teapot,
 }
 
@@ -97,7 +108,9 @@ impl FromStr for GeneratorName {
 /// [`level_range`]) and the seed of any randomness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct GenerateOptions {
+    /// The size; valid values depend on the generator ([`level_range`]).
     pub level: u32,
+    /// Seed of the generator's randomness: equal seeds give equal scenes.
     pub seed: u64,
 }
 
@@ -107,11 +120,16 @@ pub enum GenerateError {
     #[error(
         "unknown generator `{0}` (expected one of balls, mount, tetra, rings, tree, gears, shells, lattice, jacks, sombrero, teapot)"
     )]
+    /// A name that is no generator.
     UnknownGenerator(String),
     #[error("{name} level {level} is outside the valid range {}..={}", range.start(), range.end())]
+    /// A level outside the generator's range.
     LevelOutOfRange {
+        /// The generator.
         name: GeneratorName,
+        /// The level asked for.
         level: u32,
+        /// The levels it accepts.
         range: RangeInclusive<u32>,
     },
 }

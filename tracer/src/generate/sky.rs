@@ -19,7 +19,7 @@ const SUN_COLOUR: Vec3A = Vec3A::new(1.0, 0.97, 0.88);
 /// The unit direction that [`crate::skybox::cube_face`] maps to `(face, s,
 /// t)`: its inverse, with faces in the order +x, -x, +y, -y, +z, -z and
 /// s to the right, t downwards. A face index above 5 is taken as 5.
-pub fn face_direction(face: usize, s: f32, t: f32) -> Vec3A {
+pub(crate) fn face_direction(face: usize, s: f32, t: f32) -> Vec3A {
     let (a, b) = (2.0 * s - 1.0, 2.0 * t - 1.0);
     let d = match face {
         0 => Vec3A::new(1.0, -b, -a),
@@ -33,7 +33,7 @@ pub fn face_direction(face: usize, s: f32, t: f32) -> Vec3A {
 }
 
 /// The sky's colour seen in `dir` (any length), each channel in [0, 1].
-pub fn sky_colour(dir: Vec3A) -> Vec3A {
+pub(crate) fn sky_colour(dir: Vec3A) -> Vec3A {
     let d = dir.normalize_or(Vec3A::Y);
     let base = if d.y >= 0.0 {
         // Haze fades quickly above the horizon, so most of the sky is blue.
@@ -58,7 +58,7 @@ pub fn sky_colour(dir: Vec3A) -> Vec3A {
 
 /// The colour of face `face` at `(s, t)` in [0, 1]^2, as
 /// [`crate::skybox::Skybox::from_fn`] expects.
-pub fn paint_sky_face(face: usize, s: f32, t: f32) -> Vec3A {
+pub(crate) fn paint_sky_face(face: usize, s: f32, t: f32) -> Vec3A {
     sky_colour(face_direction(face, s, t))
 }
 

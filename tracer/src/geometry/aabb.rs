@@ -9,7 +9,9 @@ use super::Ray;
 /// point or box gives that point or box.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb {
+    /// The corner with the smallest coordinates.
     pub min: Vec3A,
+    /// The corner with the largest coordinates.
     pub max: Vec3A,
 }
 
@@ -22,14 +24,17 @@ impl Aabb {
         }
     }
 
+    /// The box from `min` to `max`.
     pub fn new(min: Vec3A, max: Vec3A) -> Self {
         Self { min, max }
     }
 
+    /// Contains no point (`min > max` on some axis), as the empty box does.
     pub fn is_empty(&self) -> bool {
         self.min.cmpgt(self.max).any()
     }
 
+    /// The smallest box holding both.
     pub fn union(&self, other: &Aabb) -> Aabb {
         Aabb {
             min: self.min.min(other.min),
@@ -37,6 +42,7 @@ impl Aabb {
         }
     }
 
+    /// The smallest box holding this one and `p`.
     pub fn grow(&self, p: Vec3A) -> Aabb {
         Aabb {
             min: self.min.min(p),
@@ -44,16 +50,18 @@ impl Aabb {
         }
     }
 
+    /// Side lengths: `max - min`.
     pub fn extent(&self) -> Vec3A {
         self.max - self.min
     }
 
+    /// The middle point.
     pub fn centre(&self) -> Vec3A {
         (self.min + self.max) * 0.5
     }
 
     /// Half the surface area (the SAH only needs ratios).
-    pub fn half_area(&self) -> f32 {
+    pub(crate) fn half_area(&self) -> f32 {
         if self.is_empty() {
             return 0.0;
         }

@@ -7,6 +7,7 @@ use super::{Aabb, Ray};
 /// A solid axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AaBox {
+    /// The box's extent, which is also its bounding box.
     pub bounds: Aabb,
 }
 
@@ -42,7 +43,7 @@ impl AaBox {
     /// as relative to one size for the whole box): a hit point's rounding
     /// error is about the same on every axis, so normalising per axis would
     /// pick a side face near the rim of a thin box's large face.
-    pub fn normal_at(&self, point: Vec3A) -> Vec3A {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> Vec3A {
         let to_min = (point - self.bounds.min).abs();
         let to_max = (self.bounds.max - point).abs();
         let axis = to_min.min(to_max).min_position();

@@ -11,9 +11,13 @@ use super::{Aabb, Ray};
 /// once in [`Cone::new`]: build cones with it, not with a struct literal.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cone {
+    /// Centre of the base circle.
     pub base: Vec3A,
+    /// Radius at the base.
     pub base_radius: f32,
+    /// Centre of the apex circle.
     pub apex: Vec3A,
+    /// Radius at the apex; equal radii make a cylinder.
     pub apex_radius: f32,
     /// Unit vector from base to apex.
     axis: Vec3A,
@@ -115,7 +119,7 @@ impl Cone {
     /// radial direction tilted back along the axis by the slope. At the tip
     /// of a true cone, where the radial direction is undefined, some
     /// perpendicular of the axis stands in.
-    pub fn normal_at(&self, point: Vec3A) -> Vec3A {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> Vec3A {
         let q = point - self.base;
         let radial = q - self.axis * q.dot(self.axis);
         let u = radial.normalize_or(self.axis.any_orthonormal_vector());

@@ -17,7 +17,7 @@ pub use aabox::AaBox;
 pub use cone::Cone;
 pub(crate) use lanes::{V3, Vector};
 pub use plane::Plane;
-pub use polygon::{PolygonError, triangulate_polygon};
+pub(crate) use polygon::triangulate_polygon;
 pub use ray::Ray;
 #[cfg(test)]
 pub(crate) use ray::strategies;

@@ -7,6 +7,7 @@ use super::Ray;
 /// The infinite plane `dot(p - point, normal) = 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Plane {
+    /// A point on the plane.
     pub point: Vec3A,
     normal: Vec3A,
 }
@@ -18,7 +19,7 @@ const COLLINEAR_SINE: f32 = 1e-6;
 impl Plane {
     /// The plane through three points, `None` when they are collinear.
     /// The normal is `(b - a) x (c - a)`, normalised.
-    pub fn from_points(points: [Vec3A; 3]) -> Option<Self> {
+    pub(crate) fn from_points(points: [Vec3A; 3]) -> Option<Self> {
         let [a, b, c] = points;
         let (ab, ac) = (b - a, c - a);
         let n = ab.cross(ac);

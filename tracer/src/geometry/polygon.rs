@@ -4,7 +4,7 @@ use glam::{Vec2, Vec3A};
 
 /// Why a polygon cannot be triangulated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum PolygonError {
+pub(crate) enum PolygonError {
     #[error("a polygon needs at least 3 vertices, found {0}")]
     TooFewVertices(usize),
     #[error("the first three vertices are collinear, so they give no normal")]
@@ -35,7 +35,7 @@ const COLLINEAR_SINE: f32 = 1e-6;
 /// terminates and covers the outline as well as it can; it never panics.
 /// Collinear and repeated vertices give zero-area triangles only when
 /// unavoidable. Indices are `u32`: the renderer never holds 2^32 vertices.
-pub fn triangulate_polygon(vertices: &[Vec3A]) -> Result<Vec<[u32; 3]>, PolygonError> {
+pub(crate) fn triangulate_polygon(vertices: &[Vec3A]) -> Result<Vec<[u32; 3]>, PolygonError> {
     let n = vertices.len();
     if n < 3 {
         return Err(PolygonError::TooFewVertices(n));

@@ -7,7 +7,9 @@ use glam::Vec3A;
 /// renderer spawns, so `t` is a distance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray {
+    /// Where the ray starts.
     pub origin: Vec3A,
+    /// Its direction, unit length ([`Ray::new`] normalises it), so `t` is a distance.
     pub dir: Vec3A,
     /// `1 / dir` per component (infinite where a component is zero).
     pub inv_dir: Vec3A,

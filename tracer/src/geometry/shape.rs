@@ -20,10 +20,15 @@ pub struct SurfaceNormal {
 /// a match instead of a virtual call.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
+    /// A sphere.
     Sphere(Sphere),
+    /// An infinite plane: unbounded, so outside any grid or BVH.
     Plane(Plane),
+    /// A triangle, flat or with vertex normals (polygons and meshes become these).
     Triangle(Triangle),
+    /// An axis-aligned box.
     Box(AaBox),
+    /// An open cone or cylinder.
     Cone(Cone),
 }
 
@@ -42,7 +47,7 @@ impl Shape {
     }
 
     /// Normals at `point`, a point on the surface found by [`Shape::intersect`].
-    pub fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
         match self {
             Shape::Sphere(s) => SurfaceNormal::flat(s.normal_at(point)),
             Shape::Plane(p) => SurfaceNormal::flat(p.normal()),

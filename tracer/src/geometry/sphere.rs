@@ -8,7 +8,9 @@ use super::{Aabb, Ray};
 /// A sphere; hit from outside or from inside.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sphere {
+    /// The centre.
     pub centre: Vec3A,
+    /// The radius, > 0.
     pub radius: f32,
 }
 
@@ -32,7 +34,7 @@ impl Sphere {
 
     /// The outward unit normal at a point on the surface.
     #[inline]
-    pub fn normal_at(&self, point: Vec3A) -> Vec3A {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> Vec3A {
         (point - self.centre) * self.radius.abs().recip()
     }
 

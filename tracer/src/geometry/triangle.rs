@@ -15,8 +15,11 @@ const DEGENERATE_SINE: f32 = 1e-6;
 /// A triangle, stored as one vertex and two edges as Moller-Trumbore wants.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Triangle {
+    /// The first vertex.
     pub v0: Vec3A,
+    /// Edge from `v0` to the second vertex.
     pub e1: Vec3A,
+    /// Edge from `v0` to the third vertex.
     pub e2: Vec3A,
     /// Unit vertex normals of a patch; boxed so a flat triangle stays at
     /// 64 bytes (this and `parallel_eps` fill the padding after `e2`).
@@ -52,7 +55,7 @@ impl Triangle {
     /// `(b - a) x (c - a)`, the winding is reversed (b and c swapped, with
     /// their normals) so the geometric normal lies on the same side as the
     /// shading normals, as [`SurfaceNormal`] promises.
-    pub fn with_normals(a: Vec3A, b: Vec3A, c: Vec3A, normals: [Vec3A; 3]) -> Option<Self> {
+    pub(crate) fn with_normals(a: Vec3A, b: Vec3A, c: Vec3A, normals: [Vec3A; 3]) -> Option<Self> {
         let mut t = Self::new(a, b, c)?;
         let geometric = t.e1.cross(t.e2).normalize();
         let mut ns = normals.map(|n| n.normalize_or(geometric));
@@ -90,7 +93,7 @@ impl Triangle {
     /// The geometric normal `normalize(e1 x e2)` and, for patches, the
     /// vertex normals interpolated with the barycentric coordinates of
     /// `point` (clamped to the triangle) and normalised.
-    pub fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
+    pub(crate) fn normal_at(&self, point: Vec3A) -> SurfaceNormal {
         let n = self.e1.cross(self.e2);
         let geometric = n * n.length_recip();
         let Some(ns) = &self.normals else {

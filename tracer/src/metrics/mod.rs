@@ -10,7 +10,9 @@ use image::{Rgb, RgbImage};
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("images differ in size: {a:?} and {b:?}")]
 pub struct SizeMismatch {
+    /// The first image's (width, height).
     pub a: (u32, u32),
+    /// The second image's (width, height).
     pub b: (u32, u32),
 }
 
@@ -122,7 +124,9 @@ pub fn flip(a: &RgbImage, b: &RgbImage) -> Result<f32, SizeMismatch> {
 /// FLIP's mean and its error map drawn with [`Palette::Magma`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlipMap {
+    /// Mean FLIP error, 0 (identical) to 1.
     pub mean: f32,
+    /// Per-pixel error, dark where the images agree.
     pub image: RgbImage,
 }
 

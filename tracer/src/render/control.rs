@@ -9,7 +9,7 @@ use std::time::Duration;
 
 /// Called from a render thread after each tile and pass, so a viewer can
 /// wake up (e.g. `egui::Context::request_repaint`).
-pub type ProgressListener = Box<dyn Fn() + Send + Sync>;
+pub(crate) type ProgressListener = Box<dyn Fn() + Send + Sync>;
 
 /// Cancel, pause and progress of one job.
 pub(super) struct Control {

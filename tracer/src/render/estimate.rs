@@ -8,13 +8,14 @@ use glam::Vec3A;
 /// (linear, clamped to 0..1, as the image shows them).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Spread {
-    /// Sums of the display values and of their squares.
+    /// Sum of the display values.
     pub sum: Vec3A,
+    /// Sum of their squares.
     pub squares: Vec3A,
-    /// The display sum before the pixel's last pass, and its sample
-    /// count: the pass's samples are one half of the pixel's, those
-    /// before it the other.
+    /// The display sum before the pixel's last pass: the pass's samples
+    /// are one half of the pixel's, those before it the other.
     pub earlier: Vec3A,
+    /// The sample count behind `earlier`.
     pub earlier_samples: u32,
 }
 
@@ -45,7 +46,7 @@ pub fn error_estimate(n: u32, spread: &Spread) -> f32 {
 /// the channels' mean unbiased variance over `n`, in display units.
 /// Stratified samples do better, so it only says whether a pixel *may*
 /// still be noisy; infinite before two samples.
-pub fn variance_estimate(n: u32, spread: &Spread) -> f32 {
+pub(crate) fn variance_estimate(n: u32, spread: &Spread) -> f32 {
     if n < 2 {
         return f32::INFINITY;
     }

@@ -10,9 +10,13 @@ use super::estimate::{Spread, display_value, error_estimate};
 /// A rectangle of pixels rendered as one unit of work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Tile {
+    /// Left column, in pixels.
     pub x: u32,
+    /// Top row, in pixels.
     pub y: u32,
+    /// Width in pixels; edge tiles may be narrower than [`TILE_SIZE`](super::TILE_SIZE).
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
 }
 
@@ -35,13 +39,13 @@ impl Tile {
         tiles
     }
 
-    pub fn pixel_count(&self) -> usize {
+    pub(crate) fn pixel_count(&self) -> usize {
         self.width as usize * self.height as usize
     }
 
     /// Copies the tile's RGB bytes (`rgb`, row-major within the tile) into
     /// `image`, row-major RGB bytes of an image `image_width` wide.
-    pub fn copy_rgb_into(&self, image_width: u32, rgb: &[u8], image: &mut [u8]) {
+    pub(crate) fn copy_rgb_into(&self, image_width: u32, rgb: &[u8], image: &mut [u8]) {
         let pixels: &[[u8; 3]] = bytemuck::cast_slice(rgb);
         let image: &mut [[u8; 3]] = bytemuck::cast_slice_mut(image);
         for (start, row) in self.rows(image_width, pixels) {
@@ -95,7 +99,7 @@ pub struct Film {
 
 impl Film {
     /// A film with no sample yet. Its memory comes zeroed from the
-    /// allocator, lazily: no page is touched until [`Film::prefault`] or a
+    /// allocator, lazily: no page is touched until `Film::prefault` or a
     /// first sample, so making even a large film is instant.
     pub fn new(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
@@ -129,22 +133,24 @@ impl Film {
     /// page and flushing the other cores' TLBs by interrupt (perf:
     /// `do_wp_page`, `flush_tlb_mm_range`). Done once, by whoever has a
     /// spare core: a job does it while its structure builds.
-    pub fn prefault(&mut self) {
+    pub(crate) fn prefault(&mut self) {
         self.sum.fill(DVec3::ZERO);
         self.samples.fill(0);
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
 
     /// Adds one sample to each pixel of `tile`; `values` is row-major
     /// within the tile.
-    pub fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
+    pub(crate) fn add_tile(&mut self, tile: &Tile, values: &[Vec3A]) {
         for (start, chunk) in tile.rows(self.width, values) {
             if self.spread.is_empty() {
                 let sums = &mut self.sum[start..start + chunk.len()];
@@ -168,7 +174,13 @@ impl Film {
     /// after pixel, each pixel's in the order they were taken, and
     /// `tests` the intersection tests each pixel's samples made (one entry
     /// a pixel, as `counts`).
-    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], values: &[Vec3A], tests: &[u64]) {
+    pub(crate) fn add_samples(
+        &mut self,
+        tile: &Tile,
+        counts: &[u32],
+        values: &[Vec3A],
+        tests: &[u64],
+    ) {
         debug_assert_eq!(tests.len(), counts.len(), "one test count a pixel");
         let mut values = values.iter();
         let mut tests = tests.iter();
@@ -330,7 +342,7 @@ impl Film {
 
     /// Writes `tile`'s pixels, resolved as [`Film::to_image`] resolves
     /// them, into `rgb`, a row-major RGB buffer of the whole film.
-    pub fn resolve_tile(&self, tile: &Tile, encoding: Encoding, rgb: &mut [u8]) {
+    pub(crate) fn resolve_tile(&self, tile: &Tile, encoding: Encoding, rgb: &mut [u8]) {
         for y in tile.y..tile.y + tile.height {
             let start = y as usize * self.width as usize + tile.x as usize;
             let end = start + tile.width as usize;

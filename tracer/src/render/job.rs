@@ -10,25 +10,30 @@ use crate::camera::CameraError;
 use crate::stats::RenderStats;
 use crate::world::World;
 
+use super::adaptive::Adaptive;
 use super::control::{Control, ProgressListener, lock, lock_spinning};
 use super::driver::{Clock, FailureSlot, Host, JobPool, Priority, SystemClock, WorkingFor};
 use super::outputs::{Outputs, Recording};
 use super::passes::{LoopContext, PassListener};
 use super::settings::SettingsError;
-use super::strategy::{self, SamplingStrategy};
+use super::strategy::{SamplingStrategy, Uniform};
 use super::view::{View, ViewFilm, ViewHeatmap, view_rgba8};
 use super::{Encoding, Film, RenderPlan, RenderSettings, driver, passes};
 
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    /// The settings break a rule of [`RenderSettings::validate`](super::RenderSettings::validate).
     #[error("invalid settings: {0}")]
     Settings(#[from] SettingsError),
+    /// The camera cannot form an image.
     #[error("invalid camera: {0}")]
     Camera(#[from] CameraError),
+    /// The operating system refused the worker threads.
     #[error("could not start render threads: {0}")]
     Threads(String),
     #[error("{0}")]
+    /// The render failed while running (a worker panicked); the message says why.
     Panicked(String),
 }
 
@@ -50,12 +55,17 @@ pub enum JobState {
 /// Everything a viewer needs at one moment.
 #[derive(Debug, Clone)]
 pub struct Snapshot {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Row-major RGBA8; pixels without a sample yet are transparent.
     pub rgba: Vec<u8>,
+    /// The statistics so far.
     pub stats: RenderStats,
+    /// Building, rendering, done, cancelled or failed.
     pub state: JobState,
+    /// The job is paused: the image will not change until it resumes.
     pub paused: bool,
 }
 
@@ -149,13 +159,16 @@ impl JobOptions {
 
 /// What a job leaves when it stops ([`RenderJob::wait_with_image`]).
 pub struct Finished {
+    /// The accumulated samples, at full precision.
     pub film: Film,
     /// The views, when the job measured them ([`JobOptions::views`]).
     pub views: Option<ViewFilm>,
     /// The finished image, when asked for ([`JobOptions::finished_image`])
     /// and the job rendered every pass of its target.
     pub image: Option<image::RgbImage>,
+    /// The statistics of the whole render.
     pub stats: RenderStats,
+    /// How the job ended: done, cancelled or failed.
     pub state: JobState,
 }
 
@@ -216,7 +229,7 @@ impl RenderJob {
         settings: RenderSettings,
         options: JobOptions,
     ) -> Result<RenderJob, RenderError> {
-        let strategy = strategy::for_settings(&settings);
+        let strategy = strategy_for(&settings);
         Self::start_with(world, index, settings, strategy, options)
     }
 
@@ -295,6 +308,7 @@ impl RenderJob {
         self.shared.control.set_paused(paused);
     }
 
+    /// Whether the job is paused now.
     pub fn is_paused(&self) -> bool {
         self.shared.control.is_paused()
     }
@@ -304,10 +318,12 @@ impl RenderJob {
         self.shared.is_stopped()
     }
 
+    /// Where the job stands now; never blocks on the workers.
     pub fn state(&self) -> JobState {
         self.shared.state()
     }
 
+    /// The statistics so far.
     pub fn stats(&self) -> RenderStats {
         self.outputs().stats.clone()
     }
@@ -515,5 +531,14 @@ impl Job {
         *lock(&shared.state) = JobState::Rendering;
         shared.control.notify();
         Ok(built)
+    }
+}
+
+/// The strategy `settings` ask for: adaptive sampling when it is in force,
+/// else uniform N x N.
+fn strategy_for(settings: &RenderSettings) -> Box<dyn SamplingStrategy> {
+    match settings.adaptive() {
+        Some(adaptive) => Box::new(Adaptive::new(*adaptive)),
+        None => Box::new(Uniform::new(settings)),
     }
 }

@@ -21,20 +21,19 @@ mod view;
 
 use std::sync::Arc;
 
-pub use control::ProgressListener;
 pub use film::{Film, Tile, rgba_to_rgb_image};
 pub use job::{Finished, JobOptions, JobState, RenderError, RenderJob, Snapshot};
 pub use passes::PassListener;
-pub use plan::{PlannedSamples, RenderPlan, TILE_SIZE};
+pub(crate) use plan::PlannedSamples;
+pub use plan::{RenderPlan, TILE_SIZE};
 pub use ray_tree::{Occluder, Outcome, RayNode, RayTree, SurfaceRecord};
 pub use settings::{
     AdaptiveSampling, Budget, Encoding, LensOverride, MAX_DEPTH, MAX_GRID_MULTIPLIER,
     MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling, SettingsError,
 };
-pub use trace::{NoRecord, RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
+pub use trace::{RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
 pub use view::{
-    EyeHit, HEAT_PALETTE, HeatScale, NO_VALUE, View, ViewFilm, ViewHeatmap, ViewRecorder,
-    ViewSample, ViewSummary, ViewTotals, object_colour,
+    HEAT_PALETTE, HeatScale, NO_VALUE, View, ViewFilm, ViewHeatmap, ViewSummary, ViewTotals,
 };
 
 use crate::accel::SceneIndex;

@@ -24,7 +24,7 @@ use super::{RenderSettings, Tile, Tracer};
 pub const TILE_SIZE: u32 = 32;
 
 /// What [`RenderPlan::render_samples`] made of a tile's planned samples.
-pub struct PlannedSamples {
+pub(crate) struct PlannedSamples {
     /// The samples' values, pixel after pixel.
     pub values: Vec<Vec3A>,
     /// Each pixel's intersection tests over its samples (row-major): what
@@ -36,10 +36,15 @@ pub struct PlannedSamples {
 
 /// A render's plan, shared by the threads that execute it.
 pub struct RenderPlan {
+    /// The prepared scene.
     pub world: Arc<World>,
+    /// The acceleration structure over its shapes.
     pub index: Arc<SceneIndex>,
+    /// The settings the render follows.
     pub settings: RenderSettings,
+    /// The camera, with the settings' lens.
     pub camera: Camera,
+    /// The image cut into tiles, the unit of work of a pass.
     pub tiles: Vec<Tile>,
     /// Stratum visited by each pass within one round of N x N passes.
     order: Vec<u32>,
@@ -49,6 +54,7 @@ pub struct RenderPlan {
 }
 
 impl RenderPlan {
+    /// Plans a render: the camera from `settings`, the image cut into tiles.
     pub fn new(
         world: Arc<World>,
         index: Arc<SceneIndex>,
@@ -97,7 +103,7 @@ impl RenderPlan {
     /// tests, as [`Film::add_samples`] takes them.
     ///
     /// [`Film::add_samples`]: super::Film::add_samples
-    pub fn render_samples(
+    pub(crate) fn render_samples(
         &self,
         tile: &Tile,
         plan: &[std::ops::Range<u32>],
@@ -165,7 +171,7 @@ impl RenderPlan {
     /// [`RenderPlan::render_tile`] that also measures what each pixel's sample
     /// cost and saw, for the views: the same samples, traced by the same
     /// code, so the image is identical bit for bit.
-    pub fn render_tile_with_views(
+    pub(crate) fn render_tile_with_views(
         &self,
         pass: u32,
         tile: &Tile,

@@ -17,12 +17,15 @@ use super::{RenderPlan, Tracer};
 /// One sample's rays, parents before their children.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RayTree {
+    /// Pixel column, 0 at the left.
     pub x: u32,
+    /// Pixel row, 0 at the top.
     pub y: u32,
     /// The sample (the pass that traced it).
     pub sample: u32,
     /// The radiance the render traced for this sample.
     pub colour: Vec3A,
+    /// The rays; a node's `parent` is an index into this list.
     pub nodes: Vec<RayNode>,
     /// The grid cells, or BVH nodes and leaves, the eye ray's traversal
     /// visited, in order (none with brute force).
@@ -49,15 +52,20 @@ impl RayTree {
 /// One ray of the tree.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RayNode {
+    /// Eye, reflected, refracted or shadow ray.
     pub kind: RayKind,
     /// Bounces above it: the eye ray and its shadow rays are depth 0.
     pub depth: u32,
+    /// Index of the ray that spawned it in [`RayTree::nodes`]; `None` for the eye ray.
     pub parent: Option<usize>,
+    /// Where the ray starts, in world space.
     pub origin: Vec3A,
+    /// Its direction, unit length.
     pub dir: Vec3A,
     /// The product of the weights from the eye to this ray: what one unit
     /// of its radiance is worth in the pixel.
     pub weight: Vec3A,
+    /// What it met.
     pub outcome: Outcome,
     /// What this node itself adds to the pixel, after its weights: the
     /// ambient term at a hit (with shadows off, its whole local shading),
@@ -72,6 +80,7 @@ pub struct RayNode {
 /// What a ray met.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
+    /// It hit a surface.
     Surface(SurfaceRecord),
     /// The ray left the scene and took the background (or sky).
     Background,
@@ -79,6 +88,7 @@ pub enum Outcome {
     Light {
         /// Index into the world's lights.
         light: usize,
+        /// Distance from the ray's origin to the light sample.
         distance: f32,
         /// What blocked it (the nearest occluder), `None` when lit.
         occluder: Option<Occluder>,
@@ -88,18 +98,23 @@ pub enum Outcome {
 /// A surface hit with its material.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceRecord {
+    /// Distance along the ray to the hit.
     pub t: f32,
     /// Index into the world's shapes.
     pub shape: u32,
-    /// Index into the scene's objects, the object's kind, and where the
-    /// file declared it (line, column).
+    /// Index into the scene's objects.
     pub object: u32,
+    /// The object's kind: "sphere", "mesh", ...
     pub object_kind: &'static str,
+    /// Where the file declared the object (line, column); `None` for scenes built in code.
     pub object_position: Option<(u32, u32)>,
+    /// The hit point, in world space.
     pub point: Vec3A,
     /// Shading normal, facing the incoming ray.
     pub normal: Vec3A,
+    /// The ray came from outside the object (it enters a transmitter).
     pub outside: bool,
+    /// The material at the hit.
     pub surface: Surface,
     /// For transmitters: the Fresnel reflectance and whether the refraction
     /// was lost to total internal reflection.
@@ -109,9 +124,13 @@ pub struct SurfaceRecord {
 /// The object that blocked a shadow ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Occluder {
+    /// Distance along the shadow ray to the occluder.
     pub t: f32,
+    /// Index into the world's shapes.
     pub shape: u32,
+    /// Index into the scene's objects.
     pub object: u32,
+    /// The object's kind: "sphere", "mesh", ...
     pub object_kind: &'static str,
     /// Where the file declared it (line, column).
     pub object_position: Option<(u32, u32)>,
@@ -357,7 +376,7 @@ f 1 1 1 0.1 1 100 0.9 1.5
 s 2.5 0 1 1
 ";
 
-    fn frame(accel: AccelKind) -> RenderPlan {
+    fn plan(accel: AccelKind) -> RenderPlan {
         let scene = parse_scene(SCENE, None, &Limits::default()).unwrap();
         let world = Arc::new(World::build(&scene));
         let index = Arc::new(SceneIndex::build(&world.shapes, accel, 2.0));
@@ -384,8 +403,8 @@ s 2.5 0 1 1
     #[test]
     fn the_mirror_pixel_has_a_blocked_shadow_and_a_bounce_to_the_sky() {
         for accel in [AccelKind::None, AccelKind::Grid, AccelKind::Bvh] {
-            let frame = frame(accel);
-            let tree = frame.inspect(20, 20, 0).unwrap();
+            let plan = plan(accel);
+            let tree = plan.inspect(20, 20, 0).unwrap();
             let eye = &tree.nodes[0];
             assert_eq!((eye.kind, eye.depth, eye.parent), (RayKind::Eye, 0, None));
             assert_eq!(hit_object(eye), Some(1), "{accel:?}");
@@ -430,7 +449,7 @@ s 2.5 0 1 1
             (p.cmpge(b.min - 1e-4) & p.cmple(b.max + 1e-4)).all()
         };
         for accel in [AccelKind::None, AccelKind::Grid, AccelKind::Bvh] {
-            let tree = frame(accel).inspect(20, 20, 0).unwrap();
+            let tree = plan(accel).inspect(20, 20, 0).unwrap();
             let Outcome::Surface(mirror) = &tree.nodes[0].outcome else {
                 unreachable!()
             };
@@ -453,7 +472,7 @@ s 2.5 0 1 1
             }
             // What the visits tested and the plane after them are the
             // query's count; brute force, visiting nothing, tests every shape.
-            let world = &frame(accel).world;
+            let world = &plan(accel).world;
             let planes = world.shapes.iter().filter(|s| s.bounds().is_none()).count();
             let walked = match accel {
                 AccelKind::None => world.shapes.len() - planes,
@@ -471,20 +490,20 @@ s 2.5 0 1 1
     /// comes from its hits), and its parts still add up to the render's.
     #[test]
     fn without_shadows_the_tree_has_no_shadow_ray_and_still_adds_up() {
-        let shadowed = frame(AccelKind::Bvh);
+        let shadowed = plan(AccelKind::Bvh);
         let settings = RenderSettings {
             shadows: false,
             ..shadowed.settings.clone()
         };
-        let frame = RenderPlan::new(shadowed.world, shadowed.index, settings).unwrap();
+        let plan = RenderPlan::new(shadowed.world, shadowed.index, settings).unwrap();
         let (film, _) = render(
-            frame.world.clone(),
-            frame.index.clone(),
-            frame.settings.clone(),
+            plan.world.clone(),
+            plan.index.clone(),
+            plan.settings.clone(),
             Some(1),
         )
         .unwrap();
-        let tree = frame.inspect(20, 20, 0).unwrap();
+        let tree = plan.inspect(20, 20, 0).unwrap();
         assert!(tree.nodes.iter().all(|n| n.kind != RayKind::Shadow));
         assert!(tree.nodes.iter().any(|n| n.kind == RayKind::Reflection));
         assert_eq!(Some(tree.colour), film.pixel(20, 20));
@@ -493,8 +512,8 @@ s 2.5 0 1 1
 
     #[test]
     fn the_glass_pixel_refracts_through_and_every_tree_adds_up() {
-        let frame = frame(AccelKind::Bvh);
-        let tree = frame.inspect(34, 20, 0).unwrap();
+        let plan = plan(AccelKind::Bvh);
+        let tree = plan.inspect(34, 20, 0).unwrap();
         let eye = &tree.nodes[0];
         assert_eq!(hit_object(eye), Some(3));
         let Outcome::Surface(s) = &eye.outcome else {
@@ -516,23 +535,23 @@ s 2.5 0 1 1
         assert!(
             tree.nodes
                 .iter()
-                .all(|n| n.depth <= frame.settings.max_depth + 1)
+                .all(|n| n.depth <= plan.settings.max_depth + 1)
         );
 
         // Every pixel: the tree's colour is the render's, and its parts add up.
         let (film, _) = render(
-            frame.world.clone(),
-            frame.index.clone(),
-            frame.settings.clone(),
+            plan.world.clone(),
+            plan.index.clone(),
+            plan.settings.clone(),
             Some(1),
         )
         .unwrap();
         for (x, y) in [(0, 0), (20, 20), (34, 20), (20, 40), (5, 30), (37, 23)] {
-            let tree = frame.inspect(x, y, 0).unwrap();
+            let tree = plan.inspect(x, y, 0).unwrap();
             assert_eq!(Some(tree.colour), film.pixel(x, y), "({x}, {y})");
             assert!(close(tree.contributions(), tree.colour), "({x}, {y})");
         }
-        assert!(frame.inspect(41, 0, 0).is_none());
+        assert!(plan.inspect(41, 0, 0).is_none());
     }
 
     #[test]
@@ -549,10 +568,10 @@ s 2.5 0 1 1
             light_size: 3.0,
             ..RenderSettings::default()
         };
-        let frame = RenderPlan::new(world.clone(), index.clone(), settings.clone()).unwrap();
+        let plan = RenderPlan::new(world.clone(), index.clone(), settings.clone()).unwrap();
         let (film, _) = render(world, index, settings, Some(1)).unwrap();
         for (x, y) in [(20, 20), (34, 20), (10, 35)] {
-            let trees: Vec<RayTree> = (0..4).map(|k| frame.inspect(x, y, k).unwrap()).collect();
+            let trees: Vec<RayTree> = (0..4).map(|k| plan.inspect(x, y, k).unwrap()).collect();
             let mean = trees.iter().map(|t| t.colour).sum::<Vec3A>() / 4.0;
             assert!(close(mean, film.pixel(x, y).unwrap()), "({x}, {y})");
             assert_ne!(trees[0].nodes[0].dir, trees[1].nodes[0].dir, "jittered");

@@ -6,7 +6,8 @@ use glam::Vec3A;
 
 use crate::accel::AccelKind;
 use crate::camera::{Camera, CameraError, CameraPose};
-use crate::scene::{Lens, Scene, Viewpoint};
+use crate::scene::{DEFAULT_NOISE_THRESHOLD, Lens, NOISE_THRESHOLD, Scene, Viewpoint};
+pub use crate::scene::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
 
 /// What to render and how.
 #[derive(Debug, Clone, PartialEq)]
@@ -16,7 +17,9 @@ use crate::scene::{Lens, Scene, Viewpoint};
     serde(default)
 )]
 pub struct RenderSettings {
+    /// Image width in pixels, 1..=[`MAX_IMAGE_SIDE`].
     pub width: u32,
+    /// Image height in pixels, 1..=[`MAX_IMAGE_SIDE`].
     pub height: u32,
     /// Secondary generations: depth 4 is an eye ray plus up to four bounces,
     /// as in the course and the SPD's "maximum tree depth 5".
@@ -48,6 +51,7 @@ pub struct RenderSettings {
     /// settings only say what the user chose instead (a slider, a flag, a
     /// study's level).
     pub lens_override: LensOverride,
+    /// The acceleration structure: none, grid or BVH.
     pub accel: AccelKind,
     /// The grid's cell multiplier m (cells per axis = trunc(m * dim * s) + 1).
     pub grid_multiplier: f32,
@@ -140,7 +144,7 @@ pub struct AdaptiveSampling {
     /// clamped to 0..1, as the image is written: 0.01 is 2.55 levels of
     /// 255); with more or costlier samples, below this times its samples
     /// over `min_spp` times their relative cost
-    /// ([`crate::render::adaptive::threshold_at`]). 0 never stops a
+    /// (`adaptive::threshold_at`). 0 never stops a
     /// pixel before `max_spp`.
     pub noise_threshold: f32,
     /// Samples every pixel takes before its error is trusted.
@@ -170,7 +174,7 @@ pub enum Budget {
 
 impl Default for AdaptiveSampling {
     fn default() -> Self {
-        Self::for_samples(4, 0.01)
+        Self::for_samples(4, DEFAULT_NOISE_THRESHOLD)
     }
 }
 
@@ -244,6 +248,23 @@ impl RenderSettings {
                 ..AdaptiveSampling::for_samples(n, adaptive.noise_threshold)
             };
         }
+    }
+
+    /// Samples adaptively, with the knobs in force (or, when sampling
+    /// uniformly, adaptive sampling in place of N x N: N's bounds, the
+    /// default threshold) changed by `edit`: what a checkbox,
+    /// `--sampling adaptive` and a threshold study all start from. Whether
+    /// anti-aliasing turns on is the caller's: adaptive sampling spreads
+    /// the samples anti-aliasing or depth of field takes.
+    pub fn sample_adaptively(&mut self, edit: impl FnOnce(&mut AdaptiveSampling)) {
+        let mut knobs = match self.sampling {
+            Sampling::Adaptive(knobs) => knobs,
+            Sampling::Uniform => {
+                AdaptiveSampling::for_samples(self.samples, DEFAULT_NOISE_THRESHOLD)
+            }
+        };
+        edit(&mut knobs);
+        self.sampling = Sampling::Adaptive(knobs);
     }
 
     /// Renders through `view`'s own lens again, with depth of field when
@@ -320,12 +341,6 @@ impl RenderSettings {
     }
 }
 
-/// Largest N (N x N samples per pixel).
-pub const MAX_SAMPLES: u32 = 64;
-/// Largest image side, in pixels.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-/// Largest image, in pixels (64 Mi: about 1.3 GB of film).
-pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
 /// Deepest recursion allowed.
 pub const MAX_DEPTH: u32 = 64;
 /// Largest grid multiplier (cells grow with its cube).
@@ -335,8 +350,11 @@ pub const MAX_GRID_MULTIPLIER: f32 = 32.0;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{name} = {value} is out of range: {expected}")]
 pub struct SettingsError {
+    /// The setting, e.g. "samples".
     pub name: &'static str,
+    /// The value given.
     pub value: String,
+    /// The valid range.
     pub expected: String,
 }
 
@@ -426,11 +444,12 @@ impl AdaptiveSampling {
             format!("1 to the max spp, {}", self.max_spp),
         )?;
         let threshold = self.noise_threshold;
+        let (low, high) = NOISE_THRESHOLD.into_inner();
         require(
-            threshold >= 0.0 && threshold.is_finite(),
+            NOISE_THRESHOLD.contains(&threshold),
             "noise threshold",
             threshold,
-            "a number >= 0",
+            format!("a number from {low} to {high}"),
         )
     }
 }
@@ -482,7 +501,7 @@ impl Encoding {
     /// (turning a film into bytes is a visible part of a whole `workbench
     /// render`).
     #[inline]
-    pub fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
+    pub(crate) fn encode_rgb(self, c: Vec3A) -> [u8; 3] {
         match self {
             Encoding::Linear => {
                 // `max` takes its second operand when the first is NaN,

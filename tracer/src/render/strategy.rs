@@ -70,15 +70,6 @@ pub trait SamplingStrategy: Send + Sync {
     ) -> PassEnd;
 }
 
-/// The strategy `settings` ask for: adaptive sampling when it is in force,
-/// else uniform N x N.
-pub fn for_settings(settings: &RenderSettings) -> Box<dyn SamplingStrategy> {
-    match settings.adaptive() {
-        Some(a) => Box::new(super::adaptive::Adaptive::new(*a)),
-        None => Box::new(Uniform::new(settings)),
-    }
-}
-
 /// Uniform sampling: every pixel takes one sample a pass, the pass's
 /// stratum, until N x N passes (or forever when refining).
 #[derive(Debug, Clone)]

@@ -18,13 +18,18 @@ use super::{RenderSettings, adaptive};
 /// Why a ray was traced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RayKind {
+    /// From the camera through a pixel.
     Eye,
+    /// Mirrored off a specular surface.
     Reflection,
+    /// Bent through a transmitting surface.
     Refraction,
+    /// From a surface towards a light sample, testing visibility.
     Shadow,
 }
 
 impl RayKind {
+    /// Its lower-case name, as views and reports print it.
     pub fn name(self) -> &'static str {
         match self {
             RayKind::Eye => "eye",
@@ -38,9 +43,11 @@ impl RayKind {
 /// Where a ray met a surface, as the shading saw it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceHit {
+    /// Distance along the ray to the hit.
     pub t: f32,
     /// Index into the world's shapes.
     pub shape: u32,
+    /// The hit point, in world space.
     pub point: Vec3A,
     /// The shading normal, facing the side the ray came from.
     pub normal: Vec3A,
@@ -53,9 +60,11 @@ pub struct SurfaceHit {
 pub struct ShadowSample {
     /// Index into the world's lights.
     pub light: usize,
+    /// The shadow ray, from the surface towards the light sample.
     pub ray: Ray,
     /// Distance to the light's sample point: the ray's extent.
     pub distance: f32,
+    /// An occluder stood between surface and light.
     pub blocked: bool,
     /// Light this sample adds to its surface (zero when blocked), before the
     /// weights of the rays above it.
@@ -65,7 +74,7 @@ pub struct ShadowSample {
 /// Watches a trace as it happens, so the cost views and the ray-tree
 /// inspector read the very rays the shaded render traces instead of a
 /// second tracer that could drift from it. Every method does nothing by
-/// default: the render's [`NoRecord`] compiles away entirely.
+/// default: the render's `NoRecord` compiles away entirely.
 ///
 /// Calls nest: [`TraceRecorder::ray`] opens a ray, then come its hit (or
 /// background), its shadow samples and its child rays, and
@@ -89,7 +98,7 @@ pub trait TraceRecorder {
 }
 
 /// The recorder of a plain render: records nothing, costs nothing.
-pub struct NoRecord;
+pub(crate) struct NoRecord;
 
 impl TraceRecorder for NoRecord {}
 
@@ -187,6 +196,7 @@ pub struct Tracer<'a> {
 struct OwnLine<T>(T);
 
 impl<'a> Tracer<'a> {
+    /// A tracer of `world` through `index`, with the depth, sampling and sky of `settings`.
     pub fn new(world: &'a World, index: &'a SceneIndex, settings: &'a RenderSettings) -> Self {
         let shadow_mode = match (
             settings.shadows,
@@ -265,7 +275,7 @@ impl<'a> Tracer<'a> {
 
     /// [`Tracer::trace_eye`], telling `recorder` every ray it traces.
     #[inline]
-    pub fn trace_eye_recorded<R: TraceRecorder>(
+    pub(crate) fn trace_eye_recorded<R: TraceRecorder>(
         &self,
         ray: &Ray,
         t_min: f32,

@@ -112,7 +112,7 @@ impl View {
 
 /// What one sample of one pixel cost and saw.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct ViewSample {
+pub(crate) struct ViewSample {
     pub tests: u32,
     pub steps: u32,
     pub rays: u32,
@@ -125,7 +125,7 @@ pub struct ViewSample {
 
 /// What the eye ray of a sample hit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EyeHit {
+pub(crate) struct EyeHit {
     pub distance: f32,
     pub normal: Vec3A,
     /// Index into the scene's objects.
@@ -134,7 +134,7 @@ pub struct EyeHit {
 
 /// Watches one pixel sample's trace for the views.
 #[derive(Debug, Default)]
-pub struct ViewRecorder {
+pub(crate) struct ViewRecorder {
     depth: u32,
     open_kind: Option<RayKind>,
     eye_hit: Option<SurfaceHit>,
@@ -207,6 +207,7 @@ struct PixelSums {
 /// What [`ViewFilm::totals`] sums over a film.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ViewTotals {
+    /// Shadow rays traced, over all samples.
     pub shadow_rays: f64,
     /// Shadow rays that met an occluder.
     pub blocked: f64,
@@ -223,6 +224,7 @@ pub struct ViewFilm {
 }
 
 impl ViewFilm {
+    /// An empty film of `width` x `height` pixels, no sample recorded yet.
     pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
@@ -231,17 +233,19 @@ impl ViewFilm {
         }
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
 
     /// Adds one sample to each pixel of `tile`; `samples` is row-major
     /// within the tile.
-    pub fn add_tile(&mut self, tile: &Tile, samples: &[ViewSample]) {
+    pub(crate) fn add_tile(&mut self, tile: &Tile, samples: &[ViewSample]) {
         for (start, chunk) in tile.rows(self.width, samples) {
             for (sums, s) in self.pixels[start..start + chunk.len()]
                 .iter_mut()
@@ -254,7 +258,7 @@ impl ViewFilm {
 
     /// Adds samples to the pixels of `tile` as [`Film::add_samples`] does:
     /// `counts[i]` samples of pixel `i`, pixel after pixel in `samples`.
-    pub fn add_samples(&mut self, tile: &Tile, counts: &[u32], samples: &[ViewSample]) {
+    pub(crate) fn add_samples(&mut self, tile: &Tile, counts: &[u32], samples: &[ViewSample]) {
         let mut samples = samples.iter();
         for (start, row) in tile.rows(self.width, counts) {
             for (sums, &count) in self.pixels[start..start + row.len()].iter_mut().zip(row) {
@@ -318,7 +322,7 @@ impl ViewFilm {
     /// The colour views (normals, objects) as RGBA8, row-major; pixels
     /// without a sample are transparent, the background black. `None` for
     /// the other views.
-    pub fn colours_rgba8(&self, view: View) -> Option<Vec<u8>> {
+    pub(crate) fn colours_rgba8(&self, view: View) -> Option<Vec<u8>> {
         if !matches!(view, View::Normals | View::Objects) {
             return None;
         }
@@ -364,7 +368,7 @@ fn scalar(p: &PixelSums, view: View) -> Option<f32> {
 
 /// A stable, well-spread false colour for object `index`: golden-ratio
 /// steps around the hue circle, so neighbours in the file differ.
-pub fn object_colour(index: u32) -> Vec3A {
+pub(crate) fn object_colour(index: u32) -> Vec3A {
     let hue = (index as f32 * 0.618_034).fract();
     let sector = hue * 6.0;
     let x = 1.0 - (sector % 2.0 - 1.0).abs();
@@ -396,7 +400,9 @@ pub enum HeatScale {
 /// on `log(1 + v)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ViewHeatmap {
+    /// The value that takes the palette's last colour; larger values clamp to it.
     pub top: f32,
+    /// Scale by `log(1 + v)`, so small values stay apart when a few are large.
     pub log: bool,
 }
 
@@ -442,6 +448,7 @@ impl ViewHeatmap {
         t.clamp(0.0, 1.0)
     }
 
+    /// The palette colour of `value` on this scale.
     pub fn colour(&self, value: f32) -> Rgb<u8> {
         HEAT_PALETTE.colour(self.position(value))
     }
@@ -488,10 +495,15 @@ impl ViewFilm {
 /// Summary numbers of a view over the pixels that have a value.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ViewSummary {
+    /// Pixels with a value (those summarised).
     pub pixels: usize,
+    /// Mean value.
     pub mean: f32,
+    /// Median value.
     pub median: f32,
+    /// 99th percentile: a scale top that ignores the rarest extremes.
     pub p99: f32,
+    /// Largest value.
     pub max: f32,
 }
 
@@ -523,7 +535,7 @@ fn sort(values: &mut [f32]) -> &[f32] {
 
 /// The image of a film and its view film under `view`: the shaded image
 /// for [`View::Shaded`] (or when there is no view film).
-pub fn view_rgba8(
+pub(crate) fn view_rgba8(
     film: &Film,
     views: Option<&ViewFilm>,
     view: View,
@@ -737,12 +749,12 @@ s 0 0 0 1
         let scene = parse_scene(ONE_SPHERE, None, &Limits::default()).unwrap();
         let world = Arc::new(crate::world::World::build(&scene));
         let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
-        let frame = RenderPlan::new(world, index, plain(9, 9)).unwrap();
-        let tile = frame.tiles[0];
+        let plan = RenderPlan::new(world, index, plain(9, 9)).unwrap();
+        let tile = plan.tiles[0];
         let mut a = Counters::default();
         let mut b = Counters::default();
-        let (values, samples) = frame.render_tile_with_views(0, &tile, &mut a);
-        assert_eq!(values, frame.render_tile(0, &tile, &mut b));
+        let (values, samples) = plan.render_tile_with_views(0, &tile, &mut a);
+        assert_eq!(values, plan.render_tile(0, &tile, &mut b));
         assert_eq!(a, b);
         assert_eq!(samples.len(), 81);
     }

@@ -64,19 +64,25 @@ pub enum ParseErrorKind {
     /// A token that does not parse as a number.
     #[error("expected {expected}, found `{found}`")]
     NotANumber {
+        /// The token as written.
         found: String,
+        /// What was expected there, e.g. "the sphere radius".
         expected: &'static str,
     },
     /// A token that should be a whole number but is not one.
     #[error("expected {expected} as a whole number, found `{found}`")]
     NotAnInteger {
+        /// The token as written.
         found: String,
+        /// What was expected there, e.g. "the sphere radius".
         expected: &'static str,
     },
     /// NaN or infinity, spelt out (`nan`, `inf`) or overflowing (`1e99`).
     #[error("{expected} must be a finite number, found `{found}`")]
     NonFinite {
+        /// The token as written.
         found: String,
+        /// What was expected there, e.g. "the sphere radius".
         expected: &'static str,
     },
     /// A command with a variable number of values (`f`, `l`, `al`) got a
@@ -85,27 +91,40 @@ pub enum ParseErrorKind {
     WrongNumberCount {
         /// The accepted counts, e.g. "8 (NFF) or 11 (P3F)".
         expected: &'static str,
+        /// How many numbers the line had.
         found: usize,
     },
     /// A value that parses but makes no sense (zero radius, index 0, ...).
     #[error("invalid {what}: {why}")]
-    InvalidValue { what: &'static str, why: String },
+    InvalidValue {
+        /// The value, e.g. "sphere radius".
+        what: &'static str,
+        /// The rule it breaks.
+        why: String,
+    },
     /// A camera that cannot form an image.
     #[error("degenerate camera: {0}")]
     DegenerateCamera(&'static str),
     /// A count or size above a [`super::Limits`] bound.
     #[error("{what} {found} exceeds the limit of {limit}")]
     AboveLimit {
+        /// What is counted or measured, e.g. "mesh vertex count".
         what: &'static str,
+        /// The value found.
         found: String,
+        /// The bound it exceeds.
         limit: u64,
     },
     /// A count that promises more values than the rest of the input holds.
     #[error("{what} {count} needs {needed} more values, but only {remaining} remain in the input")]
     NotEnoughInput {
+        /// What the count counts, e.g. "mesh vertices".
         what: &'static str,
+        /// The count as written.
         count: u64,
+        /// Values the count needs after it.
         needed: u64,
+        /// Values the input still holds.
         remaining: u64,
     },
     /// A file with nothing to render; says what is missing.

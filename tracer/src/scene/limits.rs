@@ -2,6 +2,8 @@
 //! hostile or mistaken input: no count read from a file is trusted before it
 //! has been checked against these.
 
+use super::rules::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES};
+
 /// Bounds that protect against hostile or mistaken input. The defaults are
 /// far above any real scene (the largest SPD scenes have a few hundred
 /// thousand objects) yet keep memory use bounded.
@@ -40,9 +42,9 @@ impl Default for Limits {
     fn default() -> Self {
         Self {
             max_file_bytes: 512 << 20,
-            max_resolution: 16384,
-            max_pixels: 64 << 20,
-            max_spp: 64,
+            max_resolution: MAX_IMAGE_SIDE,
+            max_pixels: MAX_IMAGE_PIXELS,
+            max_spp: MAX_SAMPLES,
             max_polygon_vertices: 1 << 20,
             max_mesh_vertices: 10_000_000,
             max_mesh_triangles: 10_000_000,

@@ -6,6 +6,7 @@ pub mod edit;
 mod error;
 mod lexer;
 mod limits;
+pub mod mesh_io;
 mod parse;
 mod rules;
 mod write;
@@ -16,6 +17,9 @@ mod tests;
 pub use error::{ParseError, ParseErrorKind};
 pub use limits::Limits;
 pub use parse::{COMMANDS, VIEW_FIELDS, parse_scene, parse_scene_file};
+pub use rules::{
+    DEFAULT_NOISE_THRESHOLD, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, NOISE_THRESHOLD,
+};
 pub use write::{write_p3f, write_p3f_in};
 
 use std::path::PathBuf;
@@ -26,15 +30,20 @@ use glam::Vec3;
 /// the viewpoint): where the camera stands, looks and how wide it sees.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Viewpoint {
+    /// The eye's position, in scene units.
     pub from: Vec3,
+    /// The point seen at the image's centre.
     pub at: Vec3,
+    /// Which way is up in the image; need not be perpendicular to the view, only not parallel.
     pub up: Vec3,
     /// Full vertical field of view in degrees, between the centres of the top
     /// and bottom pixel rows.
     pub angle: f32,
     /// Near clipping distance for eye rays; may be 0.
     pub hither: f32,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Lens diameter as a multiple of the pixel size; 0 is a pinhole.
     pub aperture: f32,
@@ -91,8 +100,11 @@ impl Lens {
 /// specular colour.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
+    /// Diffuse colour, linear RGB, each 0..1.
     pub diffuse: Vec3,
+    /// Diffuse weight, usually 0..1.
     pub kd: f32,
+    /// Highlight and mirror colour, linear RGB, each 0..1.
     pub specular: Vec3,
     /// Scales both the highlight and the mirror reflection.
     pub ks: f32,
@@ -124,14 +136,24 @@ impl Default for Material {
 pub enum LightSpec {
     /// `l x y z [r g b]`; a missing colour is left to [`crate::world`] to
     /// decide (white at 1/sqrt(number of lights)).
-    Point { position: Vec3, color: Option<Vec3> },
+    Point {
+        /// Where the light is.
+        position: Vec3,
+        /// Linear RGB; `None` leaves it to the world.
+        color: Option<Vec3>,
+    },
     /// `al x y z ax ay az w h [r g b]`: a rectangle centred at `centre`
     /// facing `aim`, `width` by `height`.
     Area {
+        /// The rectangle's centre.
         centre: Vec3,
+        /// A point the rectangle faces.
         aim: Vec3,
+        /// Extent along the first side, in scene units.
         width: f32,
+        /// Extent along the second side, in scene units.
         height: f32,
+        /// Linear RGB; `None` leaves it to the world.
         color: Option<Vec3>,
     },
 }
@@ -160,32 +182,54 @@ pub enum Primitive {
     /// `s`: a negative radius in the file means only the inside is visible;
     /// `radius` is the absolute value and `inside_only` keeps the flag.
     Sphere {
+        /// The centre.
         centre: Vec3,
+        /// The radius, > 0.
         radius: f32,
+        /// The file gave a negative radius: only the inside is seen.
         inside_only: bool,
     },
     /// `pl`: the infinite plane through three points.
-    Plane { points: [Vec3; 3] },
+    Plane {
+        /// Three points on the plane, not on one line; their winding gives the normal.
+        points: [Vec3; 3],
+    },
     /// `p`: a planar polygon, possibly concave, n >= 3.
-    Polygon { vertices: Vec<Vec3> },
+    Polygon {
+        /// The corners in order, all in one plane.
+        vertices: Vec<Vec3>,
+    },
     /// `pp`: a polygon with a normal per vertex (smooth shading).
     Patch {
+        /// The corners in order, all in one plane.
         vertices: Vec<Vec3>,
+        /// One normal per vertex, interpolated across the polygon.
         normals: Vec<Vec3>,
     },
     /// `c`: an open cone or cylinder between base and apex.
     Cone {
+        /// Centre of the base circle.
         base: Vec3,
+        /// Radius at the base.
         base_radius: f32,
+        /// Centre of the apex circle.
         apex: Vec3,
+        /// Radius at the apex; equal radii make a cylinder.
         apex_radius: f32,
     },
     /// `box`: an axis-aligned box.
-    Box { min: Vec3, max: Vec3 },
+    Box {
+        /// The corner with the smallest coordinates.
+        min: Vec3,
+        /// The corner with the largest coordinates.
+        max: Vec3,
+    },
     /// `mesh`: triangles as zero-based vertex indices (the parser has
     /// resolved 1-based and negative indices and checked the range).
     Mesh {
+        /// The vertex positions.
         vertices: Vec<Vec3>,
+        /// Each triangle's three indices into `vertices`.
         triangles: Vec<[u32; 3]>,
     },
 }
@@ -208,6 +252,7 @@ impl Primitive {
 /// A primitive with the material in force when it was declared.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Object {
+    /// Its geometry.
     pub primitive: Primitive,
     /// Index into [`Scene::materials`].
     pub material: u32,
@@ -218,7 +263,10 @@ pub struct Object {
 /// something was written is not what it is, so positions never make two
 /// documents differ (a written and re-read scene equals the original).
 #[derive(Debug, Clone, Default)]
-pub struct ObjectPositions(pub Vec<(u32, u32)>);
+pub struct ObjectPositions(
+    /// (line, column) of object i, both 1-based.
+    pub Vec<(u32, u32)>,
+);
 
 impl PartialEq for ObjectPositions {
     fn eq(&self, _: &Self) -> bool {
@@ -237,12 +285,17 @@ impl ObjectPositions {
 /// document keeps what they declare, not their order (except objects).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
+    /// The camera (`v`).
     pub view: Viewpoint,
+    /// Colour of rays that hit nothing when there is no `env`, linear RGB (`b`).
     pub background: Vec3,
     /// `env NAME`: a skybox folder, resolved relative to `base_dir`.
     pub env: Option<String>,
+    /// The lights (`l`, `al`), in file order.
     pub lights: Vec<LightSpec>,
+    /// The materials (`f`), in file order; objects refer to them by index.
     pub materials: Vec<Material>,
+    /// The objects, in file order: the index edits and the inspector use.
     pub objects: Vec<Object>,
     /// Where each object was declared (for the inspector).
     pub object_positions: ObjectPositions,

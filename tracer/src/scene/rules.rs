@@ -2,6 +2,8 @@
 //! reports a broken rule at the offending token, an edit of a parsed scene
 //! ([`super::edit`]) refuses the same values with the same words.
 
+use std::ops::RangeInclusive;
+
 use glam::{DVec3, Vec3};
 
 use super::{LightSpec, Material, Primitive, Viewpoint};
@@ -21,12 +23,29 @@ fn invalid(what: &'static str, why: impl Into<String>) -> Result<(), Invalid> {
     })
 }
 
-/// Adaptive sampling's noise threshold, in display units: 0 refines every
+/// Largest N (N x N samples per pixel) a scene file, a render's settings
+/// or a slider may ask for.
+pub const MAX_SAMPLES: u32 = 64;
+/// Largest image side, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// Largest image, in pixels (64 Mi: about 1.3 GB of film).
+pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
+
+/// Adaptive sampling's noise thresholds, in display units: 0 refines every
 /// pixel to its maximum, 1 (the whole range of a channel) stops every pixel
-/// at its minimum, beyond is meaningless.
+/// at its minimum, beyond is meaningless. A scene file's `adaptive`, the
+/// command line's `--noise-threshold` (and so lessons) and the window's
+/// slider all read this range.
+pub const NOISE_THRESHOLD: RangeInclusive<f32> = 0.0..=1.0;
+/// The threshold adaptive sampling starts from when none is given: 2.55
+/// levels of 255.
+pub const DEFAULT_NOISE_THRESHOLD: f32 = 0.01;
+
+/// Whether `threshold` is in [`NOISE_THRESHOLD`].
 pub(crate) fn noise_threshold(threshold: f32) -> Result<(), Invalid> {
-    if !(0.0..=1.0).contains(&threshold) {
-        let why = format!("must lie in 0..1, found {threshold}");
+    if !NOISE_THRESHOLD.contains(&threshold) {
+        let (low, high) = NOISE_THRESHOLD.into_inner();
+        let why = format!("must lie in {low}..{high}, found {threshold}");
         return invalid("noise threshold", why);
     }
     Ok(())

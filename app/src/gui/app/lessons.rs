@@ -42,6 +42,44 @@ impl WorkbenchApp {
         }
     }
 
+    /// Opens the lessons of folder `dir` as a class does
+    /// (`workbench --lesson-folder DIR`): listed, and the folder's first
+    /// lesson set up at its first step not done.
+    pub fn open_class(&mut self, dir: &Path) {
+        if self.open_lesson_folder(dir) {
+            self.set_up_lesson_step();
+        }
+    }
+
+    /// Adds the lessons of folder `dir` to the Lessons window's list (the
+    /// "Lesson folder..." button), opens it on the folder's first lesson,
+    /// and says whether the folder gave any; the files that do not read
+    /// are said, the others still listed.
+    pub fn open_lesson_folder(&mut self, dir: &Path) -> bool {
+        let read = match crate::lessons::folder::read(dir) {
+            Ok(read) => read,
+            Err(e) => {
+                self.messages.error = Some(format!("{e:#}"));
+                return false;
+            }
+        };
+        let mut problems = Vec::new();
+        let mut lessons = Vec::new();
+        for (_, lesson) in read {
+            match lesson {
+                Ok(lesson) => lessons.push(lesson),
+                Err(e) => problems.push(e.to_string()),
+            }
+        }
+        let any = !lessons.is_empty();
+        self.lessons.add_folder(lessons);
+        self.lessons.open = true;
+        if !problems.is_empty() {
+            self.messages.error = Some(problems.join("\n"));
+        }
+        any
+    }
+
     /// The Lessons window, what it asked for, and the check kept current.
     pub(super) fn lessons_window(&mut self, ctx: &egui::Context) {
         if !self.lessons.open {
@@ -50,6 +88,9 @@ impl WorkbenchApp {
         let asked = lessons::show(ctx, &mut self.lessons);
         if asked.set_up {
             self.set_up_lesson_step();
+        }
+        if asked.folder && !self.dialogs.open_lesson_folder() {
+            self.messages.notify("cannot open a file dialog");
         }
         let looked_at = self.looked_at();
         let (sides, tools, observer) = (&self.sides, &self.tools, &self.observer);

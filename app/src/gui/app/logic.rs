@@ -6,6 +6,7 @@
 use tracer::render::{JobState, RenderSettings};
 
 use crate::load::SceneSource;
+use crate::load::is_lesson_file;
 
 use super::WorkbenchApp;
 use super::saving::Reply;
@@ -27,6 +28,9 @@ impl WorkbenchApp {
         for reply in self.dialogs.take() {
             match reply {
                 Reply::Open(path) => self.open_file(&path),
+                Reply::LessonFolder(dir) => {
+                    self.open_lesson_folder(&dir);
+                }
                 Reply::Notice(text) => self.messages.notify(text),
                 Reply::Error(text) => self.messages.error = Some(text),
                 Reply::SceneSaved { side, path, state } => self.scene_saved(side, &path, state),
@@ -327,10 +331,4 @@ impl WorkbenchApp {
             self.apply_study_point(&applied);
         }
     }
-}
-
-/// Whether `path` names a lesson file (docs/LESSONS.md): TOML.
-fn is_lesson_file(path: &std::path::Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }

@@ -21,6 +21,8 @@ use crate::load::SceneSource;
 /// Results of background dialogs and saves, delivered to the UI thread.
 pub enum Reply {
     Open(PathBuf),
+    /// A folder of lessons to add to the Lessons window's list.
+    LessonFolder(PathBuf),
     Notice(String),
     Error(String),
     /// The line to print once the screenshot is saved, or why it was not.
@@ -108,6 +110,8 @@ impl SaveImage {
 pub struct FileQuestion {
     /// A name to write under; otherwise an existing file to open.
     pub save: bool,
+    /// A folder to open rather than a file (its filter is not used).
+    pub pick_folder: bool,
     /// The filter's name ("PNG image") and its extensions.
     pub filter: (&'static str, &'static [&'static str]),
     /// Where the dialog opens.
@@ -129,10 +133,14 @@ struct NativeDialog;
 impl FileDialog for NativeDialog {
     fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
         let (filter, extensions) = question.filter;
-        let mut dialog = target::FileDialog::new().add_filter(filter, extensions);
+        let mut dialog = target::FileDialog::new();
         if let Some(folder) = &question.folder {
             dialog = dialog.set_directory(folder);
         }
+        if question.pick_folder {
+            return dialog.pick_folder();
+        }
+        let mut dialog = dialog.add_filter(filter, extensions);
         if let Some(name) = &question.name {
             dialog = dialog.set_file_name(name);
         }
@@ -193,6 +201,7 @@ impl Dialogs {
     pub fn open(&self) -> bool {
         let question = FileQuestion {
             save: false,
+            pick_folder: false,
             filter: (
                 "Scenes, meshes and lessons",
                 &["p3f", "nff", "obj", "ply", "toml"],
@@ -209,6 +218,25 @@ impl Dialogs {
         )
     }
 
+    /// The native folder dialog for a folder of lessons (the Lessons
+    /// window's Lesson folder...); false when no thread could be started.
+    pub fn open_lesson_folder(&self) -> bool {
+        let question = FileQuestion {
+            save: false,
+            pick_folder: true,
+            filter: ("Lesson folders", &[]),
+            folder: None,
+            name: None,
+        };
+        self.ask_on_thread(
+            "lesson-folder-dialog",
+            question,
+            "no lesson folder added (cancelled, or no file dialog on this desktop: \
+             start the workbench with --lesson-folder DIR instead)",
+            Reply::LessonFolder,
+        )
+    }
+
     /// The native save dialog for `image`, named after `scene`, and the
     /// write; false when no thread could be started.
     pub fn save(&self, image: SaveImage, scene: &str) -> bool {
@@ -221,6 +249,7 @@ impl Dialogs {
         };
         let question = FileQuestion {
             save: true,
+            pick_folder: false,
             filter,
             folder: None,
             name: Some(format!("{stem}.{}", filter.1[0])),
@@ -244,6 +273,7 @@ impl Dialogs {
         let (folder, name) = save.suggested(source);
         let question = FileQuestion {
             save: true,
+            pick_folder: false,
             filter: ("P3F scene", &["p3f"]),
             folder: Some(folder),
             name: Some(name),

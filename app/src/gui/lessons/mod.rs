@@ -92,6 +92,31 @@ impl Lessons {
         self.choose(at);
     }
 
+    /// Adds a folder's lessons to the list (one of the same name is
+    /// replaced), in chapter order after the bundled ones of the same
+    /// chapter, and shows the folder's first: the teacher's class opens on
+    /// the teacher's lesson. A folder with none keeps the lesson shown.
+    pub fn add_folder(&mut self, lessons: Vec<Lesson>) {
+        let shown = self.lesson().map(|l| l.name.clone());
+        let added: Vec<String> = lessons.iter().map(|l| l.name.clone()).collect();
+        for lesson in lessons {
+            match self.lessons.iter().position(|l| l.name == lesson.name) {
+                Some(i) => self.lessons[i] = lesson,
+                None => self.lessons.push(lesson),
+            }
+        }
+        lessons::folder::in_chapter_order(&mut self.lessons);
+        let position = |name: &String| self.lessons.iter().position(|l| &l.name == name);
+        let first_added = self.lessons.iter().position(|l| added.contains(&l.name));
+        let at = first_added.or_else(|| shown.as_ref().and_then(position));
+        self.choose(at.unwrap_or(0));
+    }
+
+    /// The names of the lessons offered, in the list's order.
+    pub fn names(&self) -> Vec<&str> {
+        self.lessons.iter().map(|l| l.name.as_str()).collect()
+    }
+
     /// Makes lesson `index` current, at its first step not done.
     pub fn choose(&mut self, index: usize) {
         if index >= self.lessons.len() {

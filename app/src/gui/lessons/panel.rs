@@ -17,6 +17,8 @@ const DONE: Color32 = Color32::from_rgb(90, 200, 110);
 pub struct Asked {
     /// Restore the step's scene, settings and layout.
     pub set_up: bool,
+    /// Ask for a folder of lessons to add to the list.
+    pub folder: bool,
 }
 
 /// Draws the window when it is open.
@@ -38,6 +40,13 @@ fn body(ui: &mut Ui, lessons: &mut Lessons, asked: &mut Asked) {
         ui.colored_label(ui.visuals().error_fg_color, problem);
     }
     picker(ui, lessons);
+    if ui
+        .small_button("Lesson folder...")
+        .on_hover_text("Add a folder of lessons to the list, by chapter")
+        .clicked()
+    {
+        asked.folder = true;
+    }
     // A copy: the buttons below change the panel's state while it is shown.
     let Some(lesson) = lessons.lesson().cloned() else {
         ui.label("No lesson.");

@@ -311,7 +311,7 @@ fn status_line(a: &Side, moving: bool) -> String {
     };
     parts.push(state);
     if engine.scene().is_some_and(|s| s.source.is_bare_mesh()) {
-        parts.push(tracer::mesh_io::FRAMING_NOTE.into());
+        parts.push(tracer::scene::mesh_io::FRAMING_NOTE.into());
     }
     parts.join(" · ")
 }

@@ -7,13 +7,13 @@ use egui::{Color32, RichText, Ui};
 use tracer::metrics::Palette;
 use tracer::render::{Encoding, Snapshot, View};
 
+use crate::describe::{describe, side_labels};
 use crate::figures::heat_map::format_number;
 use crate::gui::comparison::{CompareLayout, Comparison};
 use crate::gui::image::pixel_views::colour_bar;
 use crate::gui::sides::Side;
 use crate::measure::ab::Match;
 use crate::measure::value_difference::{ValueStats, diverging_colour};
-use crate::reports::describe::{describe, side_labels};
 
 /// "A: grid off", "B: grid on, m = 4": what differs between the sides
 /// (or what A is, beside B's image), and the scene edits one side has and
@@ -179,10 +179,10 @@ pub fn numbers(ui: &mut Ui, comparison: &Comparison, a: &Side, b: &Side) {
                 )
             });
             row(ui, "Rays", &|s| {
-                crate::reports::render_stats::si(s.stats.counters.total_rays() as f64)
+                crate::describe::si(s.stats.counters.total_rays() as f64)
             });
             row(ui, "Rays per second", &|s| {
-                crate::reports::render_stats::si(s.stats.rays_per_second())
+                crate::describe::si(s.stats.rays_per_second())
             });
         });
     if let (Some(a), Some(b)) = (a, b) {

@@ -15,8 +15,8 @@ use egui::{RichText, Ui};
 use tracer::scene::{Limits, Primitive, Scene, parse_scene};
 
 use crate::bundled;
+use crate::describe::si;
 use crate::load::SceneSource;
-use crate::reports::render_stats::si;
 
 use super::settings::command_button;
 use crate::gui::commands::Command;
@@ -171,7 +171,7 @@ pub fn is_scene_file(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("p3f") || e.eq_ignore_ascii_case("nff"))
-        || tracer::mesh_io::MeshFormat::of(path).is_some()
+        || tracer::scene::mesh_io::MeshFormat::of(path).is_some()
 }
 
 /// Draws the picker; returns the scene the user chose, if any.

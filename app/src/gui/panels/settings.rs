@@ -3,14 +3,17 @@
 
 use egui::{Slider, Ui};
 use tracer::accel::AccelKind;
-use tracer::render::{
-    AdaptiveSampling, MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_SAMPLES, RenderSettings, Sampling,
-};
+use tracer::render::{MAX_DEPTH, MAX_GRID_MULTIPLIER, MAX_SAMPLES, RenderSettings, Sampling};
 use tracer::scene::Viewpoint;
 
 use crate::gui::commands::Command;
 use crate::gui::image::active_overlay::ActiveOverlay;
 use crate::gui::sides::Controls;
+
+/// The noise thresholds the slider offers, on a logarithmic scale: the
+/// useful part of the valid range (`tracer::scene::NOISE_THRESHOLD`),
+/// from near-exact to coarse; its ends are for the command line.
+const NOISE_THRESHOLD_SLIDER: std::ops::RangeInclusive<f32> = 0.0005..=0.1;
 
 /// Largest N offered by the slider (N x N samples per pixel).
 const SLIDER_MAX_SAMPLES: u32 = 16;
@@ -26,14 +29,11 @@ fn adaptive_switch(ui: &mut Ui, render: &mut RenderSettings) {
         )
         .changed()
     {
-        render.sampling = if adaptive {
-            Sampling::Adaptive(AdaptiveSampling::for_samples(
-                render.samples,
-                AdaptiveSampling::default().noise_threshold,
-            ))
+        if adaptive {
+            render.sample_adaptively(|_| {});
         } else {
-            Sampling::Uniform
-        };
+            render.sampling = Sampling::Uniform;
+        }
     }
 }
 
@@ -41,7 +41,7 @@ fn adaptive_switch(ui: &mut Ui, render: &mut RenderSettings) {
 fn adaptive_knobs(ui: &mut Ui, render: &mut RenderSettings) {
     if let Sampling::Adaptive(a) = &mut render.sampling {
         ui.add(
-            Slider::new(&mut a.noise_threshold, 0.0005..=0.1)
+            Slider::new(&mut a.noise_threshold, NOISE_THRESHOLD_SLIDER)
                 .logarithmic(true)
                 .text("Noise threshold"),
         )
@@ -257,4 +257,18 @@ pub fn show(
         command_button(ui, Command::ZoomFit, commands);
         command_button(ui, Command::ZoomActualSize, commands);
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use tracer::scene::NOISE_THRESHOLD;
+
+    use super::NOISE_THRESHOLD_SLIDER;
+
+    #[test]
+    fn the_threshold_slider_stays_within_the_valid_range() {
+        let (low, high) = NOISE_THRESHOLD.into_inner();
+        let (slider_low, slider_high) = NOISE_THRESHOLD_SLIDER.into_inner();
+        assert!(low <= slider_low && slider_low < slider_high && slider_high <= high);
+    }
 }

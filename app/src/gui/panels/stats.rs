@@ -6,7 +6,7 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 use tracer::accel::AccelInfo;
 use tracer::stats::{RenderStats, SceneCounts};
 
-use crate::reports::render_stats::si;
+use crate::describe::si;
 
 use crate::gui::comparison::Comparison;
 use crate::gui::platform::frame_meter::FrameMeter;

@@ -9,8 +9,9 @@ use anyhow::Result;
 
 use tracer::render::Snapshot;
 
+use crate::describe::si;
 use crate::image_file::save_png;
-use crate::reports::render_stats::{sample_progress, si};
+use crate::reports::render_stats::sample_progress;
 
 pub use crate::cli::ScreenshotPlan;
 

@@ -17,7 +17,7 @@ const MERGE_WITHIN: Duration = Duration::from_millis(600);
 
 /// One step: the edit as applied last, and what undoes the whole step.
 #[derive(Debug, Clone)]
-struct Step {
+struct UndoStep {
     edit: Edit,
     inverse: Edit,
     /// The target and field ("object 5 ior"), for merging.
@@ -30,8 +30,8 @@ struct Step {
 /// Undo and redo of one side's scene.
 #[derive(Debug, Clone)]
 pub struct History {
-    done: Vec<Step>,
-    undone: Vec<Step>,
+    done: Vec<UndoStep>,
+    undone: Vec<UndoStep>,
     /// The state on disk ([`History::state`]); `None` when none of the
     /// states undo and redo reach is.
     saved: Option<u64>,
@@ -105,7 +105,7 @@ impl History {
             return;
         }
         self.last_id += 1;
-        self.done.push(Step {
+        self.done.push(UndoStep {
             edit,
             inverse,
             slot,

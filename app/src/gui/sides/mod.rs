@@ -12,7 +12,7 @@ mod live_image;
 use std::sync::Arc;
 
 use tracer::camera::CameraPose;
-use tracer::render::{AdaptiveSampling, Budget, RenderSettings, Sampling, View, ViewHeatmap};
+use tracer::render::{Budget, RenderSettings, Sampling, View, ViewHeatmap};
 use tracer::scene::edit::{Edit, Effect};
 
 pub use controls::Controls;
@@ -185,12 +185,7 @@ impl Side {
     pub fn make_adaptive(&mut self) {
         let render = &mut self.controls.render;
         render.antialiasing |= !render.depth_of_field;
-        if !matches!(render.sampling, Sampling::Adaptive(_)) {
-            render.sampling = Sampling::Adaptive(AdaptiveSampling::for_samples(
-                render.samples,
-                AdaptiveSampling::default().noise_threshold,
-            ));
-        }
+        render.sample_adaptively(|_| {});
     }
 
     /// Stops this frame's plan, when adaptive, at `budget` (the cost of

@@ -14,10 +14,10 @@ use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
+use crate::describe::si;
 use crate::image_file::save_png;
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
 use crate::reports::bench_table::{self, Columns, Format};
-use crate::reports::render_stats::si;
 
 use super::background::Measuring;
 
@@ -25,9 +25,9 @@ use super::background::Measuring;
 const THUMBNAIL: u32 = 64;
 
 /// How far the matrix is: case, run and the fraction of that run done.
-type Progress = (usize, usize, f32);
+type MatrixProgress = (usize, usize, f32);
 
-type Update = super::background::Update<Progress, Measurement>;
+type Update = super::background::Update<MatrixProgress, Measurement>;
 
 /// The window's state.
 pub struct BenchWindow {
@@ -36,7 +36,7 @@ pub struct BenchWindow {
     runs: usize,
     cases: Vec<Case>,
     /// The run and its finished rows.
-    measuring: Measuring<Progress, Measurement>,
+    measuring: Measuring<MatrixProgress, Measurement>,
 }
 
 impl Default for BenchWindow {

@@ -9,13 +9,13 @@ use std::sync::mpsc::{Receiver, channel};
 use egui::Ui;
 
 use crate::gui::platform::target;
-use crate::reports::lab::{self, Progress, Request};
+use crate::reports::lab::{self, ReportProgress, Request};
 
 use super::background::Background;
 
 /// What the export thread tells the window.
 enum Update {
-    Progress(Progress),
+    Progress(ReportProgress),
     /// Where the page went; `None` when cancelled.
     Finished(Result<Option<PathBuf>, String>),
 }
@@ -26,7 +26,7 @@ enum Update {
 pub struct ReportExport {
     choosing: Option<Receiver<Option<PathBuf>>>,
     task: Option<Background<Update>>,
-    progress: Option<Progress>,
+    progress: Option<ReportProgress>,
     /// Where the running export writes.
     target: Option<PathBuf>,
     /// What the last export did, shown until the next.
@@ -39,7 +39,7 @@ impl ReportExport {
     }
 
     /// How far the running export has come.
-    pub fn progress(&self) -> Option<&Progress> {
+    pub fn progress(&self) -> Option<&ReportProgress> {
         self.progress.as_ref()
     }
 

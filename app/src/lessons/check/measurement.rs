@@ -45,6 +45,27 @@ pub enum Metric {
     GridSweep,
 }
 
+impl By {
+    /// The word a lesson writes after `by =`.
+    pub fn name(self) -> &'static str {
+        match self {
+            By::Work => "work",
+            By::Time => "time",
+        }
+    }
+}
+
+impl Metric {
+    /// The word a lesson writes after `metric =`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::Speedup => "speedup",
+            Metric::Flip => "flip",
+            Metric::GridSweep => "grid-sweep",
+        }
+    }
+}
+
 /// A figure measured, with words saying what it came from.
 pub struct Measured {
     pub value: f64,

@@ -4,6 +4,7 @@
 //! which control was touched. [`evaluate`] is a pure function of a
 //! [`LessonState`], so the window and `lesson check` agree.
 
+pub mod catalogue;
 mod expect;
 mod measurement;
 mod quantity;
@@ -13,8 +14,8 @@ pub mod written;
 mod tests;
 
 pub use expect::{Expect, Tolerance, Value};
-pub use measurement::{By, Metric};
-pub use quantity::{Quantity, Reads};
+pub use measurement::{By, Metric, measure};
+pub use quantity::{Part, Quantity, Reads};
 
 use super::state::{LessonState, Which};
 

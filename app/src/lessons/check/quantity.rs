@@ -16,7 +16,6 @@ use crate::reports::ray_tree;
 
 use super::super::state::{LessonState, SideState, Which};
 use super::expect::{Expect, Value};
-use super::written::Part;
 
 /// A render setting, by its `workbench render` flag's name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,7 +41,7 @@ pub enum Setting {
     NoiseThreshold,
 }
 
-const SETTINGS: [(&str, Setting); 17] = [
+pub(super) const SETTINGS: [(&str, Setting); 17] = [
     ("width", Setting::Width),
     ("height", Setting::Height),
     ("depth", Setting::Depth),
@@ -111,7 +110,7 @@ pub enum TreeFigure {
     EyeOutside,
 }
 
-const TREE_FIGURES: [(&str, TreeFigure); 12] = [
+pub(super) const TREE_FIGURES: [(&str, TreeFigure); 12] = [
     ("rays", TreeFigure::Rays),
     ("shadow-rays", TreeFigure::ShadowRays),
     ("blocked-shadow-rays", TreeFigure::BlockedShadowRays),
@@ -125,6 +124,15 @@ const TREE_FIGURES: [(&str, TreeFigure); 12] = [
     ("eye-t", TreeFigure::EyeT),
     ("eye-outside", TreeFigure::EyeOutside),
 ];
+
+/// A numbered part of the scene that a quantity, or a check's reference,
+/// names: validated against the scene when the lesson loads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    Object(usize),
+    Material(usize),
+    Light(usize),
+}
 
 /// Something a check reads.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -320,13 +328,10 @@ impl Quantity {
                 Ok(Value::Number(f64::from((view.at - view.from).length())))
             }
             Quantity::FocusError(n) => focus_error(side, n),
-            Quantity::Tree(figure) => {
+            Quantity::Tree(_) | Quantity::Blocker(_) => {
                 let tree = record_tree(side, pixel()?)?;
-                Ok(tree_figure(&side.scene, &tree, figure))
-            }
-            Quantity::Blocker(light) => {
-                let tree = record_tree(side, pixel()?)?;
-                Ok(blocker(&tree, light))
+                (self.read_tree(&side.scene, &tree))
+                    .ok_or_else(|| format!("{self} is not a tree figure"))
             }
             Quantity::GridCells | Quantity::GridAxis(_) => {
                 let grid = SceneIndex::build(
@@ -388,6 +393,19 @@ impl Quantity {
                     _ => counts.sum::<f64>() / f64::from(film.width() * film.height()).max(1.0),
                 }))
             }
+        }
+    }
+}
+
+impl Quantity {
+    /// A tree figure (`tree ...`, `tree blocker L`) read from a tree
+    /// already recorded on `scene`, so that `lesson explain --find` records
+    /// each pixel's tree once; `None` for any other quantity.
+    pub fn read_tree(&self, scene: &Scene, tree: &RayTree) -> Option<Value> {
+        match *self {
+            Quantity::Tree(figure) => Some(tree_figure(scene, tree, figure)),
+            Quantity::Blocker(light) => Some(blocker(tree, light)),
+            _ => None,
         }
     }
 }

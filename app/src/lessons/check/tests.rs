@@ -94,8 +94,8 @@ fn a_scene_check_reads_the_edited_scene() {
     assert!(done(&check, &state));
     let ior = value("object 1 ior", "1.33 +- 1%");
     assert!(!done(&ior, &state));
-    let edit = |line: &str| crate::lessons::format::Actions {
-        edits: vec![crate::lessons::format::Located {
+    let edit = |line: &str| crate::lessons::actions::Actions {
+        edits: vec![crate::lessons::actions::Located {
             value: line.to_string(),
             line: 1,
             column: 1,
@@ -159,8 +159,8 @@ fn a_ray_tree_check_reads_the_pinned_pixels_tree() {
 fn edited(state: &LessonState, line: &str) -> SideState {
     let mut copy = state.clone();
     copy.apply(
-        &crate::lessons::format::Actions {
-            edits: vec![crate::lessons::format::Located {
+        &crate::lessons::actions::Actions {
+            edits: vec![crate::lessons::actions::Located {
                 value: line.into(),
                 line: 1,
                 column: 1,
@@ -444,14 +444,14 @@ fn numbers_naming_the_scene_are_kept_with_their_place() {
     let line: Line = toml::from_str(text).unwrap();
     let mut reader = written::Reader::new(text);
     assert!(reader.check(line.check).is_some());
-    let found: Vec<(written::Part, &str)> = (reader.references.iter())
+    let found: Vec<(quantity::Part, &str)> = (reader.references.iter())
         .map(|r| (r.part, &text[r.span.clone()]))
         .collect();
     assert_eq!(
         found,
         [
-            (written::Part::Light(12), "12"),
-            (written::Part::Object(3), "3")
+            (quantity::Part::Light(12), "12"),
+            (quantity::Part::Object(3), "3")
         ]
     );
 }

@@ -12,7 +12,7 @@ use toml::Spanned;
 
 use super::expect::{Expect, RawExpect, Tolerance, Value};
 use super::measurement::{By, Metric};
-use super::quantity::{Quantity, Reads};
+use super::quantity::{Part, Quantity, Reads};
 use super::{Check, Which};
 
 /// A mistake at a byte range of the lesson file.
@@ -25,14 +25,6 @@ pub struct Reference {
     pub part: Part,
     pub side: Which,
     pub span: Range<usize>,
-}
-
-/// What a [`Reference`] names.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Part {
-    Object(usize),
-    Material(usize),
-    Light(usize),
 }
 
 /// An answer or a choice as a teacher writes it: `3`, `1.5`, `true`,

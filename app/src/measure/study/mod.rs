@@ -18,9 +18,7 @@ use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use tracer::accel::AccelKind;
 use tracer::generate::{self, GenerateOptions, GeneratorName};
-use tracer::render::{
-    AdaptiveSampling, Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling,
-};
+use tracer::render::{Encoding, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling};
 use tracer::scene::Scene;
 use tracer::scene::edit::{Edit, ObjectChange};
 use tracer::world::World;
@@ -159,15 +157,8 @@ impl Param {
                 settings.height = ((value * aspect).round() as u32).max(1);
             }
             Param::NoiseThreshold => {
-                let knobs = match settings.sampling {
-                    Sampling::Adaptive(a) => a,
-                    Sampling::Uniform => AdaptiveSampling::for_samples(settings.samples, 0.0),
-                };
                 settings.antialiasing = true;
-                settings.sampling = Sampling::Adaptive(AdaptiveSampling {
-                    noise_threshold: value as f32,
-                    ..knobs
-                });
+                settings.sample_adaptively(|knobs| knobs.noise_threshold = value as f32);
             }
             Param::Level | Param::Material { .. } => {}
         }

@@ -10,10 +10,10 @@ use tracer::render::{HeatScale, View, ViewHeatmap};
 use super::html::{escape, figure, image, table, titled_section};
 use super::svg::{Bar, Series, YAxis, bar_chart, line_chart};
 use super::{Lab, how_measured, ms};
+use crate::describe::si;
 use crate::figures::heat_map::{view_image, with_legend};
 use crate::figures::study_plot::colour;
 use crate::measure::benchmark::Measurement;
-use crate::reports::render_stats::si;
 
 /// The timing table's headers; tests find columns by these names.
 pub const TIMING_HEADERS: [&str; 11] = [

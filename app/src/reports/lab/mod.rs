@@ -168,7 +168,7 @@ impl Lab {
 
 /// How far the measuring has come, for a progress bar.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Progress {
+pub struct ReportProgress {
     /// 0..=1 of the whole report's work (estimated as samples traced).
     pub fraction: f32,
     /// What is being measured, in words.
@@ -320,7 +320,7 @@ impl Plan {
 struct Tracker<'a> {
     weights: Vec<f64>,
     stage: usize,
-    on_progress: &'a mut dyn FnMut(&Progress),
+    on_progress: &'a mut dyn FnMut(&ReportProgress),
 }
 
 impl Tracker<'_> {
@@ -328,7 +328,7 @@ impl Tracker<'_> {
         let total: f64 = self.weights.iter().sum::<f64>().max(1.0);
         let before: f64 = self.weights[..self.stage].iter().sum();
         let now = before + self.weights[self.stage] * f64::from(fraction.clamp(0.0, 1.0));
-        (self.on_progress)(&Progress {
+        (self.on_progress)(&ReportProgress {
             fraction: (now / total) as f32,
             doing: doing.to_string(),
         });
@@ -369,7 +369,7 @@ impl Tracker<'_> {
 pub fn measure(
     request: &Request,
     cancel: &AtomicBool,
-    on_progress: &mut dyn FnMut(&Progress),
+    on_progress: &mut dyn FnMut(&ReportProgress),
 ) -> Result<Option<Lab>> {
     let (base, runs) = request.measured();
     base.validate()?;

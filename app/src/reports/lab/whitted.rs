@@ -28,7 +28,7 @@ pub const RAY_HEADERS: [&str; 5] = ["eye", "shadow", "reflection", "refraction",
 
 /// A frame of the section: what its settings add to the one before, in
 /// words, and its row's name and id.
-struct Step {
+struct WhittedFrame {
     adds: String,
     name: String,
     id: String,
@@ -36,10 +36,10 @@ struct Step {
 
 /// `opaque`: the frame of the scene with every transmittance set to 0;
 /// `refracts`: whether anything in the scene transmits.
-fn step(m: &Measurement, deepest: u32, opaque: bool, refracts: bool) -> Step {
+fn step(m: &Measurement, deepest: u32, opaque: bool, refracts: bool) -> WhittedFrame {
     let depth = m.case.settings.max_depth;
     let (name, id) = (format!("depth {depth}"), format!("depth{depth}"));
-    let said = |adds: String, name: String, id: String| Step { adds, name, id };
+    let said = |adds: String, name: String, id: String| WhittedFrame { adds, name, id };
     if !m.case.settings.shadows {
         return said(
             "local shading only: Blinn-Phong from every light the surface faces, no shadow \
@@ -91,7 +91,7 @@ pub fn section(lab: &Lab) -> Result<String> {
     }
     let refracts = lab.opaque.is_some();
     for (m, opaque) in frames {
-        let Step { adds, name, id } = step(m, deepest, opaque, refracts);
+        let WhittedFrame { adds, name, id } = step(m, deepest, opaque, refracts);
         let caption = format!("{adds}; {} ms, {} rays", ms(m.median()), m.rays());
         figures += &figure(&image(&m.image, &caption, 340)?, &caption);
         let mut cells = vec![name, ms(m.median())];

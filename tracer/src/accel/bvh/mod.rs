@@ -21,7 +21,7 @@ use super::packed::{
     PackedShape, leaf_bounds, leaf_first, leaf_len, leaf_occluder, leaf_start, offer_leaf,
     pack_leaf,
 };
-use super::visits::{Step, VisitLog};
+use super::visits::{TraversalStep, VisitLog};
 use super::{Hit, Nearest};
 use build::{BuildPrim, build_tree};
 #[cfg(target_arch = "x86_64")]
@@ -279,7 +279,7 @@ impl Bvh {
         loop {
             if next.count > 0 {
                 let (first, count) = (next.first as usize, next.count as usize);
-                log.step(Step::Leaf(next.first, next.count), tests);
+                log.step(TraversalStep::Leaf(next.first, next.count), tests);
                 let prims = &self.prims;
                 offer_leaf(
                     prims,
@@ -294,7 +294,7 @@ impl Bvh {
                 t_max = nearest.t_max(t_max);
             } else {
                 visited += 1;
-                log.step(Step::Node(next.first), tests);
+                log.step(TraversalStep::Node(next.first), tests);
                 let node = &self.nodes[next.first as usize];
                 let (near, mask) = code.hit(node, &wide, t_min, t_max);
                 if mask != 0 {

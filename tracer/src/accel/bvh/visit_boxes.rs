@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use crate::geometry::Aabb;
 
-use super::super::visits::{Step, Visit};
+use super::super::visits::{TraversalStep, Visit};
 use super::Bvh;
 
 impl Bvh {
@@ -14,7 +14,7 @@ impl Bvh {
     /// and depth: only the visited nodes are read.
     pub(in crate::accel) fn visits(
         &self,
-        steps: impl ExactSizeIterator<Item = Step>,
+        steps: impl ExactSizeIterator<Item = TraversalStep>,
     ) -> Vec<Visit> {
         // (first, count) of a slot -> its box and depth; the root is (0, 0).
         let mut known: HashMap<(u32, u32), (Aabb, u32)> = HashMap::new();
@@ -24,9 +24,9 @@ impl Bvh {
         let mut out = Vec::with_capacity(steps.len());
         for step in steps {
             let (key, leaf) = match step {
-                Step::Node(index) => ((index, 0), false),
-                Step::Leaf(first, count) => ((first, count), true),
-                Step::Cell(_) => continue,
+                TraversalStep::Node(index) => ((index, 0), false),
+                TraversalStep::Leaf(first, count) => ((first, count), true),
+                TraversalStep::Cell(_) => continue,
             };
             let Some(&(bounds, depth)) = known.get(&key) else {
                 continue;

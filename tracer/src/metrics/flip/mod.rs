@@ -96,7 +96,7 @@ const INV_D65: Colour = [1.052156925, 1.000000000, 0.918357670];
 ///
 /// # Panics
 /// When the images differ in size (callers check, see `metrics::flip`).
-pub fn error_map(reference: &RgbImage, test: &RgbImage, pixels_per_degree: f32) -> Vec<f32> {
+pub(crate) fn error_map(reference: &RgbImage, test: &RgbImage, pixels_per_degree: f32) -> Vec<f32> {
     assert_eq!(reference.dimensions(), test.dimensions());
     let (w, h) = (reference.width() as usize, reference.height() as usize);
     if w == 0 || h == 0 {

@@ -27,7 +27,7 @@ pub use refinement::Refinement;
 
 /// Adaptive sampling as a render's strategy: each pass refines the pixels
 /// the last decision left active, from their sample count to
-/// [`next_count`]; between passes [`Refinement::decide`] chooses the next
+/// `next_count`; between passes [`Refinement::decide`] chooses the next
 /// ones, cut to a sample budget when there is one. Done once no pixel is
 /// active, or the budget is spent.
 #[derive(Debug, Clone)]
@@ -39,6 +39,7 @@ pub struct Adaptive {
 }
 
 impl Adaptive {
+    /// The strategy for these adaptive settings, before its first pass.
     pub fn new(settings: AdaptiveSampling) -> Self {
         Self {
             settings,
@@ -104,7 +105,7 @@ impl SamplingStrategy for Adaptive {
 /// account: always below the minimum, never at the maximum, else while
 /// the error is not below [`threshold_at`] (so a threshold of 0 refines
 /// every pixel to the maximum).
-pub fn is_active(samples: u32, error: f32, cost: f32, a: &AdaptiveSampling) -> bool {
+pub(crate) fn is_active(samples: u32, error: f32, cost: f32, a: &AdaptiveSampling) -> bool {
     samples < a.min_spp || (samples < a.max_spp && error >= threshold_at(samples, cost, a))
 }
 
@@ -129,7 +130,7 @@ pub fn is_active(samples: u32, error: f32, cost: f32, a: &AdaptiveSampling) -> b
 /// error; priced by samples only, reflections and refractions, which
 /// cost several times a floor pixel's tests per sample, refined as often
 /// as the floor (docs/PERFORMANCE.md measures the rules).
-pub fn threshold_at(samples: u32, cost: f32, a: &AdaptiveSampling) -> f32 {
+pub(crate) fn threshold_at(samples: u32, cost: f32, a: &AdaptiveSampling) -> f32 {
     let samples = samples.max(a.min_spp) as f32 / a.min_spp.max(1) as f32;
     a.noise_threshold * samples * cost
 }
@@ -140,7 +141,7 @@ pub fn threshold_at(samples: u32, cost: f32, a: &AdaptiveSampling) -> f32 {
 /// and each half of a power of two samples in Sobol's order is a net of
 /// its own; and few passes keep their overhead small (the pass barrier,
 /// the decision over the whole film).
-pub fn next_count(samples: u32, a: &AdaptiveSampling) -> u32 {
+pub(crate) fn next_count(samples: u32, a: &AdaptiveSampling) -> u32 {
     let next = if samples < a.min_spp {
         (2 * samples).clamp(1, a.min_spp)
     } else {
@@ -162,7 +163,7 @@ const EARLY_LIGHT_POINTS: u32 = 4;
 /// soft_shadows the fill light, a third of the area light's power, takes
 /// 1 where the area light takes 4 (every light at 4, adaptive took 65-79%
 /// of uniform 4 x 4's time to reach its error; so, 50-61%).
-pub fn early_light_points(power: f32, brightest: f32) -> u32 {
+pub(crate) fn early_light_points(power: f32, brightest: f32) -> u32 {
     let share = if brightest > 0.0 {
         power / brightest
     } else {
@@ -190,7 +191,7 @@ pub fn early_light_points(power: f32, brightest: f32) -> u32 {
 /// intersection tests, so in its cost, as any ray's.
 ///
 /// [`SampleStream::next_light_points`]: crate::sampling::SampleStream::next_light_points
-pub fn light_points(rank: u32, early: u32, a: &AdaptiveSampling) -> Range<u32> {
+pub(crate) fn light_points(rank: u32, early: u32, a: &AdaptiveSampling) -> Range<u32> {
     let until = 2 * a.min_spp;
     let first = rank.min(until) * early + rank.saturating_sub(until);
     let count = if rank < until { early } else { 1 };
@@ -231,7 +232,7 @@ pub(super) fn plan(film: &Film, tile: &Tile, a: &AdaptiveSampling) -> Vec<Range<
 /// pass would take the film past it, only the pixels with the largest
 /// error estimates whose samples fit refine (ties in row-major order),
 /// and the flag says the budget is spent, so that pass is the last.
-pub fn within_budget(
+pub(crate) fn within_budget(
     film: &Film,
     mut active: Vec<bool>,
     a: &AdaptiveSampling,

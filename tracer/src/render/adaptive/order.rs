@@ -3,7 +3,7 @@
 use crate::sampling::{sobol_second, stratum_order};
 
 /// The order in which a pixel's adaptive samples visit its `m * m` strata,
-/// as the uniform passes whose samples they take (see [`stratum_order`]):
+/// as the uniform passes whose samples they take (see `stratum_order`):
 /// the first two dimensions of Sobol's sequence, a (0, 2)-sequence in base
 /// 2, so each prefix of 2^j samples falls once in every box of area 2^-j
 /// the pixel splits into by halvings: the first 8 of an 8 x 8 round take
@@ -27,6 +27,7 @@ pub struct RoundOrder {
 }
 
 impl RoundOrder {
+    /// The order for `m` x `m` strata a round (`m` below 1 counts as 1).
     pub fn new(m: u32) -> Self {
         let m = m.max(1);
         let uniform = stratum_order(m);

@@ -65,16 +65,16 @@ impl Refinement {
     }
 
     /// The film's mean tests per sample that costs are relative to
-    /// ([`Refinement::relative_cost`]); `None` before the first decision
+    /// (`Refinement::relative_cost`); `None` before the first decision
     /// past the minimum.
     pub fn mean_per_sample(&self) -> Option<f32> {
         self.mean_per_sample
     }
 
     /// Which pixels of `film` the next pass refines, row-major: those
-    /// active on their own account ([`is_active`] with their
-    /// [`Refinement::pooled_errors`] and [`Refinement::relative_cost`]),
-    /// and those whose samples still vary enough ([`variance_estimate`]
+    /// active on their own account (`is_active` with their
+    /// [`Refinement::pooled_errors`] and `Refinement::relative_cost`),
+    /// and those whose samples still vary enough (`variance_estimate`
     /// at or above their threshold) next to a pixel whose error is above
     /// its own. Two halves of a few samples can agree by chance on an
     /// edge; its neighbours along the edge rarely all do (the window
@@ -109,7 +109,8 @@ impl Refinement {
         active
     }
 
-    /// Each pixel's error (row-major) as [`error_estimate`] gives it,
+    /// Each pixel's error (row-major) as
+    /// [`error_estimate`](crate::render::estimate::error_estimate) gives it,
     /// pooled over its 3 x 3 neighbourhood: the mean of the squared
     /// errors, its own weighing four times a neighbour's, a neighbour's
     /// scaled to the pixel's sample count (as 1 / n). Two halves of 2
@@ -127,7 +128,7 @@ impl Refinement {
     /// them (half the film's mean tests per sample), over the film's mean
     /// of that ([`Refinement::mean_per_sample`]). 1 when nothing was
     /// tested.
-    pub fn relative_cost(&self, i: usize) -> f32 {
+    pub(crate) fn relative_cost(&self, i: usize) -> f32 {
         let mean = self.mean_per_sample.unwrap_or(0.0);
         if mean <= 0.0 {
             return 1.0;

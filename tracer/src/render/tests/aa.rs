@@ -37,19 +37,19 @@ fn each_round_of_passes_visits_every_stratum_of_every_pixel_once() {
             keep_refining: true,
             ..RenderSettings::default()
         };
-        let frame = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
+        let plan = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
         let tracer = Tracer::new(&w, &idx, &settings);
         let count = n * n;
-        assert_eq!(frame.passes_target(), count);
+        assert_eq!(plan.passes_target(), count);
         for (x, y) in [(0, 0), (4, 3), (8, 6), (2, 5)] {
             // Two rounds: refining past the target starts a fresh one.
             for round in 0..2 {
                 let mut hits = vec![0u32; count as usize];
                 for pass in round * count..(round + 1) * count {
                     let mut eye = EyeRay::default();
-                    frame.sample(&tracer, x, y, pass, &mut Counters::default(), &mut eye);
+                    plan.sample(&tracer, x, y, pass, &mut Counters::default(), &mut eye);
                     let ray = eye.0.expect("an eye ray");
-                    let p = frame.camera.project(ray.origin + ray.dir).unwrap();
+                    let p = plan.camera.project(ray.origin + ray.dir).unwrap();
                     let (fx, fy) = (p.x - x as f32, p.y - y as f32);
                     assert!(
                         (0.0..1.0).contains(&fx) && (0.0..1.0).contains(&fy),

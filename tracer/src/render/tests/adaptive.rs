@@ -106,23 +106,23 @@ fn differing(a: &[bool], b: &[bool]) -> usize {
 }
 
 /// The adaptive passes run by hand, one tile after another on this thread.
-fn sequential(frame: &RenderPlan) -> Film {
-    let a = *frame.settings.adaptive().expect("adaptive settings");
-    let mut film = Film::with_error_estimate(frame.settings.width, frame.settings.height);
+fn sequential(plan: &RenderPlan) -> Film {
+    let a = *plan.settings.adaptive().expect("adaptive settings");
+    let mut film = Film::with_error_estimate(plan.settings.width, plan.settings.height);
     let mut counters = Counters::default();
     let mut refinement = adaptive::Refinement::default();
     loop {
-        let plans: Vec<_> = frame
+        let planned: Vec<_> = plan
             .tiles
             .iter()
             .map(|tile| adaptive::plan(&film, tile, &a))
             .collect();
-        if plans.iter().flatten().all(|samples| samples.is_empty()) {
+        if planned.iter().flatten().all(|samples| samples.is_empty()) {
             return film;
         }
-        for (tile, plan) in frame.tiles.iter().zip(plans) {
-            let samples = frame.render_samples(tile, &plan, false, &mut counters);
-            let counts: Vec<u32> = plan.iter().map(|s| s.len() as u32).collect();
+        for (tile, samples_of) in plan.tiles.iter().zip(planned) {
+            let samples = plan.render_samples(tile, &samples_of, false, &mut counters);
+            let counts: Vec<u32> = samples_of.iter().map(|s| s.len() as u32).collect();
             film.add_samples(tile, &counts, &samples.values, &samples.tests);
         }
         let active = refinement.decide(&film, &a);
@@ -145,7 +145,7 @@ fn progressive_passes_equal_a_sequential_render() {
     let settings = adaptive(0.02, 4, 49);
     let w = world(SCENE);
     let idx = index(&w, AccelKind::Bvh);
-    let frame = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
+    let plan = RenderPlan::new(w.clone(), idx.clone(), settings.clone()).unwrap();
     let job = RenderJob::start(
         w,
         Some(idx),
@@ -158,7 +158,7 @@ fn progressive_passes_equal_a_sequential_render() {
     .unwrap();
     let (film, stats, state) = job.wait();
     assert_eq!(state, JobState::Done);
-    let expected = sequential(&frame);
+    let expected = sequential(&plan);
     assert_eq!(counts(&film), counts(&expected), "sample counts");
     for y in 0..film.height() {
         for x in 0..film.width() {

@@ -2,6 +2,7 @@
 
 mod aa;
 mod adaptive;
+mod estimate;
 mod lens;
 mod shadows;
 
@@ -64,12 +65,12 @@ fn settings(width: u32, height: u32) -> RenderSettings {
 }
 
 /// The plan executed by hand, one tile after another on this thread.
-fn sequential(frame: &RenderPlan) -> Film {
-    let mut film = Film::new(frame.settings.width, frame.settings.height);
+fn sequential(plan: &RenderPlan) -> Film {
+    let mut film = Film::new(plan.settings.width, plan.settings.height);
     let mut counters = Counters::default();
-    for pass in 0..frame.passes_target() {
-        for tile in &frame.tiles {
-            film.add_tile(tile, &frame.render_tile(pass, tile, &mut counters));
+    for pass in 0..plan.passes_target() {
+        for tile in &plan.tiles {
+            film.add_tile(tile, &plan.render_tile(pass, tile, &mut counters));
         }
     }
     film
@@ -80,9 +81,9 @@ fn progressive_passes_equal_a_sequential_render_bit_for_bit() {
     let w = world(SCENE);
     let idx = index(&w, AccelKind::Bvh);
     let s = settings(70, 45);
-    let frame = RenderPlan::new(w.clone(), idx.clone(), s.clone()).unwrap();
-    assert_eq!(frame.passes_target(), 9);
-    let expected = sequential(&frame);
+    let plan = RenderPlan::new(w.clone(), idx.clone(), s.clone()).unwrap();
+    assert_eq!(plan.passes_target(), 9);
+    let expected = sequential(&plan);
     for threads in [1, 2] {
         let (film, stats) = render(w.clone(), idx.clone(), s.clone(), Some(threads)).unwrap();
         assert_eq!(film, expected, "{threads} thread(s)");

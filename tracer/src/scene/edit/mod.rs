@@ -38,14 +38,34 @@ pub enum Effect {
 pub enum Edit {
     /// `object N ...`: that object alone. A material field on a material
     /// other objects share first gives the object its own copy.
-    Object { index: usize, change: ObjectChange },
+    Object {
+        /// The object, counted from 0 in file order.
+        index: usize,
+        /// What happens to it.
+        change: ObjectChange,
+    },
     /// `material M FIELD ...`: every object that uses material M.
-    Material { index: usize, field: MaterialField },
+    Material {
+        /// The material, counted from 0 in file order.
+        index: usize,
+        /// The field set and its new value.
+        field: MaterialField,
+    },
     /// `light N ...`.
-    Light { index: usize, change: LightChange },
+    Light {
+        /// The light, counted from 0 in file order.
+        index: usize,
+        /// What happens to it.
+        change: LightChange,
+    },
     /// `light N add l ...` / `add al ...`: a new light at `index` (the
     /// number of lights appends it).
-    AddLight { index: usize, light: LightSpec },
+    AddLight {
+        /// Where the light goes: 0..=the number of lights.
+        index: usize,
+        /// The light added.
+        light: LightSpec,
+    },
     /// `light N remove`.
     RemoveLight(usize),
     /// `camera FIELD ...`.
@@ -111,14 +131,22 @@ pub enum LightChange {
     /// `aim X Y Z`: the point an area light faces.
     Aim(Vec3),
     /// `size W H`: an area light's width and height.
-    Size { width: f32, height: f32 },
+    Size {
+        /// Extent along the light's first side, in scene units, > 0.
+        width: f32,
+        /// Extent along the second side, in scene units, > 0.
+        height: f32,
+    },
 }
 
 /// What an [`Edit::Camera`] changes: the `v` fields.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum CameraChange {
+    /// `from X Y Z`: the eye's position.
     From(Vec3),
+    /// `at X Y Z`: the point seen at the image's centre.
     At(Vec3),
+    /// `up X Y Z`: the direction that is up in the image; not parallel to the view.
     Up(Vec3),
     /// Degrees, between the centres of the top and bottom pixel rows.
     Angle(f32),
@@ -135,19 +163,29 @@ pub enum EditError {
     /// An index past the end.
     #[error("{what} {index}: the scene has {}", count_range(what, *count))]
     NoSuch {
+        /// What was indexed: "object", "material", "light".
         what: &'static str,
+        /// The index given.
         index: usize,
+        /// How many there are.
         count: usize,
     },
     /// A new light's place past the end.
     #[error("light {index}: a new light goes at 0..{count} (the scene has {count} lights)")]
-    NoSlot { index: usize, count: usize },
+    NoSlot {
+        /// The place given.
+        index: usize,
+        /// How many lights there are (the last valid place).
+        count: usize,
+    },
     /// A field the target does not have.
     #[error("no field '{field}' for {target}; fields: {fields}")]
     UnknownField {
+        /// The field name given.
         field: String,
         /// "a sphere", "a material", "an area light", "the camera", ...
         target: String,
+        /// The target's field names, comma-separated.
         fields: String,
     },
     /// A first word that names nothing to edit.
@@ -158,42 +196,82 @@ pub enum EditError {
     Empty,
     /// A word where an index was expected.
     #[error("{what} '{found}': not an index ({what}s count from 0)")]
-    BadIndex { what: &'static str, found: String },
+    BadIndex {
+        /// What was indexed: "object", "material", "light".
+        what: &'static str,
+        /// The word found instead.
+        found: String,
+    },
     /// A field given the wrong number of values.
     #[error("{field} takes {expected}, found {found}")]
     WrongCount {
+        /// The field given.
         field: String,
+        /// How many values it takes, in words ("3 numbers").
         expected: &'static str,
+        /// How many values were given.
         found: usize,
     },
     /// A value that is not a number.
     #[error("{field}: expected a number, found '{found}'")]
-    NotANumber { field: String, found: String },
+    NotANumber {
+        /// The field given.
+        field: String,
+        /// The word found instead of a number.
+        found: String,
+    },
     /// NaN or infinity.
     #[error("{field} must be a finite number, found {found}")]
-    NonFinite { field: String, found: String },
+    NonFinite {
+        /// The field given.
+        field: String,
+        /// The value as written.
+        found: String,
+    },
     /// A value the parser would refuse in a file.
     #[error("invalid {what}: {why}")]
-    Invalid { what: &'static str, why: String },
+    Invalid {
+        /// The value refused, as the parser names it.
+        what: &'static str,
+        /// The rule it breaks.
+        why: String,
+    },
     /// The P3F text of a `shape` or `add` that does not parse or is not one
     /// shape (light): the parser's message, at the column in that text.
     #[error("{field}: {message}")]
     Piece {
+        /// `shape` or `add`.
         field: &'static str,
+        /// The parser's message.
         message: String,
     },
     /// `share` on an object without a material of its own.
     #[error(
         "object {object}: its material {material} is not its own (the scene's last, used by it alone), so it cannot go back to sharing"
     )]
-    NotOwn { object: usize, material: u32 },
+    NotOwn {
+        /// The object.
+        object: usize,
+        /// The material it uses, shared with others or not the scene's last.
+        material: u32,
+    },
     /// An object that refers to a material the scene lacks (only a scene
     /// built in code can).
     #[error("object {object} refers to material {material}, which the scene lacks")]
-    MissingMaterial { object: usize, material: u32 },
+    MissingMaterial {
+        /// The object.
+        object: usize,
+        /// The material index it names, past the scene's materials.
+        material: u32,
+    },
     /// One more item than [`Limits`] allows.
     #[error("{what} would exceed the limit of {limit}")]
-    AboveLimit { what: &'static str, limit: usize },
+    AboveLimit {
+        /// What would be too many: "the light count", "the material count".
+        what: &'static str,
+        /// The limit.
+        limit: usize,
+    },
 }
 
 fn count_range(what: &str, count: usize) -> String {

@@ -47,7 +47,7 @@ impl<'a> Cursor<'a> {
     }
 
     /// Sets the command that later errors name.
-    pub fn set_command(&mut self, command: Option<&'a str>) {
+    pub(crate) fn set_command(&mut self, command: Option<&'a str>) {
         self.command = command;
     }
 
@@ -56,7 +56,7 @@ impl<'a> Cursor<'a> {
         lexer.next()
     }
 
-    pub fn next_token(&mut self) -> Option<Token<'a>> {
+    pub(crate) fn next_token(&mut self) -> Option<Token<'a>> {
         let token = self.lexer.next()?;
         self.remaining = self.remaining.saturating_sub(1);
         self.last_end = self.lexer.pos();
@@ -69,7 +69,7 @@ impl<'a> Cursor<'a> {
         self.peek().map_or(self.last_end, |t| t.pos)
     }
 
-    pub fn error_at(&self, pos: Pos, kind: ParseErrorKind) -> ParseError {
+    pub(crate) fn error_at(&self, pos: Pos, kind: ParseErrorKind) -> ParseError {
         ParseError {
             file: self.file.map(Path::to_path_buf),
             line: pos.line,
@@ -81,7 +81,7 @@ impl<'a> Cursor<'a> {
 
     /// `message` with the place a warning is about, written the way errors
     /// are (`file:line:column: in `command`: message`).
-    pub fn warning_at(&self, pos: Pos, message: &str) -> String {
+    pub(crate) fn warning_at(&self, pos: Pos, message: &str) -> String {
         let file = self
             .file
             .map_or_else(|| "<input>".to_string(), |f| f.display().to_string());
@@ -122,7 +122,7 @@ impl<'a> Cursor<'a> {
         }
     }
 
-    pub fn vec3(&mut self, expected: &'static str) -> Result<Vec3, ParseError> {
+    pub(crate) fn vec3(&mut self, expected: &'static str) -> Result<Vec3, ParseError> {
         Ok(Vec3::new(
             self.number(expected)?,
             self.number(expected)?,
@@ -184,7 +184,7 @@ impl<'a> Cursor<'a> {
 
     /// Checks that `count` items of `per_item` numbers can still follow,
     /// so nothing is reserved for data the input cannot hold.
-    pub fn ensure_input(
+    pub(crate) fn ensure_input(
         &self,
         what: &'static str,
         count: usize,
@@ -209,7 +209,7 @@ impl<'a> Cursor<'a> {
 
     /// How many number-like tokens come next, for commands whose form
     /// depends on their count (`f`, `l`, `al`).
-    pub fn numbers_ahead(&self) -> usize {
+    pub(crate) fn numbers_ahead(&self) -> usize {
         let mut lexer = self.lexer;
         let mut count = 0;
         while lexer.next().is_some_and(|t| looks_numeric(t.text)) {

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 
 use super::Parser;
-use crate::mesh_io::load_mesh_file;
 use crate::scene::lexer::Pos;
+use crate::scene::mesh_io::load_mesh_file;
 use crate::scene::{ParseError, ParseErrorKind, Primitive};
 
 impl Parser<'_, '_> {

@@ -33,7 +33,7 @@ impl SceneLoad {
         let per_mille = Arc::new(AtomicU32::new(NO_FRACTION));
         let progress = per_mille.clone();
         let spawned = target::spawn(THREAD_NAME, move || {
-            let mut on_progress = |p: tracer::mesh_io::LoadProgress| {
+            let mut on_progress = |p: tracer::scene::mesh_io::LoadProgress| {
                 let fraction = p.bytes_read as f64 / p.total_bytes.max(1) as f64;
                 progress.store((fraction.min(1.0) * 1000.0) as u32, Ordering::Relaxed);
                 wake();

@@ -24,7 +24,7 @@ use crate::gui::windows::background::Measuring;
 const THUMBNAIL: u32 = 96;
 
 /// How far the study is.
-enum Progress {
+enum StudyProgress {
     /// Work before the points, and the fraction of it done.
     Preparing(String, f32),
     Rendering {
@@ -34,7 +34,7 @@ enum Progress {
     },
 }
 
-type Update = crate::gui::windows::background::Update<Progress, Point>;
+type Update = crate::gui::windows::background::Update<StudyProgress, Point>;
 
 /// The window's state.
 pub struct StudiesWindow {
@@ -48,7 +48,7 @@ pub struct StudiesWindow {
     study: Option<Study>,
     subject: String,
     /// The run and its measured points.
-    measuring: Measuring<Progress, Point>,
+    measuring: Measuring<StudyProgress, Point>,
     /// Show error against time instead of time against the value.
     error_view: bool,
 }
@@ -280,8 +280,8 @@ impl StudiesWindow {
         let plan = study.plan();
         let runs = study.options.runs.max(1);
         match self.measuring.progress.as_ref()? {
-            Progress::Preparing(what, fraction) => Some((*fraction, what.clone())),
-            Progress::Rendering {
+            StudyProgress::Preparing(what, fraction) => Some((*fraction, what.clone())),
+            StudyProgress::Rendering {
                 point,
                 run,
                 fraction,

@@ -13,7 +13,7 @@ use crate::measure::study::{self, Param, Point, Study, StudyEvent, Subject};
 use crate::reports::bench_table::Format;
 use crate::reports::study_table;
 
-use super::{Progress, Update};
+use super::{StudyProgress, Update};
 
 /// The table as `table.md` and `table.csv` and the chart as `chart.png`
 /// in `dir/study-<param>-<subject>`; returns that folder.
@@ -56,13 +56,13 @@ pub(super) fn run(
     let mut on_event = |event: StudyEvent| {
         send(match event {
             StudyEvent::Preparing { what, fraction } => {
-                Update::Progress(Progress::Preparing(what.to_string(), fraction))
+                Update::Progress(StudyProgress::Preparing(what.to_string(), fraction))
             }
             StudyEvent::Rendering {
                 point,
                 run,
                 fraction,
-            } => Update::Progress(Progress::Rendering {
+            } => Update::Progress(StudyProgress::Rendering {
                 point,
                 run,
                 fraction,

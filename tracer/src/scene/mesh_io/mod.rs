@@ -29,6 +29,7 @@ pub use framing::{FRAMING_NOTE, frame};
 pub struct MeshPart {
     /// The OBJ object or group name, or the file's stem for PLY.
     pub name: String,
+    /// The vertex positions, in the file's coordinates.
     pub vertices: Vec<Vec3>,
     /// Zero-based, range-checked indices into `vertices`.
     pub triangles: Vec<[u32; 3]>,
@@ -39,6 +40,7 @@ pub struct MeshPart {
 /// What a mesh file holds, ready to become scene objects.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshFile {
+    /// The parts in file order: OBJ objects or groups, or one part for PLY.
     pub parts: Vec<MeshPart>,
     /// Things the user should know that did not stop the load (a missing
     /// MTL file).
@@ -65,7 +67,9 @@ impl MeshFile {
 /// The mesh formats the workbench reads, told apart by file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MeshFormat {
+    /// Wavefront OBJ (`.obj`), with MTL materials.
     Obj,
+    /// Stanford PLY (`.ply`), ASCII or binary.
     Ply,
 }
 
@@ -93,7 +97,12 @@ pub enum MeshPlace {
     Line(u64),
     /// A PLY element: its name and 0-based index (or the whole element
     /// list when `None`).
-    Element { name: String, index: Option<usize> },
+    Element {
+        /// The element's name, e.g. "vertex".
+        name: String,
+        /// Which one, 0-based; `None` for the whole list.
+        index: Option<usize>,
+    },
 }
 
 impl std::fmt::Display for MeshPlace {
@@ -114,8 +123,11 @@ impl std::fmt::Display for MeshPlace {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{}{place}: {message}", file.display())]
 pub struct MeshFileError {
+    /// The mesh file.
     pub file: PathBuf,
+    /// Where in it the fault is.
     pub place: MeshPlace,
+    /// What is wrong.
     pub message: String,
 }
 
@@ -132,7 +144,9 @@ impl MeshFileError {
 /// How much of a file has been read, for a progress message.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct LoadProgress {
+    /// Bytes read so far.
     pub bytes_read: u64,
+    /// The file's size in bytes.
     pub total_bytes: u64,
 }
 

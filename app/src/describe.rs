@@ -1,6 +1,8 @@
-//! Render settings in human words: a one-line label for a benchmark row,
-//! and what differs between two settings to label the sides of an A/B
-//! comparison ("grid on, m = 4" against "no acceleration").
+//! Render settings and counts in human words: a one-line label for a
+//! benchmark row, what differs between two settings to label the sides of
+//! an A/B comparison ("grid on, m = 4" against "no acceleration"), and a
+//! count with a metric suffix. Measurements label their cases with these
+//! and reports print them, so they live below both.
 
 use tracer::accel::AccelKind;
 use tracer::render::{Budget, RenderSettings};
@@ -176,6 +178,16 @@ pub fn side_labels(
     let join =
         |side: fn(&Difference) -> &str| diffs.iter().map(side).collect::<Vec<_>>().join(", ");
     (join(|d| &d.a), join(|d| &d.b))
+}
+
+/// A count with a metric suffix: 1234567 -> "1.23M".
+pub fn si(n: f64) -> String {
+    match n {
+        n if n >= 1e9 => format!("{:.2}G", n / 1e9),
+        n if n >= 1e6 => format!("{:.2}M", n / 1e6),
+        n if n >= 1e3 => format!("{:.1}k", n / 1e3),
+        n => format!("{n:.0}"),
+    }
 }
 
 #[cfg(test)]
