@@ -14,6 +14,7 @@ use tracer::render::{RenderSettings, View};
 use super::WorkbenchApp;
 use crate::gui::comparison::Comparison;
 use crate::gui::lessons;
+use crate::gui::platform::waker;
 use crate::gui::sides::{Controls, Side, Sides};
 use crate::lessons::format::read_lesson_file;
 use crate::lessons::replay::{open_scene, state_at_step};
@@ -98,11 +99,10 @@ impl WorkbenchApp {
             view: (tools.views.view != View::Shaded).then_some(tools.views.view),
             observer: observer.on,
         };
-        let wake = ctx.clone();
         self.lessons.keep_checking(
             looked_at,
             || window_state(sides, tools.inspector.pinned, layout),
-            move || wake.request_repaint(),
+            waker(ctx),
         );
     }
 

@@ -16,6 +16,8 @@ mod testing;
 
 pub use saving::{FileDialog, FileQuestion};
 
+use tracer::render::JobState;
+
 use crate::bundled;
 use crate::load::SceneSource;
 
@@ -30,7 +32,7 @@ use super::panels::{central, stats, unfilled};
 use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
-use super::sides::{RepaintWakers, SideId, Sides};
+use super::sides::{Activity, RepaintWakers, SideId, Sides};
 use super::windows::{ToolsAndOverlays, help};
 use messages::Messages;
 use navigation::Navigation;
@@ -128,6 +130,19 @@ impl WorkbenchApp {
     pub fn with_screenshot(mut self, plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
         self.screenshot = Some(ScreenshotRequest::new(plan, outcome));
         self
+    }
+
+    /// Whether a side's or the observer's engine is loading a scene or
+    /// rendering: the web page, which its workers cannot wake, keeps
+    /// looking while so.
+    pub fn is_rendering(&self) -> bool {
+        let sides = self.sides.each().map(|side| &side.engine);
+        sides.chain([self.observer.engine()]).any(|engine| {
+            matches!(
+                engine.activity(),
+                Activity::Loading { .. } | Activity::Job(JobState::Building | JobState::Rendering)
+            )
+        })
     }
 
     /// Turns the observer view on or off, as O does.

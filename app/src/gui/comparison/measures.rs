@@ -9,7 +9,7 @@ use image::RgbImage;
 use tracer::metrics;
 use tracer::render::{JobState, Snapshot, View};
 
-use crate::gui::platform::target;
+use crate::gui::platform::{target, waker};
 use crate::measure::ab::{Heatmap, Metrics, measure};
 use crate::measure::value_difference::ValueDifference;
 
@@ -57,7 +57,7 @@ impl Comparison {
                             self.metrics_of = Some(versions);
                             self.metrics = None;
                             self.pending =
-                                rgb(sa).and_then(|a| measure_in_background(a, sb, ctx.clone()));
+                                rgb(sa).and_then(|a| measure_in_background(a, sb, waker(ctx)));
                         }
                     }
                     Some(Err(message)) => {
@@ -128,7 +128,7 @@ fn rgb(snapshot: &Snapshot) -> Option<RgbImage> {
 fn measure_in_background(
     a: RgbImage,
     b: RgbImage,
-    ctx: egui::Context,
+    wake: impl Fn() + Send + 'static,
 ) -> Option<Receiver<Result<Metrics, String>>> {
     let (tx, rx) = channel();
     target::spawn("compare-metrics", move || {
@@ -136,7 +136,7 @@ fn measure_in_background(
             .map(|(metrics, _)| metrics)
             .map_err(|e| format!("{e:#}"));
         let _ = tx.send(result);
-        ctx.request_repaint();
+        wake();
     })
     .ok()?;
     Some(rx)

@@ -39,7 +39,7 @@ pub struct PendingReference(Receiver<Picked>);
 
 impl PendingReference {
     /// Asks for an image file and reads it (`None` when cancelled).
-    pub fn pick(encoding: Encoding, wake: egui::Context) -> Option<PendingReference> {
+    pub fn pick(encoding: Encoding, wake: impl Fn() + Send + 'static) -> Option<PendingReference> {
         let (tx, rx) = channel();
         target::spawn("reference-dialog", move || {
             let picked = target::FileDialog::new()
@@ -47,7 +47,7 @@ impl PendingReference {
                 .pick_file();
             let result = picked.map(|path| read(&path, encoding));
             let _ = tx.send(result);
-            wake.request_repaint();
+            wake();
         })
         .ok()?;
         Some(PendingReference(rx))

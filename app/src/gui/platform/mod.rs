@@ -14,3 +14,17 @@ pub mod screenshot;
 #[cfg_attr(not(target_family = "wasm"), path = "native.rs")]
 #[cfg_attr(target_family = "wasm", path = "web.rs")]
 pub mod target;
+
+/// What background work calls when it has something to show: a repaint
+/// of the window on the desktop, nothing on the web page. A worker cannot
+/// call into eframe there (its repaint reads the page's clock through
+/// `window`, which a worker lacks: "should have a Window"), so the page
+/// looks again while work is in flight instead (`target::busy`).
+pub fn waker(ctx: &egui::Context) -> impl Fn() + Send + Sync + Clone + 'static {
+    let ctx = ctx.clone();
+    move || {
+        if target::WORK_WAKES_WINDOW {
+            ctx.request_repaint();
+        }
+    }
+}

@@ -7,6 +7,7 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use tracer::render::JobState;
 use tracer::render::driver::Priority;
@@ -21,10 +22,32 @@ use super::super::WorkbenchApp;
 /// render runs ([`Page`]).
 pub const WORK_WAKES_WINDOW: bool = false;
 
+/// Background work started and not finished ([`spawn`]): while any is,
+/// the page keeps looking for its results ([`busy`]).
+static IN_FLIGHT: AtomicUsize = AtomicUsize::new(0);
+
+/// Counts a piece of background work out of [`IN_FLIGHT`] when it ends.
+struct InFlight;
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        IN_FLIGHT.fetch_sub(1, Ordering::Release);
+    }
+}
+
 /// Runs `work` in the background on one of the page's workers.
 pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
-    rayon::spawn(work);
+    IN_FLIGHT.fetch_add(1, Ordering::Acquire);
+    rayon::spawn(move || {
+        let _counted = InFlight;
+        work();
+    });
     Ok(())
+}
+
+/// Whether background work started with [`spawn`] is still running.
+fn busy() -> bool {
+    IN_FLIGHT.load(Ordering::Acquire) > 0
 }
 
 /// No pool of the engine's own: a page's jobs render on the global pool
@@ -158,12 +181,9 @@ impl eframe::App for Page {
         self.app.ui(ui, frame);
         self.tell_page();
         // Workers do not wake the page (WORK_WAKES_WINDOW): it looks again
-        // while side A's render runs.
-        let running = self
-            .app
-            .shown()
-            .is_none_or(|shown| matches!(shown.state, JobState::Building | JobState::Rendering));
-        if running {
+        // while a render or other background work runs, and once after
+        // (the frame that sees it done shows its result).
+        if self.app.is_rendering() || busy() {
             ui.ctx().request_repaint_after(POLL);
         }
     }
