@@ -14,6 +14,7 @@ mod comparison;
 mod editor;
 mod image;
 mod lessons;
+mod link;
 mod observer;
 mod panels;
 mod platform;

@@ -16,7 +16,7 @@ use crate::gui::comparison::Comparison;
 use crate::gui::lessons;
 use crate::gui::platform::waker;
 use crate::gui::sides::{Controls, Side, Sides};
-use crate::lessons::format::read_lesson_file;
+use crate::lessons::format::{Lesson, LessonErrors, read_bundled, read_lesson_file};
 use crate::lessons::replay::{open_scene, state_at_step};
 use crate::lessons::state::Layout;
 use crate::lessons::{LessonState, SideState};
@@ -33,7 +33,28 @@ impl WorkbenchApp {
     /// Opens the lesson file `path` in the Lessons window and sets up its
     /// first step (`workbench --lesson FILE`).
     pub fn open_lesson(&mut self, path: &Path) {
-        match read_lesson_file(path) {
+        self.set_up_lesson(read_lesson_file(path));
+    }
+
+    /// Opens the bundled lesson `name` as [`Self::open_lesson`] opens a
+    /// file (a page's `?lesson=NAME`); an unknown name is said with the
+    /// names there are.
+    pub fn open_bundled_lesson(&mut self, name: &str) {
+        match crate::lessons::bundled::find(name) {
+            Some(bundled) => self.set_up_lesson(read_bundled(bundled)),
+            None => {
+                self.messages.error = Some(format!(
+                    "no bundled lesson is called {name:?}: the lessons are {}",
+                    crate::lessons::bundled::names().join(", ")
+                ))
+            }
+        }
+    }
+
+    /// Shows `lesson` in the Lessons window with its first step not done
+    /// set up, or says why it does not read.
+    fn set_up_lesson(&mut self, lesson: Result<Lesson, LessonErrors>) {
+        match lesson {
             Ok(lesson) => {
                 self.lessons.add(lesson);
                 self.lessons.open = true;

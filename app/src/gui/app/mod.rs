@@ -25,6 +25,7 @@ use super::commands::Command;
 use super::comparison::Comparison;
 use super::editor;
 use super::lessons::Lessons;
+use super::link::Link;
 use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
@@ -143,6 +144,35 @@ impl WorkbenchApp {
                 Activity::Loading { .. } | Activity::Job(JobState::Building | JobState::Rendering)
             )
         })
+    }
+
+    /// Opens what a page's link asks for (its query, `?lesson=shadows`):
+    /// its scene, then its lesson (which sets up a scene of its own). A
+    /// query that does not read, or a name not bundled, is said, with the
+    /// names there are.
+    pub fn open_link(&mut self, query: &str) {
+        let link = match Link::parse(query) {
+            Ok(link) => link,
+            Err(e) => {
+                self.messages.error = Some(e);
+                return;
+            }
+        };
+        if let Some(name) = &link.scene {
+            match bundled::find(name) {
+                Some(scene) => self.open(SceneSource::Bundled(scene.name.to_string())),
+                None => {
+                    let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
+                    self.messages.error = Some(format!(
+                        "no bundled scene is called {name:?}: the scenes are {}",
+                        names.join(", ")
+                    ));
+                }
+            }
+        }
+        if let Some(name) = &link.lesson {
+            self.open_bundled_lesson(name);
+        }
     }
 
     /// Turns the observer view on or off, as O does.

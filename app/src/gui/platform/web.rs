@@ -100,7 +100,9 @@ impl FileDialog {
 }
 
 /// Starts the window on the page's canvas `canvas_id`, on the bundled
-/// default scene. The page calls it once its workers are up.
+/// default scene, then opens what the page's link asks for
+/// (`?lesson=NAME`, `?scene=NAME`). The page calls it once its
+/// workers are up.
 #[wasm_bindgen]
 pub async fn start(canvas_id: String) -> Result<(), JsValue> {
     let canvas = web_sys::window()
@@ -118,8 +120,11 @@ pub async fn start(canvas_id: String) -> Result<(), JsValue> {
             canvas,
             options,
             Box::new(|cc| {
+                let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, None);
+                let query = web_sys::window().and_then(|w| w.location().search().ok());
+                app.open_link(&query.unwrap_or_default());
                 Ok(Box::new(Page {
-                    app: WorkbenchApp::new(&cc.egui_ctx, cc.storage, None),
+                    app,
                     said: String::new(),
                 }))
             }),
