@@ -9,6 +9,7 @@ Talks DevTools through check_report_page's standard-library client.
 
     scripts/check_web_page.py [--dist web/dist] [--screenshot page.png]
                               [--chromium PATH] [--timeout SECONDS]
+                              [--query ?lesson=NAME --lesson NAME]
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -39,7 +40,8 @@ STATUS = (
     "(() => { const data = document.body ? document.body.dataset : {};"
     " return JSON.stringify({isolated: self.crossOriginIsolated,"
     " render: data.render || '', passes: Number(data.passes || 0),"
-    " workers: Number(data.workers || 0), now: performance.now()}); })()"
+    " workers: Number(data.workers || 0), lesson: data.lesson || '',"
+    " now: performance.now()}); })()"
 )
 
 
@@ -65,7 +67,7 @@ def status(page):
     return json.loads(result["result"]["value"])
 
 
-def check(url, timeout, screenshot, chromium):
+def check(url, timeout, screenshot, chromium, lesson):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     try:
         process, port = devtools.start_chromium(chromium, profile)
@@ -95,6 +97,8 @@ def check(url, timeout, screenshot, chromium):
             problems.append("the page is not cross-origin isolated")
         if now["render"] != "done":
             problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
+        if lesson is not None and now["lesson"] != lesson:
+            problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
         if screenshot:
             shot = page.command("Page.captureScreenshot", format="png")
             with open(screenshot, "wb") as f:
@@ -119,11 +123,13 @@ def main():
     parser.add_argument("--screenshot")
     parser.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     parser.add_argument("--timeout", type=float, default=300.0)
+    parser.add_argument("--query", default="", help="the page's query, as ?lesson=shadows")
+    parser.add_argument("--lesson", help="the lesson the Lessons panel must show at the end")
     args = parser.parse_args()
     httpd = serve_web.server(args.dist, 0, True)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
-    url = f"http://127.0.0.1:{httpd.server_port}/"
-    return check(url, args.timeout, args.screenshot, args.chromium)
+    url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
+    return check(url, args.timeout, args.screenshot, args.chromium, args.lesson)
 
 
 if __name__ == "__main__":

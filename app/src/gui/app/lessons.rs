@@ -5,16 +5,16 @@
 //! them.
 
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use tracer::render::{RenderSettings, View};
 
 use super::WorkbenchApp;
 use crate::gui::comparison::Comparison;
 use crate::gui::lessons;
-use crate::gui::platform::waker;
+use crate::gui::platform::{target, waker};
 use crate::gui::sides::{Controls, Side, Sides};
 use crate::lessons::format::{Lesson, LessonErrors, read_bundled, read_lesson_file};
 use crate::lessons::replay::{open_scene, state_at_step};
@@ -25,7 +25,7 @@ use crate::load::SceneSource;
 
 /// A step set up, waiting for its scene to load.
 pub(super) struct PendingSetup {
-    path: PathBuf,
+    source: SceneSource,
     state: LessonState,
 }
 
@@ -145,8 +145,9 @@ impl WorkbenchApp {
     }
 
     /// Replays the lesson up to the current step and opens the result: its
-    /// scene (written to a P3F file of the lesson's name, edits included),
-    /// then, once loaded, its settings, compare mode, pixel and layout.
+    /// scene (written as P3F under the lesson's name, edits included:
+    /// `target::lesson_scene`), then, once loaded, its settings, compare
+    /// mode, pixel and layout.
     pub(super) fn set_up_lesson_step(&mut self) {
         let Some(lesson) = self.lessons.lesson().cloned() else {
             return;
@@ -158,16 +159,12 @@ impl WorkbenchApp {
             let mut written = state.a.scene.clone();
             written.view.width = state.a.settings.width;
             written.view.height = state.a.settings.height;
-            let dir = std::env::temp_dir().join("whitted-workbench-lessons");
-            std::fs::create_dir_all(&dir).with_context(|| format!("{}", dir.display()))?;
-            let path = dir.join(format!("{}.p3f", lesson.name));
-            let text = tracer::scene::write_p3f_in(&written, &dir);
-            std::fs::write(&path, text).with_context(|| format!("{}", path.display()))?;
-            Ok(PendingSetup { path, state })
+            let source = target::lesson_scene(&lesson.name, &written)?;
+            Ok(PendingSetup { source, state })
         })();
         match prepared {
             Ok(setup) => {
-                let source = SceneSource::File(setup.path.clone());
+                let source = setup.source.clone();
                 self.pending_setup = Some(setup);
                 self.open(source);
             }
@@ -183,10 +180,12 @@ impl WorkbenchApp {
         let Some(setup) = self.pending_setup.take() else {
             return;
         };
-        if *loaded != SceneSource::File(setup.path.clone()) {
+        if *loaded != setup.source {
             return;
         }
-        self.session.recent.retain(|p| p != &setup.path);
+        if let SceneSource::File(path) = &setup.source {
+            self.session.recent.retain(|p| p != path);
+        }
         let state = setup.state;
         adopt(&mut self.sides.a.controls, &state.a.settings);
         if state.b.is_some() != self.sides.b.is_some() {

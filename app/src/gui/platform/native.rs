@@ -4,7 +4,12 @@
 
 use std::sync::Arc;
 
+use anyhow::Context;
+use tracer::scene::Scene;
+
 use tracer::render::driver::{Priority, render_pool as pool_of};
+
+use crate::load::SceneSource;
 
 /// The desktop's own file dialogs, asked from a background thread.
 pub use rfd::FileDialog;
@@ -31,4 +36,16 @@ pub fn render_pool(priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>,
 /// the cores (best effort).
 pub fn lowest_priority() {
     let _ = thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Min);
+}
+
+/// Where a lesson's step set up puts its scene (`scene`, edits included):
+/// a P3F file named after the lesson in the temp folder, which the window
+/// opens as any scene file (its paths written relative to that folder).
+pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
+    let dir = std::env::temp_dir().join("whitted-workbench-lessons");
+    std::fs::create_dir_all(&dir).with_context(|| format!("{}", dir.display()))?;
+    let path = dir.join(format!("{name}.p3f"));
+    let text = tracer::scene::write_p3f_in(scene, &dir);
+    std::fs::write(&path, text).with_context(|| format!("{}", path.display()))?;
+    Ok(SceneSource::File(path))
 }

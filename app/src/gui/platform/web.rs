@@ -5,7 +5,7 @@
 //! pool, which `wasm-bindgen-rayon` fills with Web Workers before the
 //! window starts (`initThreadPool`, called by `web/index.html`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -15,6 +15,8 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::super::WorkbenchApp;
+use crate::load::SceneSource;
+use tracer::scene::Scene;
 
 /// Work on a worker cannot wake the window: eframe's repaint callback
 /// reads the page's clock through `window`, which a worker lacks (it
@@ -58,6 +60,15 @@ pub fn render_pool(_priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>
 
 /// Workers have no priorities.
 pub fn lowest_priority() {}
+
+/// Where a lesson's step set up puts its scene (`scene`, edits included):
+/// in memory, as P3F text named after the lesson, as a page has no files.
+pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
+    Ok(SceneSource::Written {
+        name: format!("{name}.p3f"),
+        text: tracer::scene::write_p3f_in(scene, Path::new("")).into(),
+    })
+}
 
 /// A page has no synchronous file dialog and no folder picker: every
 /// question is unanswered, which the window reports where it was asked
@@ -164,7 +175,12 @@ impl Page {
             Some(error) => format!("error: {error}"),
             None => state,
         };
-        let said = format!("{state}|{passes}");
+        let lessons = self.app.lessons();
+        let lesson = match lessons.lesson() {
+            Some(lesson) if lessons.open => lesson.name.clone(),
+            _ => String::new(),
+        };
+        let said = format!("{state}|{passes}|{lesson}");
         if said == self.said {
             return;
         }
@@ -174,6 +190,7 @@ impl Page {
         {
             let _ = body.set_attribute("data-render", &state);
             let _ = body.set_attribute("data-passes", &passes.to_string());
+            let _ = body.set_attribute("data-lesson", &lesson);
             let workers = rayon::current_num_threads().to_string();
             let _ = body.set_attribute("data-workers", &workers);
         }
