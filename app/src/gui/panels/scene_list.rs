@@ -115,15 +115,20 @@ impl Catalog {
         self.started
     }
 
-    /// How big the bundled scene `name` is, once counted.
+    /// How big the bundled scene `name` is, once counted. Read without
+    /// waiting (`try_lock`): the window's thread must never wait for the
+    /// counting one, which on the web page is an error ("Atomics.wait
+    /// cannot be called in this context"); a count being written shows
+    /// on the next frame.
     pub fn summary(&self, name: &str) -> Option<String> {
-        self.summaries.lock().ok()?.get(name).cloned().flatten()
+        self.summaries.try_lock().ok()?.get(name).cloned().flatten()
     }
 
-    /// Whether every bundled scene was counted.
+    /// Whether every bundled scene was counted (false while the counting
+    /// thread writes, as [`Self::summary`] does not wait).
     pub fn is_complete(&self) -> bool {
         self.summaries
-            .lock()
+            .try_lock()
             .is_ok_and(|counts| counts.len() == bundled::SCENES.len())
     }
 }
