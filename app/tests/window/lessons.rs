@@ -10,8 +10,9 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use workbench::gui::WorkbenchApp;
 use workbench::lessons::Verdict;
+use workbench::load::SceneSource;
 
-use crate::harness::{DroppedPath, WINDOW, ready_window, wait_for};
+use crate::harness::{DroppedPath, WINDOW, ready_window, small_window, wait_for};
 use crate::persistence::{MemoryStorage, start};
 use crate::support::Scratch;
 
@@ -274,11 +275,10 @@ fn a_link_opens_a_bundled_lesson_set_up() {
 }
 
 /// A link naming no bundled lesson or scene, or asking for what the page
-/// does not read, says so with the names there are, and opens nothing.
+/// does not read, says so with the names there are, and opens nothing;
+/// the error outlasts a scene loaded after it.
 #[test]
 fn a_link_to_nothing_bundled_says_what_there_is() {
-    let mut harness = ready_window(WINDOW);
-    let opened = harness.state().lessons().lesson().map(|l| l.name.clone());
     for (query, said, one_there_is) in [
         (
             "?lesson=shadow",
@@ -296,11 +296,24 @@ fn a_link_to_nothing_bundled_says_what_there_is() {
             "lesson and scene",
         ),
     ] {
+        let mut harness = small_window(Harness::builder());
+        let opened = harness.state().lessons().lesson().map(|l| l.name.clone());
         harness.state_mut().open_link(query);
+        // The page's first scene may load before or after the link is
+        // read: a scene loaded after it must leave its error shown.
+        harness
+            .state_mut()
+            .open(SceneSource::Bundled("glass".into()));
+        wait_for(&mut harness, "the next scene", |app| {
+            app.engine()
+                .scene()
+                .is_some_and(|s| s.source.label() == "glass")
+        });
         let error = harness.state().error().unwrap_or_default().to_string();
         assert!(error.contains(said), "{query}: {error}");
         assert!(error.contains(one_there_is), "{query}: {error}");
         let now = harness.state().lessons().lesson().map(|l| l.name.clone());
         assert_eq!(now, opened, "{query} changed the lesson shown");
+        assert!(!harness.state().lessons().open, "{query} opened the panel");
     }
 }

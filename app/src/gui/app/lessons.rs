@@ -42,12 +42,10 @@ impl WorkbenchApp {
     pub fn open_bundled_lesson(&mut self, name: &str) {
         match crate::lessons::bundled::find(name) {
             Some(bundled) => self.set_up_lesson(read_bundled(bundled)),
-            None => {
-                self.messages.error = Some(format!(
-                    "no bundled lesson is called {name:?}: the lessons are {}",
-                    crate::lessons::bundled::names().join(", ")
-                ))
-            }
+            None => self.messages.lasting_error(format!(
+                "no bundled lesson is called {name:?}: the lessons are {}",
+                crate::lessons::bundled::names().join(", ")
+            )),
         }
     }
 
@@ -60,7 +58,7 @@ impl WorkbenchApp {
                 self.lessons.open = true;
                 self.set_up_lesson_step();
             }
-            Err(e) => self.messages.error = Some(e.to_string()),
+            Err(e) => self.messages.lasting_error(e.to_string()),
         }
     }
 
@@ -81,7 +79,7 @@ impl WorkbenchApp {
         let read = match crate::lessons::folder::read(dir) {
             Ok(read) => read,
             Err(e) => {
-                self.messages.error = Some(format!("{e:#}"));
+                self.messages.lasting_error(format!("{e:#}"));
                 return false;
             }
         };
@@ -97,7 +95,7 @@ impl WorkbenchApp {
         self.lessons.add_folder(lessons);
         self.lessons.open = true;
         if !problems.is_empty() {
-            self.messages.error = Some(problems.join("\n"));
+            self.messages.lasting_error(problems.join("\n"));
         }
         any
     }
@@ -168,7 +166,7 @@ impl WorkbenchApp {
                 self.pending_setup = Some(setup);
                 self.open(source);
             }
-            Err(e) => self.messages.error = Some(format!("{e:#}")),
+            Err(e) => self.messages.lasting_error(format!("{e:#}")),
         }
     }
 

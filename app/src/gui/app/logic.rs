@@ -73,7 +73,7 @@ impl WorkbenchApp {
         self.comparison.forget_results();
         self.sides.a.image.forget();
         self.navigation.reset();
-        self.messages.error = None;
+        self.messages.scene_loaded();
         if let SceneSource::File(path) = &loaded.source {
             self.session.remember(path.clone());
         }

@@ -154,7 +154,7 @@ impl WorkbenchApp {
         let link = match Link::parse(query) {
             Ok(link) => link,
             Err(e) => {
-                self.messages.error = Some(e);
+                self.messages.lasting_error(e);
                 return;
             }
         };
@@ -163,7 +163,7 @@ impl WorkbenchApp {
                 Some(scene) => self.open(SceneSource::Bundled(scene.name.to_string())),
                 None => {
                     let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
-                    self.messages.error = Some(format!(
+                    self.messages.lasting_error(format!(
                         "no bundled scene is called {name:?}: the scenes are {}",
                         names.join(", ")
                     ));
