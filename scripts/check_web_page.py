@@ -95,6 +95,9 @@ def check(url, timeout, screenshot, chromium, lesson):
         problems = problems_of(page.events)
         if not now["isolated"]:
             problems.append("the page is not cross-origin isolated")
+        # web/index.html starts at least two (one per core, 2 to 8).
+        if now["workers"] < 2:
+            problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
         if now["render"] != "done":
             problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
         if lesson is not None and now["lesson"] != lesson:
