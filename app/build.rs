@@ -31,7 +31,17 @@ fn main() {
     println!("cargo:rerun-if-changed={}", lessons_dir.display());
     println!("cargo:rerun-if-changed={}", sky_dir.display());
 
-    let scenes = files_in(&scenes_dir, &["p3f", "nff"]);
+    let mut scenes = files_in(&scenes_dir, &["p3f", "nff"]);
+    // The web page embeds only the scenes it opens by itself: the default
+    // (`bundled::DEFAULT_SCENE`) and those a lesson names; the whole
+    // folder (20 MB) would be most of the page's download.
+    if std::env::var("CARGO_CFG_TARGET_FAMILY").as_deref() == Ok("wasm") {
+        let wanted = lesson_scenes(&lessons_dir);
+        scenes.retain(|path| {
+            let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+            name == "showcase" || wanted.iter().any(|w| w == name)
+        });
+    }
 
     let mut out = String::from("/// Scenes embedded from `scenes/`, sorted by file name.\n");
     out.push_str("pub const SCENES: &[BundledScene] = &[\n");
@@ -132,6 +142,23 @@ fn expose_commit(root: &Path) {
             println!("cargo:rerun-if-changed={path}");
         }
     }
+}
+
+/// The bundled scenes the lessons in `dir` open (`bundled = "NAME"`).
+fn lesson_scenes(dir: &Path) -> Vec<String> {
+    files_in(dir, &["toml"])
+        .iter()
+        .filter_map(|path| std::fs::read_to_string(path).ok())
+        .flat_map(|text| {
+            text.lines()
+                .filter_map(|line| {
+                    let value = line.trim().strip_prefix("bundled")?.trim_start();
+                    let name = value.strip_prefix('=')?.trim().trim_matches('"');
+                    Some(name.to_string())
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
 }
 
 /// The files in `dir` with one of `extensions`, sorted; none when the

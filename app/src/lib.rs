@@ -7,6 +7,7 @@ pub mod describe;
 pub mod figures;
 #[cfg(feature = "window")]
 pub mod gui;
+#[cfg(not(target_family = "wasm"))]
 pub mod headless;
 pub mod image_file;
 pub mod lessons;
@@ -14,10 +15,16 @@ pub mod load;
 pub mod measure;
 pub mod reports;
 
+#[cfg(not(target_family = "wasm"))]
 use clap::Parser;
+/// The web page starts its workers with this (`initThreadPool(n)` in
+/// `web/index.html`) before it starts the window.
+#[cfg(target_family = "wasm")]
+pub use wasm_bindgen_rayon::init_thread_pool;
 
 /// Parses the command line and runs what it asks for: a subcommand, or the
 /// window when there is none.
+#[cfg(not(target_family = "wasm"))]
 pub fn run() -> std::process::ExitCode {
     let cli = cli::Cli::parse();
     if cli.command.is_some() {
@@ -45,7 +52,7 @@ pub fn run() -> std::process::ExitCode {
 }
 
 /// The window the command line asks for without a subcommand.
-#[cfg(feature = "window")]
+#[cfg(all(feature = "window", not(target_family = "wasm")))]
 fn window(cli: cli::Cli) -> anyhow::Result<()> {
     cli.screenshot_plan()
         .and_then(|plan| gui::run(cli.scene, plan, cli.observer, cli.lesson, cli.lesson_folder))
@@ -53,7 +60,7 @@ fn window(cli: cli::Cli) -> anyhow::Result<()> {
 
 /// Built without the window (cargo feature `window`): the flags are still
 /// checked, then the user is told what this build can do.
-#[cfg(not(feature = "window"))]
+#[cfg(all(not(feature = "window"), not(target_family = "wasm")))]
 fn window(cli: cli::Cli) -> anyhow::Result<()> {
     cli.screenshot_plan()?;
     anyhow::bail!(

@@ -5,7 +5,9 @@ use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
@@ -24,6 +26,9 @@ pub enum SceneSource {
     File(PathBuf),
     /// A scene embedded in the binary, by name.
     Bundled(String),
+    /// A scene written in memory, as P3F text, under a name: a lesson's
+    /// step set up on the web page, which has no files to write it to.
+    Written { name: String, text: Arc<str> },
 }
 
 impl SceneSource {
@@ -34,7 +39,7 @@ impl SceneSource {
                 || path.display().to_string(),
                 |n| n.to_string_lossy().into(),
             ),
-            SceneSource::Bundled(name) => name.clone(),
+            SceneSource::Bundled(name) | SceneSource::Written { name, .. } => name.clone(),
         }
     }
 
@@ -72,7 +77,9 @@ impl Loaded {
         let (mut scene, warnings) = read_source(&source, on_progress)?;
         apply_edits(&mut scene, edits)?;
         let mut world = match &source {
-            SceneSource::Bundled(_) => World::build_with_skybox(&scene, embedded_skybox),
+            SceneSource::Bundled(_) | SceneSource::Written { .. } => {
+                World::build_with_skybox(&scene, embedded_skybox)
+            }
             SceneSource::File(_) => build_with_sky(&scene),
         };
         world.warnings.extend(warnings);
@@ -168,6 +175,10 @@ fn read_source(
             )?;
             Ok((scene, Vec::new()))
         }
+        SceneSource::Written { name, text } => Ok((
+            parse_scene(text, Some(Path::new(name)), &Limits::default())?,
+            Vec::new(),
+        )),
     }
 }
 
@@ -310,6 +321,28 @@ mod tests {
     /// The repository's `scenes/` folder.
     fn scenes_dir() -> PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes")
+    }
+
+    /// A scene written in memory (a lesson's step on the web page) reads
+    /// as its text says, under its name, and its mistakes name it.
+    #[test]
+    fn a_written_scene_reads_from_its_text_under_its_name() {
+        let written = |text: &str| SceneSource::Written {
+            name: "shadows.p3f".into(),
+            text: text.into(),
+        };
+        let scene = "v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 40 30\n\
+                     l 0 5 5\nf 1 0 0 1 0 0 0 0 1 0 1\ns 0 0 0 1\ns 2 0 0 1\n";
+        let loaded = read(written(scene)).unwrap();
+        assert_eq!(loaded.source.label(), "shadows.p3f");
+        assert_eq!(loaded.scene.objects.len(), 2);
+        assert_eq!(
+            (loaded.scene.view.width, loaded.scene.view.height),
+            (40, 30)
+        );
+        let broken = format!("{scene}s 0 0\n");
+        let error = format!("{:#}", read(written(&broken)).err().unwrap());
+        assert!(error.contains("shadows.p3f:6"), "{error}");
     }
 
     /// The window opens the default scene from the binary, where no

@@ -5,7 +5,9 @@
 //! loaded two-core machine a debug build's render may take a hundred
 //! times its usual time, and only a hang should ever reach the bound.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 /// How long any test waits for anything before it calls it a hang.
 pub const PATIENCE: Duration = Duration::from_secs(300);

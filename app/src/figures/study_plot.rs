@@ -5,7 +5,6 @@
 //! Rust, so drawing needs nothing from the system.
 
 use std::ops::Range;
-use std::sync::Once;
 
 use anyhow::{Result, anyhow};
 use image::RgbImage;
@@ -33,8 +32,9 @@ pub fn colour(accel: AccelKind) -> [u8; 3] {
 /// The font family the charts use, registered on first use.
 const FONT: &str = "sans-serif";
 
+#[cfg(not(target_family = "wasm"))]
 fn register_font() -> Result<()> {
-    static REGISTER: Once = Once::new();
+    static REGISTER: std::sync::Once = std::sync::Once::new();
     let mut result = Ok(());
     REGISTER.call_once(|| {
         result = plotters::style::register_font(
@@ -45,6 +45,13 @@ fn register_font() -> Result<()> {
         .map_err(|_| anyhow!("the embedded chart font cannot be read"));
     });
     result
+}
+
+/// On the web plotters draws text with the browser's canvas, which a
+/// worker (where studies run) does not have.
+#[cfg(target_family = "wasm")]
+fn register_font() -> Result<()> {
+    anyhow::bail!("study charts are not drawn on the web page yet")
 }
 
 /// One line of a panel.

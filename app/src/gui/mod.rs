@@ -14,12 +14,14 @@ mod comparison;
 mod editor;
 mod image;
 mod lessons;
+mod link;
 mod observer;
 mod panels;
 mod platform;
 mod sides;
 mod windows;
 
+#[cfg(not(target_family = "wasm"))]
 use std::path::PathBuf;
 
 pub use app::{FileDialog, FileQuestion, WorkbenchApp};
@@ -37,6 +39,7 @@ pub use windows::benchmark::BenchWindow;
 pub use windows::ray_tree::Inspector;
 pub use windows::studies::{Applied, StudiesWindow};
 
+#[cfg(not(target_family = "wasm"))]
 use crate::load::SceneSource;
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
@@ -44,6 +47,7 @@ use crate::load::SceneSource;
 /// `lesson_folder` listed and the first set up, the lesson file `lesson`
 /// (if given) set up instead, and runs until it is closed or until the
 /// screenshot of `screenshot` is taken.
+#[cfg(not(target_family = "wasm"))]
 pub fn run(
     scene: Option<PathBuf>,
     screenshot: Option<ScreenshotPlan>,
@@ -121,6 +125,7 @@ pub fn run(
 /// fading in as the panels fill drew more than twice the frames the
 /// progress pace asked for during a short first render. Transitions are
 /// instant instead. With a GPU, frames are cheap and animations stay.
+#[cfg(not(target_family = "wasm"))]
 fn settle_animations(ctx: &egui::Context, device: eframe::wgpu::DeviceType) {
     if device == eframe::wgpu::DeviceType::Cpu {
         ctx.all_styles_mut(|style| style.animation_time = 0.0);

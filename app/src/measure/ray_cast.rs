@@ -3,7 +3,7 @@
 //! on), each kind timed on its own: the median of `runs` casts after a
 //! warm-up, on a pool of exactly the threads asked for.
 
-use std::time::Instant;
+use web_time::Instant;
 
 use anyhow::{Context, Result};
 use rayon::prelude::*;

@@ -10,8 +10,9 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use workbench::gui::WorkbenchApp;
 use workbench::lessons::Verdict;
+use workbench::load::SceneSource;
 
-use crate::harness::{DroppedPath, WINDOW, ready_window, wait_for};
+use crate::harness::{DroppedPath, WINDOW, ready_window, small_window, wait_for};
 use crate::persistence::{MemoryStorage, start};
 use crate::support::Scratch;
 
@@ -253,4 +254,66 @@ fn a_lesson_folder_joins_the_list_by_chapter() {
         Some("mine_one"),
         "the folder's first lesson is shown"
     );
+}
+
+/// A page's link (`?lesson=shadows`): the window opens that bundled
+/// lesson in the Lessons panel with its first step's scene set up.
+#[test]
+fn a_link_opens_a_bundled_lesson_set_up() {
+    let mut harness = ready_window(WINDOW);
+    harness.state_mut().open_link("?lesson=shadows");
+    let lessons = harness.state().lessons();
+    assert!(lessons.open, "the panel opens");
+    let shown = lessons.lesson().map(|l| l.name.as_str());
+    assert_eq!(shown, Some("shadows"));
+    wait_for(&mut harness, "the lesson's scene set up", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "shadows.p3f")
+    });
+    assert_eq!(harness.state().error(), None);
+}
+
+/// A link naming no bundled lesson or scene, or asking for what the page
+/// does not read, says so with the names there are, and opens nothing;
+/// the error outlasts a scene loaded after it.
+#[test]
+fn a_link_to_nothing_bundled_says_what_there_is() {
+    for (query, said, one_there_is) in [
+        (
+            "?lesson=shadow",
+            "no bundled lesson is called \"shadow\": the lessons are",
+            "shadows",
+        ),
+        (
+            "?scene=nope",
+            "no bundled scene is called \"nope\": the scenes are",
+            "balls_low",
+        ),
+        (
+            "?lessons=shadows",
+            "\"lessons\", which the page does not know",
+            "lesson and scene",
+        ),
+    ] {
+        let mut harness = small_window(Harness::builder());
+        let opened = harness.state().lessons().lesson().map(|l| l.name.clone());
+        harness.state_mut().open_link(query);
+        // The page's first scene may load before or after the link is
+        // read: a scene loaded after it must leave its error shown.
+        harness
+            .state_mut()
+            .open(SceneSource::Bundled("glass".into()));
+        wait_for(&mut harness, "the next scene", |app| {
+            app.engine()
+                .scene()
+                .is_some_and(|s| s.source.label() == "glass")
+        });
+        let error = harness.state().error().unwrap_or_default().to_string();
+        assert!(error.contains(said), "{query}: {error}");
+        assert!(error.contains(one_there_is), "{query}: {error}");
+        let now = harness.state().lessons().lesson().map(|l| l.name.clone());
+        assert_eq!(now, opened, "{query} changed the lesson shown");
+        assert!(!harness.state().lessons().open, "{query} opened the panel");
+    }
 }

@@ -12,7 +12,9 @@ mod tests;
 mod visits;
 
 use std::ops::Range;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use crate::geometry::{Ray, Shape};
 use crate::stats::Counters;

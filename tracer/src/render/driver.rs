@@ -36,16 +36,65 @@ impl Clock for SystemClock {
 }
 
 /// How a job's loop is hosted.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Host {
     /// A thread of its own, started for the job: dropping the job waits
     /// for it, so nothing of the job outlives its handle.
-    #[default]
     Thread,
     /// A task on the job's pool, for a platform where the caller can
     /// neither start a thread nor wait for one (a web page's main thread):
     /// dropping the job cancels it and returns at once.
     Pool,
+    /// A task on rayon's global pool, whose threads also render its
+    /// tiles: [`super::JobOptions::pool`], `threads` and the priorities
+    /// are ignored. For a web page, whose one pool is the global pool that
+    /// `wasm-bindgen-rayon` fills with the page's Web Workers (a page can
+    /// build no pool of its own). Dropping the job returns at once, as
+    /// for [`Host::Pool`].
+    Global,
+}
+
+impl Default for Host {
+    /// A thread of its own, except on the web, where a page can start no
+    /// thread: there every job renders on the page's workers.
+    fn default() -> Self {
+        if cfg!(target_family = "wasm") {
+            Host::Global
+        } else {
+            Host::Thread
+        }
+    }
+}
+
+/// The pool a job's tiles run on.
+#[derive(Clone)]
+pub(super) enum JobPool {
+    /// A pool made for jobs ([`render_pool`]).
+    Own(Arc<rayon::ThreadPool>),
+    /// Rayon's global pool ([`Host::Global`]).
+    Global,
+}
+
+impl JobPool {
+    /// Runs `op` where its parallel work uses this pool.
+    pub(super) fn install<R: Send>(&self, op: impl FnOnce() -> R + Send) -> R {
+        match self {
+            JobPool::Own(pool) => pool.install(op),
+            JobPool::Global => op(),
+        }
+    }
+
+    /// Runs `a` and `b` in parallel on this pool.
+    pub(super) fn join<A: Send, B: Send>(
+        &self,
+        a: impl FnOnce() -> A + Send,
+        b: impl FnOnce() -> B + Send,
+    ) -> (A, B) {
+        match self {
+            JobPool::Own(pool) => pool.join(a, b),
+            JobPool::Global => rayon::join(a, b),
+        }
+    }
 }
 
 /// How render threads share the cores with the rest of the machine.
@@ -82,17 +131,21 @@ pub fn render_pool(
 /// Starts `work`, the job's loop, where `host` says.
 pub(super) fn host(
     host: Host,
-    pool: &rayon::ThreadPool,
+    pool: &JobPool,
     work: impl FnOnce() + Send + 'static,
 ) -> Result<Option<std::thread::JoinHandle<()>>, RenderError> {
-    match host {
-        Host::Thread => std::thread::Builder::new()
+    match (host, pool) {
+        (Host::Thread, _) => std::thread::Builder::new()
             .name("render-job".into())
             .spawn(work)
             .map(Some)
             .map_err(|e| RenderError::Threads(e.to_string())),
-        Host::Pool => {
+        (_, JobPool::Own(pool)) => {
             pool.spawn(work);
+            Ok(None)
+        }
+        (_, JobPool::Global) => {
+            rayon::spawn(work);
             Ok(None)
         }
     }
@@ -279,12 +332,29 @@ mod tests {
     fn a_pool_hosted_loop_runs_on_the_pool() {
         let pool = render_pool(Some(1), Priority::Normal).unwrap();
         let (tx, rx) = std::sync::mpsc::channel();
-        let handle = host(Host::Pool, &pool, move || {
+        let handle = host(Host::Pool, &JobPool::Own(pool), move || {
             tx.send(std::thread::current().name().map(str::to_owned))
                 .unwrap();
         })
         .unwrap();
         assert!(handle.is_none(), "nothing to join");
         assert_eq!(rx.recv().unwrap().as_deref(), Some("render-0"));
+    }
+
+    #[test]
+    fn a_globally_hosted_loop_runs_on_the_global_pool() {
+        let (tx, rx) = std::sync::mpsc::channel();
+        let handle = host(Host::Global, &JobPool::Global, move || {
+            let thread = std::thread::current();
+            let in_pool = rayon::current_thread_index().is_some();
+            tx.send((in_pool, thread.name().map(str::to_owned)))
+                .unwrap();
+        })
+        .unwrap();
+        assert!(handle.is_none(), "nothing to join");
+        let (in_pool, name) = rx.recv().unwrap();
+        assert!(in_pool, "not on a pool's thread");
+        // The global pool's threads are unnamed; a render pool's are not.
+        assert_eq!(name, None);
     }
 }

@@ -12,7 +12,7 @@ use crate::world::World;
 
 use super::adaptive::Adaptive;
 use super::control::{Control, ProgressListener, lock, lock_spinning};
-use super::driver::{Clock, FailureSlot, Host, Priority, SystemClock, WorkingFor};
+use super::driver::{Clock, FailureSlot, Host, JobPool, Priority, SystemClock, WorkingFor};
 use super::outputs::{Outputs, Recording};
 use super::passes::{LoopContext, PassListener};
 use super::settings::SettingsError;
@@ -122,6 +122,7 @@ pub struct JobOptions {
     pub image_only: bool,
     /// The pool the job renders on, made once for many jobs; `None`: a
     /// pool of its own, of `threads` threads at the priority above.
+    /// Unused with [`Host::Global`], which renders on rayon's global pool.
     pub pool: Option<Arc<rayon::ThreadPool>>,
     /// The clock its passes and time budget read; `None`: the system's.
     pub clock: Option<Arc<dyn Clock>>,
@@ -244,9 +245,10 @@ impl RenderJob {
     ) -> Result<RenderJob, RenderError> {
         settings.validate()?;
         settings.render_camera(&world.view)?;
-        let pool = match &options.pool {
-            Some(pool) => pool.clone(),
-            None => driver::render_pool(options.threads, options.priority())?,
+        let pool = match (options.host, &options.pool) {
+            (Host::Global, _) => JobPool::Global,
+            (_, Some(pool)) => JobPool::Own(pool.clone()),
+            (_, None) => JobPool::Own(driver::render_pool(options.threads, options.priority())?),
         };
         let index = index.filter(|i| i.matches(settings.accel, settings.grid_multiplier));
         let recording = options.recording(&settings);
@@ -456,7 +458,7 @@ struct Job {
     index: Option<Arc<SceneIndex>>,
     settings: RenderSettings,
     strategy: Box<dyn SamplingStrategy>,
-    pool: Arc<rayon::ThreadPool>,
+    pool: JobPool,
 }
 
 impl Job {

@@ -5,17 +5,18 @@
 //! them.
 
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use tracer::render::{RenderSettings, View};
 
 use super::WorkbenchApp;
 use crate::gui::comparison::Comparison;
 use crate::gui::lessons;
+use crate::gui::platform::{target, waker};
 use crate::gui::sides::{Controls, Side, Sides};
-use crate::lessons::format::read_lesson_file;
+use crate::lessons::format::{Lesson, LessonErrors, read_bundled, read_lesson_file};
 use crate::lessons::replay::{open_scene, state_at_step};
 use crate::lessons::state::Layout;
 use crate::lessons::{LessonState, SideState};
@@ -24,7 +25,7 @@ use crate::load::SceneSource;
 
 /// A step set up, waiting for its scene to load.
 pub(super) struct PendingSetup {
-    path: PathBuf,
+    source: SceneSource,
     state: LessonState,
 }
 
@@ -32,13 +33,32 @@ impl WorkbenchApp {
     /// Opens the lesson file `path` in the Lessons window and sets up its
     /// first step (`workbench --lesson FILE`).
     pub fn open_lesson(&mut self, path: &Path) {
-        match read_lesson_file(path) {
+        self.set_up_lesson(read_lesson_file(path));
+    }
+
+    /// Opens the bundled lesson `name` as [`Self::open_lesson`] opens a
+    /// file (a page's `?lesson=NAME`); an unknown name is said with the
+    /// names there are.
+    pub fn open_bundled_lesson(&mut self, name: &str) {
+        match crate::lessons::bundled::find(name) {
+            Some(bundled) => self.set_up_lesson(read_bundled(bundled)),
+            None => self.messages.lasting_error(format!(
+                "no bundled lesson is called {name:?}: the lessons are {}",
+                crate::lessons::bundled::names().join(", ")
+            )),
+        }
+    }
+
+    /// Shows `lesson` in the Lessons window with its first step not done
+    /// set up, or says why it does not read.
+    fn set_up_lesson(&mut self, lesson: Result<Lesson, LessonErrors>) {
+        match lesson {
             Ok(lesson) => {
                 self.lessons.add(lesson);
                 self.lessons.open = true;
                 self.set_up_lesson_step();
             }
-            Err(e) => self.messages.error = Some(e.to_string()),
+            Err(e) => self.messages.lasting_error(e.to_string()),
         }
     }
 
@@ -59,7 +79,7 @@ impl WorkbenchApp {
         let read = match crate::lessons::folder::read(dir) {
             Ok(read) => read,
             Err(e) => {
-                self.messages.error = Some(format!("{e:#}"));
+                self.messages.lasting_error(format!("{e:#}"));
                 return false;
             }
         };
@@ -75,7 +95,7 @@ impl WorkbenchApp {
         self.lessons.add_folder(lessons);
         self.lessons.open = true;
         if !problems.is_empty() {
-            self.messages.error = Some(problems.join("\n"));
+            self.messages.lasting_error(problems.join("\n"));
         }
         any
     }
@@ -98,11 +118,10 @@ impl WorkbenchApp {
             view: (tools.views.view != View::Shaded).then_some(tools.views.view),
             observer: observer.on,
         };
-        let wake = ctx.clone();
         self.lessons.keep_checking(
             looked_at,
             || window_state(sides, tools.inspector.pinned, layout),
-            move || wake.request_repaint(),
+            waker(ctx),
         );
     }
 
@@ -124,8 +143,9 @@ impl WorkbenchApp {
     }
 
     /// Replays the lesson up to the current step and opens the result: its
-    /// scene (written to a P3F file of the lesson's name, edits included),
-    /// then, once loaded, its settings, compare mode, pixel and layout.
+    /// scene (written as P3F under the lesson's name, edits included:
+    /// `target::lesson_scene`), then, once loaded, its settings, compare
+    /// mode, pixel and layout.
     pub(super) fn set_up_lesson_step(&mut self) {
         let Some(lesson) = self.lessons.lesson().cloned() else {
             return;
@@ -137,20 +157,16 @@ impl WorkbenchApp {
             let mut written = state.a.scene.clone();
             written.view.width = state.a.settings.width;
             written.view.height = state.a.settings.height;
-            let dir = std::env::temp_dir().join("whitted-workbench-lessons");
-            std::fs::create_dir_all(&dir).with_context(|| format!("{}", dir.display()))?;
-            let path = dir.join(format!("{}.p3f", lesson.name));
-            let text = tracer::scene::write_p3f_in(&written, &dir);
-            std::fs::write(&path, text).with_context(|| format!("{}", path.display()))?;
-            Ok(PendingSetup { path, state })
+            let source = target::lesson_scene(&lesson.name, &written)?;
+            Ok(PendingSetup { source, state })
         })();
         match prepared {
             Ok(setup) => {
-                let source = SceneSource::File(setup.path.clone());
+                let source = setup.source.clone();
                 self.pending_setup = Some(setup);
                 self.open(source);
             }
-            Err(e) => self.messages.error = Some(format!("{e:#}")),
+            Err(e) => self.messages.lasting_error(format!("{e:#}")),
         }
     }
 
@@ -162,10 +178,12 @@ impl WorkbenchApp {
         let Some(setup) = self.pending_setup.take() else {
             return;
         };
-        if *loaded != SceneSource::File(setup.path.clone()) {
+        if *loaded != setup.source {
             return;
         }
-        self.session.recent.retain(|p| p != &setup.path);
+        if let SceneSource::File(path) = &setup.source {
+            self.session.recent.retain(|p| p != path);
+        }
         let state = setup.state;
         adopt(&mut self.sides.a.controls, &state.a.settings);
         if state.b.is_some() != self.sides.b.is_some() {

@@ -11,6 +11,7 @@ use crate::load::is_lesson_file;
 use super::WorkbenchApp;
 use super::saving::Reply;
 use crate::gui::panels::scene_list;
+use crate::gui::platform::{target, waker};
 use crate::gui::sides::Activity;
 
 /// Frames per timed configuration of a report exported from the window:
@@ -72,7 +73,7 @@ impl WorkbenchApp {
         self.comparison.forget_results();
         self.sides.a.image.forget();
         self.navigation.reset();
-        self.messages.error = None;
+        self.messages.scene_loaded();
         if let SceneSource::File(path) = &loaded.source {
             self.session.remember(path.clone());
         }
@@ -138,9 +139,13 @@ impl WorkbenchApp {
             Activity::Idle => a.scene().is_some(),
             Activity::Job(_) => false,
         };
+        // Paced: counts arriving during a render need no frame of their own.
         let (ctx, pace) = (ctx.clone(), self.pacing.progress_pace.clone());
-        self.scene_list
-            .count_when_due(busy, move || ctx.request_repaint_after(pace.get()));
+        self.scene_list.count_when_due(busy, move || {
+            if target::WORK_WAKES_WINDOW {
+                ctx.request_repaint_after(pace.get());
+            }
+        });
     }
 
     fn update_title(&mut self, ctx: &egui::Context) {
@@ -254,8 +259,7 @@ impl WorkbenchApp {
         let mut start = false;
         bench.show(ctx, &name, &mut start);
         if start && let (Some(scene), Some(base)) = (a.engine.scene(), a.settings()) {
-            let wake = ctx.clone();
-            bench.start(scene.world.clone(), base, move || wake.request_repaint());
+            bench.start(scene.world.clone(), base, waker(ctx));
         }
     }
 
@@ -268,10 +272,7 @@ impl WorkbenchApp {
         if let Some(path) = report.chosen() {
             match self.report_request() {
                 Some(request) => {
-                    let wake = ctx.clone();
-                    self.tools
-                        .report
-                        .start(request, path, move || wake.request_repaint());
+                    self.tools.report.start(request, path, waker(ctx));
                 }
                 None => {
                     self.tools.report.message = Some("report not exported: no scene is open".into())
@@ -316,7 +317,6 @@ impl WorkbenchApp {
         let mut start = false;
         let applied = studies.show(ctx, &base, &mut start);
         if start {
-            let wake = ctx.clone();
             let scene = a.engine.scene();
             let name = scene.map_or_else(String::new, |s| s.source.label());
             studies.start(
@@ -324,7 +324,7 @@ impl WorkbenchApp {
                 &base,
                 &a.controls,
                 &name,
-                move || wake.request_repaint(),
+                waker(ctx),
             );
         }
         if let Some(applied) = applied {

@@ -1,7 +1,9 @@
 //! What the window tells the user: the error shown above the image until
 //! dismissed or replaced, and short notices that fade after a few seconds.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use crate::gui::platform::clock::Clock;
 
@@ -11,6 +13,11 @@ const NOTICE_TIME: Duration = Duration::from_secs(5);
 pub struct Messages {
     /// Shown above the image until dismissed.
     pub error: Option<String>,
+    /// An error about what the user asked for rather than about the scene
+    /// on screen (a lesson that does not read, a link to nothing): a
+    /// scene loaded next, such as the one the window opens with, leaves
+    /// it shown ([`Self::scene_loaded`]).
+    lasting: Option<String>,
     notice: Option<(String, Instant)>,
     /// Times the notice's fade.
     clock: Clock,
@@ -20,8 +27,24 @@ impl Messages {
     pub fn new(clock: Clock) -> Self {
         Self {
             error: None,
+            lasting: None,
             notice: None,
             clock,
+        }
+    }
+
+    /// Shows the error `text` until dismissed or replaced, even across a
+    /// scene load.
+    pub fn lasting_error(&mut self, text: String) {
+        self.lasting = Some(text.clone());
+        self.error = Some(text);
+    }
+
+    /// A scene loaded: the error of an earlier scene (a load or a render
+    /// that failed) goes; a [`Self::lasting_error`] stays.
+    pub fn scene_loaded(&mut self) {
+        if self.error != self.lasting {
+            self.error = None;
         }
     }
 

@@ -16,6 +16,8 @@ mod testing;
 
 pub use saving::{FileDialog, FileQuestion};
 
+use tracer::render::JobState;
+
 use crate::bundled;
 use crate::load::SceneSource;
 
@@ -23,6 +25,7 @@ use super::commands::Command;
 use super::comparison::Comparison;
 use super::editor;
 use super::lessons::Lessons;
+use super::link::Link;
 use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
@@ -30,7 +33,7 @@ use super::panels::{central, stats, unfilled};
 use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
-use super::sides::{RepaintWakers, SideId, Sides};
+use super::sides::{Activity, RepaintWakers, SideId, Sides};
 use super::windows::{ToolsAndOverlays, help};
 use messages::Messages;
 use navigation::Navigation;
@@ -128,6 +131,48 @@ impl WorkbenchApp {
     pub fn with_screenshot(mut self, plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
         self.screenshot = Some(ScreenshotRequest::new(plan, outcome));
         self
+    }
+
+    /// Whether a side's or the observer's engine is loading a scene or
+    /// rendering: the web page, which its workers cannot wake, keeps
+    /// looking while so.
+    pub fn is_rendering(&self) -> bool {
+        let sides = self.sides.each().map(|side| &side.engine);
+        sides.chain([self.observer.engine()]).any(|engine| {
+            matches!(
+                engine.activity(),
+                Activity::Loading { .. } | Activity::Job(JobState::Building | JobState::Rendering)
+            )
+        })
+    }
+
+    /// Opens what a page's link asks for (its query, `?lesson=shadows`):
+    /// its scene, then its lesson (which sets up a scene of its own). A
+    /// query that does not read, or a name not bundled, is said, with the
+    /// names there are.
+    pub fn open_link(&mut self, query: &str) {
+        let link = match Link::parse(query) {
+            Ok(link) => link,
+            Err(e) => {
+                self.messages.lasting_error(e);
+                return;
+            }
+        };
+        if let Some(name) = &link.scene {
+            match bundled::find(name) {
+                Some(scene) => self.open(SceneSource::Bundled(scene.name.to_string())),
+                None => {
+                    let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
+                    self.messages.lasting_error(format!(
+                        "no bundled scene is called {name:?}: the scenes are {}",
+                        names.join(", ")
+                    ));
+                }
+            }
+        }
+        if let Some(name) = &link.lesson {
+            self.open_bundled_lesson(name);
+        }
     }
 
     /// Turns the observer view on or off, as O does.

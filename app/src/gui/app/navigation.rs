@@ -2,7 +2,9 @@
 //! gestures (shared by both sides), the image's zoom and pan, and whether
 //! the camera is moving, which makes the sides render previews.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use tracer::camera::CameraPose;
 use tracer::scene::Scene;

@@ -6,13 +6,14 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::time::Instant;
+use web_time::Instant;
 
 use anyhow::Context as _;
 use tracer::render::{JobState, Snapshot};
 use tracer::scene::{Scene, write_p3f_in};
 
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
+use crate::gui::platform::target;
 use crate::gui::sides::{Activity, Side, SideId};
 use crate::image_file::{save_exr, save_png};
 use crate::load::SceneSource;
@@ -132,7 +133,7 @@ struct NativeDialog;
 impl FileDialog for NativeDialog {
     fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
         let (filter, extensions) = question.filter;
-        let mut dialog = rfd::FileDialog::new();
+        let mut dialog = target::FileDialog::new();
         if let Some(folder) = &question.folder {
             dialog = dialog.set_directory(folder);
         }
@@ -187,15 +188,13 @@ impl Dialogs {
         answer: impl FnOnce(PathBuf) -> Reply + Send + 'static,
     ) -> bool {
         let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
-        std::thread::Builder::new()
-            .name(name.into())
-            .spawn(move || {
-                let _ = reply.send(match dialog.ask(&question) {
-                    Some(path) => answer(path),
-                    None => Reply::Notice(unanswered.into()),
-                });
-            })
-            .is_ok()
+        target::spawn(name, move || {
+            let _ = reply.send(match dialog.ask(&question) {
+                Some(path) => answer(path),
+                None => Reply::Notice(unanswered.into()),
+            });
+        })
+        .is_ok()
     }
 
     /// The native open dialog; false when no thread could be started.

@@ -9,6 +9,7 @@ use image::RgbImage;
 use tracer::metrics;
 use tracer::render::{JobState, Snapshot, View};
 
+use crate::gui::platform::{target, waker};
 use crate::measure::ab::{Heatmap, Metrics, measure};
 use crate::measure::value_difference::ValueDifference;
 
@@ -56,7 +57,7 @@ impl Comparison {
                             self.metrics_of = Some(versions);
                             self.metrics = None;
                             self.pending =
-                                rgb(sa).and_then(|a| measure_in_background(a, sb, ctx.clone()));
+                                rgb(sa).and_then(|a| measure_in_background(a, sb, waker(ctx)));
                         }
                     }
                     Some(Err(message)) => {
@@ -127,19 +128,17 @@ fn rgb(snapshot: &Snapshot) -> Option<RgbImage> {
 fn measure_in_background(
     a: RgbImage,
     b: RgbImage,
-    ctx: egui::Context,
+    wake: impl Fn() + Send + 'static,
 ) -> Option<Receiver<Result<Metrics, String>>> {
     let (tx, rx) = channel();
-    std::thread::Builder::new()
-        .name("compare-metrics".into())
-        .spawn(move || {
-            let result = measure(&a, &b, Heatmap::Absolute)
-                .map(|(metrics, _)| metrics)
-                .map_err(|e| format!("{e:#}"));
-            let _ = tx.send(result);
-            ctx.request_repaint();
-        })
-        .ok()?;
+    target::spawn("compare-metrics", move || {
+        let result = measure(&a, &b, Heatmap::Absolute)
+            .map(|(metrics, _)| metrics)
+            .map_err(|e| format!("{e:#}"));
+        let _ = tx.send(result);
+        wake();
+    })
+    .ok()?;
     Some(rx)
 }
 

@@ -19,6 +19,7 @@ use crate::measure::value_difference::ValueDifference;
 use reference::PendingReference;
 pub use reference::ReferenceImage;
 
+use super::platform::waker;
 use super::sides::{Side, Version};
 
 /// How the two renders are shown.
@@ -143,7 +144,7 @@ impl Comparison {
     /// Opens the file dialog for an image as B; `encoding` is A's, for EXR
     /// files.
     pub fn pick_reference(&mut self, encoding: Encoding, ctx: &egui::Context) {
-        self.picking = PendingReference::pick(encoding, ctx.clone());
+        self.picking = PendingReference::pick(encoding, waker(ctx));
     }
 
     /// Whether the file dialog for an image is open.

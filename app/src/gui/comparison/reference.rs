@@ -10,6 +10,7 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use image::RgbImage;
 use tracer::render::Encoding;
 
+use crate::gui::platform::target;
 use crate::measure::ab::{FittedReference, fit_reference, read_reference};
 
 /// The image side B shows.
@@ -38,19 +39,17 @@ pub struct PendingReference(Receiver<Picked>);
 
 impl PendingReference {
     /// Asks for an image file and reads it (`None` when cancelled).
-    pub fn pick(encoding: Encoding, wake: egui::Context) -> Option<PendingReference> {
+    pub fn pick(encoding: Encoding, wake: impl Fn() + Send + 'static) -> Option<PendingReference> {
         let (tx, rx) = channel();
-        std::thread::Builder::new()
-            .name("reference-dialog".into())
-            .spawn(move || {
-                let picked = rfd::FileDialog::new()
-                    .add_filter("Images", &["png", "jpg", "jpeg", "exr"])
-                    .pick_file();
-                let result = picked.map(|path| read(&path, encoding));
-                let _ = tx.send(result);
-                wake.request_repaint();
-            })
-            .ok()?;
+        target::spawn("reference-dialog", move || {
+            let picked = target::FileDialog::new()
+                .add_filter("Images", &["png", "jpg", "jpeg", "exr"])
+                .pick_file();
+            let result = picked.map(|path| read(&path, encoding));
+            let _ = tx.send(result);
+            wake();
+        })
+        .ok()?;
         Some(PendingReference(rx))
     }
 

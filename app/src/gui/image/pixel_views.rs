@@ -3,7 +3,9 @@
 //! both sides of a comparison, the legend with its numbers, and the view's
 //! summary (mean, median, p99, max).
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use egui::{Color32, Ui};
 use tracer::render::{HEAT_PALETTE, HeatScale, View, ViewHeatmap, ViewSummary};

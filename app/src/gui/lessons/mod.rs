@@ -9,6 +9,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::sync::mpsc::{Receiver, channel};
 
+use crate::gui::platform::target;
 use crate::lessons::{self, Lesson, LessonState, Verdict};
 
 pub use panel::show;
@@ -209,7 +210,8 @@ impl Lessons {
         state.answer = self.submitted.clone();
         let check = step.check.value.clone();
         let (sender, receiver) = channel();
-        std::thread::spawn(move || {
+        // Without a thread the verdict never comes: the step stays unchecked.
+        let _ = target::spawn("lesson-check", move || {
             let _ = sender.send(lessons::evaluate(&check, &state));
             wake();
         });

@@ -2,7 +2,7 @@
 //! rays first, then each bounce generation, then the shadow rays; play,
 //! pause, step and speed; at rest the whole tree.
 
-use std::time::Instant;
+use web_time::Instant;
 
 /// Where the animation is.
 #[derive(Debug, Clone)]

@@ -4,9 +4,12 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use crate::gui::platform::clock::Clock;
+use crate::gui::platform::target;
 
 use egui::{RichText, Ui};
 use tracer::scene::{Limits, Primitive, Scene, parse_scene};
@@ -91,24 +94,20 @@ impl Catalog {
         let summaries = self.summaries.clone();
         let lowest_priority = self.lowest_priority;
         // Without the thread the list simply shows no counts.
-        let _ = std::thread::Builder::new()
-            .name("scene-catalog".into())
-            .spawn(move || {
-                // Counting can wait: a render must not.
-                if lowest_priority {
-                    let _ = thread_priority::set_current_thread_priority(
-                        thread_priority::ThreadPriority::Min,
-                    );
+        let _ = target::spawn("scene-catalog", move || {
+            // Counting can wait: a render must not.
+            if lowest_priority {
+                target::lowest_priority();
+            }
+            for scene in bundled::SCENES {
+                let parsed =
+                    parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());
+                if let Ok(mut summaries) = summaries.lock() {
+                    summaries.insert(scene.name, parsed.ok().map(|s| summary(&s)));
                 }
-                for scene in bundled::SCENES {
-                    let parsed =
-                        parse_scene(scene.text, Some(Path::new(scene.file)), &Limits::default());
-                    if let Ok(mut summaries) = summaries.lock() {
-                        summaries.insert(scene.name, parsed.ok().map(|s| summary(&s)));
-                    }
-                    wake();
-                }
-            });
+                wake();
+            }
+        });
     }
 
     /// Whether [`Catalog::start`] was called.
@@ -116,15 +115,20 @@ impl Catalog {
         self.started
     }
 
-    /// How big the bundled scene `name` is, once counted.
+    /// How big the bundled scene `name` is, once counted. Read without
+    /// waiting (`try_lock`): the window's thread must never wait for the
+    /// counting one, which on the web page is an error ("Atomics.wait
+    /// cannot be called in this context"); a count being written shows
+    /// on the next frame.
     pub fn summary(&self, name: &str) -> Option<String> {
-        self.summaries.lock().ok()?.get(name).cloned().flatten()
+        self.summaries.try_lock().ok()?.get(name).cloned().flatten()
     }
 
-    /// Whether every bundled scene was counted.
+    /// Whether every bundled scene was counted (false while the counting
+    /// thread writes, as [`Self::summary`] does not wait).
     pub fn is_complete(&self) -> bool {
         self.summaries
-            .lock()
+            .try_lock()
             .is_ok_and(|counts| counts.len() == bundled::SCENES.len())
     }
 }

@@ -6,7 +6,9 @@
 //! machine changes nothing.
 
 use std::sync::{Arc, Mutex, PoisonError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 /// The wall clock, or a stopped one ([`Clock::stopped`]); clones share it.
 #[derive(Debug, Clone, Default)]

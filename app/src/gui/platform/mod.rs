@@ -1,10 +1,30 @@
 //! What the window needs of the machine it runs on: the clock of what it
 //! times itself, the frame meter and progress pace, the CPU clocks they
-//! read, the software rasterizer's priority, and screenshots for
-//! `--screenshot`.
+//! read, the software rasterizer's priority, screenshots for
+//! `--screenshot`, and `target`: what differs between the desktop
+//! (`native.rs`) and the web page (`web.rs`), the one place the window
+//! asks which it runs on.
 
 pub mod clock;
 pub mod cpu_clock;
 pub mod frame_meter;
+#[cfg(not(target_family = "wasm"))]
 pub mod paint_priority;
 pub mod screenshot;
+#[cfg_attr(not(target_family = "wasm"), path = "native.rs")]
+#[cfg_attr(target_family = "wasm", path = "web.rs")]
+pub mod target;
+
+/// What background work calls when it has something to show: a repaint
+/// of the window on the desktop, nothing on the web page. A worker cannot
+/// call into eframe there (its repaint reads the page's clock through
+/// `window`, which a worker lacks: "should have a Window"), so the page
+/// looks again while work is in flight instead (`target::busy`).
+pub fn waker(ctx: &egui::Context) -> impl Fn() + Send + Sync + Clone + 'static {
+    let ctx = ctx.clone();
+    move || {
+        if target::WORK_WAKES_WINDOW {
+            ctx.request_repaint();
+        }
+    }
+}

@@ -2,7 +2,9 @@
 //! the inverse its application returned), whether the scene differs from
 //! the file, and the edits as `--set` lines for the command line.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use tracer::scene::Scene;
 use tracer::scene::edit::Edit;

@@ -3,7 +3,9 @@
 //! came from (for the pixel readout, the statistics and saving). A restarted
 //! render (a camera move) draws over the last image until it covers it.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+use web_time::Instant;
 
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use tracer::render::{Encoding, JobState, Snapshot, View, ViewHeatmap};

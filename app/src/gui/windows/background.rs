@@ -15,6 +15,8 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use image::RgbImage;
 use image::imageops::FilterType;
 
+use crate::gui::platform::target;
+
 /// Work running on its own thread, sending updates of type `U`.
 pub struct Background<U> {
     cancel: Arc<AtomicBool>,
@@ -31,9 +33,7 @@ impl<U: Send + 'static> Background<U> {
         let cancel = Arc::new(AtomicBool::new(false));
         let (tx, updates) = channel();
         let flag = cancel.clone();
-        std::thread::Builder::new()
-            .name(name.into())
-            .spawn(move || work(&flag, &tx))?;
+        target::spawn(name, move || work(&flag, &tx))?;
         Ok(Self { cancel, updates })
     }
 
@@ -78,17 +78,13 @@ impl Export {
     ) {
         let (tx, rx) = channel();
         let title = title.to_string();
-        let spawned = std::thread::Builder::new()
-            .name("export".into())
-            .spawn(move || {
-                let result = match rfd::FileDialog::new().set_title(title).pick_folder() {
-                    Some(dir) => write(&dir).map_err(|e| format!("{e:#}")),
-                    None => {
-                        Err("not exported (cancelled, or no file dialog on this desktop)".into())
-                    }
-                };
-                let _ = tx.send(result);
-            });
+        let spawned = target::spawn("export", move || {
+            let result = match target::FileDialog::new().set_title(title).pick_folder() {
+                Some(dir) => write(&dir).map_err(|e| format!("{e:#}")),
+                None => Err("not exported (cancelled, or no file dialog on this desktop)".into()),
+            };
+            let _ = tx.send(result);
+        });
         self.pending = spawned.ok().map(|_| rx);
     }
 

@@ -8,6 +8,7 @@ use std::sync::mpsc::{Receiver, channel};
 
 use egui::Ui;
 
+use crate::gui::platform::target;
 use crate::reports::lab::{self, ReportProgress, Request};
 
 use super::background::Background;
@@ -46,16 +47,14 @@ impl ReportExport {
     /// the window); [`ReportExport::chosen`] gives the answer.
     pub fn choose_file(&mut self) {
         let (tx, rx) = channel();
-        let spawned = std::thread::Builder::new()
-            .name("report file".into())
-            .spawn(move || {
-                let path = rfd::FileDialog::new()
-                    .set_title("Export the lab report")
-                    .set_file_name("report.html")
-                    .add_filter("HTML page", &["html"])
-                    .save_file();
-                let _ = tx.send(path);
-            });
+        let spawned = target::spawn("report file", move || {
+            let path = target::FileDialog::new()
+                .set_title("Export the lab report")
+                .set_file_name("report.html")
+                .add_filter("HTML page", &["html"])
+                .save_file();
+            let _ = tx.send(path);
+        });
         match spawned {
             Ok(_) => self.choosing = Some(rx),
             Err(e) => self.message = Some(format!("cannot open a file dialog: {e}")),

@@ -1,7 +1,7 @@
 //! The machine a report was measured on: CPU, cores, OS, the workbench's
 //! version and commit, and the date, so two reports can be compared.
 
-use std::time::{SystemTime, UNIX_EPOCH};
+use web_time::{SystemTime, UNIX_EPOCH};
 
 /// What a reader needs to compare two reports' times.
 #[derive(Debug, Clone, PartialEq)]

@@ -12,6 +12,7 @@ use std::time::Duration;
 
 use glam::Vec3A;
 
+use super::driver::Host;
 use super::{
     Encoding, Film, JobOptions, JobState, LensOverride, RenderJob, RenderPlan, RenderSettings,
     render,
@@ -89,6 +90,28 @@ fn progressive_passes_equal_a_sequential_render_bit_for_bit() {
         assert_eq!(stats.passes_done, 9);
         assert_eq!(stats.counters.eye_rays, 70 * 45 * 9);
     }
+}
+
+#[test]
+fn a_job_hosted_on_the_global_pool_renders_the_same_image() {
+    let w = world(SCENE);
+    // Built by the job on the global pool, as a web page's job is.
+    let s = settings(70, 45);
+    let frame = RenderPlan::new(w.clone(), index(&w, AccelKind::Bvh), s.clone()).unwrap();
+    let job = RenderJob::start(
+        w,
+        None,
+        s,
+        JobOptions {
+            host: Host::Global,
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    let (film, stats, state) = job.wait();
+    assert_eq!(state, JobState::Done);
+    assert_eq!(stats.passes_done, 9);
+    assert_eq!(film, sequential(&frame));
 }
 
 #[test]

@@ -5,6 +5,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
+use crate::gui::platform::target;
 use crate::load::{Loaded, SceneSource};
 
 use super::Wake;
@@ -31,19 +32,16 @@ impl SceneLoad {
         let label = source.label();
         let per_mille = Arc::new(AtomicU32::new(NO_FRACTION));
         let progress = per_mille.clone();
-        let spawned = std::thread::Builder::new()
-            .name(THREAD_NAME.into())
-            .spawn(move || {
-                let mut on_progress = |p: tracer::scene::mesh_io::LoadProgress| {
-                    let fraction = p.bytes_read as f64 / p.total_bytes.max(1) as f64;
-                    progress.store((fraction.min(1.0) * 1000.0) as u32, Ordering::Relaxed);
-                    wake();
-                };
-                let result =
-                    Loaded::read(source, &[], &mut on_progress).map_err(|e| format!("{e:#}"));
-                let _ = tx.send(result);
+        let spawned = target::spawn(THREAD_NAME, move || {
+            let mut on_progress = |p: tracer::scene::mesh_io::LoadProgress| {
+                let fraction = p.bytes_read as f64 / p.total_bytes.max(1) as f64;
+                progress.store((fraction.min(1.0) * 1000.0) as u32, Ordering::Relaxed);
                 wake();
-            });
+            };
+            let result = Loaded::read(source, &[], &mut on_progress).map_err(|e| format!("{e:#}"));
+            let _ = tx.send(result);
+            wake();
+        });
         let result = match spawned {
             Ok(_) => rx,
             Err(e) => {

@@ -6,13 +6,14 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use tracer::accel::SceneIndex;
-use tracer::render::driver::{Priority, render_pool};
+use tracer::render::driver::Priority;
 use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
 use tracer::world::ShapeChange;
 
 use crate::load::{Loaded, SceneSource};
 
 use crate::gui::platform::cpu_clock::count_render_thread_cpu;
+use crate::gui::platform::target;
 
 use loader::SceneLoad;
 
@@ -224,7 +225,7 @@ impl Engine {
             self.index.clone(),
             settings.clone(),
             JobOptions {
-                pool: Some(pool),
+                pool,
                 on_progress: Some(Box::new(move || {
                     count_render_thread_cpu();
                     if done.load(Ordering::Relaxed) || waiting.load(Ordering::Relaxed) {
@@ -292,17 +293,18 @@ impl Engine {
 
     /// The engine's render threads, made on first use: they let the
     /// window's threads run first, or run only when the cores are idle.
-    fn render_pool(&mut self) -> Result<Arc<rayon::ThreadPool>, String> {
+    /// None on the web page, whose jobs render on its workers' pool.
+    fn render_pool(&mut self) -> Result<Option<Arc<rayon::ThreadPool>>, String> {
         if let Some(pool) = &self.pool {
-            return Ok(pool.clone());
+            return Ok(Some(pool.clone()));
         }
         let priority = if self.idle_priority {
             Priority::Idle
         } else {
             Priority::YieldToViewer
         };
-        let pool = render_pool(None, priority).map_err(|e| e.to_string())?;
-        self.pool = Some(pool.clone());
+        let pool = target::render_pool(priority)?;
+        self.pool.clone_from(&pool);
         Ok(pool)
     }
 

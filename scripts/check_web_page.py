@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""Opens the web build (web/dist/, from scripts/build-web.sh) in headless
+Chromium, served as scripts/serve-web.sh serves it, and checks it: the
+page cross-origin isolated with its workers up, side A's render of the
+default scene finished, and no console error or uncaught exception on
+the way. Prints the time from navigation to the first pass and to the
+finished render (the page says how its render stands in <body data-…>).
+Talks DevTools through check_report_page's standard-library client.
+
+    scripts/check_web_page.py [--dist web/dist] [--screenshot page.png]
+                              [--chromium PATH] [--timeout SECONDS]
+                              [--query ?lesson=NAME --lesson NAME]
+
+Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
+Chromium cannot be started.
+"""
+
+import argparse
+import base64
+import json
+import os
+import shutil
+import sys
+import tempfile
+import threading
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import check_report_page as devtools  # noqa: E402
+import serve_web  # noqa: E402
+
+# WebGL on the CPU: headless Chromium has no GPU here.
+devtools.CHROMIUM_FLAGS[:] = [f for f in devtools.CHROMIUM_FLAGS if f != "--disable-gpu"] + [
+    "--enable-unsafe-swiftshader",
+    "--use-angle=swiftshader",
+    "--window-size=1280,820",
+]
+
+STATUS = (
+    "(() => { const data = document.body ? document.body.dataset : {};"
+    " return JSON.stringify({isolated: self.crossOriginIsolated,"
+    " render: data.render || '', passes: Number(data.passes || 0),"
+    " workers: Number(data.workers || 0), lesson: data.lesson || '',"
+    " now: performance.now()}); })()"
+)
+
+
+def problems_of(events):
+    """Console errors and uncaught exceptions, as sentences."""
+    problems = []
+    for event in events:
+        method, params = event.get("method"), event.get("params", {})
+        if method == "Runtime.consoleAPICalled" and params.get("type") in ("error", "assert"):
+            args = " ".join(str(a.get("value", a.get("description", ""))) for a in params["args"])
+            problems.append(f"console error: {args}")
+        elif method == "Runtime.exceptionThrown":
+            details = params["exceptionDetails"]
+            text = details.get("exception", {}).get("description") or details.get("text")
+            problems.append(f"uncaught exception: {text}")
+        elif method == "Log.entryAdded" and params["entry"].get("level") == "error":
+            problems.append(f"logged error: {params['entry'].get('text')}")
+    return problems
+
+
+def status(page):
+    result = page.command("Runtime.evaluate", expression=STATUS, returnByValue=True)
+    return json.loads(result["result"]["value"])
+
+
+def check(url, timeout, screenshot, chromium, lesson):
+    profile = tempfile.mkdtemp(prefix="workbench-web-")
+    try:
+        process, port = devtools.start_chromium(chromium, profile)
+    except (OSError, RuntimeError) as e:
+        shutil.rmtree(profile, ignore_errors=True)
+        print(f"cannot start Chromium: {e}", file=sys.stderr)
+        return 2
+    try:
+        page = devtools.Page(devtools.WebSocket(devtools.page_target(port)))
+        for domain in ("Runtime", "Log", "Page"):
+            page.command(f"{domain}.enable")
+        start = status(page)["now"]
+        page.command("Page.navigate", url=url)
+        deadline = time.monotonic() + timeout
+        first_pass = None
+        while True:
+            now = status(page)
+            if now["passes"] >= 1 and first_pass is None:
+                first_pass = now["now"]
+            if now["render"] == "done" or now["render"].startswith(("failed", "error")):
+                break
+            if time.monotonic() > deadline:
+                break
+            time.sleep(0.05)
+        problems = problems_of(page.events)
+        if not now["isolated"]:
+            problems.append("the page is not cross-origin isolated")
+        # web/index.html starts at least two (one per core, 2 to 8).
+        if now["workers"] < 2:
+            problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
+        if now["render"] != "done":
+            problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
+        if lesson is not None and now["lesson"] != lesson:
+            problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
+        if screenshot:
+            shot = page.command("Page.captureScreenshot", format="png")
+            with open(screenshot, "wb") as f:
+                f.write(base64.b64decode(shot["data"]))
+        print(f"workers: {now['workers']}, passes: {now['passes']}")
+        if first_pass is not None:
+            print(f"first pass: {(first_pass - start) / 1000:.2f} s after navigation started")
+        print(f"render {now['render']}: {(now['now'] - start) / 1000:.2f} s after navigation started")
+    finally:
+        process.kill()
+        process.wait()
+        shutil.rmtree(profile, ignore_errors=True)
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    return 1 if problems else 0
+
+
+def main():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--dist", default=os.path.join(root, "web", "dist"))
+    parser.add_argument("--screenshot")
+    parser.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
+    parser.add_argument("--timeout", type=float, default=300.0)
+    parser.add_argument("--query", default="", help="the page's query, as ?lesson=shadows")
+    parser.add_argument("--lesson", help="the lesson the Lessons panel must show at the end")
+    args = parser.parse_args()
+    httpd = serve_web.server(args.dist, 0, True)
+    threading.Thread(target=httpd.serve_forever, daemon=True).start()
+    url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
+    return check(url, args.timeout, args.screenshot, args.chromium, args.lesson)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
