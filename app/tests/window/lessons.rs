@@ -157,7 +157,7 @@ fn a_student_walks_a_lesson_and_the_progress_stays() {
     let restarted = start(Some(&storage), None);
     let progress = &restarted.state().lessons().progress;
     assert_eq!(
-        progress.get("two_steps"),
+        progress.done.get("two_steps"),
         Some(&[0, 1].into_iter().collect())
     );
 }

@@ -131,7 +131,7 @@ fn body(ui: &mut Ui, lessons: &mut Lessons, asked: &mut Asked) {
 fn picker(ui: &mut Ui, lessons: &mut Lessons) {
     let label = |lessons: &Lessons, i: usize| {
         let lesson = &lessons.lessons[i];
-        let done = lessons.progress.get(&lesson.name).map_or(0, |d| d.len());
+        let done = (lessons.progress.done.get(&lesson.name)).map_or(0, |d| d.len());
         format!(
             "{}. {} ({done}/{})",
             lesson.chapter,
