@@ -198,6 +198,9 @@ fn export_progress_saves_the_steps_done_with_the_name_and_answer() {
 
     let exported = dir.join("handed-in.json");
     answers.next(Some(&exported));
+    // Below the step's text: scrolled into the panel's view first.
+    harness.get_by_label("Export progress...").scroll_to_me();
+    harness.run_steps(2);
     harness.get_by_label("Export progress...").click();
     wait_for(&mut harness, "the progress written", |_| exported.exists());
     let (filter, offered, save) = answers.last();
