@@ -110,6 +110,22 @@ fn the_windows_saved_progress_is_written_as_json_csv_and_html() {
     assert!(named.contains("\"student\": \"Ada <Lovelace>\""), "{named}");
 }
 
+/// `lesson progress --merge a b -o out`: what it wrote, in the format
+/// `out`'s extension names.
+fn merged_into(a: &str, b: &str, out: &Path) -> String {
+    let args = [
+        "lesson",
+        "progress",
+        "--merge",
+        a,
+        b,
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    workbench_ok(&args);
+    std::fs::read_to_string(out).unwrap()
+}
+
 #[test]
 fn merged_files_make_one_row_per_student_and_a_column_per_lesson() {
     let dir = Scratch::new("progress-merge");
@@ -121,16 +137,7 @@ fn merged_files_make_one_row_per_student_and_a_column_per_lesson() {
     assert_eq!(csv, "student,camera,shadows\nAda,1 3,\nbob,,2\n");
 
     let class = dir.join("class.html");
-    workbench_ok(&[
-        "lesson",
-        "progress",
-        "--merge",
-        ada,
-        bob,
-        "-o",
-        class.to_str().unwrap(),
-    ]);
-    let html = std::fs::read_to_string(&class).unwrap();
+    let html = merged_into(ada, bob, &class);
     assert!(
         html.contains("<th>student</th><th>camera</th><th>shadows</th>"),
         "{html}"
@@ -145,17 +152,7 @@ fn merged_files_make_one_row_per_student_and_a_column_per_lesson() {
     );
 
     let json = dir.join("class.json");
-    workbench_ok(&[
-        "lesson",
-        "progress",
-        "--merge",
-        ada,
-        bob,
-        "-o",
-        json.to_str().unwrap(),
-    ]);
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&merged_into(ada, bob, &json)).unwrap();
     assert_eq!(json["format-version"], 1);
     assert_eq!(json["students"][1]["student"], "bob");
     assert_eq!(json["students"][1]["file"], bob);
