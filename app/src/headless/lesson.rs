@@ -14,10 +14,10 @@ use crate::cli::{
     ExplainArgs, LessonArgs, LessonCommand, MetricsFormat, ProgressArgs, ProgressFormat,
 };
 use crate::lessons::format::read_lesson_file;
+use crate::lessons::progress::table as tables;
 use crate::lessons::replay::replay;
 use crate::lessons::{Lesson, LessonErrors, bundled};
 use crate::lessons::{explain, folder, progress};
-use crate::reports::progress as tables;
 
 pub fn run(args: &LessonArgs) -> Result<()> {
     match &args.command {

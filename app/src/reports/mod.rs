@@ -7,7 +7,6 @@
 
 pub mod bench_table;
 pub mod lab;
-pub mod progress;
 pub mod ray_tree;
 pub mod render_stats;
 pub mod study_table;

@@ -3,6 +3,8 @@
 //! as lesson files have) that `workbench lesson progress` reads, turns into
 //! tables and merges for a class. A record, not a proof: anyone can edit it.
 
+pub mod table;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 

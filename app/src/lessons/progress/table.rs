@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 
 use serde::Serialize;
 
-use crate::lessons::progress::{FORMAT_VERSION, Progress};
+use super::{FORMAT_VERSION, LessonProgress, Progress};
 use crate::reports::bench_table::csv;
 use crate::reports::lab::html;
 
@@ -19,7 +19,7 @@ pub struct Student {
     pub student: String,
     /// The file it was read from, as given.
     pub file: String,
-    pub lessons: Vec<crate::lessons::progress::LessonProgress>,
+    pub lessons: Vec<LessonProgress>,
 }
 
 /// The headers of one student's table.
