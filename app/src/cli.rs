@@ -210,6 +210,45 @@ pub enum LessonCommand {
     /// check can read there with its value; with --find, the pixels where
     /// tree figures hold, to choose one to pin.
     Explain(ExplainArgs),
+    /// A student's lesson progress (the steps done per lesson, when, and
+    /// the answers given) from the window's saved state or an exported
+    /// file, as JSON, CSV or an HTML page; with --merge, a class's files
+    /// as one table.
+    Progress(ProgressArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "\
+  workbench lesson progress                      the window's saved progress, as JSON
+  workbench lesson progress ada.json --format csv
+  workbench lesson progress --merge class/*.json -o class.html
+
+A merged table has a row per file, named by its `student` (the name typed
+in the Lessons panel) or else by the file's stem, and a column per lesson
+with the steps done. A progress file can be edited: it is a record, not a
+proof.")]
+pub struct ProgressArgs {
+    /// An exported progress file (.json), or the window's saved state
+    /// (app.ron); default: the window's saved state in the data folder.
+    #[arg(value_name = "FILE", conflicts_with = "merge")]
+    pub file: Option<PathBuf>,
+    /// Merge these students' exported files into one table.
+    #[arg(long, num_args = 1.., value_name = "FILE")]
+    pub merge: Vec<PathBuf>,
+    /// The output's format; default: from -o's extension, else JSON.
+    #[arg(long, value_enum)]
+    pub format: Option<ProgressFormat>,
+    /// Write to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+/// How `lesson progress` writes.
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ProgressFormat {
+    Json,
+    Csv,
+    Html,
 }
 
 #[derive(Args, Debug)]

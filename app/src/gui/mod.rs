@@ -42,6 +42,10 @@ pub use windows::studies::{Applied, StudiesWindow};
 #[cfg(not(target_family = "wasm"))]
 use crate::load::SceneSource;
 
+/// The window's title, which names the folder eframe saves its state in
+/// (`lessons::progress::window_state_file` looks there).
+pub const TITLE: &str = "Whitted Workbench";
+
 /// Opens the window on `scene` (or the last scene, or the bundled default),
 /// with the observer view on when `observer`, the lessons of
 /// `lesson_folder` listed and the first set up, the lesson file `lesson`
@@ -57,7 +61,7 @@ pub fn run(
 ) -> anyhow::Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
-            .with_title("Whitted Workbench")
+            .with_title(TITLE)
             .with_inner_size([1280.0, 820.0])
             .with_min_inner_size([640.0, 400.0])
             .with_drag_and_drop(true),
@@ -74,7 +78,7 @@ pub fn run(
     let app_outcome = outcome.clone();
     let plan = screenshot.clone();
     eframe::run_native(
-        "Whitted Workbench",
+        TITLE,
         options,
         Box::new(move |cc| {
             // The graphics device exists now, and with it the threads of a

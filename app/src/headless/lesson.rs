@@ -3,16 +3,21 @@
 //! one line per step, and fails when any step's check already holds before
 //! the student acts or does not hold after the step's solution. `explain`
 //! says what a step starts from and where its tree figures hold.
+//! `progress` turns a student's record into a table, or a class's into one.
 
+use std::io::Write as _;
 use std::path::Path;
 
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Context as _, Result, anyhow, bail};
 
-use crate::cli::{ExplainArgs, LessonArgs, LessonCommand, MetricsFormat};
+use crate::cli::{
+    ExplainArgs, LessonArgs, LessonCommand, MetricsFormat, ProgressArgs, ProgressFormat,
+};
 use crate::lessons::format::read_lesson_file;
+use crate::lessons::progress::table as tables;
 use crate::lessons::replay::replay;
 use crate::lessons::{Lesson, LessonErrors, bundled};
-use crate::lessons::{explain, folder};
+use crate::lessons::{explain, folder, progress};
 
 pub fn run(args: &LessonArgs) -> Result<()> {
     match &args.command {
@@ -20,7 +25,70 @@ pub fn run(args: &LessonArgs) -> Result<()> {
         LessonCommand::Check { lessons, format } => check(lessons, *format),
         LessonCommand::New { name } => new(name),
         LessonCommand::Explain(args) => explain(args),
+        LessonCommand::Progress(args) => progress(args),
     }
+}
+
+/// One student's progress, or (`--merge`) a class's, written in the
+/// format asked or that `-o`'s extension names.
+fn progress(args: &ProgressArgs) -> Result<()> {
+    let format =
+        args.format
+            .unwrap_or_else(|| match args.output.as_deref().and_then(Path::extension) {
+                Some(e) if e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm") => {
+                    ProgressFormat::Html
+                }
+                Some(e) if e.eq_ignore_ascii_case("csv") => ProgressFormat::Csv,
+                _ => ProgressFormat::Json,
+            });
+    let text = if args.merge.is_empty() {
+        let file = match &args.file {
+            Some(file) => file.clone(),
+            None => progress::window_state_file()
+                .filter(|f| f.exists())
+                .ok_or_else(|| {
+                    anyhow!(
+                        "no saved window state{}: the window has not been closed on this \
+                         account yet; give an exported progress file instead",
+                        progress::window_state_file()
+                            .map_or(String::new(), |f| format!(" at {}", f.display()))
+                    )
+                })?,
+        };
+        let record = progress::read(&file)?;
+        let student = record.student_or("").to_string();
+        match format {
+            ProgressFormat::Json => record.to_json(),
+            ProgressFormat::Csv => tables::steps_csv(&record, &student),
+            ProgressFormat::Html => tables::steps_html(&record, &student),
+        }
+    } else {
+        let class = (args.merge.iter())
+            .map(|file| {
+                let record = progress::read(file)?;
+                let stem = file.file_stem().unwrap_or_default().to_string_lossy();
+                Ok(tables::Student {
+                    student: record.student_or(&stem).to_string(),
+                    file: file.display().to_string(),
+                    lessons: record.lessons,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        match format {
+            ProgressFormat::Json => tables::class_json(&class),
+            ProgressFormat::Csv => tables::class_csv(&class),
+            ProgressFormat::Html => tables::class_html(&class),
+        }
+    };
+    match &args.output {
+        Some(path) => {
+            crate::image_file::write_atomically(path, |file| Ok(file.write_all(text.as_bytes())?))
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            eprintln!("wrote {}", path.display());
+        }
+        None => print!("{text}"),
+    }
+    Ok(())
 }
 
 fn explain(args: &ExplainArgs) -> Result<()> {

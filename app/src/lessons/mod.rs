@@ -4,7 +4,7 @@
 //! step is done, `state` is what a check looks at, `replay` walks a
 //! lesson's steps the way a student would (for `workbench lesson check`
 //! and the window's "Set up this step"), `bundled` is the set shipped in
-//! the binary.
+//! the binary, `progress` what a student did, as kept and handed in.
 
 pub mod actions;
 pub mod bundled;
@@ -13,6 +13,7 @@ pub mod explain;
 pub mod folder;
 pub mod format;
 pub mod new;
+pub mod progress;
 pub mod replay;
 pub mod state;
 

@@ -17,6 +17,7 @@ mod flags;
 mod golden;
 mod lesson_explain;
 mod lesson_folders;
+mod lesson_progress;
 mod lessons;
 mod meshes_and_images;
 mod observe;

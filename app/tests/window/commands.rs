@@ -4,19 +4,20 @@
 //! JPEG can be side B, the slow brute-force banner switches to the BVH,
 //! and a lesson picked in the Open dialog opens in the Lessons window.
 
-use std::collections::VecDeque;
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
+use std::path::Path;
+use std::sync::Arc;
 use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tracer::accel::AccelKind;
 use tracer::generate::{GenerateOptions, GeneratorName, generate};
-use workbench::gui::{FileDialog, FileQuestion, WorkbenchApp};
+use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
-use crate::harness::{WINDOW, drag, is_done, small_window_sized, wait_for, wait_for_scene, window};
+use crate::harness::{
+    Answers, WINDOW, drag, is_done, small_window_sized, wait_for, wait_for_scene, window,
+};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
 
@@ -71,41 +72,6 @@ fn c_puts_the_camera_back_where_the_file_has_it() {
     harness.run_steps(2);
     assert_eq!(settings(&harness).camera, None);
     assert!(finished(&mut harness) == before, "back to the file's view");
-}
-
-/// The file dialogs as a test answers them: each question asked is kept,
-/// each answered with the next path given (`None`: cancelled).
-#[derive(Default)]
-struct Answers {
-    paths: Mutex<VecDeque<Option<PathBuf>>>,
-    asked: Mutex<Vec<FileQuestion>>,
-}
-
-impl FileDialog for Answers {
-    fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
-        self.asked.lock().unwrap().push(question.clone());
-        self.paths
-            .lock()
-            .unwrap()
-            .pop_front()
-            .expect("a dialog no answer was given for")
-    }
-}
-
-impl Answers {
-    fn next(&self, path: Option<&Path>) {
-        self.paths
-            .lock()
-            .unwrap()
-            .push_back(path.map(Path::to_path_buf));
-    }
-
-    /// The last question's filter extensions and offered name.
-    fn last(&self) -> (Vec<&'static str>, Option<String>, bool) {
-        let asked = self.asked.lock().unwrap();
-        let q = asked.last().expect("a question");
-        (q.filter.1.to_vec(), q.name.clone(), q.save)
-    }
 }
 
 /// Waits until `path` holds a whole file (the dialog's thread writes it).

@@ -1,8 +1,9 @@
 //! What the window's kittest suites share: the one way to build a window
-//! ([`window`]), waiting on it, drawing it, and the broken scene a user
-//! drops on it.
+//! ([`window`]), waiting on it, drawing it, the broken scene a user
+//! drops on it, and the file dialogs answered as a test says ([`Answers`]).
 
 use std::cell::RefCell;
+use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
@@ -11,7 +12,7 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, HarnessBuilder};
 use tracer::render::JobState;
 use tracer::waiting::PATIENCE;
-use workbench::gui::{Activity, Clock, WorkbenchApp};
+use workbench::gui::{Activity, Clock, FileDialog, FileQuestion, WorkbenchApp};
 use workbench::load::SceneSource;
 
 use crate::support::Scratch;
@@ -198,5 +199,40 @@ impl egui::DroppedFile for DroppedPath {
 
     fn bytes(&self) -> Result<Vec<u8>, String> {
         std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+/// The file dialogs as a test answers them: each question asked is kept,
+/// each answered with the next path given (`None`: cancelled).
+#[derive(Default)]
+pub struct Answers {
+    pub paths: Mutex<VecDeque<Option<PathBuf>>>,
+    pub asked: Mutex<Vec<FileQuestion>>,
+}
+
+impl FileDialog for Answers {
+    fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
+        self.asked.lock().unwrap().push(question.clone());
+        self.paths
+            .lock()
+            .unwrap()
+            .pop_front()
+            .expect("a dialog no answer was given for")
+    }
+}
+
+impl Answers {
+    pub fn next(&self, path: Option<&Path>) {
+        self.paths
+            .lock()
+            .unwrap()
+            .push_back(path.map(Path::to_path_buf));
+    }
+
+    /// The last question's filter extensions and offered name.
+    pub fn last(&self) -> (Vec<&'static str>, Option<String>, bool) {
+        let asked = self.asked.lock().unwrap();
+        let q = asked.last().expect("a question");
+        (q.filter.1.to_vec(), q.name.clone(), q.save)
     }
 }

@@ -1,7 +1,8 @@
 //! A student walking a lesson in the window: the lesson dropped on the
 //! window and its first step set up, the check turning done when the
 //! student acts, Next, a typed answer wrong then right, "Set up this step"
-//! restoring a step, and the progress surviving a restart.
+//! restoring a step, the progress surviving a restart, and Export
+//! progress... saving it, with the student's name, for the teacher.
 
 use std::sync::Arc;
 
@@ -10,9 +11,10 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use workbench::gui::WorkbenchApp;
 use workbench::lessons::Verdict;
+use workbench::lessons::progress::Progress;
 use workbench::load::SceneSource;
 
-use crate::harness::{DroppedPath, WINDOW, ready_window, small_window, wait_for};
+use crate::harness::{Answers, DroppedPath, WINDOW, ready_window, small_window, wait_for};
 use crate::persistence::{MemoryStorage, start};
 use crate::support::Scratch;
 
@@ -158,9 +160,65 @@ fn a_student_walks_a_lesson_and_the_progress_stays() {
     let restarted = start(Some(&storage), None);
     let progress = &restarted.state().lessons().progress;
     assert_eq!(
-        progress.get("two_steps"),
+        progress.done.get("two_steps"),
         Some(&[0, 1].into_iter().collect())
     );
+}
+
+/// Types `text` into the text box labelled `label`.
+fn type_into(harness: &mut Window, label: &str, text: &str) {
+    harness
+        .get_by_role_and_label(Role::TextInput, label)
+        .focus();
+    harness.run_steps(2);
+    harness
+        .get_by_role_and_label(Role::TextInput, label)
+        .type_text(text);
+    harness.run_steps(2);
+}
+
+#[test]
+fn export_progress_saves_the_steps_done_with_the_name_and_answer() {
+    let (dir, mut harness) = open_lesson("to_export", LESSON);
+    let answers = Arc::new(Answers::default());
+    harness
+        .state_mut()
+        .answer_file_dialogs_with(answers.clone());
+    wait_for_verdict(&mut harness, "step 1 not yet done", |v| {
+        matches!(v, Verdict::NotYet(_))
+    });
+    type_into(&mut harness, "Your name:", "Ada");
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Anti-aliasing (A)")
+        .click();
+    wait_for_verdict(&mut harness, "step 1 done", Verdict::is_done);
+    harness.get_by_label("Next").click();
+    harness.run_steps(2);
+    answer(&mut harness, "16");
+    wait_for_verdict(&mut harness, "the right answer", Verdict::is_done);
+
+    let exported = dir.join("handed-in.json");
+    answers.next(Some(&exported));
+    // Below the step's text: scrolled into the panel's view first.
+    harness.get_by_label("Export progress...").scroll_to_me();
+    harness.run_steps(2);
+    harness.get_by_label("Export progress...").click();
+    wait_for(&mut harness, "the progress written", |_| exported.exists());
+    let (filter, offered, save) = answers.last();
+    assert_eq!(filter, ["json"]);
+    assert_eq!(offered.as_deref(), Some("Ada-progress.json"));
+    assert!(save);
+
+    let text = std::fs::read_to_string(&exported).unwrap();
+    let progress = Progress::from_json(&text, &exported).unwrap();
+    assert_eq!(progress.student.as_deref(), Some("Ada"));
+    let lesson = progress.lessons.iter().find(|l| l.lesson == "to_export");
+    let steps = &lesson.unwrap_or_else(|| panic!("{text}")).steps;
+    let numbers: Vec<usize> = steps.iter().map(|s| s.step).collect();
+    assert_eq!(numbers, [1, 2], "{text}");
+    assert_eq!(steps[0].answer, None, "a step that asks nothing: {text}");
+    assert_eq!(steps[1].answer.as_deref(), Some("16"), "{text}");
+    assert!(steps.iter().all(|s| s.done_at.is_some()), "{text}");
 }
 
 /// The kd of object 0's material in `scene`.

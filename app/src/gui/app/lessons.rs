@@ -112,6 +112,9 @@ impl WorkbenchApp {
         if asked.folder && !self.dialogs.open_lesson_folder() {
             self.messages.notify("cannot open a file dialog");
         }
+        if asked.export && !self.dialogs.save_progress(self.lessons.progress.export()) {
+            self.messages.notify("cannot open a file dialog");
+        }
         let looked_at = self.looked_at();
         let (sides, tools, observer) = (&self.sides, &self.tools, &self.observer);
         let layout = Layout {

@@ -8,8 +8,8 @@ use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
 use tracer::render::{LensOverride, RenderSettings};
 
-use crate::gui::lessons::StepsDone;
 use crate::gui::sides::Controls;
+use crate::lessons::progress::{Record, StepNotes, StepsDone};
 use crate::load::SceneSource;
 
 /// How many recent files to remember.
@@ -55,6 +55,11 @@ struct Saved {
     show_stats: bool,
     /// The lesson steps done, per lesson.
     lessons: StepsDone,
+    /// When each step was done and its answer; `lesson progress` reads
+    /// these three under these names (`lessons::progress`).
+    lesson_notes: StepNotes,
+    /// The name the student typed in the Lessons panel.
+    student: String,
 }
 
 impl Default for Saved {
@@ -66,13 +71,15 @@ impl Default for Saved {
             recent: session.recent,
             show_stats: session.show_stats,
             lessons: StepsDone::new(),
+            lesson_notes: StepNotes::new(),
+            student: String::new(),
         }
     }
 }
 
 /// The controls, session and lesson progress `storage` holds, or the
 /// defaults.
-pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, StepsDone) {
+pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Record) {
     let saved = storage
         .and_then(|s| s.get_string(eframe::APP_KEY))
         .and_then(|text| read(&text));
@@ -84,9 +91,13 @@ pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Ste
                 recent: saved.recent,
                 show_stats: saved.show_stats,
             },
-            saved.lessons,
+            Record {
+                student: saved.student,
+                done: saved.lessons,
+                notes: saved.lesson_notes,
+            },
         ),
-        None => (Controls::default(), Session::default(), StepsDone::new()),
+        None => (Controls::default(), Session::default(), Record::default()),
     }
 }
 
@@ -95,14 +106,16 @@ pub fn save(
     storage: &mut dyn eframe::Storage,
     controls: &Controls,
     session: &Session,
-    progress: &StepsDone,
+    progress: &Record,
 ) {
     let saved = Saved {
         controls: controls.clone(),
         last_scene: session.last_scene.clone(),
         recent: session.recent.clone(),
         show_stats: session.show_stats,
-        lessons: progress.clone(),
+        lessons: progress.done.clone(),
+        lesson_notes: progress.notes.clone(),
+        student: progress.student.clone(),
     };
     eframe::set_value(storage, eframe::APP_KEY, &saved);
 }
@@ -188,12 +201,43 @@ mod tests {
             recent: session.recent.clone(),
             show_stats: false,
             lessons: StepsDone::from([("camera".to_string(), [0, 2].into())]),
+            lesson_notes: StepNotes::new(),
+            student: "Ada".into(),
         };
         let back = read(&ron::to_string(&saved).unwrap()).unwrap();
         assert_eq!(back.lessons, saved.lessons);
+        assert_eq!(back.student, "Ada");
         assert_eq!(back.controls, controls);
         assert_eq!(back.last_scene, saved.last_scene);
         assert_eq!((back.recent, back.show_stats), (session.recent, false));
+    }
+
+    /// `lesson progress` reads the window's saved lessons under the names
+    /// `Saved` writes them with.
+    #[test]
+    fn the_saved_lessons_are_what_lesson_progress_reads() {
+        let mut record = Record {
+            student: "Ada".into(),
+            ..Record::default()
+        };
+        record.mark_done("camera", 1, "then".into(), Some("16".into()));
+        let saved = Saved {
+            lessons: record.done.clone(),
+            lesson_notes: record.notes.clone(),
+            student: record.student.clone(),
+            ..Saved::default()
+        };
+        let stored = format!("{{\"app\":{:?}}}", ron::to_string(&saved).unwrap());
+        let path = std::path::Path::new("app.ron");
+        let read = crate::lessons::progress::of_window_state(&stored, path).unwrap();
+        assert_eq!(read, record.export());
+    }
+
+    /// `lesson progress` finds the file eframe keeps the window's state in.
+    #[test]
+    fn lesson_progress_looks_where_eframe_saves() {
+        let eframes = eframe::storage_dir(crate::gui::TITLE).map(|d| d.join("app.ron"));
+        assert_eq!(crate::lessons::progress::window_state_file(), eframes);
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Files in and out: the open and save dialogs on threads of their own
-//! (the UI keeps drawing), behind [`FileDialog`] so a test can answer them, the PNG, EXR and edited-scene writes, and
+//! (the UI keeps drawing), behind [`FileDialog`] so a test can answer them, the PNG, EXR, edited-scene and lesson-progress writes, and
 //! `--screenshot`.
 //! Their results come back to the UI thread as [`Reply`]s.
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
@@ -15,7 +16,8 @@ use tracer::scene::{Scene, write_p3f_in};
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use crate::gui::platform::target;
 use crate::gui::sides::{Activity, Side, SideId};
-use crate::image_file::{save_exr, save_png};
+use crate::image_file::{save_exr, save_png, write_atomically};
+use crate::lessons::progress::Progress;
 use crate::load::SceneSource;
 
 /// Results of background dialogs and saves, delivered to the UI thread.
@@ -234,6 +236,32 @@ impl Dialogs {
             "no lesson folder added (cancelled, or no file dialog on this desktop: \
              start the workbench with --lesson-folder DIR instead)",
             Reply::LessonFolder,
+        )
+    }
+
+    /// The native save dialog for the lessons' `progress` (the Lessons
+    /// window's Export progress...), offered as the student's name, and
+    /// the write; false when no thread could be started.
+    pub fn save_progress(&self, progress: Progress) -> bool {
+        let question = FileQuestion {
+            save: true,
+            pick_folder: false,
+            filter: ("Lesson progress", &["json"]),
+            folder: None,
+            name: Some(format!("{}-progress.json", progress.student_or("lessons"))),
+        };
+        self.ask_on_thread(
+            "save-progress-dialog",
+            question,
+            "progress not exported (cancelled, or no file dialog on this desktop: \
+             `workbench lesson progress` reads it from the saved state)",
+            move |path| {
+                let text = progress.to_json();
+                match write_atomically(&path, |file| Ok(file.write_all(text.as_bytes())?)) {
+                    Ok(()) => Reply::Notice(format!("progress exported to {}", path.display())),
+                    Err(e) => Reply::Error(format!("cannot write {}: {e:#}", path.display())),
+                }
+            },
         )
     }
 

@@ -5,17 +5,17 @@
 
 mod panel;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::sync::mpsc::{Receiver, channel};
+use web_time::SystemTime;
 
 use crate::gui::platform::target;
+use crate::lessons::progress::Record;
 use crate::lessons::{self, Lesson, LessonState, Verdict};
+use crate::reports::lab::machine::utc_date;
 
 pub use panel::show;
-
-/// The steps done, per lesson name: what persists across restarts.
-pub type StepsDone = BTreeMap<String, BTreeSet<usize>>;
 
 /// The Lessons panel.
 pub struct Lessons {
@@ -34,7 +34,8 @@ pub struct Lessons {
     /// What the verdict was evaluated on, to evaluate again only on change.
     evaluated: Option<u64>,
     pending: Option<(u64, Receiver<Verdict>)>,
-    pub progress: StepsDone,
+    /// The student's name and steps done: what persists and is exported.
+    pub progress: Record,
 }
 
 impl Default for Lessons {
@@ -55,7 +56,7 @@ impl Default for Lessons {
             verdict: None,
             evaluated: None,
             pending: None,
-            progress: StepsDone::new(),
+            progress: Record::default(),
         }
     }
 }
@@ -144,7 +145,7 @@ impl Lessons {
     /// The steps of the current lesson done so far.
     pub fn done_steps(&self) -> BTreeSet<usize> {
         self.lesson()
-            .and_then(|l| self.progress.get(&l.name))
+            .and_then(|l| self.progress.done.get(&l.name))
             .cloned()
             .unwrap_or_default()
     }
@@ -152,7 +153,7 @@ impl Lessons {
     /// Forgets every step done of the current lesson.
     pub fn reset_progress(&mut self) {
         if let Some(name) = self.lesson().map(|l| l.name.clone()) {
-            self.progress.remove(&name);
+            self.progress.forget(&name);
         }
         self.go_to(0);
     }
@@ -172,8 +173,8 @@ impl Lessons {
     /// (`looked_at` fingerprints the window's sides, pixel and layout;
     /// `state` builds what the check sees), on a thread, since a
     /// measurement renders. Takes a finished verdict, marking the step
-    /// done: a done step stays done. `wake` asks for a frame when the
-    /// verdict arrives.
+    /// done with the time and the answer submitted: a done step stays
+    /// done. `wake` asks for a frame when the verdict arrives.
     pub fn keep_checking(
         &mut self,
         looked_at: u64,
@@ -187,7 +188,8 @@ impl Lessons {
             if verdict.is_done()
                 && let Some(name) = self.lesson().map(|l| l.name.clone())
             {
-                self.progress.entry(name).or_default().insert(self.step);
+                let (at, answer) = (utc_date(SystemTime::now()), self.submitted.clone());
+                self.progress.mark_done(&name, self.step, at, answer);
             }
             self.verdict = Some(verdict);
             self.pending = None;

@@ -1,7 +1,8 @@
 //! The Lessons window: the lesson picker with each lesson's progress, the
 //! current step's text (emphasis, code and indented formulas set apart),
-//! its hints on request, the question and answer, the check's state, and
-//! the buttons that move between steps or set one up.
+//! its hints on request, the question and answer, the check's state, the
+//! buttons that move between steps or set one up, and the student's name
+//! and Export progress... for the teacher.
 
 use egui::text::LayoutJob;
 use egui::{Color32, FontId, RichText, TextFormat, Ui};
@@ -19,6 +20,8 @@ pub struct Asked {
     pub set_up: bool,
     /// Ask for a folder of lessons to add to the list.
     pub folder: bool,
+    /// Ask where to save the progress (Export progress...).
+    pub export: bool,
 }
 
 /// Draws the window when it is open.
@@ -118,20 +121,39 @@ fn body(ui: &mut Ui, lessons: &mut Lessons, asked: &mut Asked) {
             RichText::new(format!("Lesson complete: {steps} of {steps} steps done.")).strong(),
         );
     }
-    if ui
-        .small_button("Reset progress")
-        .on_hover_text("Forget the steps done in this lesson")
-        .clicked()
-    {
-        lessons.reset_progress();
-    }
+    ui.separator();
+    ui.horizontal(|ui| {
+        if ui
+            .small_button("Reset progress")
+            .on_hover_text("Forget the steps done in this lesson")
+            .clicked()
+        {
+            lessons.reset_progress();
+        }
+        if ui
+            .small_button("Export progress...")
+            .on_hover_text("Save the steps done in every lesson, with your name, for your teacher")
+            .clicked()
+        {
+            asked.export = true;
+        }
+    });
+    ui.horizontal(|ui| {
+        let label = ui.label("Your name:");
+        ui.add(
+            egui::TextEdit::singleline(&mut lessons.progress.student)
+                .desired_width(160.0)
+                .hint_text("for the exported progress"),
+        )
+        .labelled_by(label.id);
+    });
 }
 
 /// The lesson picker: chapter, title and steps done.
 fn picker(ui: &mut Ui, lessons: &mut Lessons) {
     let label = |lessons: &Lessons, i: usize| {
         let lesson = &lessons.lessons[i];
-        let done = lessons.progress.get(&lesson.name).map_or(0, |d| d.len());
+        let done = (lessons.progress.done.get(&lesson.name)).map_or(0, |d| d.len());
         format!(
             "{}. {} ({done}/{})",
             lesson.chapter,

@@ -59,7 +59,7 @@ fn os_name(os_release: &str) -> Option<String> {
 
 /// `time` as `YYYY-MM-DD HH:MM UTC` (the proleptic Gregorian calendar,
 /// from days since 1970 as in Howard Hinnant's `civil_from_days`).
-fn utc_date(time: SystemTime) -> String {
+pub fn utc_date(time: SystemTime) -> String {
     let secs = time.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs());
     let (days, rest) = ((secs / 86_400) as i64, secs % 86_400);
     let z = days + 719_468;

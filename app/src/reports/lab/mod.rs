@@ -5,7 +5,7 @@
 
 mod acceleration;
 pub mod course;
-mod html;
+pub(crate) mod html;
 pub mod machine;
 mod pixel;
 mod run;
