@@ -467,6 +467,87 @@ mod tests {
         let closer = pose.dolly(0.5);
         let d0 = (pose.from - pose.at).length();
         assert!(((closer.from - closer.at).length() - 0.5 * d0).abs() < 1e-4);
+        // Halfway, on the eye's side of `at`.
+        assert!((closer.from - (pose.from + pose.at) * 0.5).length() < 1e-5);
+    }
+
+    #[test]
+    fn pan_slides_along_the_image_axes() {
+        let v = view(8, 8);
+        let pose = CameraPose::of(&v);
+        let [right, up, _] = Camera::new(&v, 8, 8, 0.0, 1.0).unwrap().basis();
+        let shift = Vec3::from((right * 0.1 - up * 0.2) * (pose.at - pose.from).length());
+        let panned = pose.pan(0.1, -0.2);
+        assert!(
+            (panned.from - pose.from - shift).length() < 1e-5,
+            "{panned:?}"
+        );
+        assert!((panned.at - pose.at - shift).length() < 1e-5, "{panned:?}");
+        assert_eq!(panned.up, pose.up);
+    }
+
+    /// The eye's elevation above the plane across `up`, and its direction
+    /// in that plane (unit), seen from `at`.
+    fn elevation_and_heading(pose: &CameraPose) -> (f32, Vec3) {
+        let up = pose.up.normalize();
+        let offset = (pose.from - pose.at).normalize();
+        let heading = (offset - up * offset.dot(up)).normalize();
+        (offset.dot(up).asin(), heading)
+    }
+
+    #[test]
+    fn orbit_pitches_by_the_angle_and_stops_at_the_margin_on_its_side() {
+        let pose = CameraPose::of(&view(8, 8));
+        let (start, heading) = elevation_and_heading(&pose);
+        let limit = std::f32::consts::FRAC_PI_2 - POLE_MARGIN;
+        for (pitch, expected) in [
+            (0.3, start + 0.3),
+            (-0.4, start - 0.4),
+            (10.0, limit),
+            (-10.0, -limit),
+        ] {
+            let (elevation, turned) = elevation_and_heading(&pose.orbit(0.0, pitch));
+            assert!(
+                (elevation - expected).abs() < 1e-4,
+                "pitch {pitch}: {elevation} vs {expected}"
+            );
+            // Never over the pole: the eye stays on its side of `up`.
+            assert!(turned.dot(heading) > 1.0 - 1e-4, "pitch {pitch}: {turned}");
+        }
+    }
+
+    #[test]
+    fn accessors_give_the_frame_lens_and_depths() {
+        let v = Viewpoint {
+            from: Vec3::new(0.0, 0.0, 5.0),
+            at: Vec3::ZERO,
+            up: Vec3::Y,
+            angle: 90.0,
+            hither: 0.25,
+            ..Viewpoint::default()
+        };
+        // 11 rows span 10 units at distance 5 (tan 45 deg = 1): a unit a
+        // pixel, so an aperture of 3 pixels is a radius of 1.5 units.
+        let cam = Camera::new(&v, 11, 11, 3.0, 2.0).unwrap();
+        assert_eq!(cam.eye(), Vec3A::new(0.0, 0.0, 5.0));
+        assert_eq!(cam.basis(), [Vec3A::X, Vec3A::Y, Vec3A::NEG_Z]);
+        assert!(
+            (cam.lens_radius() - 1.5).abs() < 1e-5,
+            "{}",
+            cam.lens_radius()
+        );
+        assert_eq!(cam.focal_ratio(), 2.0);
+        assert_eq!(cam.hither(), 0.25);
+        assert_eq!(cam.depth(Vec3A::new(3.0, -2.0, 1.0)), 4.0);
+        assert_eq!(cam.depth(Vec3A::new(0.0, 0.0, 6.0)), -1.0);
+        assert!(cam.has_lens());
+        // A lens point's ray starts that far across the lens, right and up.
+        let origin = cam.ray(5.5, 5.5, Vec2::new(0.6, 0.8)).origin;
+        assert!(
+            (origin - Vec3A::new(0.9, 1.2, 5.0)).length() < 1e-5,
+            "{origin}"
+        );
+        assert!(!Camera::new(&v, 11, 11, 0.0, 2.0).unwrap().has_lens());
     }
 
     #[test]
