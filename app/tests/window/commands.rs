@@ -5,7 +5,6 @@
 //! and a lesson picked in the Open dialog opens in the Lessons window.
 
 use std::path::Path;
-use std::sync::Arc;
 use std::time::Duration;
 
 use egui_kittest::Harness;
@@ -16,7 +15,7 @@ use workbench::gui::WorkbenchApp;
 use workbench::load::SceneSource;
 
 use crate::harness::{
-    Answers, WINDOW, drag, is_done, small_window_sized, wait_for, wait_for_scene, window,
+    WINDOW, answer_dialogs, drag, is_done, small_window_sized, wait_for, wait_for_scene, window,
 };
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{scratch, write};
@@ -87,10 +86,7 @@ fn open_save_png_save_exr_and_save_scene_go_through_the_file_dialog() {
     let dir = scratch("command-dialogs");
     let scene = write(&dir, "scene.p3f", &spheres_on_a_floor(32, 24, "", ""));
     let mut harness = small_window_sized(Harness::builder(), WINDOW);
-    let answers = Arc::new(Answers::default());
-    harness
-        .state_mut()
-        .answer_file_dialogs_with(answers.clone());
+    let answers = answer_dialogs(&mut harness);
     wait_for_scene(&mut harness);
 
     // Cancelled: nothing changes, a notice says so.
@@ -311,10 +307,7 @@ solution = { settings = "--aa" }
 "#,
     );
     let mut harness = small_window_sized(Harness::builder(), WINDOW);
-    let answers = Arc::new(Answers::default());
-    harness
-        .state_mut()
-        .answer_file_dialogs_with(answers.clone());
+    let answers = answer_dialogs(&mut harness);
     wait_for_scene(&mut harness);
     assert!(!harness.state().lessons().open);
 
@@ -355,10 +348,7 @@ solution = { settings = "--aa" }
 "#;
     write(&dir, "from_a_folder.toml", text);
     let mut harness = small_window_sized(Harness::builder(), WINDOW);
-    let answers = Arc::new(Answers::default());
-    harness
-        .state_mut()
-        .answer_file_dialogs_with(answers.clone());
+    let answers = answer_dialogs(&mut harness);
     wait_for_scene(&mut harness);
     harness.state_mut().lessons_mut().open = true;
     harness.run_steps(2);

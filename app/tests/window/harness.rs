@@ -5,7 +5,7 @@
 use std::cell::RefCell;
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
 
 use egui_kittest::kittest::Queryable;
@@ -235,4 +235,14 @@ impl Answers {
         let q = asked.last().expect("a question");
         (q.filter.1.to_vec(), q.name.clone(), q.save)
     }
+}
+
+/// Has `harness`'s file dialogs answered by a test ([`Answers`]), whose
+/// answers it returns.
+pub fn answer_dialogs(harness: &mut Harness<'static, WorkbenchApp>) -> Arc<Answers> {
+    let answers = Arc::new(Answers::default());
+    harness
+        .state_mut()
+        .answer_file_dialogs_with(answers.clone());
+    answers
 }

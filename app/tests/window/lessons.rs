@@ -14,7 +14,7 @@ use workbench::lessons::Verdict;
 use workbench::lessons::progress::Progress;
 use workbench::load::SceneSource;
 
-use crate::harness::{Answers, DroppedPath, WINDOW, ready_window, small_window, wait_for};
+use crate::harness::{DroppedPath, WINDOW, answer_dialogs, ready_window, small_window, wait_for};
 use crate::persistence::{MemoryStorage, start};
 use crate::support::Scratch;
 
@@ -180,10 +180,7 @@ fn type_into(harness: &mut Window, label: &str, text: &str) {
 #[test]
 fn export_progress_saves_the_steps_done_with_the_name_and_answer() {
     let (dir, mut harness) = open_lesson("to_export", LESSON);
-    let answers = Arc::new(Answers::default());
-    harness
-        .state_mut()
-        .answer_file_dialogs_with(answers.clone());
+    let answers = answer_dialogs(&mut harness);
     wait_for_verdict(&mut harness, "step 1 not yet done", |v| {
         matches!(v, Verdict::NotYet(_))
     });
