@@ -11,8 +11,8 @@ use workbench::cli::{Cli, SettingsArgs};
 use crate::support::scenes::spheres_on_a_floor;
 use crate::support::{Scratch, scratch, workbench_fails, workbench_ok, write};
 
-/// Where each flag's effect is checked: (subcommand, flag, test), the test
-/// naming the flag. The settings flags the subcommands share (`--width`,
+/// Where each flag's effect is checked: (subcommand, flag, test), the
+/// subcommand by its path (`"lesson progress"`), the test naming the flag. The settings flags the subcommands share (`--width`,
 /// ...: [`shared_flags`]) are checked on every subcommand that takes them
 /// by [`settings_flags_change_what_each_subcommand_does`].
 const CHECKED: &[(&str, &str, &str)] = &[
@@ -438,6 +438,71 @@ const CHECKED: &[(&str, &str, &str)] = &[
         "observer",
         "real_window::the_window_opens_with_the_observer_on_when_asked",
     ),
+    (
+        "lesson list",
+        "format",
+        "lesson_folders::an_index_chooses_the_folders_lessons",
+    ),
+    (
+        "lesson list",
+        "folder",
+        "lesson_folders::a_folder_is_listed_in_chapter_order_and_checked_whole",
+    ),
+    (
+        "lesson check",
+        "lessons",
+        "lessons::a_sound_lesson_passes_step_by_step",
+    ),
+    (
+        "lesson check",
+        "format",
+        "lessons::lesson_check_speaks_json_for_a_teachers_ci",
+    ),
+    (
+        "lesson new",
+        "name",
+        "lessons::a_new_lesson_passes_its_check_and_is_never_written_twice",
+    ),
+    (
+        "lesson explain",
+        "lesson",
+        "lesson_explain::explain_says_the_state_a_step_starts_from",
+    ),
+    (
+        "lesson explain",
+        "step",
+        "lesson_explain::explain_says_the_state_a_step_starts_from",
+    ),
+    (
+        "lesson explain",
+        "find",
+        "lesson_explain::a_pixel_find_lists_passes_the_steps_check",
+    ),
+    (
+        "lesson explain",
+        "pixel",
+        "lesson_explain::explain_with_a_pixel_says_whether_the_check_holds_there",
+    ),
+    (
+        "lesson progress",
+        "file",
+        "lesson_progress::the_windows_saved_progress_is_written_as_json_csv_and_html",
+    ),
+    (
+        "lesson progress",
+        "merge",
+        "lesson_progress::merged_files_make_one_row_per_student_and_a_column_per_lesson",
+    ),
+    (
+        "lesson progress",
+        "format",
+        "lesson_progress::the_windows_saved_progress_is_written_as_json_csv_and_html",
+    ),
+    (
+        "lesson progress",
+        "output",
+        "lesson_progress::the_windows_saved_progress_is_written_as_json_csv_and_html",
+    ),
 ];
 
 /// The settings flags the subcommands share: `SettingsArgs` as clap
@@ -532,21 +597,18 @@ const SOURCES: &[&str] = &[
     include_str!("observe.rs"),
     include_str!("report.rs"),
     include_str!("../window/real_window.rs"),
+    include_str!("lessons.rs"),
+    include_str!("lesson_explain.rs"),
+    include_str!("lesson_folders.rs"),
+    include_str!("lesson_progress.rs"),
 ];
 
 #[test]
 fn every_flag_has_a_test_that_sees_its_effect() {
     let shared = shared_flags();
-    let cli = Cli::command();
-    let mut subcommands: Vec<&clap::Command> = vec![&cli];
-    subcommands.extend(cli.get_subcommands());
     let mut missing = Vec::new();
-    for command in subcommands {
-        let name = if std::ptr::eq(command, &cli) {
-            ""
-        } else {
-            command.get_name()
-        };
+    for (name, command) in commands() {
+        let name = name.as_str();
         for arg in command.get_arguments() {
             let flag = arg.get_long().unwrap_or(arg.get_id().as_str());
             if ["help", "version"].contains(&flag) {
@@ -591,6 +653,21 @@ fn every_flag_has_a_test_that_sees_its_effect() {
     }
 }
 
+/// Every command with its path (`""` for the top level, `"lesson
+/// progress"`), subcommands of subcommands included.
+fn commands() -> Vec<(String, clap::Command)> {
+    fn walk(command: &clap::Command, path: &str, found: &mut Vec<(String, clap::Command)>) {
+        found.push((path.to_string(), command.clone()));
+        for sub in command.get_subcommands() {
+            let name = format!("{path} {}", sub.get_name());
+            walk(sub, name.trim(), found);
+        }
+    }
+    let mut found = Vec::new();
+    walk(&Cli::command(), "", &mut found);
+    found
+}
+
 /// The text of test `function` in `source`: from its `fn` to the first
 /// line closing a top-level item.
 fn test_body<'a>(source: &'a str, function: &str) -> Option<&'a str> {
@@ -603,12 +680,10 @@ fn test_body<'a>(source: &'a str, function: &str) -> Option<&'a str> {
 /// Argument `id` (its long name, or its id when positional) of
 /// `subcommand` ("" for the window's own flags).
 fn subcommand_arg(subcommand: &str, id: &str) -> clap::Arg {
-    let cli = Cli::command();
-    let command = if subcommand.is_empty() {
-        &cli
-    } else {
-        cli.find_subcommand(subcommand).unwrap()
-    };
+    let (_, command) = commands()
+        .into_iter()
+        .find(|(name, _)| name == subcommand)
+        .unwrap_or_else(|| panic!("no subcommand {subcommand:?}"));
     command
         .get_arguments()
         .find(|a| a.get_long() == Some(id) || a.get_id() == id)
