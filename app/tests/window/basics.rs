@@ -17,7 +17,8 @@ use workbench::gui::{Activity, CompareLayout, Side, WorkbenchApp};
 use workbench::load::SceneSource;
 
 use crate::harness::{
-    DroppedPath, WINDOW, broken_scene, drawn, is_done, ready_window, small_window, wait_for, window,
+    DroppedBytes, DroppedPath, WINDOW, broken_scene, drawn, is_done, ready_window, small_window,
+    wait_for, window,
 };
 
 /// The window on the bundled `balls_low`, rendered small so tests are quick.
@@ -153,6 +154,60 @@ fn a_broken_scene_shows_its_error_and_the_current_scene_stays() {
         harness.state().engine().activity(),
         Activity::Job(JobState::Done)
     );
+}
+
+/// A file dropped on the web page is a name and its bytes, no file on
+/// disk: a scene opens from its text under its name, a broken one is
+/// refused at its line and column as on the desktop, a lesson opens set
+/// up, and a mesh is said to need a file on disk.
+#[test]
+fn a_file_dropped_as_bytes_opens_from_its_text() {
+    let mut harness = ready_window(WINDOW);
+    let drop = |harness: &mut Harness<'static, WorkbenchApp>, name: &str, text: &str| {
+        harness
+            .input_mut()
+            .dropped_files
+            .push(Arc::new(DroppedBytes {
+                name: name.into(),
+                bytes: text.as_bytes().to_vec(),
+            }));
+    };
+    let scene = "v from 0 0 5 at 0 0 0 up 0 1 0 angle 40 resolution 40 30\n\
+                 l 0 5 5\nf 1 0 0 1 0 0 0 0 1 0 1\ns 0 0 0 1\n";
+    drop(&mut harness, "dropped.p3f", scene);
+    wait_for(&mut harness, "the dropped scene", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "dropped.p3f")
+    });
+    wait_for(&mut harness, "its render", is_done);
+    let view = harness.state().engine().scene().map(|s| s.scene.view.width);
+    assert_eq!(view, Some(40), "the dropped text's own view");
+
+    drop(&mut harness, "broken.p3f", &format!("{scene}s 0 0\n"));
+    wait_for(&mut harness, "the error", |app| app.error().is_some());
+    let error = harness.state().error().unwrap().to_string();
+    assert!(error.contains("broken.p3f:5:"), "{error}");
+    let shown = harness.state().engine().scene().map(|s| s.source.label());
+    assert_eq!(shown.as_deref(), Some("dropped.p3f"), "the scene stays");
+
+    drop(&mut harness, "bunny.obj", "v 0 0 0\n");
+    wait_for(&mut harness, "the mesh refused", |app| {
+        app.error()
+            .is_some_and(|e| e.contains("bunny.obj: a mesh opens from a file on disk"))
+    });
+
+    let lesson = std::fs::read_to_string("../assets/lessons/shadows.toml").unwrap();
+    drop(&mut harness, "my_shadows.toml", &lesson);
+    wait_for(&mut harness, "the dropped lesson set up", |app| {
+        app.lessons()
+            .lesson()
+            .is_some_and(|l| l.name == "my_shadows")
+            && app
+                .engine()
+                .scene()
+                .is_some_and(|s| s.source.label() == "my_shadows.p3f")
+    });
 }
 
 #[test]

@@ -246,3 +246,21 @@ pub fn answer_dialogs(harness: &mut Harness<'static, WorkbenchApp>) -> Arc<Answe
         .answer_file_dialogs_with(answers.clone());
     answers
 }
+
+/// A file dropped as a web page drops one: a name that is no file on
+/// disk, and its bytes.
+#[derive(Debug)]
+pub struct DroppedBytes {
+    pub name: PathBuf,
+    pub bytes: Vec<u8>,
+}
+
+impl egui::DroppedFile for DroppedBytes {
+    fn path(&self) -> &Path {
+        &self.name
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        Ok(self.bytes.clone())
+    }
+}

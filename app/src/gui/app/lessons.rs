@@ -51,7 +51,7 @@ impl WorkbenchApp {
 
     /// Shows `lesson` in the Lessons window with its first step not done
     /// set up, or says why it does not read.
-    fn set_up_lesson(&mut self, lesson: Result<Lesson, LessonErrors>) {
+    pub(super) fn set_up_lesson(&mut self, lesson: Result<Lesson, LessonErrors>) {
         match lesson {
             Ok(lesson) => {
                 self.lessons.add(lesson);

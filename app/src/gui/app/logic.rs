@@ -5,8 +5,10 @@
 
 use tracer::render::{JobState, RenderSettings};
 
+use crate::lessons::format::parse_lesson;
 use crate::load::SceneSource;
 use crate::load::is_lesson_file;
+use tracer::scene::mesh_io::MeshFormat;
 
 use super::WorkbenchApp;
 use super::saving::Reply;
@@ -29,6 +31,7 @@ impl WorkbenchApp {
         for reply in self.dialogs.take() {
             match reply {
                 Reply::Open(path) => self.open_file(&path),
+                Reply::Dropped { path, bytes } => self.open_dropped_text(&path, bytes),
                 Reply::LessonFolder(dir) => {
                     self.open_lesson_folder(&dir);
                 }
@@ -101,13 +104,48 @@ impl WorkbenchApp {
         for file in dropped {
             let path = file.path();
             if scene_list::is_scene_file(path) || is_lesson_file(path) {
-                self.open_file(path);
+                if path.is_file() {
+                    self.open_file(path);
+                } else {
+                    self.dialogs.read_dropped(file, ctx);
+                }
                 return;
             }
             self.messages.notify(format!(
                 "{} is not a scene, mesh or lesson file (.p3f, .nff, .obj, .ply, .toml)",
                 path.display()
             ));
+        }
+    }
+
+    /// Opens a dropped file that is no file on disk (the web page's: its
+    /// name `path` and its `bytes`, once read) from its text: a lesson as
+    /// a lesson file opens, a scene under its name. A bare mesh is read
+    /// from disk only.
+    fn open_dropped_text(&mut self, path: &std::path::Path, bytes: Result<Vec<u8>, String>) {
+        let name = path.display().to_string();
+        if MeshFormat::of(path).is_some() {
+            let e = format!("{name}: a mesh opens from a file on disk, in the desktop workbench");
+            return self.messages.lasting_error(e);
+        }
+        let text = match bytes.map(String::from_utf8) {
+            Ok(Ok(text)) => text,
+            Ok(Err(_)) => {
+                let e = format!("{name} is not text: drop a .p3f, .nff or lesson .toml file");
+                return self.messages.lasting_error(e);
+            }
+            Err(e) => {
+                return self
+                    .messages
+                    .lasting_error(format!("cannot read {name}: {e}"));
+            }
+        };
+        if is_lesson_file(path) {
+            let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+            self.set_up_lesson(parse_lesson(&text, &stem, &name, None));
+        } else {
+            let text = text.into();
+            self.open(SceneSource::Written { name, text });
         }
     }
 

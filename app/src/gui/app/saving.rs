@@ -25,6 +25,12 @@ pub enum Reply {
     Open(PathBuf),
     /// A folder of lessons to add to the Lessons window's list.
     LessonFolder(PathBuf),
+    /// A dropped file that is no file on disk, by name, and its bytes
+    /// or why they could not be read.
+    Dropped {
+        path: PathBuf,
+        bytes: Result<Vec<u8>, String>,
+    },
     Notice(String),
     Error(String),
     /// The line to print once the screenshot is saved, or why it was not.
@@ -174,6 +180,18 @@ impl Default for Dialogs {
 }
 
 impl Dialogs {
+    /// Reads the bytes of `file`, dropped but no file on disk (the web
+    /// page's), as the platform gives them (`target::read_dropped`: at
+    /// once on the desktop, later on the page), and replies with them.
+    pub fn read_dropped(&self, file: Arc<dyn egui::DroppedFile>, ctx: &egui::Context) {
+        let (reply, ctx) = (self.sender.clone(), ctx.clone());
+        let path = file.path().to_path_buf();
+        target::read_dropped(file, move |bytes| {
+            let _ = reply.send(Reply::Dropped { path, bytes });
+            ctx.request_repaint();
+        });
+    }
+
     /// The replies that came in since the last frame.
     pub fn take(&self) -> Vec<Reply> {
         self.replies.try_iter().collect()

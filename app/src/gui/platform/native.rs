@@ -49,3 +49,11 @@ pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
     std::fs::write(&path, text).with_context(|| format!("{}", path.display()))?;
     Ok(SceneSource::File(path))
 }
+
+/// Reads a dropped file's bytes and gives them to `done`, at once.
+pub fn read_dropped(
+    file: Arc<dyn egui::DroppedFile>,
+    done: impl FnOnce(Result<Vec<u8>, String>) + 'static,
+) {
+    done(file.bytes());
+}

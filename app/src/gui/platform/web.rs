@@ -70,6 +70,15 @@ pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
     })
 }
 
+/// Reads a dropped file's bytes, which a page gives only asynchronously,
+/// and gives them to `done` on the page's thread once read.
+pub fn read_dropped(
+    file: Arc<dyn egui::DroppedFile>,
+    done: impl FnOnce(Result<Vec<u8>, String>) + 'static,
+) {
+    wasm_bindgen_futures::spawn_local(async move { done(file.bytes_async().await) });
+}
+
 /// A page has no synchronous file dialog and no folder picker: every
 /// question is unanswered, which the window reports where it was asked
 /// as a dialog cancelled.
