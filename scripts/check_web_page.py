@@ -10,6 +10,7 @@ Talks DevTools through check_report_page's standard-library client.
     scripts/check_web_page.py [--dist web/dist] [--screenshot page.png]
                               [--chromium PATH] [--timeout SECONDS]
                               [--query ?lesson=NAME --lesson NAME]
+                              [--drop FILE [--error TEXT]]
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -40,7 +41,7 @@ STATUS = (
     "(() => { const data = document.body ? document.body.dataset : {};"
     " return JSON.stringify({isolated: self.crossOriginIsolated,"
     " render: data.render || '', passes: Number(data.passes || 0),"
-    " workers: Number(data.workers || 0), lesson: data.lesson || '',"
+    " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
     " now: performance.now()}); })()"
 )
 
@@ -67,7 +68,14 @@ def status(page):
     return json.loads(result["result"]["value"])
 
 
-def check(url, timeout, screenshot, chromium, lesson):
+def drop(page, path):
+    """Drops the file `path` on the middle of the page, as a user would."""
+    data = {"items": [], "files": [os.path.abspath(path)], "dragOperationsMask": 1}
+    for kind in ("dragEnter", "dragOver", "drop"):
+        page.command("Input.dispatchDragEvent", type=kind, x=640, y=400, data=data)
+
+
+def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     try:
         process, port = devtools.start_chromium(chromium, profile)
@@ -87,6 +95,9 @@ def check(url, timeout, screenshot, chromium, lesson):
             now = status(page)
             if now["passes"] >= 1 and first_pass is None:
                 first_pass = now["now"]
+                if dropped:
+                    drop(page, dropped)
+                    continue
             if now["render"] == "done" or now["render"].startswith(("failed", "error")):
                 break
             if time.monotonic() > deadline:
@@ -98,8 +109,13 @@ def check(url, timeout, screenshot, chromium, lesson):
         # web/index.html starts at least two (one per core, 2 to 8).
         if now["workers"] < 2:
             problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
-        if now["render"] != "done":
+        if error is not None:
+            if not now["render"].startswith("error: ") or error not in now["render"]:
+                problems.append(f"the page says {now['render']!r}, not an error with {error!r}")
+        elif now["render"] != "done":
             problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
+        elif dropped and now["scene"] != os.path.basename(dropped):
+            problems.append(f"the page shows {now['scene'] or 'no scene'}, not the dropped file")
         if lesson is not None and now["lesson"] != lesson:
             problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
         if screenshot:
@@ -128,11 +144,15 @@ def main():
     parser.add_argument("--timeout", type=float, default=300.0)
     parser.add_argument("--query", default="", help="the page's query, as ?lesson=shadows")
     parser.add_argument("--lesson", help="the lesson the Lessons panel must show at the end")
+    parser.add_argument("--drop", help="a file to drop on the page after its first pass")
+    parser.add_argument("--error", help="text the page's error must hold at the end (no render)")
     args = parser.parse_args()
     httpd = serve_web.server(args.dist, 0, True)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
-    return check(url, args.timeout, args.screenshot, args.chromium, args.lesson)
+    return check(
+        url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error
+    )
 
 
 if __name__ == "__main__":

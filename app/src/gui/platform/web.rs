@@ -189,7 +189,9 @@ impl Page {
             Some(lesson) if lessons.open => lesson.name.clone(),
             _ => String::new(),
         };
-        let said = format!("{state}|{passes}|{lesson}");
+        let scene = self.app.engine().scene().map(|s| s.source.label());
+        let scene = scene.unwrap_or_default();
+        let said = format!("{state}|{passes}|{lesson}|{scene}");
         if said == self.said {
             return;
         }
@@ -200,6 +202,7 @@ impl Page {
             let _ = body.set_attribute("data-render", &state);
             let _ = body.set_attribute("data-passes", &passes.to_string());
             let _ = body.set_attribute("data-lesson", &lesson);
+            let _ = body.set_attribute("data-scene", &scene);
             let workers = rayon::current_num_threads().to_string();
             let _ = body.set_attribute("data-workers", &workers);
         }
