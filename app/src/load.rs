@@ -28,7 +28,7 @@ pub enum SceneSource {
     Bundled(String),
     /// A scene written in memory, as P3F text, under a name: a lesson's
     /// step set up on the web page, which has no files to write it to.
-    Written { name: String, text: Arc<str> },
+    Written { name: String, text: String },
 }
 
 impl SceneSource {

@@ -144,7 +144,6 @@ impl WorkbenchApp {
             let stem = path.file_stem().unwrap_or_default().to_string_lossy();
             self.set_up_lesson(parse_lesson(&text, &stem, &name, None));
         } else {
-            let text = text.into();
             self.open(SceneSource::Written { name, text });
         }
     }

@@ -66,7 +66,7 @@ pub fn lowest_priority() {}
 pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
     Ok(SceneSource::Written {
         name: format!("{name}.p3f"),
-        text: tracer::scene::write_p3f_in(scene, Path::new("")).into(),
+        text: tracer::scene::write_p3f_in(scene, Path::new("")),
     })
 }
 
