@@ -13,7 +13,7 @@ use tracer::scene::mesh_io::MeshFormat;
 use super::WorkbenchApp;
 use super::saving::Reply;
 use crate::gui::panels::scene_list;
-use crate::gui::platform::{target, waker};
+use crate::gui::platform::{paced_waker, waker};
 use crate::gui::sides::Activity;
 
 /// Frames per timed configuration of a report exported from the window:
@@ -176,13 +176,8 @@ impl WorkbenchApp {
             Activity::Idle => a.scene().is_some(),
             Activity::Job(_) => false,
         };
-        // Paced: counts arriving during a render need no frame of their own.
-        let (ctx, pace) = (ctx.clone(), self.pacing.progress_pace.clone());
-        self.scene_list.count_when_due(busy, move || {
-            if target::WORK_WAKES_WINDOW {
-                ctx.request_repaint_after(pace.get());
-            }
-        });
+        let wake = paced_waker(ctx, &self.pacing.progress_pace);
+        self.scene_list.count_when_due(busy, wake);
     }
 
     fn update_title(&mut self, ctx: &egui::Context) {

@@ -28,3 +28,17 @@ pub fn waker(ctx: &egui::Context) -> impl Fn() + Send + Sync + Clone + 'static {
         }
     }
 }
+
+/// [`waker`] redrawing no sooner than `pace` asks: progress arriving
+/// during a render needs no frame of its own.
+pub fn paced_waker(
+    ctx: &egui::Context,
+    pace: &frame_meter::ProgressPace,
+) -> impl Fn() + Send + Sync + Clone + 'static {
+    let (ctx, pace) = (ctx.clone(), pace.clone());
+    move || {
+        if target::WORK_WAKES_WINDOW {
+            ctx.request_repaint_after(pace.get());
+        }
+    }
+}

@@ -22,7 +22,7 @@ pub use live_image::LiveImage;
 
 use super::platform::clock::Clock;
 use super::platform::frame_meter::ProgressPace;
-use super::platform::target;
+use super::platform::{paced_waker, waker};
 use crate::load::Loaded;
 
 /// Which side.
@@ -57,17 +57,9 @@ impl RepaintWakers {
 
     /// Wakers that redraw `ctx` at `pace` (and at once for last passes).
     pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
-        if !target::WORK_WAKES_WINDOW {
-            let poll: engine::Wake = Arc::new(|| {});
-            return Self {
-                paced: poll.clone(),
-                now: poll,
-            };
-        }
-        let (paced_ctx, now_ctx, pace) = (ctx.clone(), ctx.clone(), pace.clone());
         Self {
-            paced: Arc::new(move || paced_ctx.request_repaint_after(pace.get())),
-            now: Arc::new(move || now_ctx.request_repaint()),
+            paced: Arc::new(paced_waker(ctx, pace)),
+            now: Arc::new(waker(ctx)),
         }
     }
 }
