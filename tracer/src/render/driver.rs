@@ -4,10 +4,12 @@
 //! job on a thread of its own, a web page on its workers' pool.
 
 use std::cell::RefCell;
+use std::future::Future;
 use std::sync::{Arc, Once, OnceLock};
 use std::time::Duration;
 
 use super::RenderError;
+use super::slices::{self, SliceId, block_on};
 
 /// The time a job's passes and budgets read.
 pub trait Clock: Send + Sync {
@@ -52,13 +54,33 @@ pub enum Host {
     /// build no pool of its own). Dropping the job returns at once, as
     /// for [`Host::Pool`].
     Global,
+    /// Time slices of the thread that starts the job, which runs its
+    /// tiles one after another when that thread calls
+    /// [`run_slices`](super::run_slices), and all of them when it waits
+    /// for the job. For a web page without workers (one not cross-origin
+    /// isolated), whose only thread must keep returning to the browser.
+    Slices,
+}
+
+/// The host a job takes unless its options say otherwise, when set
+/// ([`set_default_host`]).
+static DEFAULT_HOST: OnceLock<Host> = OnceLock::new();
+
+/// Makes `host` every job's default host in this process, once, before
+/// any job starts: for a web page that learns only when it loads whether
+/// it has workers. Gives `host` back if a default was already set.
+pub fn set_default_host(host: Host) -> Result<(), Host> {
+    DEFAULT_HOST.set(host)
 }
 
 impl Default for Host {
-    /// A thread of its own, except on the web, where a page can start no
-    /// thread: there every job renders on the page's workers.
+    /// The one set by [`set_default_host`]; else a thread of its own,
+    /// except on the web, where a page can start no thread: there every
+    /// job renders on the page's workers.
     fn default() -> Self {
-        if cfg!(target_family = "wasm") {
+        if let Some(host) = DEFAULT_HOST.get() {
+            *host
+        } else if cfg!(target_family = "wasm") {
             Host::Global
         } else {
             Host::Thread
@@ -128,25 +150,39 @@ pub fn render_pool(
         .map_err(|e| RenderError::Threads(e.to_string()))
 }
 
-/// Starts `work`, the job's loop, where `host` says.
+/// Where a job's loop went ([`host`]): what waiting for it and dropping
+/// it deal with.
+pub(super) enum Hosted {
+    /// Its own thread, joined.
+    Thread(std::thread::JoinHandle<()>),
+    /// A pool's task: its end is signalled by the job's state.
+    Task,
+    /// This thread's time slices.
+    Slices(SliceId),
+}
+
+/// Starts `work`, the job's loop, where `host` says: on a thread or a
+/// pool it runs to its end at once ([`Host::Slices`] alone makes it give
+/// way).
 pub(super) fn host(
     host: Host,
     pool: &JobPool,
-    work: impl FnOnce() + Send + 'static,
-) -> Result<Option<std::thread::JoinHandle<()>>, RenderError> {
+    work: impl Future<Output = ()> + Send + 'static,
+) -> Result<Hosted, RenderError> {
     match (host, pool) {
+        (Host::Slices, _) => Ok(Hosted::Slices(slices::host(work))),
         (Host::Thread, _) => std::thread::Builder::new()
             .name("render-job".into())
-            .spawn(work)
-            .map(Some)
+            .spawn(move || block_on(work))
+            .map(Hosted::Thread)
             .map_err(|e| RenderError::Threads(e.to_string())),
         (_, JobPool::Own(pool)) => {
-            pool.spawn(work);
-            Ok(None)
+            pool.spawn(move || block_on(work));
+            Ok(Hosted::Task)
         }
         (_, JobPool::Global) => {
-            rayon::spawn(work);
-            Ok(None)
+            rayon::spawn(move || block_on(work));
+            Ok(Hosted::Task)
         }
     }
 }
@@ -332,26 +368,26 @@ mod tests {
     fn a_pool_hosted_loop_runs_on_the_pool() {
         let pool = render_pool(Some(1), Priority::Normal).unwrap();
         let (tx, rx) = std::sync::mpsc::channel();
-        let handle = host(Host::Pool, &JobPool::Own(pool), move || {
+        let hosted = host(Host::Pool, &JobPool::Own(pool), async move {
             tx.send(std::thread::current().name().map(str::to_owned))
                 .unwrap();
         })
         .unwrap();
-        assert!(handle.is_none(), "nothing to join");
+        assert!(matches!(hosted, Hosted::Task), "nothing to join");
         assert_eq!(rx.recv().unwrap().as_deref(), Some("render-0"));
     }
 
     #[test]
     fn a_globally_hosted_loop_runs_on_the_global_pool() {
         let (tx, rx) = std::sync::mpsc::channel();
-        let handle = host(Host::Global, &JobPool::Global, move || {
+        let hosted = host(Host::Global, &JobPool::Global, async move {
             let thread = std::thread::current();
             let in_pool = rayon::current_thread_index().is_some();
             tx.send((in_pool, thread.name().map(str::to_owned)))
                 .unwrap();
         })
         .unwrap();
-        assert!(handle.is_none(), "nothing to join");
+        assert!(matches!(hosted, Hosted::Task), "nothing to join");
         let (in_pool, name) = rx.recv().unwrap();
         assert!(in_pool, "not on a pool's thread");
         // The global pool's threads are unnamed; a render pool's are not.

@@ -1,9 +1,11 @@
 //! A progressive render running in the background: passes over tiles on a
 //! thread pool, cancellable at any moment, observable at any time.
 
+use std::future::Future;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::pin::Pin;
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
-use std::thread::JoinHandle;
+use std::task::{Context, Poll};
 
 use crate::accel::SceneIndex;
 use crate::camera::CameraError;
@@ -12,13 +14,13 @@ use crate::world::World;
 
 use super::adaptive::Adaptive;
 use super::control::{Control, ProgressListener, lock, lock_spinning};
-use super::driver::{Clock, FailureSlot, Host, JobPool, Priority, SystemClock, WorkingFor};
+use super::driver::{Clock, FailureSlot, Host, Hosted, JobPool, Priority, SystemClock, WorkingFor};
 use super::outputs::{Outputs, Recording};
 use super::passes::{LoopContext, PassListener};
 use super::settings::SettingsError;
 use super::strategy::{SamplingStrategy, Uniform};
 use super::view::{View, ViewFilm, ViewHeatmap, view_rgba8};
-use super::{Encoding, Film, RenderPlan, RenderSettings, driver, passes};
+use super::{Encoding, Film, RenderPlan, RenderSettings, driver, passes, slices};
 
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
@@ -214,7 +216,8 @@ impl Shared {
 /// a web page calls them from its main thread, where waiting is refused.
 pub struct RenderJob {
     shared: Arc<Shared>,
-    worker: Option<JoinHandle<()>>,
+    /// Where its loop went; `None` once waited for.
+    hosted: Option<Hosted>,
 }
 
 impl RenderJob {
@@ -282,9 +285,13 @@ impl RenderJob {
             settings,
             strategy,
             pool: pool.clone(),
+            sliced: options.host == Host::Slices,
         };
-        let worker = driver::host(options.host, &pool, move || job.run())?;
-        Ok(RenderJob { shared, worker })
+        let hosted = driver::host(options.host, &pool, job.run())?;
+        Ok(RenderJob {
+            shared,
+            hosted: Some(hosted),
+        })
     }
 
     /// The acceleration structure this job traces against, once built.
@@ -407,11 +414,12 @@ impl RenderJob {
     /// Waits for the job to stop and returns all it made. Not for a web
     /// page's main thread, which may not wait.
     pub fn wait_with_image(mut self) -> Finished {
-        match self.worker.take() {
+        match self.hosted.take() {
             // The worker catches render panics itself; a join error could
             // only come from the bookkeeping around it.
-            Some(worker) => drop(worker.join()),
-            None => {
+            Some(Hosted::Thread(worker)) => drop(worker.join()),
+            Some(Hosted::Slices(id)) => slices::finish(id),
+            Some(Hosted::Task) | None => {
                 let mut state = lock(&self.shared.state);
                 while matches!(*state, JobState::Rendering | JobState::Building) {
                     state = self
@@ -445,8 +453,10 @@ impl RenderJob {
 impl Drop for RenderJob {
     fn drop(&mut self) {
         self.cancel();
-        if let Some(worker) = self.worker.take() {
-            let _ = worker.join();
+        match self.hosted.take() {
+            Some(Hosted::Thread(worker)) => drop(worker.join()),
+            Some(Hosted::Slices(id)) => slices::forget(id),
+            Some(Hosted::Task) | None => {}
         }
     }
 }
@@ -459,34 +469,29 @@ struct Job {
     settings: RenderSettings,
     strategy: Box<dyn SamplingStrategy>,
     pool: JobPool,
+    /// Hosted in time slices ([`Host::Slices`]).
+    sliced: bool,
 }
 
 impl Job {
-    /// Builds what is missing, runs the passes and says how the job
-    /// ended. A panic is reported from the failure slot its hook wrote;
-    /// caught here too where panics unwind, so the thread ends cleanly.
-    fn run(self) {
-        let shared = self.shared.clone();
-        let _working = WorkingFor::job(&shared.failure);
-        let outcome = catch_unwind(AssertUnwindSafe(|| self.render()));
-        let state = match outcome {
-            Ok(Ok(())) if shared.control.cancelled() => JobState::Cancelled,
-            Ok(Ok(())) => JobState::Done,
-            Ok(Err(message)) => JobState::Failed(message),
-            Err(panic) => JobState::Failed(
-                shared
-                    .failure
-                    .get()
-                    .cloned()
-                    .unwrap_or_else(|| driver::panic_message(&*panic)),
-            ),
-        };
-        shared.set_state(state);
+    /// The job's loop, to be run where its host says: builds what is
+    /// missing, runs the passes and says how the job ended. Each step of
+    /// it reports a panic to the job ([`Reported`]).
+    fn run(self) -> impl Future<Output = ()> + Send + 'static {
+        Reported {
+            shared: self.shared.clone(),
+            work: Box::pin(self.render()),
+        }
     }
 
-    fn render(mut self) -> Result<(), String> {
+    async fn render(mut self) -> Result<(), String> {
         // A job paused from its start builds nothing either.
-        if !self.shared.control.proceed() {
+        let control = &self.shared.control;
+        let proceed = match self.sliced {
+            true => passes::proceed_in_slices(control).await,
+            false => control.proceed(),
+        };
+        if !proceed {
             return Ok(());
         }
         let index = self.index()?;
@@ -500,9 +505,15 @@ impl Job {
             clock: &*shared.clock,
             failure: &shared.failure,
             on_pass: shared.on_pass.as_ref(),
+            sliced: self.sliced,
         };
         let strategy = &mut *self.strategy;
-        self.pool.install(|| passes::run(&plan, strategy, &cx));
+        match self.sliced {
+            true => passes::run(&plan, strategy, &cx).await,
+            false => self
+                .pool
+                .install(|| slices::block_on(passes::run(&plan, strategy, &cx))),
+        }
         Ok(())
     }
 
@@ -531,6 +542,39 @@ impl Job {
         *lock(&shared.state) = JobState::Rendering;
         shared.control.notify();
         Ok(built)
+    }
+}
+
+/// A job's loop whose every step reports to the job: a panic is read
+/// from the failure slot its hook wrote (caught here too where panics
+/// unwind, so the thread ends cleanly), and the end sets the job's state.
+struct Reported {
+    shared: Arc<Shared>,
+    work: Pin<Box<dyn Future<Output = Result<(), String>> + Send>>,
+}
+
+impl Future for Reported {
+    type Output = ();
+
+    fn poll(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<()> {
+        let shared = self.shared.clone();
+        let _working = WorkingFor::job(&shared.failure);
+        let outcome = catch_unwind(AssertUnwindSafe(|| self.work.as_mut().poll(cx)));
+        let state = match outcome {
+            Ok(Poll::Pending) => return Poll::Pending,
+            Ok(Poll::Ready(Ok(()))) if shared.control.cancelled() => JobState::Cancelled,
+            Ok(Poll::Ready(Ok(()))) => JobState::Done,
+            Ok(Poll::Ready(Err(message))) => JobState::Failed(message),
+            Err(panic) => JobState::Failed(
+                shared
+                    .failure
+                    .get()
+                    .cloned()
+                    .unwrap_or_else(|| driver::panic_message(&*panic)),
+            ),
+        };
+        shared.set_state(state);
+        Poll::Ready(())
     }
 }
 

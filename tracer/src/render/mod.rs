@@ -13,6 +13,7 @@ mod passes;
 mod plan;
 mod ray_tree;
 mod settings;
+mod slices;
 pub mod strategy;
 #[cfg(test)]
 mod tests;
@@ -31,6 +32,7 @@ pub use settings::{
     AdaptiveSampling, Budget, Encoding, LensOverride, MAX_DEPTH, MAX_GRID_MULTIPLIER,
     MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MAX_SAMPLES, RenderSettings, Sampling, SettingsError,
 };
+pub use slices::{run_slices, slices_pending};
 pub use trace::{RayKind, ShadowSample, SurfaceHit, TraceRecorder, Tracer};
 pub use view::{
     HEAT_PALETTE, HeatScale, NO_VALUE, View, ViewFilm, ViewHeatmap, ViewSummary, ViewTotals,

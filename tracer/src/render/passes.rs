@@ -1,7 +1,9 @@
 //! The render loop: passes over the plan's tiles, each tile's samples as
 //! the strategy asks, recorded into the outputs, until the strategy says
 //! done or the job is cancelled. One loop for every strategy; where it
-//! runs, and on which threads, is the driver's.
+//! runs, and on which threads, is the driver's: all of a pass's tiles at
+//! once on a pool, or one after another in a page's time slices, the loop
+//! giving way between tiles (`slices`).
 
 use std::sync::Mutex;
 use std::time::Duration;
@@ -11,8 +13,9 @@ use rayon::prelude::*;
 use super::control::{Control, lock};
 use super::driver::{Clock, FailureSlot, WorkingFor};
 use super::outputs::{Outputs, Recording, TileBatch};
+use super::slices::{self, give_way};
 use super::strategy::{PassEnd, SamplingStrategy};
-use super::{Budget, Film, RenderPlan};
+use super::{Budget, Film, RenderPlan, Tile};
 
 /// Called with the pass number (from 1), the film as it stands after each
 /// completed pass, before the next begins, and whether that pass was the
@@ -28,6 +31,9 @@ pub(super) struct LoopContext<'a> {
     pub clock: &'a dyn Clock,
     pub failure: &'a FailureSlot,
     pub on_pass: Option<&'a PassListener>,
+    /// The loop runs in time slices ([`super::driver::Host::Slices`]):
+    /// tiles one after another, giving way when the slice is spent.
+    pub sliced: bool,
 }
 
 /// The time a render may take ([`Budget::Time`]), as its passes spend it.
@@ -48,8 +54,13 @@ impl Deadline {
     }
 }
 
-/// Runs passes until `strategy` says done or the job is cancelled.
-pub(super) fn run(plan: &RenderPlan, strategy: &mut dyn SamplingStrategy, cx: &LoopContext) {
+/// Runs passes until `strategy` says done or the job is cancelled. Never
+/// gives way unless [`LoopContext::sliced`].
+pub(super) async fn run(
+    plan: &RenderPlan,
+    strategy: &mut dyn SamplingStrategy,
+    cx: &LoopContext<'_>,
+) {
     let limit = match plan.settings.adaptive().and_then(|a| a.budget) {
         Some(Budget::Time(limit)) => Some(limit),
         _ => None,
@@ -66,7 +77,7 @@ pub(super) fn run(plan: &RenderPlan, strategy: &mut dyn SamplingStrategy, cx: &L
         deadline.pass_start = cx.clock.now();
         let rays_before = lock(cx.outputs).stats.counters.total_rays();
         let tiles_of = &*strategy;
-        plan.tiles.par_iter().for_each(|tile| {
+        let render_tile = |tile: &Tile| {
             let _working = WorkingFor::job(cx.failure);
             // A time budget spent starts no tile, after the first pass.
             if !cx.control.proceed() || (pass > 0 && deadline.spent(cx.clock)) {
@@ -82,11 +93,39 @@ pub(super) fn run(plan: &RenderPlan, strategy: &mut dyn SamplingStrategy, cx: &L
             outputs.stats.render_time = deadline.elapsed(cx.clock);
             drop(outputs);
             cx.control.tile_done();
-        });
+        };
+        if cx.sliced {
+            for tile in &plan.tiles {
+                if !proceed_in_slices(cx.control).await {
+                    return;
+                }
+                render_tile(tile);
+                if slices::spent() {
+                    give_way(true).await;
+                }
+            }
+        } else {
+            plan.tiles.par_iter().for_each(render_tile);
+        }
         if cx.control.cancelled() || end_pass(pass, strategy, &mut deadline, rays_before, cx) {
             return;
         }
     }
+}
+
+/// [`Control::proceed`] for a loop in time slices, which may not block
+/// its thread: while the job is paused it gives way. False once the job is
+/// cancelled, or paused while waited for, which cancels it (nothing else
+/// could resume it).
+pub(super) async fn proceed_in_slices(control: &Control) -> bool {
+    while control.is_paused() && !control.cancelled() {
+        if slices::waited_for() {
+            control.cancel();
+        } else {
+            give_way(false).await;
+        }
+    }
+    !control.cancelled()
 }
 
 /// Ends pass `pass`: the strategy decides, the pass's figures are

@@ -5,6 +5,7 @@ mod adaptive;
 mod estimate;
 mod lens;
 mod shadows;
+mod slices;
 
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex, mpsc};
