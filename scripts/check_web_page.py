@@ -11,6 +11,7 @@ Talks DevTools through check_report_page's standard-library client.
                               [--chromium PATH] [--timeout SECONDS]
                               [--query ?lesson=NAME --lesson NAME]
                               [--drop FILE [--error TEXT]]
+                              [--no-isolation]
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -42,6 +43,7 @@ STATUS = (
     " return JSON.stringify({isolated: self.crossOriginIsolated,"
     " render: data.render || '', passes: Number(data.passes || 0),"
     " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
+    " renderedOn: data.renderedOn || '',"
     " now: performance.now()}); })()"
 )
 
@@ -75,7 +77,7 @@ def drop(page, path):
         page.command("Input.dispatchDragEvent", type=kind, x=640, y=400, data=data)
 
 
-def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
+def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     try:
         process, port = devtools.start_chromium(chromium, profile)
@@ -104,11 +106,19 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
                 break
             time.sleep(0.05)
         problems = problems_of(page.events)
-        if not now["isolated"]:
-            problems.append("the page is not cross-origin isolated")
-        # web/index.html starts at least two (one per core, 2 to 8).
-        if now["workers"] < 2:
-            problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
+        if isolated:
+            if not now["isolated"]:
+                problems.append("the page is not cross-origin isolated")
+            # web/index.html starts at least two (one per core, 2 to 8).
+            if now["workers"] < 2:
+                problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
+        else:
+            if now["isolated"]:
+                problems.append("the page is cross-origin isolated, served without the headers")
+            if now["workers"] != 0:
+                problems.append(f"the page started {now['workers']} worker(s) without isolation")
+            if "not cross-origin isolated" not in now["renderedOn"]:
+                problems.append(f"the page says it renders on {now['renderedOn']!r}, not why")
         if error is not None:
             if not now["render"].startswith("error: ") or error not in now["render"]:
                 problems.append(f"the page says {now['render']!r}, not an error with {error!r}")
@@ -122,7 +132,7 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
             shot = page.command("Page.captureScreenshot", format="png")
             with open(screenshot, "wb") as f:
                 f.write(base64.b64decode(shot["data"]))
-        print(f"workers: {now['workers']}, passes: {now['passes']}")
+        print(f"workers: {now['workers']}, passes: {now['passes']}, on: {now['renderedOn']}")
         if first_pass is not None:
             print(f"first pass: {(first_pass - start) / 1000:.2f} s after navigation started")
         print(f"render {now['render']}: {(now['now'] - start) / 1000:.2f} s after navigation started")
@@ -146,12 +156,15 @@ def main():
     parser.add_argument("--lesson", help="the lesson the Lessons panel must show at the end")
     parser.add_argument("--drop", help="a file to drop on the page after its first pass")
     parser.add_argument("--error", help="text the page's error must hold at the end (no render)")
+    parser.add_argument("--no-isolation", action="store_true",
+                        help="serve without the isolation headers: the page renders without workers")
     args = parser.parse_args()
-    httpd = serve_web.server(args.dist, 0, True)
+    httpd = serve_web.server(args.dist, 0, not args.no_isolation)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
     return check(
-        url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error
+        url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
+        not args.no_isolation,
     )
 
 

@@ -23,6 +23,19 @@ pub(super) struct Control {
     on_progress: Option<ProgressListener>,
     pause_after_tiles: Option<u64>,
     tiles_done: AtomicU64,
+    /// Shown live, so held while the viewers are hidden ([`set_viewers_hidden`]).
+    viewed: bool,
+}
+
+/// Whether the process's viewers are hidden ([`set_viewers_hidden`]).
+static VIEWERS_HIDDEN: AtomicBool = AtomicBool::new(false);
+
+/// Holds every viewed job ([`super::JobOptions::viewed`]) between tiles
+/// while `hidden`, or lets them go on: a web page whose tab is hidden
+/// stops rendering what nobody sees, and gives the cores back. Jobs that
+/// measure are not viewed, so their times do not take in the hidden time.
+pub fn set_viewers_hidden(hidden: bool) {
+    VIEWERS_HIDDEN.store(hidden, Ordering::SeqCst);
 }
 
 /// How long a paused render thread sleeps before it looks again: a
@@ -36,6 +49,7 @@ impl Control {
         paused: bool,
         pause_after_tiles: Option<u64>,
         on_progress: Option<ProgressListener>,
+        viewed: bool,
     ) -> Self {
         Self {
             cancel: AtomicBool::new(false),
@@ -46,6 +60,7 @@ impl Control {
             on_progress,
             pause_after_tiles,
             tiles_done: AtomicU64::new(0),
+            viewed,
         }
     }
 
@@ -67,12 +82,18 @@ impl Control {
         self.paused.load(Ordering::SeqCst)
     }
 
-    /// Blocks a render thread while the job is paused; false once it is
-    /// cancelled (the thread then starts nothing more).
+    /// Whether the job may start no tile now: paused, or viewed while the
+    /// viewers are hidden.
+    pub(super) fn held(&self) -> bool {
+        self.is_paused() || (self.viewed && VIEWERS_HIDDEN.load(Ordering::SeqCst))
+    }
+
+    /// Blocks a render thread while the job is [`held`](Self::held); false
+    /// once it is cancelled (the thread then starts nothing more).
     pub(super) fn proceed(&self) -> bool {
-        if self.is_paused() && !self.cancelled() {
+        if self.held() && !self.cancelled() {
             let mut sleeping = lock(&self.sleep);
-            while self.is_paused() && !self.cancelled() {
+            while self.held() && !self.cancelled() {
                 sleeping = self
                     .resumed
                     .wait_timeout(sleeping, PAUSED_RECHECK)
@@ -146,6 +167,7 @@ mod tests {
             Some(Box::new(move || {
                 count.fetch_add(1, Ordering::Relaxed);
             })),
+            false,
         );
         control.tile_done();
         assert!(!control.is_paused());
@@ -157,7 +179,7 @@ mod tests {
 
     #[test]
     fn a_paused_thread_proceeds_when_resumed_and_stops_when_cancelled() {
-        let control = Arc::new(Control::new(true, None, None));
+        let control = Arc::new(Control::new(true, None, None, false));
         let waiting = control.clone();
         let thread = std::thread::spawn(move || waiting.proceed());
         control.set_paused(false);

@@ -9,6 +9,7 @@ use std::sync::{Arc, Once, OnceLock};
 use std::time::Duration;
 
 use super::RenderError;
+pub use super::control::set_viewers_hidden;
 use super::slices::{self, SliceId, block_on};
 
 /// The time a job's passes and budgets read.

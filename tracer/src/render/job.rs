@@ -124,12 +124,19 @@ pub struct JobOptions {
     pub image_only: bool,
     /// The pool the job renders on, made once for many jobs; `None`: a
     /// pool of its own, of `threads` threads at the priority above.
-    /// Unused with [`Host::Global`], which renders on rayon's global pool.
+    /// Unused with [`Host::Global`], which renders on rayon's global pool,
+    /// and [`Host::Slices`], on the calling thread.
     pub pool: Option<Arc<rayon::ThreadPool>>,
     /// The clock its passes and time budget read; `None`: the system's.
     pub clock: Option<Arc<dyn Clock>>,
     /// Where the job's loop runs.
     pub host: Host,
+    /// Shown live to a viewer (a window's side): the job waits between
+    /// tiles while the viewers are hidden
+    /// ([`set_viewers_hidden`](super::driver::set_viewers_hidden)), as a
+    /// web page's hidden tab. A job that measures is not viewed, so
+    /// hiding never stretches its times.
+    pub viewed: bool,
 }
 
 impl JobOptions {
@@ -249,7 +256,10 @@ impl RenderJob {
         settings.validate()?;
         settings.render_camera(&world.view)?;
         let pool = match (options.host, &options.pool) {
-            (Host::Global, _) => JobPool::Global,
+            // Slices render their tiles on the calling thread; what little
+            // else is parallel (the structure's build) asks the global pool,
+            // which without threads is rayon's fallback onto that thread.
+            (Host::Global | Host::Slices, _) => JobPool::Global,
             (_, Some(pool)) => JobPool::Own(pool.clone()),
             (_, None) => JobPool::Own(driver::render_pool(options.threads, options.priority())?),
         };
@@ -266,6 +276,7 @@ impl RenderJob {
                 options.paused,
                 options.pause_after_tiles,
                 options.on_progress,
+                options.viewed,
             ),
             outputs: Mutex::new(outputs),
             state: Mutex::new(state),

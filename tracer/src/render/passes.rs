@@ -114,11 +114,11 @@ pub(super) async fn run(
 }
 
 /// [`Control::proceed`] for a loop in time slices, which may not block
-/// its thread: while the job is paused it gives way. False once the job is
-/// cancelled, or paused while waited for, which cancels it (nothing else
+/// its thread: while the job is held it gives way. False once the job is
+/// cancelled, or held while waited for, which cancels it (nothing else
 /// could resume it).
 pub(super) async fn proceed_in_slices(control: &Control) -> bool {
-    while control.is_paused() && !control.cancelled() {
+    while control.held() && !control.cancelled() {
         if slices::waited_for() {
             control.cancel();
         } else {

@@ -10,6 +10,7 @@ use crate::describe::si;
 
 use crate::gui::comparison::Comparison;
 use crate::gui::platform::frame_meter::FrameMeter;
+use crate::gui::platform::target;
 use crate::gui::sides::Sides;
 
 /// Everything the panel shows.
@@ -68,6 +69,9 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
         .striped(true)
         .show(ui, |ui| {
             row(ui, "Resolution", format!("{} x {}", s.width, s.height));
+            if let Some(on) = target::rendered_on() {
+                row(ui, "Rendered on", on);
+            }
             match &s.adaptive {
                 None => {
                     row(

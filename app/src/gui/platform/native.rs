@@ -26,6 +26,18 @@ pub fn spawn(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Resul
         .map(drop)
 }
 
+/// [`spawn`] for work that measures for long: the desktop has threads
+/// for it.
+pub fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+    spawn(name, work)
+}
+
+/// Where the window renders, when the statistics panel should say it:
+/// never on the desktop, where it is always the machine's cores.
+pub fn rendered_on() -> Option<String> {
+    None
+}
+
 /// A pool of render threads at `priority`, one per core, for an engine's
 /// jobs.
 pub fn render_pool(priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>, String> {

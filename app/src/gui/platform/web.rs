@@ -3,14 +3,17 @@
 //! page cannot do. A page can start no thread and its main thread may
 //! never wait: background work and every render run on rayon's global
 //! pool, which `wasm-bindgen-rayon` fills with Web Workers before the
-//! window starts (`initThreadPool`, called by `web/index.html`).
+//! window starts (`initThreadPool`, called by `web/index.html`). A page
+//! that is not cross-origin isolated can have no workers: it renders in
+//! time slices of its own thread between frames, and refuses to measure.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
-use tracer::render::JobState;
-use tracer::render::driver::Priority;
+use tracer::render::driver::{Host, Priority, set_viewers_hidden};
+use tracer::render::{JobState, run_slices, slices_pending};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
@@ -28,6 +31,14 @@ pub const WORK_WAKES_WINDOW: bool = false;
 /// the page keeps looking for its results ([`busy`]).
 static IN_FLIGHT: AtomicUsize = AtomicUsize::new(0);
 
+/// The page's Web Workers, as [`start`] was told: none on a page that is
+/// not cross-origin isolated, where everything runs on the page's thread.
+static WORKERS: AtomicUsize = AtomicUsize::new(0);
+
+fn has_workers() -> bool {
+    WORKERS.load(Ordering::Relaxed) > 0
+}
+
 /// Counts a piece of background work out of [`IN_FLIGHT`] when it ends.
 struct InFlight;
 
@@ -37,8 +48,14 @@ impl Drop for InFlight {
     }
 }
 
-/// Runs `work` in the background on one of the page's workers.
+/// Runs `work` in the background on one of the page's workers; on a page
+/// without workers, at once on the page's thread (a render it waits for
+/// runs there to its end: `Host::Slices`).
 pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+    if !has_workers() {
+        work();
+        return Ok(());
+    }
     IN_FLIGHT.fetch_add(1, Ordering::Acquire);
     rayon::spawn(move || {
         let _counted = InFlight;
@@ -47,9 +64,32 @@ pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Resu
     Ok(())
 }
 
+/// [`spawn`] for work that measures for long (a benchmark, a study, the
+/// lab report): refused on a page without workers, where it would hold
+/// the page's only thread for minutes, with its times taking in the page's.
+pub fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+    if !has_workers() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::Unsupported,
+            "measuring needs the page's Web Workers, which a page that is not \
+             cross-origin isolated cannot have (see the web guide, docs/guide/web.md)",
+        ));
+    }
+    spawn(name, work)
+}
+
 /// Whether background work started with [`spawn`] is still running.
 fn busy() -> bool {
     IN_FLIGHT.load(Ordering::Acquire) > 0
+}
+
+/// Where the page renders, for the statistics panel.
+pub fn rendered_on() -> Option<String> {
+    Some(match WORKERS.load(Ordering::Relaxed) {
+        0 => "this page's thread, in time slices (the page is not cross-origin isolated)".into(),
+        1 => "1 Web Worker".into(),
+        n => format!("{n} Web Workers"),
+    })
 }
 
 /// No pool of the engine's own: a page's jobs render on the global pool
@@ -121,10 +161,17 @@ impl FileDialog {
 
 /// Starts the window on the page's canvas `canvas_id`, on the bundled
 /// default scene, then opens what the page's link asks for
-/// (`?lesson=NAME`, `?scene=NAME`). The page calls it once its
-/// workers are up.
+/// (`?lesson=NAME`, `?scene=NAME`). The page calls it once its `workers`
+/// are up: none on a page that is not cross-origin isolated, which then
+/// renders in time slices of its own thread.
 #[wasm_bindgen]
-pub async fn start(canvas_id: String) -> Result<(), JsValue> {
+pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
+    WORKERS.store(workers, Ordering::Relaxed);
+    if workers == 0 {
+        let _ = tracer::render::driver::set_default_host(Host::Slices);
+    }
+    say_panics_on_the_page();
+    hold_renders_while_hidden()?;
     let canvas = web_sys::window()
         .and_then(|w| w.document())
         .and_then(|d| d.get_element_by_id(&canvas_id))
@@ -146,14 +193,63 @@ pub async fn start(canvas_id: String) -> Result<(), JsValue> {
                 Ok(Box::new(Page {
                     app,
                     said: String::new(),
+                    slice_ended: None,
                 }))
             }),
         )
         .await
 }
 
+/// Shows a panic on the page's thread in the page's `#status` element,
+/// and in `<body data-render>`: panics abort on the web, so the window
+/// stops there and then, and the page would otherwise just freeze. (A
+/// worker's panic fails its job instead, which the window says.)
+fn say_panics_on_the_page() {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        previous(info);
+        let Some(document) = web_sys::window().and_then(|w| w.document()) else {
+            return;
+        };
+        let text =
+            format!("The workbench stopped on a bug: {info}. Reload the page to start again.");
+        if let Some(status) = document.get_element_by_id("status") {
+            status.set_text_content(Some(&text));
+            let _ = status.set_attribute("class", "error");
+            let _ = status.remove_attribute("hidden");
+        }
+        if let Some(body) = document.body() {
+            let _ = body.set_attribute("data-render", &format!("panic: {info}"));
+        }
+    }));
+}
+
+/// Holds the window's renders while the page's tab is hidden
+/// (`set_viewers_hidden`): nobody sees them, and the workers give the
+/// cores back. Measurements go on.
+fn hold_renders_while_hidden() -> Result<(), JsValue> {
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or_else(|| JsValue::from_str("no document"))?;
+    let seen = document.clone();
+    let changed = Closure::<dyn Fn()>::new(move || set_viewers_hidden(seen.hidden()));
+    document
+        .add_event_listener_with_callback("visibilitychange", changed.as_ref().unchecked_ref())?;
+    // The page listens as long as it lives.
+    changed.forget();
+    set_viewers_hidden(document.hidden());
+    Ok(())
+}
+
+/// How long the page's thread renders in a frame, without workers: as
+/// long as the rest of the frame took, so the render gets at least half
+/// the thread, within these bounds (the window still drawn 10 times a
+/// second when drawing is slow, as on a software WebGL).
+const SLICE_MIN: Duration = Duration::from_millis(25);
+const SLICE_MAX: Duration = Duration::from_millis(100);
+
 /// How often the page looks at a running render.
-const POLL: std::time::Duration = std::time::Duration::from_millis(100);
+const POLL: Duration = Duration::from_millis(100);
 
 /// The window on a page, which says how side A's render stands in the
 /// page's `<body data-…>` attributes: for a script driving the page (the
@@ -163,6 +259,8 @@ struct Page {
     app: WorkbenchApp,
     /// The attributes last written, so unchanged frames write nothing.
     said: String,
+    /// When the page's thread last stopped rendering, without workers.
+    slice_ended: Option<web_time::Instant>,
 }
 
 impl Page {
@@ -203,8 +301,9 @@ impl Page {
             let _ = body.set_attribute("data-passes", &passes.to_string());
             let _ = body.set_attribute("data-lesson", &lesson);
             let _ = body.set_attribute("data-scene", &scene);
-            let workers = rayon::current_num_threads().to_string();
+            let workers = WORKERS.load(Ordering::Relaxed).to_string();
             let _ = body.set_attribute("data-workers", &workers);
+            let _ = body.set_attribute("data-rendered-on", &rendered_on().unwrap_or_default());
         }
         self.said = said;
     }
@@ -213,6 +312,16 @@ impl Page {
 impl eframe::App for Page {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         self.app.ui(ui, frame);
+        // Without workers, the renders run here, between frames.
+        if slices_pending() {
+            let others = self.slice_ended.map_or(SLICE_MIN, |end| end.elapsed());
+            if run_slices(others.clamp(SLICE_MIN, SLICE_MAX)) {
+                ui.ctx().request_repaint();
+            }
+            self.slice_ended = Some(web_time::Instant::now());
+        } else {
+            self.slice_ended = None;
+        }
         self.tell_page();
         // Workers do not wake the page (WORK_WAKES_WINDOW): it looks again
         // while a render or other background work runs, and once after

@@ -25,7 +25,8 @@ pub struct Background<U> {
 
 impl<U: Send + 'static> Background<U> {
     /// Starts `work` on a thread called `name`; it gets the cancel flag
-    /// and the sender of its updates.
+    /// and the sender of its updates. Refused where work that measures
+    /// for long cannot run (`target::spawn_long`).
     pub fn spawn(
         name: &str,
         work: impl FnOnce(&AtomicBool, &Sender<U>) + Send + 'static,
@@ -33,7 +34,7 @@ impl<U: Send + 'static> Background<U> {
         let cancel = Arc::new(AtomicBool::new(false));
         let (tx, updates) = channel();
         let flag = cancel.clone();
-        target::spawn(name, move || work(&flag, &tx))?;
+        target::spawn_long(name, move || work(&flag, &tx))?;
         Ok(Self { cancel, updates })
     }
 

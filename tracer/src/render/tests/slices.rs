@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use super::{SCENE, index, sequential, settings, world};
 use crate::accel::AccelKind;
-use crate::render::driver::Host;
+use crate::render::driver::{Host, set_viewers_hidden};
 use crate::render::strategy::{PassEnd, SamplingStrategy, TileSamples, Uniform};
 use crate::render::{
     Encoding, Film, JobOptions, JobState, RenderJob, RenderPlan, Tile, run_slices, slices_pending,
@@ -152,4 +152,38 @@ fn a_panic_in_a_slice_fails_the_job_with_its_message() {
         panic!("not failed: {state:?}");
     };
     assert!(message.contains("a bug in the strategy"), "{message}");
+}
+
+/// Shows the viewers again when dropped, even when the test fails: no
+/// other test in this process runs a viewed job.
+struct Hidden;
+
+impl Hidden {
+    fn viewers() -> Self {
+        set_viewers_hidden(true);
+        Self
+    }
+}
+
+impl Drop for Hidden {
+    fn drop(&mut self) {
+        set_viewers_hidden(false);
+    }
+}
+
+#[test]
+fn hidden_viewers_hold_viewed_jobs_only() {
+    let (viewed, _) = sliced(JobOptions {
+        viewed: true,
+        ..JobOptions::default()
+    });
+    let (measuring, _) = sliced(JobOptions::default());
+    let hidden = Hidden::viewers();
+    // Each loop takes one tile of a spent slice, if it may.
+    assert!(run_slices(Duration::ZERO));
+    assert_eq!(covered(&viewed), 0, "held while hidden");
+    assert_eq!(covered(&measuring), 32 * 32, "a measurement goes on");
+    drop(hidden);
+    run_slices(Duration::ZERO);
+    assert_eq!(covered(&viewed), 32 * 32, "shown again");
 }

@@ -242,6 +242,7 @@ impl Engine {
                 views: self.views,
                 paused: self.paused,
                 pause_after_tiles: self.pause_after_tiles,
+                viewed: true,
                 ..JobOptions::default()
             },
         )
