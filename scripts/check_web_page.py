@@ -11,7 +11,7 @@ Talks DevTools through check_report_page's standard-library client.
                               [--chromium PATH] [--timeout SECONDS]
                               [--query ?lesson=NAME --lesson NAME]
                               [--drop FILE [--error TEXT]]
-                              [--no-isolation]
+                              [--no-isolation] [--hide]
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -44,6 +44,7 @@ STATUS = (
     " render: data.render || '', passes: Number(data.passes || 0),"
     " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
     " renderedOn: data.renderedOn || '',"
+    " rays: typeof self.workbench?.rays_traced === 'function' ? self.workbench.rays_traced() : -1,"
     " now: performance.now()}); })()"
 )
 
@@ -67,6 +68,8 @@ def problems_of(events):
 
 def status(page):
     result = page.command("Runtime.evaluate", expression=STATUS, returnByValue=True)
+    if "exceptionDetails" in result:
+        raise RuntimeError(f"the page's status: {result['exceptionDetails']}")
     return json.loads(result["result"]["value"])
 
 
@@ -77,7 +80,34 @@ def drop(page, path):
         page.command("Input.dispatchDragEvent", type=kind, x=640, y=400, data=data)
 
 
-def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True):
+HIDE = (
+    "(() => { Object.defineProperty(document, 'hidden', {configurable: true, get: () => %s});"
+    " document.dispatchEvent(new Event('visibilitychange')); })()"
+)
+
+
+def hidden_holds_the_render(page):
+    """Hides the page as a hidden tab would (document.hidden and its
+    event), and says what is wrong if the render goes on meanwhile (the
+    rays the render itself counts: the page draws nothing while hidden);
+    shows it again either way."""
+    page.command("Runtime.evaluate", expression=HIDE % "true")
+    try:
+        # Tiles under way when it hid may still land.
+        time.sleep(1.0)
+        before = status(page)
+        time.sleep(3.0)
+        after = status(page)
+    finally:
+        page.command("Runtime.evaluate", expression=HIDE % "false")
+    if after["rays"] != before["rays"] or after["render"] != "rendering":
+        return [f"hidden, the render went on: {before['rays']} then {after['rays']} rays,"
+                f" {after['render']}"]
+    return []
+
+
+def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True,
+          hide=False):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     try:
         process, port = devtools.start_chromium(chromium, profile)
@@ -93,6 +123,7 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
         page.command("Page.navigate", url=url)
         deadline = time.monotonic() + timeout
         first_pass = None
+        problems = []
         while True:
             now = status(page)
             if now["passes"] >= 1 and first_pass is None:
@@ -100,12 +131,15 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
                 if dropped:
                     drop(page, dropped)
                     continue
+                if hide:
+                    problems += hidden_holds_the_render(page)
+                    continue
             if now["render"] == "done" or now["render"].startswith(("failed", "error")):
                 break
             if time.monotonic() > deadline:
                 break
             time.sleep(0.05)
-        problems = problems_of(page.events)
+        problems = problems_of(page.events) + problems
         if isolated:
             if not now["isolated"]:
                 problems.append("the page is not cross-origin isolated")
@@ -158,13 +192,15 @@ def main():
     parser.add_argument("--error", help="text the page's error must hold at the end (no render)")
     parser.add_argument("--no-isolation", action="store_true",
                         help="serve without the isolation headers: the page renders without workers")
+    parser.add_argument("--hide", action="store_true",
+                        help="after the first pass, hide the page for 4 s: the render must hold")
     args = parser.parse_args()
     httpd = serve_web.server(args.dist, 0, not args.no_isolation)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
     return check(
         url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
-        not args.no_isolation,
+        not args.no_isolation, args.hide,
     )
 
 

@@ -182,7 +182,9 @@ pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
         dithering: false,
         ..eframe::WebOptions::default()
     };
-    eframe::WebRunner::new()
+    let runner = eframe::WebRunner::new();
+    RUNNER.with(|r| r.replace(Some(runner.clone())));
+    runner
         .start(
             canvas,
             options,
@@ -198,6 +200,26 @@ pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
             }),
         )
         .await
+}
+
+thread_local! {
+    /// The page's runner, for [`rays_traced`], which a script calls
+    /// between frames.
+    static RUNNER: std::cell::RefCell<Option<eframe::WebRunner>> = const { std::cell::RefCell::new(None) };
+}
+
+/// The rays side A's render has traced so far, read from the render
+/// itself: a script checking that a hidden tab holds the render asks it,
+/// as the page draws no frame (and says nothing in `<body data-…>`)
+/// while hidden. -1 before a render starts.
+#[wasm_bindgen]
+pub fn rays_traced() -> f64 {
+    RUNNER.with(|r| {
+        let runner = r.borrow();
+        let page = runner.as_ref().and_then(|r| r.app_mut::<Page>());
+        page.and_then(|page| page.app.engine().live_stats())
+            .map_or(-1.0, |stats| stats.counters.total_rays() as f64)
+    })
 }
 
 /// Shows a panic on the page's thread in the page's `#status` element,
@@ -265,7 +287,7 @@ struct Page {
 
 impl Page {
     fn tell_page(&mut self) {
-        let (state, passes) = match self.app.shown() {
+        let (state, passes, rays) = match self.app.shown() {
             Some(shown) => (
                 match &shown.state {
                     JobState::Building => "building".to_string(),
@@ -275,8 +297,9 @@ impl Page {
                     JobState::Failed(message) => format!("failed: {message}"),
                 },
                 shown.stats.passes_done,
+                shown.stats.counters.total_rays(),
             ),
-            None => ("starting".to_string(), 0),
+            None => ("starting".to_string(), 0, 0),
         };
         let state = match self.app.error() {
             Some(error) => format!("error: {error}"),
@@ -289,7 +312,7 @@ impl Page {
         };
         let scene = self.app.engine().scene().map(|s| s.source.label());
         let scene = scene.unwrap_or_default();
-        let said = format!("{state}|{passes}|{lesson}|{scene}");
+        let said = format!("{state}|{passes}|{rays}|{lesson}|{scene}");
         if said == self.said {
             return;
         }
@@ -299,6 +322,7 @@ impl Page {
         {
             let _ = body.set_attribute("data-render", &state);
             let _ = body.set_attribute("data-passes", &passes.to_string());
+            let _ = body.set_attribute("data-rays", &rays.to_string());
             let _ = body.set_attribute("data-lesson", &lesson);
             let _ = body.set_attribute("data-scene", &scene);
             let workers = WORKERS.load(Ordering::Relaxed).to_string();
@@ -337,5 +361,10 @@ impl eframe::App for Page {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         self.app.save(storage);
+    }
+
+    /// For [`rays_traced`] (`WebRunner::app_mut`).
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }

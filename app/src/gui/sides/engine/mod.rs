@@ -8,6 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use tracer::accel::SceneIndex;
 use tracer::render::driver::Priority;
 use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
+use tracer::stats::RenderStats;
 use tracer::world::ShapeChange;
 
 use crate::load::{Loaded, SceneSource};
@@ -319,6 +320,12 @@ impl Engine {
     /// even while the job still reports itself rendering.
     pub fn is_complete(&self) -> bool {
         self.job.is_some() && self.complete.load(Ordering::Relaxed)
+    }
+
+    /// The current job's statistics as they stand, not as last shown: for
+    /// a script asking a page whose frames stop while its tab is hidden.
+    pub fn live_stats(&self) -> Option<RenderStats> {
+        self.job.as_ref().map(RenderJob::stats)
     }
 
     /// The acceleration structure of the current job, once built (or the
