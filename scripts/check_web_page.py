@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Opens the web build (web/dist/, from scripts/build-web.sh) in headless
-Chromium, served as scripts/serve-web.sh serves it, and checks it: the
+Chromium (with --replay: its ?replay page, where every bundled lesson's
+steps must pass), served as scripts/serve-web.sh serves it, and checks it: the
 page cross-origin isolated with its workers up, side A's render of the
 default scene finished, and no console error or uncaught exception on
 the way. Prints the time from navigation to the first pass and to the
@@ -11,7 +12,7 @@ Talks DevTools through check_report_page's standard-library client.
                               [--chromium PATH] [--timeout SECONDS]
                               [--query ?lesson=NAME --lesson NAME]
                               [--drop FILE [--error TEXT]]
-                              [--no-isolation] [--hide]
+                              [--no-isolation] [--hide] [--replay]
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -45,6 +46,8 @@ STATUS = (
     " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
     " renderedOn: data.renderedOn || '',"
     " rays: typeof self.workbench?.rays_traced === 'function' ? self.workbench.rays_traced() : -1,"
+    " replay: data.replay || '',"
+    " said: (document.getElementById('status') || {}).textContent || '',"
     " now: performance.now()}); })()"
 )
 
@@ -106,8 +109,34 @@ def hidden_holds_the_render(page):
     return []
 
 
+def render_problems(now, isolated, error, dropped):
+    """What is wrong with the page's render as it stands in `now`."""
+    problems = []
+    if isolated:
+        if not now["isolated"]:
+            problems.append("the page is not cross-origin isolated")
+        # web/index.html starts at least two (one per core, 2 to 8).
+        if now["workers"] < 2:
+            problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
+    else:
+        if now["isolated"]:
+            problems.append("the page is cross-origin isolated, served without the headers")
+        if now["workers"] != 0:
+            problems.append(f"the page started {now['workers']} worker(s) without isolation")
+        if "not cross-origin isolated" not in now["renderedOn"]:
+            problems.append(f"the page says it renders on {now['renderedOn']!r}, not why")
+    if error is not None:
+        if not now["render"].startswith("error: ") or error not in now["render"]:
+            problems.append(f"the page says {now['render']!r}, not an error with {error!r}")
+    elif now["render"] != "done":
+        problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
+    elif dropped and now["scene"] != os.path.basename(dropped):
+        problems.append(f"the page shows {now['scene'] or 'no scene'}, not the dropped file")
+    return problems
+
+
 def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True,
-          hide=False):
+          hide=False, replay=False):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     try:
         process, port = devtools.start_chromium(chromium, profile)
@@ -134,42 +163,33 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
                 if hide:
                     problems += hidden_holds_the_render(page)
                     continue
-            if now["render"] == "done" or now["render"].startswith(("failed", "error")):
+            if replay and now["replay"]:
+                break
+            if now["render"] == "done" or now["render"].startswith(("failed", "error", "panic")):
                 break
             if time.monotonic() > deadline:
                 break
             time.sleep(0.05)
         problems = problems_of(page.events) + problems
-        if isolated:
-            if not now["isolated"]:
-                problems.append("the page is not cross-origin isolated")
-            # web/index.html starts at least two (one per core, 2 to 8).
-            if now["workers"] < 2:
-                problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
+        if replay:
+            print(now["said"])
+            if now["replay"] != "passed":
+                problems.append(f"the lessons' replay {now['replay'] or 'did not finish'}")
         else:
-            if now["isolated"]:
-                problems.append("the page is cross-origin isolated, served without the headers")
-            if now["workers"] != 0:
-                problems.append(f"the page started {now['workers']} worker(s) without isolation")
-            if "not cross-origin isolated" not in now["renderedOn"]:
-                problems.append(f"the page says it renders on {now['renderedOn']!r}, not why")
-        if error is not None:
-            if not now["render"].startswith("error: ") or error not in now["render"]:
-                problems.append(f"the page says {now['render']!r}, not an error with {error!r}")
-        elif now["render"] != "done":
-            problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
-        elif dropped and now["scene"] != os.path.basename(dropped):
-            problems.append(f"the page shows {now['scene'] or 'no scene'}, not the dropped file")
+            problems += render_problems(now, isolated, error, dropped)
         if lesson is not None and now["lesson"] != lesson:
             problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
         if screenshot:
             shot = page.command("Page.captureScreenshot", format="png")
             with open(screenshot, "wb") as f:
                 f.write(base64.b64decode(shot["data"]))
-        print(f"workers: {now['workers']}, passes: {now['passes']}, on: {now['renderedOn']}")
-        if first_pass is not None:
-            print(f"first pass: {(first_pass - start) / 1000:.2f} s after navigation started")
-        print(f"render {now['render']}: {(now['now'] - start) / 1000:.2f} s after navigation started")
+        if replay:
+            print(f"replay {now['replay']}: {(now['now'] - start) / 1000:.2f} s after navigation started")
+        else:
+            print(f"workers: {now['workers']}, passes: {now['passes']}, on: {now['renderedOn']}")
+            if first_pass is not None:
+                print(f"first pass: {(first_pass - start) / 1000:.2f} s after navigation started")
+            print(f"render {now['render']}: {(now['now'] - start) / 1000:.2f} s after navigation started")
     finally:
         process.kill()
         process.wait()
@@ -192,15 +212,18 @@ def main():
     parser.add_argument("--error", help="text the page's error must hold at the end (no render)")
     parser.add_argument("--no-isolation", action="store_true",
                         help="serve without the isolation headers: the page renders without workers")
+    parser.add_argument("--replay", action="store_true",
+                        help="open ?replay: every bundled lesson's steps must pass in the browser")
     parser.add_argument("--hide", action="store_true",
                         help="after the first pass, hide the page for 4 s: the render must hold")
     args = parser.parse_args()
     httpd = serve_web.server(args.dist, 0, not args.no_isolation)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
-    url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
+    query = "?replay" if args.replay else args.query
+    url = f"http://127.0.0.1:{httpd.server_port}/{query}"
     return check(
         url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
-        not args.no_isolation, args.hide,
+        not args.no_isolation, args.hide, args.replay,
     )
 
 

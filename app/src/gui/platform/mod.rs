@@ -3,11 +3,14 @@
 //! read, the software rasterizer's priority, screenshots for
 //! `--screenshot`, and `target`: what differs between the desktop
 //! (`native.rs`) and the web page (`web.rs`), the one place the window
-//! asks which it runs on.
+//! asks which it runs on; on the web, `page_modes`: what a page's query
+//! can ask instead of the window (`?replay`).
 
 pub mod clock;
 pub mod cpu_clock;
 pub mod frame_meter;
+#[cfg(target_family = "wasm")]
+pub mod page_modes;
 #[cfg(not(target_family = "wasm"))]
 pub mod paint_priority;
 pub mod screenshot;

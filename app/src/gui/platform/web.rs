@@ -171,6 +171,10 @@ pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
         let _ = tracer::render::driver::set_default_host(Host::Slices);
     }
     say_panics_on_the_page();
+    let query = web_sys::window().and_then(|w| w.location().search().ok());
+    if let Some(mode) = query.as_deref().and_then(super::page_modes::asked) {
+        return mode.run().await;
+    }
     hold_renders_while_hidden()?;
     let canvas = web_sys::window()
         .and_then(|w| w.document())
