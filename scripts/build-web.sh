@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the workbench as a web page into web/dist/: index.html, the .wasm
 # and its JavaScript glue under content-hashed names (a new version is
-# never mixed with a cached old one), and wasm-bindgen's worker helper.
+# never mixed with a cached old one), wasm-bindgen's worker helper, and
+# scenes/ (the scenes the page does not embed, fetched by name).
 # Installs what it needs if missing, idempotently: Debian's web toolchain
 # (rustc-web, rust-web-src, lld-16, rust-web-clippy), the link through
 # which cargo's build-std finds the standard library's sources, and
@@ -94,6 +95,8 @@ mv "$staging/workbench_bg.wasm" "$staging/$wasm"
 js=workbench-$(cat "$staging/workbench.js" <(echo "$wasm") | sha256sum | cut -c1-12).js
 mv "$staging/workbench.js" "$staging/$js"
 sed -e "s/@JS@/$js/g" -e "s/@WASM@/$wasm/g" "$root/web/index.html" >"$staging/index.html"
+# The scenes the page does not embed, fetched by name (?bench=mount_high).
+cp -r "$root/scenes" "$staging/scenes"
 rm -rf "$dist"
 mkdir -p "$(dirname "$dist")"
 mv "$staging" "$dist"

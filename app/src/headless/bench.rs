@@ -5,7 +5,7 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::{Context, Result, bail};
 use tracer::accel::AccelKind;
-use tracer::render::{RenderSettings, Sampling};
+use tracer::render::RenderSettings;
 
 use crate::cli::{BenchArgs, TableFormat};
 use crate::image_file::save_png;
@@ -20,13 +20,7 @@ use crate::reports::{
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
-    let mut settings = RenderSettings::from_scene(&loaded.scene);
-    // A benchmark frame is one sample per pixel with hard shadows unless
-    // the command line (or the matrix) asks for more; anti-aliasing samples
-    // uniformly, as the course's table did, whatever the scene suggests.
-    settings.antialiasing = false;
-    settings.depth_of_field = false;
-    settings.sampling = Sampling::Uniform;
+    let mut settings = benchmark::frame_settings(&loaded.scene);
     if args.to_error {
         // The target is the error of the report's N unless --spp says.
         settings.samples = benchmark::MATRIX_SAMPLES;

@@ -11,9 +11,9 @@ use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use tracer::accel::{AccelInfo, AccelKind, SceneIndex};
 use tracer::render::{
-    Encoding, JobOptions, JobState, LensOverride, RenderJob, RenderSettings, ViewFilm,
+    Encoding, JobOptions, JobState, LensOverride, RenderJob, RenderSettings, Sampling, ViewFilm,
 };
-use tracer::scene::{Lens, Viewpoint};
+use tracer::scene::{Lens, Scene, Viewpoint};
 use tracer::stats::RenderStats;
 use tracer::world::World;
 
@@ -55,6 +55,19 @@ impl Case {
         }
         stem
     }
+}
+
+/// The settings of a benchmark frame of `scene`: one sample per pixel
+/// with hard shadows, the scene's size and structure, unless the caller
+/// asks for more; anti-aliasing samples uniformly, as the course's table
+/// did, whatever the scene suggests. `workbench bench` and the web page's
+/// `?bench` measure the same frame.
+pub fn frame_settings(scene: &Scene) -> RenderSettings {
+    let mut settings = RenderSettings::from_scene(scene);
+    settings.antialiasing = false;
+    settings.depth_of_field = false;
+    settings.sampling = Sampling::Uniform;
+    settings
 }
 
 /// The sampling column of the course's timing matrix.

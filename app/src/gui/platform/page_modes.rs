@@ -1,55 +1,90 @@
 //! What a web page can do instead of opening the window, asked for by its
 //! query: `?replay` walks every bundled lesson's steps in the browser, as
 //! `workbench lesson check` does on the desktop, for a script (and a
-//! teacher) to see that each step passes with the web's maths library.
+//! teacher) to see that each step passes with the web's maths library;
+//! `?bench=SCENE` times `workbench bench`'s frame of a scene on the
+//! page's workers, for the web's speed against the desktop's.
 
+use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
 
+use anyhow::Context;
+use tracer::accel::AccelKind;
+use tracer::render::Encoding;
+use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
+use wasm_bindgen_futures::JsFuture;
 
 use crate::lessons::{bundled, replay};
+use crate::load::{Loaded, SceneSource};
+use crate::measure::benchmark::{self, RunOptions};
 
 use super::target;
 
 /// The page mode `query` asks for, if any.
 pub fn asked(query: &str) -> Option<PageMode> {
-    match query {
-        "?replay" => Some(PageMode::Replay),
-        _ => None,
+    let pairs: Vec<(&str, &str)> = (query.strip_prefix('?')?.split('&'))
+        .map(|pair| pair.split_once('=').unwrap_or((pair, "")))
+        .collect();
+    if pairs == [("replay", "")] {
+        return Some(PageMode::Replay);
     }
+    let value = |key: &str| pairs.iter().find(|(k, _)| *k == key).map(|(_, v)| *v);
+    let scene = value("bench")?.to_string();
+    // `workers` is web/index.html's: the pool is made before the module runs.
+    let runs = value("runs").and_then(|r| r.parse().ok()).unwrap_or(5);
+    Some(PageMode::Bench { scene, runs })
 }
 
 /// A page that shows words instead of the window.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub enum PageMode {
     /// Every bundled lesson replayed, step by step.
     Replay,
+    /// `workbench bench --structures bvh --runs RUNS`'s frame of a scene:
+    /// a bundled one by name, else `scenes/NAME.p3f` beside the page. The
+    /// page starts one worker more than `&workers=N` asks for, which this
+    /// task blocks while it waits for each frame.
+    Bench { scene: String, runs: usize },
 }
 
 impl PageMode {
     /// Runs the mode on the page's workers, saying its lines in the
-    /// page's `#status` as they come and, at the end, `passed` or
-    /// `failed: N steps` in `<body data-replay>`.
+    /// page's `#status` as they come and, at the end, its verdict in
+    /// `<body data-replay>` (`passed`, `failed: N steps`) or
+    /// `<body data-bench>` (the rays per second, or `error: …`).
     pub async fn run(self) -> Result<(), JsValue> {
         let (tx, rx) = mpsc::channel();
-        target::spawn("lesson replay", move || replay_all(&tx))
-            .map_err(|e| JsValue::from_str(&e.to_string()))?;
+        let (attribute, spawned) = match self {
+            PageMode::Replay => (
+                "data-replay",
+                target::spawn("lesson replay", move || replay_all(&tx)),
+            ),
+            PageMode::Bench { scene, runs } => {
+                let source = match crate::bundled::find(&scene) {
+                    Some(_) => SceneSource::Bundled(scene),
+                    None => {
+                        let text = fetch_text(&format!("scenes/{scene}.p3f")).await?;
+                        SceneSource::Written { name: scene, text }
+                    }
+                };
+                let spawned = target::spawn("bench", move || bench(source, runs, &tx));
+                ("data-bench", spawned)
+            }
+        };
+        spawned.map_err(|e| JsValue::from_str(&e.to_string()))?;
         let mut said = String::new();
         loop {
             let mut finished = None;
             for line in rx.try_iter() {
                 match line {
                     Said::Line(line) => said.push_str(&format!("{line}\n")),
-                    Said::Finished(failures) => finished = Some(failures),
+                    Said::Finished(verdict) => finished = Some(verdict),
                 }
             }
             show(&said, None);
-            if let Some(failures) = finished {
-                let verdict = match failures {
-                    0 => "passed".to_string(),
-                    n => format!("failed: {n} steps"),
-                };
-                show(&said, Some(&verdict));
+            if let Some(verdict) = finished {
+                show(&said, Some((attribute, &verdict)));
                 return Ok(());
             }
             pause(100).await?;
@@ -57,11 +92,71 @@ impl PageMode {
     }
 }
 
-/// What the replay says as it goes.
+/// What a page mode says as it goes.
 enum Said {
     Line(String),
-    /// How many steps failed (a lesson that cannot be walked counts one).
-    Finished(usize),
+    /// The verdict, for the page's attribute.
+    Finished(String),
+}
+
+/// Times the benchmark frame of `source` with the BVH, `runs` times.
+fn bench(source: SceneSource, runs: usize, tx: &mpsc::Sender<Said>) {
+    let say = |line: String| {
+        let _ = tx.send(Said::Line(line));
+    };
+    let measured = (|| {
+        let loaded = Loaded::read(source, &[], &mut |_| {})?;
+        let settings = benchmark::frame_settings(&loaded.scene);
+        let cases = benchmark::structures(&settings, &[AccelKind::Bvh], Encoding::default());
+        // This task holds one worker while it waits for each frame.
+        say(format!(
+            "{}: {}x{}, {runs} run(s), {} worker(s) rendering",
+            loaded.source.label(),
+            settings.width,
+            settings.height,
+            rayon::current_num_threads() - 1
+        ));
+        let options = RunOptions {
+            runs,
+            threads: None,
+        };
+        let cancel = AtomicBool::new(false);
+        let outcome = benchmark::run(&loaded.world, &cases, options, &cancel, &mut |_| {})?;
+        let measured = outcome.measurements.into_iter().next();
+        measured.context("no frame was measured")
+    })();
+    let verdict = match measured {
+        Ok(m) => {
+            say(format!(
+                "bvh: median {:.4} s, {} rays, {:.0} rays/s",
+                m.median().as_secs_f64(),
+                m.rays(),
+                m.rays_per_second()
+            ));
+            format!("{:.0}", m.rays_per_second())
+        }
+        Err(e) => {
+            say(format!("cannot benchmark: {e:#}"));
+            format!("error: {e:#}")
+        }
+    };
+    let _ = tx.send(Said::Finished(verdict));
+}
+
+/// The text at `url` (relative to the page), or why not.
+async fn fetch_text(url: &str) -> Result<String, JsValue> {
+    let window = web_sys::window().ok_or_else(|| JsValue::from_str("no window"))?;
+    let response = JsFuture::from(window.fetch_with_str(url)).await?;
+    let response: web_sys::Response = response.dyn_into()?;
+    if !response.ok() {
+        return Err(JsValue::from_str(&format!(
+            "{url}: HTTP {}",
+            response.status()
+        )));
+    }
+    let text = JsFuture::from(response.text()?).await?;
+    text.as_string()
+        .ok_or_else(|| JsValue::from_str(&format!("{url}: not text")))
 }
 
 fn replay_all(tx: &mpsc::Sender<Said>) {
@@ -72,7 +167,7 @@ fn replay_all(tx: &mpsc::Sender<Said>) {
         Ok(lessons) => lessons,
         Err(e) => {
             say(format!("the bundled lessons do not read: {e}"));
-            let _ = tx.send(Said::Finished(1));
+            let _ = tx.send(Said::Finished("failed: the lessons do not read".into()));
             return;
         }
     };
@@ -103,12 +198,16 @@ fn replay_all(tx: &mpsc::Sender<Said>) {
         "{} lessons replayed, {failures} steps failed",
         lessons.len()
     ));
-    let _ = tx.send(Said::Finished(failures));
+    let verdict = match failures {
+        0 => "passed".to_string(),
+        n => format!("failed: {n} steps"),
+    };
+    let _ = tx.send(Said::Finished(verdict));
 }
 
-/// Writes `text` into the page's `#status` (shown, left-aligned), and the
-/// verdict into `<body data-replay>` once there is one.
-fn show(text: &str, verdict: Option<&str>) {
+/// Writes `text` into the page's `#status` (shown, left-aligned), and
+/// the verdict into its `<body>` attribute once there is one.
+fn show(text: &str, verdict: Option<(&str, &str)>) {
     let Some(document) = web_sys::window().and_then(|w| w.document()) else {
         return;
     };
@@ -120,8 +219,8 @@ fn show(text: &str, verdict: Option<&str>) {
             "white-space: pre; text-align: left; align-items: flex-start; overflow: auto",
         );
     }
-    if let (Some(body), Some(verdict)) = (document.body(), verdict) {
-        let _ = body.set_attribute("data-replay", verdict);
+    if let (Some(body), Some((attribute, verdict))) = (document.body(), verdict) {
+        let _ = body.set_attribute(attribute, verdict);
     }
 }
 
