@@ -5,6 +5,7 @@
 //! progress... saving it, with the student's name, for the teacher.
 
 use std::sync::Arc;
+use std::time::Duration;
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
@@ -153,9 +154,16 @@ fn a_student_walks_a_lesson_and_the_progress_stays() {
     });
     assert!(harness.state().lessons().done_steps().contains(&0));
 
-    // A restart keeps what was done.
+    // A restart keeps what was done, saved as soon as it changed.
+    let saves_in = |harness: &Window| eframe::App::auto_save_interval(harness.state());
+    assert_eq!(
+        saves_in(&harness),
+        Duration::ZERO,
+        "steps done not saved yet"
+    );
     let mut storage = MemoryStorage::default();
     eframe::App::save(harness.state_mut(), &mut storage);
+    assert!(saves_in(&harness) > Duration::ZERO, "saved: the usual pace");
     drop(harness);
     let restarted = start(Some(&storage), None);
     let progress = &restarted.state().lessons().progress;

@@ -64,7 +64,14 @@ pub struct WorkbenchApp {
     lessons: Lessons,
     /// A lesson step being set up, waiting for its scene.
     pending_setup: Option<lessons::PendingSetup>,
+    /// The lesson progress as last saved: a change is saved at the next
+    /// frame, not at the next periodic save, so a closed tab or a crash
+    /// loses no step done.
+    progress_saved: crate::lessons::progress::Record,
 }
+
+/// How often the rest of the saved state is saved (eframe's default).
+const AUTO_SAVE: std::time::Duration = std::time::Duration::from_secs(30);
 
 impl WorkbenchApp {
     /// Creates the app, restoring the saved state when `storage` has one,
@@ -105,6 +112,7 @@ impl WorkbenchApp {
             clock,
             lessons: Lessons::default(),
             pending_setup: None,
+            progress_saved: progress.clone(),
         };
         app.lessons.progress = progress;
         let last_scene = match app.session.last_scene.clone() {
@@ -341,6 +349,17 @@ impl eframe::App for WorkbenchApp {
             &self.session,
             &self.lessons.progress,
         );
+        self.progress_saved.clone_from(&self.lessons.progress);
+    }
+
+    /// At once while the lesson progress has changed since it was saved
+    /// (a step done, a note, the student's name).
+    fn auto_save_interval(&self) -> std::time::Duration {
+        if self.lessons.progress == self.progress_saved {
+            AUTO_SAVE
+        } else {
+            std::time::Duration::ZERO
+        }
     }
 }
 

@@ -367,6 +367,10 @@ impl eframe::App for Page {
         self.app.save(storage);
     }
 
+    fn auto_save_interval(&self) -> Duration {
+        self.app.auto_save_interval()
+    }
+
     /// For [`rays_traced`] (`WebRunner::app_mut`).
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(self)
