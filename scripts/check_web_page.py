@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Opens the web build (web/dist/, from scripts/build-web.sh) in headless
 Chromium (with --replay: its ?replay page, where every bundled lesson's
-steps must pass), served as scripts/serve-web.sh serves it, and checks it: the
+steps must pass; with --compare: its ?compare page, whose MSE, PSNR and
+FLIP must equal `workbench compare`'s for the same scene and sides), served as scripts/serve-web.sh serves it, and checks it: the
 page cross-origin isolated with its workers up, side A's render of the
 default scene finished, and no console error or uncaught exception on
 the way. Prints the time from navigation to the first pass and to the
@@ -13,6 +14,8 @@ Talks DevTools through check_report_page's standard-library client.
                               [--query ?lesson=NAME --lesson NAME]
                               [--drop FILE [--error TEXT]]
                               [--no-isolation] [--hide] [--replay]
+                              [--compare SCENE --a FLAGS --b FLAGS
+                               [--workbench PATH]]
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -23,7 +26,9 @@ import base64
 import json
 import os
 import shutil
+import subprocess
 import sys
+import urllib.parse
 import tempfile
 import threading
 import time
@@ -39,6 +44,8 @@ devtools.CHROMIUM_FLAGS[:] = [f for f in devtools.CHROMIUM_FLAGS if f != "--disa
     "--window-size=1280,820",
 ]
 
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
 STATUS = (
     "(() => { const data = document.body ? document.body.dataset : {};"
     " return JSON.stringify({isolated: self.crossOriginIsolated,"
@@ -46,7 +53,7 @@ STATUS = (
     " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
     " renderedOn: data.renderedOn || '',"
     " rays: typeof self.workbench?.rays_traced === 'function' ? self.workbench.rays_traced() : -1,"
-    " replay: data.replay || '',"
+    " replay: data.replay || '', compare: data.compare || '',"
     " said: (document.getElementById('status') || {}).textContent || '',"
     " now: performance.now()}); })()"
 )
@@ -109,6 +116,48 @@ def hidden_holds_the_render(page):
     return []
 
 
+# How far the page's metrics may be from the desktop's: the same renders
+# and the same FLIP port, but the web's maths library. Measured on
+# balls_medium, spp 1 against AA 4 x 4: the MSE equal to the last digit,
+# the mean FLIP 1.1e-8 apart; B at AA 3 x 3 on the desktop moves them by
+# 1.3 (MSE) and 3e-5 (FLIP).
+FLIP_TOLERANCE = 1e-6
+MSE_TOLERANCE = 1e-6
+
+
+def desktop_metrics(workbench, scene, a, b):
+    """`workbench compare`'s MSE, PSNR and FLIP of scenes/SCENE.p3f."""
+    out_png = tempfile.mktemp(suffix=".png", prefix="compare-")
+    try:
+        out = subprocess.run(
+            [workbench, "compare", os.path.join(ROOT, "scenes", f"{scene}.p3f"), "--a", a, "--b", b,
+             "--format", "json", "-o", out_png],
+            check=True, capture_output=True, text=True,
+        ).stdout
+    finally:
+        if os.path.exists(out_png):
+            os.remove(out_png)
+    return json.loads(out)
+
+
+def compare_problems(said, desktop):
+    """What differs between the page's metrics (`said`, its JSON or an
+    error) and the desktop's."""
+    if not said:
+        return ["the page's comparison did not finish"]
+    if said.startswith("error"):
+        return [f"the page's comparison failed: {said}"]
+    page = json.loads(said)
+    print(f"page    MSE {page['mse']:.9f}, FLIP {page['flip']:.9f}")
+    print(f"desktop MSE {desktop['mse']:.9f}, FLIP {desktop['flip']:.9f}")
+    problems = []
+    if abs(page["flip"] - desktop["flip"]) > FLIP_TOLERANCE:
+        problems.append(f"FLIP {page['flip']} on the page, {desktop['flip']} on the desktop")
+    if abs(page["mse"] - desktop["mse"]) > MSE_TOLERANCE * max(1.0, desktop["mse"]):
+        problems.append(f"MSE {page['mse']} on the page, {desktop['mse']} on the desktop")
+    return problems
+
+
 def render_problems(now, isolated, error, dropped):
     """What is wrong with the page's render as it stands in `now`."""
     problems = []
@@ -136,7 +185,7 @@ def render_problems(now, isolated, error, dropped):
 
 
 def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True,
-          hide=False, replay=False):
+          hide=False, replay=False, desktop=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     try:
         process, port = devtools.start_chromium(chromium, profile)
@@ -163,7 +212,7 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
                 if hide:
                     problems += hidden_holds_the_render(page)
                     continue
-            if replay and now["replay"]:
+            if (replay and now["replay"]) or (desktop and now["compare"]):
                 break
             if now["render"] == "done" or now["render"].startswith(("failed", "error", "panic")):
                 break
@@ -171,7 +220,10 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
                 break
             time.sleep(0.05)
         problems = problems_of(page.events) + problems
-        if replay:
+        if desktop:
+            print(now["said"])
+            problems += compare_problems(now["compare"], desktop)
+        elif replay:
             print(now["said"])
             if now["replay"] != "passed":
                 problems.append(f"the lessons' replay {now['replay'] or 'did not finish'}")
@@ -183,8 +235,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             shot = page.command("Page.captureScreenshot", format="png")
             with open(screenshot, "wb") as f:
                 f.write(base64.b64decode(shot["data"]))
-        if replay:
-            print(f"replay {now['replay']}: {(now['now'] - start) / 1000:.2f} s after navigation started")
+        if replay or desktop:
+            print(f"{'replay' if replay else 'comparison'} done: {(now['now'] - start) / 1000:.2f} s after navigation started")
         else:
             print(f"workers: {now['workers']}, passes: {now['passes']}, on: {now['renderedOn']}")
             if first_pass is not None:
@@ -200,9 +252,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--dist", default=os.path.join(root, "web", "dist"))
+    parser.add_argument("--dist", default=os.path.join(ROOT, "web", "dist"))
     parser.add_argument("--screenshot")
     parser.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     parser.add_argument("--timeout", type=float, default=300.0)
@@ -214,16 +265,27 @@ def main():
                         help="serve without the isolation headers: the page renders without workers")
     parser.add_argument("--replay", action="store_true",
                         help="open ?replay: every bundled lesson's steps must pass in the browser")
+    parser.add_argument("--compare", metavar="SCENE",
+                        help="open ?compare=SCENE: its metrics must equal workbench compare's")
+    parser.add_argument("--a", default="", help="with --compare: side A's render flags")
+    parser.add_argument("--b", default="", help="with --compare: side B's render flags")
+    parser.add_argument("--workbench", default=os.path.join(ROOT, "target", "debug", "workbench"),
+                        help="with --compare: the desktop's binary")
     parser.add_argument("--hide", action="store_true",
                         help="after the first pass, hide the page for 4 s: the render must hold")
     args = parser.parse_args()
     httpd = serve_web.server(args.dist, 0, not args.no_isolation)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     query = "?replay" if args.replay else args.query
+    desktop = None
+    if args.compare:
+        quote = urllib.parse.quote
+        query = f"?compare={quote(args.compare)}&a={quote(args.a)}&b={quote(args.b)}"
+        desktop = desktop_metrics(args.workbench, args.compare, args.a, args.b)
     url = f"http://127.0.0.1:{httpd.server_port}/{query}"
     return check(
         url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
-        not args.no_isolation, args.hide, args.replay,
+        not args.no_isolation, args.hide, args.replay, desktop,
     )
 
 

@@ -48,7 +48,7 @@ impl Link {
 
 /// `text` with `+` as a space and `%XX` as that byte, or `None` when an
 /// escape is cut short or the bytes are not UTF-8.
-fn decode(text: &str) -> Option<String> {
+pub(crate) fn decode(text: &str) -> Option<String> {
     let mut bytes = Vec::with_capacity(text.len());
     let mut rest = text.bytes();
     while let Some(b) = rest.next() {

@@ -2,58 +2,26 @@
 //! image), one A | B | difference PNG and the times and metrics of both
 //! sides.
 
-use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use anyhow::{Context, Result, anyhow};
-use tracer::render::{RenderSettings, View, ViewSummary};
-use tracer::world::World;
+use anyhow::{Context, Result};
+use tracer::render::{View, ViewSummary};
 
-use crate::cli::{CompareArgs, MetricsFormat, SettingsArgs};
+use crate::cli::{CompareArgs, MetricsFormat};
 use crate::describe::si;
 use crate::figures::heat_map;
 use crate::image_file::save_png;
 use crate::load::Loaded;
-use crate::measure::ab::{self, Heatmap, ImageComparison, RenderComparison, SideOptions};
-use crate::measure::benchmark::{Case, Measurement};
+use crate::measure::ab::{
+    self, Heatmap, ImageComparison, RenderComparison, SideOptions, SideSetup,
+};
+use crate::measure::benchmark::Measurement;
 use crate::reports::view_summary;
-
-/// One side: its case, the world it renders (the scene with the side's own
-/// `--set` edits) and those edits in words.
-struct SideSetup {
-    case: Case,
-    world: Arc<World>,
-    edits: Vec<String>,
-}
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
-    let side = |name: &str, flags: &str| -> Result<SideSetup> {
-        let (own, own_encoding) =
-            SettingsArgs::parse_str(flags).map_err(|e| anyhow!("--{name} \"{flags}\": {e}"))?;
-        let (edited, edits) = loaded
-            .edited(&own.set)
-            .with_context(|| format!("--{name} \"{flags}\""))?;
-        // The side's lens edits turn depth of field on as its scene's lens
-        // does.
-        let mut settings = RenderSettings::from_scene(&edited.scene);
-        args.settings.apply(&mut settings);
-        own.apply(&mut settings);
-        let encoding = if own_encoding.srgb {
-            own_encoding.encoding()
-        } else {
-            args.encoding.encoding()
-        };
-        let case = Case {
-            label: name.to_uppercase(),
-            settings,
-            encoding,
-        };
-        Ok(SideSetup {
-            case,
-            world: edited.world,
-            edits,
-        })
+    let side = |name: &str, flags: &str| {
+        ab::side_from_flags(&loaded, name, flags, &args.settings, &args.encoding)
     };
     let a = side("a", &args.a)?;
     super::warn_brute_force(&a.case.settings, &a.world.counts);

@@ -3,7 +3,9 @@
 //! `workbench lesson check` does on the desktop, for a script (and a
 //! teacher) to see that each step passes with the web's maths library;
 //! `?bench=SCENE` times `workbench bench`'s frame of a scene on the
-//! page's workers, for the web's speed against the desktop's.
+//! page's workers, for the web's speed against the desktop's;
+//! `?compare=SCENE&a=FLAGS&b=FLAGS` measures what `workbench compare`
+//! does (MSE, PSNR, FLIP), for the web's metrics against the desktop's.
 
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
@@ -15,8 +17,11 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen_futures::JsFuture;
 
+use crate::cli::{EncodingArgs, SettingsArgs};
+use crate::gui::link::decode;
 use crate::lessons::{bundled, replay};
 use crate::load::{Loaded, SceneSource};
+use crate::measure::ab::{self, Heatmap, SideOptions};
 use crate::measure::benchmark::{self, RunOptions};
 
 use super::target;
@@ -30,6 +35,14 @@ pub fn asked(query: &str) -> Option<PageMode> {
         return Some(PageMode::Replay);
     }
     let value = |key: &str| pairs.iter().find(|(k, _)| *k == key).map(|(_, v)| *v);
+    if let Some(scene) = value("compare") {
+        let flags = |side| value(side).map_or(Some(String::new()), decode);
+        return Some(PageMode::Compare {
+            scene: decode(scene)?,
+            a: flags("a")?,
+            b: flags("b")?,
+        });
+    }
     let scene = value("bench")?.to_string();
     // `workers` is web/index.html's: the pool is made before the module runs.
     let runs = value("runs").and_then(|r| r.parse().ok()).unwrap_or(5);
@@ -46,6 +59,9 @@ pub enum PageMode {
     /// page starts one worker more than `&workers=N` asks for, which this
     /// task blocks while it waits for each frame.
     Bench { scene: String, runs: usize },
+    /// `workbench compare SCENE --a A --b B`'s metrics, the scene found
+    /// as for [`PageMode::Bench`].
+    Compare { scene: String, a: String, b: String },
 }
 
 impl PageMode {
@@ -61,15 +77,14 @@ impl PageMode {
                 target::spawn("lesson replay", move || replay_all(&tx)),
             ),
             PageMode::Bench { scene, runs } => {
-                let source = match crate::bundled::find(&scene) {
-                    Some(_) => SceneSource::Bundled(scene),
-                    None => {
-                        let text = fetch_text(&format!("scenes/{scene}.p3f")).await?;
-                        SceneSource::Written { name: scene, text }
-                    }
-                };
+                let source = scene_source(scene).await?;
                 let spawned = target::spawn("bench", move || bench(source, runs, &tx));
                 ("data-bench", spawned)
+            }
+            PageMode::Compare { scene, a, b } => {
+                let source = scene_source(scene).await?;
+                let spawned = target::spawn("compare", move || compare(source, &a, &b, &tx));
+                ("data-compare", spawned)
             }
         };
         spawned.map_err(|e| JsValue::from_str(&e.to_string()))?;
@@ -141,6 +156,66 @@ fn bench(source: SceneSource, runs: usize, tx: &mpsc::Sender<Said>) {
         }
     };
     let _ = tx.send(Said::Finished(verdict));
+}
+
+/// Measures what `workbench compare` does of `source` with sides `a` and
+/// `b` (`workbench render` flags each), and says the metrics: the
+/// verdict is `{"mse": …, "psnr": …, "flip": …}`, as the command's JSON.
+fn compare(source: SceneSource, a: &str, b: &str, tx: &mpsc::Sender<Said>) {
+    let say = |line: String| {
+        let _ = tx.send(Said::Line(line));
+    };
+    let measured = (|| {
+        let loaded = Loaded::read(source, &[], &mut |_| {})?;
+        let (base, encoding) = (SettingsArgs::default(), EncodingArgs::default());
+        let a = ab::side_from_flags(&loaded, "a", a, &base, &encoding)?;
+        let b = ab::side_from_flags(&loaded, "b", b, &base, &encoding)?;
+        let options = SideOptions {
+            threads: None,
+            views: false,
+            b_matches: None,
+        };
+        let cancel = AtomicBool::new(false);
+        let worlds = [&a.world, &b.world];
+        let compared = ab::run(
+            worlds,
+            a.case,
+            b.case,
+            options,
+            Heatmap::Flip,
+            &cancel,
+            &mut |_| {},
+        );
+        compared?.context("the comparison was cancelled")
+    })();
+    let verdict = match measured {
+        Ok(c) => {
+            let m = &c.metrics;
+            say(format!("A: {}\nB: {}", c.labels.0, c.labels.1));
+            say(format!(
+                "MSE {:.6}, PSNR {:.4} dB, FLIP {:.6}",
+                m.mse, m.psnr, m.flip
+            ));
+            serde_json::json!({ "mse": m.mse, "psnr": m.psnr, "flip": m.flip }).to_string()
+        }
+        Err(e) => {
+            say(format!("cannot compare: {e:#}"));
+            format!("error: {e:#}")
+        }
+    };
+    let _ = tx.send(Said::Finished(verdict));
+}
+
+/// Where scene `name` is read from: the embedded scene of that name, else
+/// `scenes/NAME.p3f` beside the page.
+async fn scene_source(name: String) -> Result<SceneSource, JsValue> {
+    Ok(match crate::bundled::find(&name) {
+        Some(_) => SceneSource::Bundled(name),
+        None => {
+            let text = fetch_text(&format!("scenes/{name}.p3f")).await?;
+            SceneSource::Written { name, text }
+        }
+    })
 }
 
 /// The text at `url` (relative to the page), or why not.
