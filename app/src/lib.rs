@@ -3,6 +3,7 @@
 
 pub mod bundled;
 pub mod cli;
+pub mod compare_side;
 pub mod describe;
 pub mod figures;
 #[cfg(feature = "window")]

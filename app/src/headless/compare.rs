@@ -8,20 +8,19 @@ use anyhow::{Context, Result};
 use tracer::render::{View, ViewSummary};
 
 use crate::cli::{CompareArgs, MetricsFormat};
+use crate::compare_side::{SideSetup, side_from_flags};
 use crate::describe::si;
 use crate::figures::heat_map;
 use crate::image_file::save_png;
 use crate::load::Loaded;
-use crate::measure::ab::{
-    self, Heatmap, ImageComparison, RenderComparison, SideOptions, SideSetup,
-};
+use crate::measure::ab::{self, Heatmap, ImageComparison, RenderComparison, SideOptions};
 use crate::measure::benchmark::Measurement;
 use crate::reports::view_summary;
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     let loaded = Loaded::for_command(&args.scene, &args.settings.set)?;
     let side = |name: &str, flags: &str| {
-        ab::side_from_flags(&loaded, name, flags, &args.settings, &args.encoding)
+        side_from_flags(&loaded, name, flags, &args.settings, &args.encoding)
     };
     let a = side("a", &args.a)?;
     super::warn_brute_force(&a.case.settings, &a.world.counts);

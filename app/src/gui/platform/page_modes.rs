@@ -18,6 +18,7 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen_futures::JsFuture;
 
 use crate::cli::{EncodingArgs, SettingsArgs};
+use crate::compare_side::side_from_flags;
 use crate::gui::link::decode;
 use crate::lessons::{bundled, replay};
 use crate::load::{Loaded, SceneSource};
@@ -168,8 +169,8 @@ fn compare(source: SceneSource, a: &str, b: &str, tx: &mpsc::Sender<Said>) {
     let measured = (|| {
         let loaded = Loaded::read(source, &[], &mut |_| {})?;
         let (base, encoding) = (SettingsArgs::default(), EncodingArgs::default());
-        let a = ab::side_from_flags(&loaded, "a", a, &base, &encoding)?;
-        let b = ab::side_from_flags(&loaded, "b", b, &base, &encoding)?;
+        let a = side_from_flags(&loaded, "a", a, &base, &encoding)?;
+        let b = side_from_flags(&loaded, "b", b, &base, &encoding)?;
         let options = SideOptions {
             threads: None,
             views: false,
