@@ -51,7 +51,7 @@ STATUS = (
     " return JSON.stringify({isolated: self.crossOriginIsolated,"
     " render: data.render || '', passes: Number(data.passes || 0),"
     " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
-    " renderedOn: data.renderedOn || '',"
+    " renderedOn: data.renderedOn || '', tiles: data.tiles || '',"
     " rays: typeof self.workbench?.rays_traced === 'function' ? self.workbench.rays_traced() : -1,"
     " replay: data.replay || '', compare: data.compare || '',"
     " said: (document.getElementById('status') || {}).textContent || '',"
@@ -167,6 +167,10 @@ def render_problems(now, isolated, error, dropped):
         # web/index.html starts at least two (one per core, 2 to 8).
         if now["workers"] < 2:
             problems.append(f"the render ran on {now['workers']} worker(s), not at least 2")
+        tiles = [int(t) for t in now["tiles"].split(",") if t.strip()]
+        if now["render"] == "done" and (len(tiles) != now["workers"] or min(tiles) < 1):
+            problems.append(f"not every worker rendered a tile: {now['tiles'] or 'none'}"
+                            f" on {now['workers']} worker(s)")
     else:
         if now["isolated"]:
             problems.append("the page is cross-origin isolated, served without the headers")

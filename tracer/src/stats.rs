@@ -92,6 +92,9 @@ pub struct RenderStats {
     /// How an adaptive render has spent its samples (after the last
     /// completed pass); `None` for uniform sampling.
     pub adaptive: Option<AdaptiveStats>,
+    /// Tiles rendered by each thread of the pool, by its index there (one
+    /// entry for a render in time slices): that every worker took part.
+    pub tiles_by_thread: Vec<u64>,
 }
 
 /// Where an adaptive render stands after a pass.
@@ -124,6 +127,16 @@ impl AdaptiveStats {
 }
 
 impl RenderStats {
+    /// Counts a tile rendered by the pool's thread `index` (`None`: a
+    /// thread outside any pool, counted as the first).
+    pub fn count_tile(&mut self, index: Option<usize>) {
+        let index = index.unwrap_or(0);
+        if self.tiles_by_thread.len() <= index {
+            self.tiles_by_thread.resize(index + 1, 0);
+        }
+        self.tiles_by_thread[index] += 1;
+    }
+
     /// Samples taken, every pixel's added up: an adaptive render's count,
     /// or a sample per pixel per uniform pass. What an adaptive render's
     /// sample budget is matched to.

@@ -91,6 +91,7 @@ pub(super) async fn run(
             let mut outputs = lock(cx.outputs);
             outputs.record(tile, batch, tiles_of.may_be_last(pass));
             outputs.stats.render_time = deadline.elapsed(cx.clock);
+            outputs.stats.count_tile(rayon::current_thread_index());
             drop(outputs);
             cx.control.tile_done();
         };

@@ -69,7 +69,7 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
         .striped(true)
         .show(ui, |ui| {
             row(ui, "Resolution", format!("{} x {}", s.width, s.height));
-            if let Some(on) = target::rendered_on() {
+            if let Some(on) = target::rendered_on(s) {
                 row(ui, "Rendered on", on);
             }
             match &s.adaptive {

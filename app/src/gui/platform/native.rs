@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use anyhow::Context;
 use tracer::scene::Scene;
+use tracer::stats::RenderStats;
 
 use tracer::render::driver::{Priority, render_pool as pool_of};
 
@@ -32,9 +33,9 @@ pub fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::
     spawn(name, work)
 }
 
-/// Where the window renders, when the statistics panel should say it:
-/// never on the desktop, where it is always the machine's cores.
-pub fn rendered_on() -> Option<String> {
+/// Where the window renders a render, when the statistics panel should
+/// say it: never on the desktop, where it is always the machine's cores.
+pub fn rendered_on(_: &RenderStats) -> Option<String> {
     None
 }
 

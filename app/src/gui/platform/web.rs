@@ -20,6 +20,7 @@ use wasm_bindgen::prelude::*;
 use super::super::WorkbenchApp;
 use crate::load::SceneSource;
 use tracer::scene::Scene;
+use tracer::stats::RenderStats;
 
 /// Work on a worker cannot wake the window: eframe's repaint callback
 /// reads the page's clock through `window`, which a worker lacks (it
@@ -83,13 +84,21 @@ fn busy() -> bool {
     IN_FLIGHT.load(Ordering::Acquire) > 0
 }
 
-/// Where the page renders, for the statistics panel.
-pub fn rendered_on() -> Option<String> {
+/// Where the page renders `stats`' render, for the statistics panel: on
+/// how many workers, and the tiles each took.
+pub fn rendered_on(stats: &RenderStats) -> Option<String> {
+    let tiles = tiles_by_worker(stats);
     Some(match WORKERS.load(Ordering::Relaxed) {
         0 => "this page's thread, in time slices (the page is not cross-origin isolated)".into(),
-        1 => "1 Web Worker".into(),
-        n => format!("{n} Web Workers"),
+        1 => format!("1 Web Worker (tiles: {tiles})"),
+        n => format!("{n} Web Workers (tiles: {tiles})"),
     })
+}
+
+/// The tiles each worker rendered, as `40, 38`.
+fn tiles_by_worker(stats: &RenderStats) -> String {
+    let tiles: Vec<String> = stats.tiles_by_thread.iter().map(u64::to_string).collect();
+    tiles.join(", ")
 }
 
 /// No pool of the engine's own: a page's jobs render on the global pool
@@ -291,7 +300,7 @@ struct Page {
 
 impl Page {
     fn tell_page(&mut self) {
-        let (state, passes, rays) = match self.app.shown() {
+        let (state, passes, rays, tiles) = match self.app.shown() {
             Some(shown) => (
                 match &shown.state {
                     JobState::Building => "building".to_string(),
@@ -302,8 +311,9 @@ impl Page {
                 },
                 shown.stats.passes_done,
                 shown.stats.counters.total_rays(),
+                tiles_by_worker(&shown.stats),
             ),
-            None => ("starting".to_string(), 0, 0),
+            None => ("starting".to_string(), 0, 0, String::new()),
         };
         let state = match self.app.error() {
             Some(error) => format!("error: {error}"),
@@ -316,7 +326,7 @@ impl Page {
         };
         let scene = self.app.engine().scene().map(|s| s.source.label());
         let scene = scene.unwrap_or_default();
-        let said = format!("{state}|{passes}|{rays}|{lesson}|{scene}");
+        let said = format!("{state}|{passes}|{rays}|{tiles}|{lesson}|{scene}");
         if said == self.said {
             return;
         }
@@ -331,7 +341,9 @@ impl Page {
             let _ = body.set_attribute("data-scene", &scene);
             let workers = WORKERS.load(Ordering::Relaxed).to_string();
             let _ = body.set_attribute("data-workers", &workers);
-            let _ = body.set_attribute("data-rendered-on", &rendered_on().unwrap_or_default());
+            let _ = body.set_attribute("data-tiles", &tiles);
+            let on = self.app.shown().and_then(|shown| rendered_on(&shown.stats));
+            let _ = body.set_attribute("data-rendered-on", &on.unwrap_or_default());
         }
         self.said = said;
     }

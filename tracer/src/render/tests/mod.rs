@@ -90,6 +90,12 @@ fn progressive_passes_equal_a_sequential_render_bit_for_bit() {
         assert_eq!(film, expected, "{threads} thread(s)");
         assert_eq!(stats.passes_done, 9);
         assert_eq!(stats.counters.eye_rays, 70 * 45 * 9);
+        // 3 x 2 tiles a pass, each counted once, by a thread of the pool.
+        assert_eq!(stats.tiles_by_thread.iter().sum::<u64>(), 6 * 9);
+        assert!(
+            stats.tiles_by_thread.len() <= threads,
+            "{threads} thread(s)"
+        );
     }
 }
 

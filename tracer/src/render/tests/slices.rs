@@ -51,6 +51,7 @@ fn a_spent_slice_renders_one_tile_and_the_slices_add_up_to_the_image() {
     let (film, stats, state) = job.wait();
     assert_eq!(state, JobState::Done);
     assert_eq!(stats.passes_done, 9);
+    assert_eq!(stats.tiles_by_thread, [6 * 9], "all on this thread");
     assert_eq!(film, expected);
 }
 
