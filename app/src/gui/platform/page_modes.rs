@@ -27,7 +27,8 @@ use crate::measure::benchmark::{self, RunOptions};
 
 use super::target;
 
-/// The page mode `query` asks for, if any.
+/// The page mode `query` asks for, if any. (`web/index.html` knows the
+/// modes' keys too: it asks no WebGL for them.)
 pub fn asked(query: &str) -> Option<PageMode> {
     let pairs: Vec<(&str, &str)> = (query.strip_prefix('?')?.split('&'))
         .map(|pair| pair.split_once('=').unwrap_or((pair, "")))
