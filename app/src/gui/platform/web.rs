@@ -170,9 +170,11 @@ impl FileDialog {
 
 /// Starts the window on the page's canvas `canvas_id`, on the bundled
 /// default scene, then opens what the page's link asks for
-/// (`?lesson=NAME`, `?scene=NAME`). The page calls it once its `workers`
-/// are up: none on a page that is not cross-origin isolated, which then
-/// renders in time slices of its own thread.
+/// (`?lesson=NAME`, `?scene=NAME`), or runs the page mode the link asks
+/// for instead of the window (`?replay`, `?bench=…`, `?compare=…`). The
+/// page calls it once its `workers` are up: none on a page that is not
+/// cross-origin isolated, which then renders in time slices of its own
+/// thread.
 #[wasm_bindgen]
 pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
     WORKERS.store(workers, Ordering::Relaxed);
