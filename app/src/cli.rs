@@ -104,8 +104,9 @@ pub enum Headless {
     /// resolution, noise-threshold, or the level of a generated scene) and
     /// time each point for each structure: a table, and a PNG chart with --plot.
     Sweep(SweepArgs),
-    /// Lessons: list the bundled ones, or check lessons by replaying every
-    /// step (its starting state must fail its check, its solution pass it).
+    /// Lessons: list and check them (every step replayed: its starting state
+    /// must fail its check, its solution pass it), start a new one, explain
+    /// what a step starts from, and read a student's progress.
     Lesson(LessonArgs),
     /// Write the lab report: the course's experiments on a scene (Whitted
     /// depth, sampling, the timing matrix, statistics, one pixel explained,

@@ -20,8 +20,8 @@ use super::state::LessonState;
 
 /// The lesson's scene and the world built from it, the lesson's
 /// references to its objects, materials and lights checked. An inline
-/// scene's parse error names the lesson file's line; a scene file that
-/// cannot be read, the lesson's `file =` line.
+/// scene's parse error and its objects' places name the lesson file's
+/// lines; a scene file that cannot be read, the lesson's `file =` line.
 pub fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
     let (scene, world) = load_scene(lesson)?;
     check_references(lesson, &scene, &world)?;
@@ -63,6 +63,12 @@ fn load_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
                 }
             })?;
             scene.base_dir = dir.map(Path::to_path_buf);
+            // The ray tree names where each object was declared: in the
+            // lesson file, as the parse errors above do.
+            let offset = u32::try_from(first_line.saturating_sub(1)).unwrap_or(u32::MAX);
+            for (line, _) in &mut scene.object_positions.0 {
+                *line = line.saturating_add(offset);
+            }
             let world = load::build_with_sky(&scene);
             return Ok((scene, Arc::new(world)));
         }

@@ -145,3 +145,25 @@ fn explain_refuses_what_it_cannot_answer() {
         "{err}"
     );
 }
+
+/// The ray tree names where each object of a lesson's inline scene is
+/// written: at the lesson file's line, as a mistake in that scene is
+/// reported, not at the line within the `p3f` text.
+#[test]
+fn an_inline_scenes_objects_are_named_at_the_lesson_files_lines() {
+    let lesson = refraction_lesson();
+    let line_of = |command: &str| {
+        1 + lesson
+            .lines()
+            .position(|l| l.starts_with(command))
+            .unwrap_or_else(|| panic!("no `{command}` in the lesson"))
+    };
+    let out = workbench_ok(&["lesson", "explain", "refraction", "--step", "3"]);
+    let sphere = format!(
+        "eye (depth 0): hit sphere #1 (line {}:1)",
+        line_of("s -1.3 ")
+    );
+    assert!(out.contains(&sphere), "no `{sphere}` in\n{out}");
+    let floor = format!("hit plane #0 (line {}:1)", line_of("pl "));
+    assert!(out.contains(&floor), "no `{floor}` in\n{out}");
+}

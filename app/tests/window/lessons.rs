@@ -231,6 +231,20 @@ fn kd_of_object_0(scene: &tracer::scene::Scene) -> f32 {
     scene.materials[scene.objects[0].material as usize].kd
 }
 
+/// The window opens a step's scene from a file it writes, whose lines are
+/// not the lesson's; the ray tree and the editor still name each object
+/// at the line the teacher wrote it on.
+#[test]
+fn a_lessons_objects_keep_the_lines_the_lesson_wrote_them_on() {
+    let sphere = LESSON
+        .lines()
+        .position(|l| l.starts_with("s 0 0 0 1"))
+        .map(|i| (u32::try_from(i).unwrap() + 1, 1));
+    let (_dir, harness) = open_lesson("lines", LESSON);
+    let shown = harness.state().engine().scene().unwrap();
+    assert_eq!(shown.world.object_positions.get(0), sphere);
+}
+
 /// A lesson's compare layout with B's own edits: once set up, B shows its
 /// edited scene with its settings, A the scene as the lesson wrote it.
 #[test]

@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use anyhow::Result;
 use tracer::render::{RenderSettings, View};
+use tracer::scene::Scene;
 
 use super::WorkbenchApp;
 use crate::gui::comparison::Comparison;
@@ -157,10 +158,7 @@ impl WorkbenchApp {
         let prepared = (|| -> Result<PendingSetup> {
             let (scene, world) = open_scene(&lesson)?;
             let state = state_at_step(&lesson, &scene, &world, step)?;
-            let mut written = state.a.scene.clone();
-            written.view.width = state.a.settings.width;
-            written.view.height = state.a.settings.height;
-            let source = target::lesson_scene(&lesson.name, &written)?;
+            let source = target::lesson_scene(&lesson.name, &shown_scene(&state.a))?;
             Ok(PendingSetup { source, state })
         })();
         match prepared {
@@ -188,6 +186,10 @@ impl WorkbenchApp {
             self.session.recent.retain(|p| p != path);
         }
         let state = setup.state;
+        // A shows the replay's scene: the file written for it, but with its
+        // objects where the teacher wrote them, so that the ray tree and
+        // the editor name the lesson's lines, not the written file's.
+        show_replayed(&mut self.sides.a, &state.a);
         adopt(&mut self.sides.a.controls, &state.a.settings);
         if state.b.is_some() != self.sides.b.is_some() {
             self.sides.toggle_b();
@@ -197,17 +199,8 @@ impl WorkbenchApp {
             adopt(&mut side.controls, &b.settings);
             // B's own edits, or A's since compare mode began, make B's scene
             // another than A's: B shows it as the replay left it.
-            if !Arc::ptr_eq(&b.world, &state.a.world)
-                && let Some(shown) = side.engine.scene()
-            {
-                let scene = Loaded {
-                    source: shown.source.clone(),
-                    scene: b.scene.clone(),
-                    world: b.world.clone(),
-                    load_time: shown.load_time,
-                };
-                side.engine.show(scene);
-                side.image.forget();
+            if !Arc::ptr_eq(&b.world, &state.a.world) {
+                show_replayed(side, b);
             }
         }
         self.tools.inspector.pinned = state.pixel;
@@ -215,6 +208,31 @@ impl WorkbenchApp {
         self.observer.on = state.layout.observer;
         self.navigation.camera = None;
     }
+}
+
+/// Shows the replay's scene and world of `replayed` on `side` in place of
+/// the ones its scene file loaded, under the same source.
+fn show_replayed(side: &mut Side, replayed: &SideState) {
+    let Some(shown) = side.engine.scene() else {
+        return;
+    };
+    let scene = Loaded {
+        source: shown.source.clone(),
+        scene: shown_scene(replayed),
+        world: replayed.world.clone(),
+        load_time: shown.load_time,
+    };
+    side.engine.show(scene);
+    side.image.forget();
+}
+
+/// The scene a side shows for `replayed`: its camera at the settings'
+/// resolution, as a lesson's settings may change it.
+fn shown_scene(replayed: &SideState) -> Scene {
+    let mut scene = replayed.scene.clone();
+    scene.view.width = replayed.settings.width;
+    scene.view.height = replayed.settings.height;
+    scene
 }
 
 /// `settings` as a side's controls, at full resolution.
