@@ -647,4 +647,34 @@ mod tests {
         assert_eq!(rgba[11 * 4..], [175, 175, 175, 255]);
         assert_eq!(rgba_to_rgb_image(4, 4, &rgba), None, "12 pixels for 16");
     }
+
+    #[test]
+    fn a_film_of_several_bands_resolves_each_pixel_in_its_place() {
+        // 256 x 160 pixels, more than one band (BAND): pixel (x, y) is
+        // x / 255 red and y / 255 green, so its bytes are x and y.
+        let (width, height) = (256, 160);
+        assert!((width * height) as usize > BAND);
+        let values: Vec<Vec3A> = (0..height)
+            .flat_map(|y| (0..width).map(move |x| Vec3A::new(x as f32, y as f32, 0.0) / 255.0))
+            .collect();
+        let mut film = Film::new(width, height);
+        let whole = Tile {
+            x: 0,
+            y: 0,
+            width,
+            height,
+        };
+        film.add_tile(&whole, &values);
+        let rgba = film.to_rgba8(Encoding::Linear);
+        let rgb = film.to_image(Encoding::Linear);
+        assert_eq!(rgba.len(), (width * height * 4) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let i = (y * width + x) as usize;
+                let (r, g) = (x as u8, y as u8);
+                assert_eq!(rgba[i * 4..i * 4 + 4], [r, g, 0, 255], "({x}, {y})");
+                assert_eq!(rgb.get_pixel(x, y).0, [r, g, 0], "({x}, {y})");
+            }
+        }
+    }
 }
