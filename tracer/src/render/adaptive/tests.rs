@@ -259,3 +259,25 @@ fn a_round_takes_every_uniform_pass_once_with_stratified_prefixes() {
     let pattern = |shift| (0..8).map(|k| order.pass(k, shift)).collect::<Vec<_>>();
     assert_ne!(pattern(1), pattern(0x0002_0000), "pixels differ");
 }
+
+#[test]
+fn a_pixels_digits_move_its_columns_and_rows_apart() {
+    // Digits below bit 16 flip the column, those from bit 16 the row:
+    // with (1 << 16) | 2, sample k of a 4 x 4 round takes the stratum of
+    // the unshifted sample's row ^ 1 and column ^ 2.
+    let uniform = stratum_order(4);
+    let order = RoundOrder::new(4);
+    let stratum = |k, shift| {
+        let s = uniform[order.pass(k, shift) as usize];
+        (s % 4, s / 4)
+    };
+    for k in 0..16 {
+        let (x, y) = stratum(k, 0);
+        assert_eq!(stratum(k, (1 << 16) | 2), (x ^ 2, y ^ 1), "sample {k}");
+    }
+    for m in [0, 1, 3, 4] {
+        let round = RoundOrder::new(m);
+        assert_eq!(round.len(), m.max(1) * m.max(1), "m = {m}");
+        assert!(!round.is_empty(), "m = {m}: a round takes a sample");
+    }
+}
