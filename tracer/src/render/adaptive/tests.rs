@@ -281,3 +281,51 @@ fn a_pixels_digits_move_its_columns_and_rows_apart() {
         assert!(!round.is_empty(), "m = {m}: a round takes a sample");
     }
 }
+
+#[test]
+fn a_pixels_cost_is_its_tests_per_sample_over_the_films() {
+    // Two flat pixels, two passes of 2 samples: pixel 0 made 8 tests
+    // (2 a sample), pixel 1 none. The film's mean is 1 test a sample and
+    // a sample's overhead half of it: costs (2 + 0.5) / 1.5 and
+    // 0.5 / 1.5; relative to a mean of 4 (overhead 2), 4 / 6 and 2 / 6.
+    let mut film = Film::with_error_estimate(2, 1);
+    let tile = Tile {
+        x: 0,
+        y: 0,
+        width: 2,
+        height: 1,
+    };
+    for _ in 0..2 {
+        film.add_samples(&tile, &[2, 2], &[Vec3A::splat(0.5); 4], &[4, 0]);
+    }
+    let a = settings(0.05, 4, 64);
+    let close = |a: f32, b: f32| (a - b).abs() < 1e-6;
+    let mut own = Refinement::default();
+    own.decide(&film, &a);
+    assert_eq!(own.mean_per_sample(), Some(1.0));
+    assert!(
+        close(own.relative_cost(0), 2.5 / 1.5),
+        "{}",
+        own.relative_cost(0)
+    );
+    assert!(
+        close(own.relative_cost(1), 0.5 / 1.5),
+        "{}",
+        own.relative_cost(1)
+    );
+    // Flat halves agree: no error anywhere.
+    assert_eq!(own.pooled_errors(), &[0.0, 0.0]);
+    let mut given = Refinement::relative_to(4.0);
+    given.decide(&film, &a);
+    assert_eq!(given.mean_per_sample(), Some(4.0));
+    assert!(
+        close(given.relative_cost(0), 4.0 / 6.0),
+        "{}",
+        given.relative_cost(0)
+    );
+    assert!(
+        close(given.relative_cost(1), 2.0 / 6.0),
+        "{}",
+        given.relative_cost(1)
+    );
+}
