@@ -434,6 +434,16 @@ mod tests {
         assert_eq!(rgb.as_raw().len(), 4 * 2 * 3);
     }
 
+    /// The tile of pixel `(x, y)` alone.
+    fn one_pixel(x: u32, y: u32) -> Tile {
+        Tile {
+            x,
+            y,
+            width: 1,
+            height: 1,
+        }
+    }
+
     /// A 4 x 3 film whose pixel `i` (row-major) took `i + 1` samples of
     /// value `i / 16` in one pass, with `10 i` intersection tests: every
     /// pixel told apart by each of them.
@@ -535,12 +545,7 @@ mod tests {
         }
         // A second pass for pixel (1, 2) alone, equal to its first: its
         // halves agree, so its error is zero, every other one unknown.
-        let tile = Tile {
-            x: 1,
-            y: 2,
-            width: 1,
-            height: 1,
-        };
+        let tile = one_pixel(1, 2);
         film.add_samples(&tile, &[1], &[Vec3A::splat(9.0 / 16.0)], &[0]);
         for y in 0..3 {
             for x in 0..4 {
@@ -554,12 +559,7 @@ mod tests {
     fn samples_keep_their_display_spread_and_error() {
         // One pixel, two passes: 0.25 and 2.0 (shown clamped to 1), then
         // 0.5 twice. Display sum 1.25 + 1, squares 0.0625 + 1 + 2 x 0.25.
-        let tile = Tile {
-            x: 0,
-            y: 0,
-            width: 1,
-            height: 1,
-        };
+        let tile = one_pixel(0, 0);
         let mut film = Film::with_error_estimate(1, 1);
         film.add_samples(&tile, &[2], &[Vec3A::splat(0.25), Vec3A::splat(2.0)], &[7]);
         assert_eq!(film.error(0, 0), f32::INFINITY, "one pass");
@@ -585,12 +585,7 @@ mod tests {
     fn a_whole_pass_on_an_estimating_film_updates_its_error() {
         // Two passes of one sample each: 1 then 0.5, halves differ by
         // 0.5, times sqrt(1 * 1) / 2.
-        let tile = Tile {
-            x: 1,
-            y: 0,
-            width: 1,
-            height: 1,
-        };
+        let tile = one_pixel(1, 0);
         let mut film = Film::with_error_estimate(2, 1);
         film.add_tile(&tile, &[Vec3A::ONE]);
         film.add_samples(&tile, &[1], &[Vec3A::splat(0.5)], &[0]);

@@ -299,33 +299,22 @@ fn a_pixels_cost_is_its_tests_per_sample_over_the_films() {
         film.add_samples(&tile, &[2, 2], &[Vec3A::splat(0.5); 4], &[4, 0]);
     }
     let a = settings(0.05, 4, 64);
-    let close = |a: f32, b: f32| (a - b).abs() < 1e-6;
+    let costs = |r: &Refinement| [r.relative_cost(0), r.relative_cost(1)];
+    let close = |costs: [f32; 2], expected: [f32; 2]| {
+        let near = costs
+            .iter()
+            .zip(expected)
+            .all(|(c, e)| (c - e).abs() < 1e-6);
+        assert!(near, "{costs:?} against {expected:?}");
+    };
     let mut own = Refinement::default();
     own.decide(&film, &a);
     assert_eq!(own.mean_per_sample(), Some(1.0));
-    assert!(
-        close(own.relative_cost(0), 2.5 / 1.5),
-        "{}",
-        own.relative_cost(0)
-    );
-    assert!(
-        close(own.relative_cost(1), 0.5 / 1.5),
-        "{}",
-        own.relative_cost(1)
-    );
+    close(costs(&own), [2.5 / 1.5, 0.5 / 1.5]);
     // Flat halves agree: no error anywhere.
     assert_eq!(own.pooled_errors(), &[0.0, 0.0]);
     let mut given = Refinement::relative_to(4.0);
     given.decide(&film, &a);
     assert_eq!(given.mean_per_sample(), Some(4.0));
-    assert!(
-        close(given.relative_cost(0), 4.0 / 6.0),
-        "{}",
-        given.relative_cost(0)
-    );
-    assert!(
-        close(given.relative_cost(1), 2.0 / 6.0),
-        "{}",
-        given.relative_cost(1)
-    );
+    close(costs(&given), [4.0 / 6.0, 2.0 / 6.0]);
 }
