@@ -7,6 +7,13 @@
 #
 # FILES are source files (tracer/src/optics.rs ...); OPTIONS go to
 # `cargo mutants` as they are (`--shard 3/20`, `--in-place`, `--list`).
+# `--cargo-arg=--lib` builds and runs the library's unit tests only (the
+# maths next to the code), not the examples and integration tests beside
+# them; words after `-- --` filter the tests by name. Fastest on a loaded
+# machine, judged by one module's own tests (docs/TESTING.md):
+#   CARGO_TARGET_DIR=$PWD/target scripts/mutants.sh --baseline=skip \
+#     --cargo-arg=--lib --cargo-arg=--config=profile.dev.package.tracer.opt-level=0 \
+#     tracer/src/render/film.rs -- -- render::film
 # Settings and the reviewed exclusions: .cargo/mutants.toml. Results:
 # MUTANTS_OUT (default target/mutants)/mutants.out/ (caught.txt, missed.txt, timeout.txt,
 # unviable.txt, outcomes.json). Fails when a mutant is missed or times out.

@@ -433,4 +433,243 @@ mod tests {
         assert_eq!(rgb.get_pixel(0, 0).0, [0, 0, 0]);
         assert_eq!(rgb.as_raw().len(), 4 * 2 * 3);
     }
+
+    /// The tile of pixel `(x, y)` alone.
+    fn one_pixel(x: u32, y: u32) -> Tile {
+        Tile {
+            x,
+            y,
+            width: 1,
+            height: 1,
+        }
+    }
+
+    /// A 4 x 3 film whose pixel `i` (row-major) took `i + 1` samples of
+    /// value `i / 16` in one pass, with `10 i` intersection tests: every
+    /// pixel told apart by each of them.
+    fn numbered(film: &mut Film) {
+        let tile = Tile {
+            x: 0,
+            y: 0,
+            width: 4,
+            height: 3,
+        };
+        let counts: Vec<u32> = (1..=12).collect();
+        let values: Vec<Vec3A> = (0..12u8)
+            .flat_map(|i| {
+                std::iter::repeat_n(Vec3A::splat(f32::from(i) / 16.0), usize::from(i) + 1)
+            })
+            .collect();
+        let tests: Vec<u64> = (0..12).map(|i| 10 * i).collect();
+        film.add_samples(&tile, &counts, &values, &tests);
+    }
+
+    #[test]
+    fn tiles_are_cut_at_the_right_and_bottom_edges() {
+        let tiles = Tile::grid(70, 33, 16);
+        assert_eq!(tiles.len(), 5 * 3);
+        let tile = |x, y, width, height| Tile {
+            x,
+            y,
+            width,
+            height,
+        };
+        assert_eq!(tiles[0], tile(0, 0, 16, 16));
+        assert_eq!(tiles[4], tile(64, 0, 6, 16));
+        assert_eq!(tiles[14], tile(64, 32, 6, 1));
+        assert_eq!(tiles[14].pixel_count(), 6);
+        assert_eq!(tile(0, 0, 3, 5).pixel_count(), 15);
+    }
+
+    #[test]
+    fn a_tiles_rows_start_where_the_image_holds_them() {
+        // Tile at (2, 1), 2 x 2, in an image 5 wide: rows start at
+        // 1 * 5 + 2 and 2 * 5 + 2.
+        let tile = Tile {
+            x: 2,
+            y: 1,
+            width: 2,
+            height: 2,
+        };
+        let rows: Vec<_> = tile.rows(5, &[1, 2, 3, 4]).collect();
+        assert_eq!(rows, [(7, &[1, 2][..]), (12, &[3, 4][..])]);
+
+        let mut image = vec![0u8; 5 * 3 * 3];
+        tile.copy_rgb_into(5, &[1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4], &mut image);
+        let mut expected = vec![0u8; 5 * 3 * 3];
+        for (pixel, value) in [(7, 1), (8, 2), (12, 3), (13, 4)] {
+            expected[pixel * 3..pixel * 3 + 3].fill(value);
+        }
+        assert_eq!(image, expected);
+    }
+
+    #[test]
+    fn an_estimating_film_starts_unknown_and_active() {
+        let plain = Film::new(4, 3);
+        assert_eq!((plain.width(), plain.height()), (4, 3));
+        assert_eq!(plain.active_pixels(), None);
+        assert!(!plain.is_active(0, 0));
+        assert_eq!(plain.error(1, 1), f32::INFINITY);
+        assert_eq!(plain.spread(1, 1), None);
+
+        let film = Film::with_error_estimate(4, 3);
+        assert_eq!(film.sample_counts(), &[0; 12]);
+        assert_eq!(film.spreads(), &[Spread::default(); 12]);
+        assert_eq!(film.errors(), &[f32::INFINITY; 12]);
+        assert_eq!(film.tests(), &[0; 12]);
+        assert_eq!(film.active_pixels(), Some(&[true; 12][..]));
+    }
+
+    #[test]
+    fn each_pixel_is_found_at_its_own_place() {
+        let mut film = Film::with_error_estimate(4, 3);
+        numbered(&mut film);
+        let counts: Vec<u32> = (1..=12).collect();
+        assert_eq!(film.sample_counts(), counts);
+        let tests: Vec<u64> = (0..12).map(|i| 10 * i).collect();
+        assert_eq!(film.tests(), tests);
+        let mut active = vec![false; 12];
+        active[9] = true;
+        film.set_active(active.clone());
+        assert_eq!(film.active_pixels(), Some(&active[..]));
+        for y in 0..3 {
+            for x in 0..4 {
+                let i = y * 4 + x;
+                assert_eq!(film.samples(x, y), i + 1, "({x}, {y})");
+                assert_eq!(film.pixel(x, y), Some(Vec3A::splat(i as f32 / 16.0)));
+                assert_eq!(film.is_active(x, y), i == 9, "({x}, {y})");
+                let spread = film.spread(x, y).expect("an estimating film");
+                assert_eq!(spread.sum, Vec3A::splat((i + 1) as f32 * i as f32 / 16.0));
+                assert_eq!(film.error(x, y), f32::INFINITY, "one pass");
+            }
+        }
+        // A second pass for pixel (1, 2) alone, equal to its first: its
+        // halves agree, so its error is zero, every other one unknown.
+        let tile = one_pixel(1, 2);
+        film.add_samples(&tile, &[1], &[Vec3A::splat(9.0 / 16.0)], &[0]);
+        for y in 0..3 {
+            for x in 0..4 {
+                let expected = if (x, y) == (1, 2) { 0.0 } else { f32::INFINITY };
+                assert_eq!(film.error(x, y), expected, "({x}, {y})");
+            }
+        }
+    }
+
+    #[test]
+    fn samples_keep_their_display_spread_and_error() {
+        // One pixel, two passes: 0.25 and 2.0 (shown clamped to 1), then
+        // 0.5 twice. Display sum 1.25 + 1, squares 0.0625 + 1 + 2 x 0.25.
+        let tile = one_pixel(0, 0);
+        let mut film = Film::with_error_estimate(1, 1);
+        film.add_samples(&tile, &[2], &[Vec3A::splat(0.25), Vec3A::splat(2.0)], &[7]);
+        assert_eq!(film.error(0, 0), f32::INFINITY, "one pass");
+        film.add_samples(&tile, &[0], &[], &[100]);
+        assert_eq!(film.samples(0, 0), 2, "a pixel given no sample");
+        assert_eq!(film.tests(), &[7], "its tests are not counted");
+        film.add_samples(&tile, &[2], &[Vec3A::splat(0.5); 2], &[5]);
+        let spread = film.spread(0, 0).unwrap();
+        assert_eq!(spread.sum, Vec3A::splat(2.25));
+        assert_eq!(spread.squares, Vec3A::splat(1.5625));
+        assert_eq!(spread.earlier, Vec3A::splat(1.25));
+        assert_eq!(spread.earlier_samples, 2);
+        assert_eq!(film.tests(), &[12]);
+        // Halves' means 0.625 and 0.5: difference 0.125, times
+        // sqrt(2 * 2) / 4.
+        assert_eq!(film.error(0, 0), 0.0625);
+        assert_eq!(film.errors(), &[0.0625]);
+        // The radiance itself is not clamped: (0.25 + 2 + 0.5 + 0.5) / 4.
+        assert_eq!(film.pixel(0, 0), Some(Vec3A::splat(0.8125)));
+    }
+
+    #[test]
+    fn a_whole_pass_on_an_estimating_film_updates_its_error() {
+        // Two passes of one sample each: 1 then 0.5, halves differ by
+        // 0.5, times sqrt(1 * 1) / 2.
+        let tile = one_pixel(1, 0);
+        let mut film = Film::with_error_estimate(2, 1);
+        film.add_tile(&tile, &[Vec3A::ONE]);
+        film.add_samples(&tile, &[1], &[Vec3A::splat(0.5)], &[0]);
+        assert_eq!(film.samples(1, 0), 2);
+        assert_eq!(film.samples(0, 0), 0);
+        assert_eq!(film.error(1, 0), 0.25);
+        assert_eq!(film.spread(1, 0).unwrap().squares, Vec3A::splat(1.25));
+    }
+
+    #[test]
+    fn a_resolved_tile_holds_the_films_bytes_and_nothing_else() {
+        let mut film = Film::new(4, 3);
+        numbered(&mut film);
+        let image = film.to_image(Encoding::Linear);
+        let tile = Tile {
+            x: 1,
+            y: 1,
+            width: 2,
+            height: 2,
+        };
+        let mut rgb = vec![7u8; 4 * 3 * 3];
+        film.resolve_tile(&tile, Encoding::Linear, &mut rgb);
+        for y in 0..3 {
+            for x in 0..4 {
+                let i = (y * 4 + x) as usize;
+                let inside = (1..3).contains(&x) && (1..3).contains(&y);
+                // Pixel i's mean is i / 16: i * 255 / 16 levels, rounded.
+                let level = ((i * 255) as f32 / 16.0).round() as u8;
+                let expected = if inside { [level; 3] } else { [7; 3] };
+                assert_eq!(rgb[i * 3..i * 3 + 3], expected, "({x}, {y})");
+                assert_eq!(image.get_pixel(x, y).0, [level; 3], "({x}, {y})");
+            }
+        }
+        assert_eq!(
+            encode_values(
+                &[Vec3A::splat(0.5), Vec3A::new(0.0, 1.0, 2.0)],
+                Encoding::Linear
+            ),
+            [128, 128, 128, 0, 255, 255]
+        );
+    }
+
+    #[test]
+    fn images_are_the_pixels_means() {
+        let mut film = Film::new(4, 3);
+        numbered(&mut film);
+        let linear = film.to_linear_image();
+        assert_eq!(linear.dimensions(), (4, 3));
+        assert_eq!(linear.get_pixel(2, 1).0, [6.0 / 16.0; 3]);
+        let rgba = film.to_rgba8(Encoding::Linear);
+        let rgb = rgba_to_rgb_image(4, 3, &rgba).expect("4 x 3 pixels");
+        assert_eq!(rgb, film.to_image(Encoding::Linear));
+        // Pixel 11's mean, 11 / 16, is 175.3 levels.
+        assert_eq!(rgba[11 * 4..], [175, 175, 175, 255]);
+        assert_eq!(rgba_to_rgb_image(4, 4, &rgba), None, "12 pixels for 16");
+    }
+
+    #[test]
+    fn a_film_of_several_bands_resolves_each_pixel_in_its_place() {
+        // 256 x 160 pixels, more than one band (BAND): pixel (x, y) is
+        // x / 255 red and y / 255 green, so its bytes are x and y.
+        let (width, height) = (256, 160);
+        assert!((width * height) as usize > BAND);
+        let values: Vec<Vec3A> = (0..height)
+            .flat_map(|y| (0..width).map(move |x| Vec3A::new(x as f32, y as f32, 0.0) / 255.0))
+            .collect();
+        let mut film = Film::new(width, height);
+        let whole = Tile {
+            x: 0,
+            y: 0,
+            width,
+            height,
+        };
+        film.add_tile(&whole, &values);
+        let rgba = film.to_rgba8(Encoding::Linear);
+        let rgb = film.to_image(Encoding::Linear);
+        assert_eq!(rgba.len(), (width * height * 4) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let i = (y * width + x) as usize;
+                let (r, g) = (x as u8, y as u8);
+                assert_eq!(rgba[i * 4..i * 4 + 4], [r, g, 0, 255], "({x}, {y})");
+                assert_eq!(rgb.get_pixel(x, y).0, [r, g, 0], "({x}, {y})");
+            }
+        }
+    }
 }

@@ -259,3 +259,62 @@ fn a_round_takes_every_uniform_pass_once_with_stratified_prefixes() {
     let pattern = |shift| (0..8).map(|k| order.pass(k, shift)).collect::<Vec<_>>();
     assert_ne!(pattern(1), pattern(0x0002_0000), "pixels differ");
 }
+
+#[test]
+fn a_pixels_digits_move_its_columns_and_rows_apart() {
+    // Digits below bit 16 flip the column, those from bit 16 the row:
+    // with (1 << 16) | 2, sample k of a 4 x 4 round takes the stratum of
+    // the unshifted sample's row ^ 1 and column ^ 2.
+    let uniform = stratum_order(4);
+    let order = RoundOrder::new(4);
+    let stratum = |k, shift| {
+        let s = uniform[order.pass(k, shift) as usize];
+        (s % 4, s / 4)
+    };
+    for k in 0..16 {
+        let (x, y) = stratum(k, 0);
+        assert_eq!(stratum(k, (1 << 16) | 2), (x ^ 2, y ^ 1), "sample {k}");
+    }
+    for m in [0, 1, 3, 4] {
+        let round = RoundOrder::new(m);
+        assert_eq!(round.len(), m.max(1) * m.max(1), "m = {m}");
+        assert!(!round.is_empty(), "m = {m}: a round takes a sample");
+    }
+}
+
+#[test]
+fn a_pixels_cost_is_its_tests_per_sample_over_the_films() {
+    // Two flat pixels, two passes of 2 samples: pixel 0 made 8 tests
+    // (2 a sample), pixel 1 none. The film's mean is 1 test a sample and
+    // a sample's overhead half of it: costs (2 + 0.5) / 1.5 and
+    // 0.5 / 1.5; relative to a mean of 4 (overhead 2), 4 / 6 and 2 / 6.
+    let mut film = Film::with_error_estimate(2, 1);
+    let tile = Tile {
+        x: 0,
+        y: 0,
+        width: 2,
+        height: 1,
+    };
+    for _ in 0..2 {
+        film.add_samples(&tile, &[2, 2], &[Vec3A::splat(0.5); 4], &[4, 0]);
+    }
+    let a = settings(0.05, 4, 64);
+    let costs = |r: &Refinement| [r.relative_cost(0), r.relative_cost(1)];
+    let close = |costs: [f32; 2], expected: [f32; 2]| {
+        let near = costs
+            .iter()
+            .zip(expected)
+            .all(|(c, e)| (c - e).abs() < 1e-6);
+        assert!(near, "{costs:?} against {expected:?}");
+    };
+    let mut own = Refinement::default();
+    own.decide(&film, &a);
+    assert_eq!(own.mean_per_sample(), Some(1.0));
+    close(costs(&own), [2.5 / 1.5, 0.5 / 1.5]);
+    // Flat halves agree: no error anywhere.
+    assert_eq!(own.pooled_errors(), &[0.0, 0.0]);
+    let mut given = Refinement::relative_to(4.0);
+    given.decide(&film, &a);
+    assert_eq!(given.mean_per_sample(), Some(4.0));
+    close(costs(&given), [4.0 / 6.0, 2.0 / 6.0]);
+}
