@@ -11,6 +11,13 @@ Talks DevTools through check_report_page's standard-library client.
                               [--chromium PATH] [--timeout SECONDS]
                               [--query ?lesson=NAME --lesson NAME]
                               [--drop FILE [--error TEXT]]
+                              [--save-png SCENE [--workbench PATH]]
+
+--save-png presses Save PNG (Ctrl+S) once the render is done and checks
+the browser's download: named as the desktop's dialog offers (the
+scene's name, .png) and equal, within the golden tests' tolerance
+(scripts/png_match.py), to `workbench render SCENE` with the scene's
+own settings, which the page's render of that scene uses too.
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -21,6 +28,7 @@ import base64
 import json
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import threading
@@ -28,6 +36,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import check_report_page as devtools  # noqa: E402
+import png_match  # noqa: E402
 import serve_web  # noqa: E402
 
 # WebGL on the CPU: headless Chromium has no GPU here.
@@ -75,8 +84,56 @@ def drop(page, path):
         page.command("Input.dispatchDragEvent", type=kind, x=640, y=400, data=data)
 
 
-def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
+def press_save_png(page):
+    """Ctrl+S on the page's canvas, as a user saves the render."""
+    page.command("Runtime.evaluate", expression="document.querySelector('canvas').focus()")
+    key = {"key": "s", "code": "KeyS", "windowsVirtualKeyCode": 83, "modifiers": 2}
+    page.command("Input.dispatchKeyEvent", type="keyDown", **key)
+    page.command("Input.dispatchKeyEvent", type="keyUp", **key)
+
+
+def downloaded(folder, deadline):
+    """The one file downloaded into `folder`, once complete, or None."""
+    while time.monotonic() < deadline:
+        names = [n for n in os.listdir(folder) if not n.endswith(".crdownload")]
+        if names and not any(n.endswith(".crdownload") for n in os.listdir(folder)):
+            return os.path.join(folder, sorted(names)[0])
+        time.sleep(0.1)
+    return None
+
+
+def saved_png_problems(path, scene, workbench):
+    """Why the page's download `path` is not the desktop's render of
+    `scene` (named as its dialog offers, equal within the goldens'
+    tolerance), as sentences."""
+    if path is None:
+        return ["Save PNG gave no download"]
+    problems = []
+    expected = os.path.splitext(os.path.basename(scene))[0] + ".png"
+    if os.path.basename(path) != expected:
+        problems.append(f"the download is named {os.path.basename(path)}, not {expected}")
+    desktop = os.path.join(os.path.dirname(path), "desktop-render.png")
+    run = subprocess.run(
+        [workbench, "render", scene, "-o", desktop], capture_output=True, text=True
+    )
+    if run.returncode != 0:
+        return problems + [f"workbench render {scene} failed: {run.stderr.strip()}"]
+    try:
+        with open(path, "rb") as f, open(desktop, "rb") as g:
+            page_png, desktop_png = png_match.read_png(f.read()), png_match.read_png(g.read())
+    except (ValueError, OSError) as e:
+        return problems + [f"the download is not a PNG the check reads: {e}"]
+    print(f"saved PNG: {os.path.basename(path)}, {page_png[0]} x {page_png[1]}")
+    why = png_match.mismatch(page_png, desktop_png)
+    if why:
+        problems.append(f"the page's PNG differs from `workbench render {scene}`: {why}")
+    return problems
+
+
+def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, save=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
+    downloads = os.path.join(profile, "downloads")
+    os.mkdir(downloads)
     try:
         process, port = devtools.start_chromium(chromium, profile)
     except (OSError, RuntimeError) as e:
@@ -87,6 +144,7 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
         page = devtools.Page(devtools.WebSocket(devtools.page_target(port)))
         for domain in ("Runtime", "Log", "Page"):
             page.command(f"{domain}.enable")
+        page.command("Page.setDownloadBehavior", behavior="allow", downloadPath=downloads)
         start = status(page)["now"]
         page.command("Page.navigate", url=url)
         deadline = time.monotonic() + timeout
@@ -103,7 +161,12 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None):
             if time.monotonic() > deadline:
                 break
             time.sleep(0.05)
-        problems = problems_of(page.events)
+        save_problems = []
+        if save and now["render"] == "done":
+            press_save_png(page)
+            path = downloaded(downloads, time.monotonic() + 60)
+            save_problems = saved_png_problems(path, *save)
+        problems = problems_of(page.events) + save_problems
         if not now["isolated"]:
             problems.append("the page is not cross-origin isolated")
         # web/index.html starts at least two (one per core, 2 to 8).
@@ -146,12 +209,29 @@ def main():
     parser.add_argument("--lesson", help="the lesson the Lessons panel must show at the end")
     parser.add_argument("--drop", help="a file to drop on the page after its first pass")
     parser.add_argument("--error", help="text the page's error must hold at the end (no render)")
+    parser.add_argument(
+        "--save-png",
+        metavar="SCENE",
+        help="the scene file the page shows: save its render and compare with the desktop's",
+    )
+    parser.add_argument(
+        "--workbench",
+        default=os.path.join(root, "target", "debug", "workbench"),
+        help="the desktop binary that renders SCENE for --save-png",
+    )
     args = parser.parse_args()
     httpd = serve_web.server(args.dist, 0, True)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
     return check(
-        url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error
+        url,
+        args.timeout,
+        args.screenshot,
+        args.chromium,
+        args.lesson,
+        args.drop,
+        args.error,
+        (args.save_png, args.workbench) if args.save_png else None,
     )
 
 
