@@ -11,22 +11,29 @@ Talks DevTools through check_report_page's standard-library client.
                               [--chromium PATH] [--timeout SECONDS]
                               [--query ?lesson=NAME --lesson NAME]
                               [--drop FILE [--error TEXT]]
-                              [--save-png SCENE [--workbench PATH]]
+                              [--save-png SCENE [--render-args ARGS]
+                               [--workbench PATH]]
+                              [--site-file FILE]... [--scene LABEL]
 
 --save-png presses Save PNG (Ctrl+S) once the render is done and checks
 the browser's download: named as the desktop's dialog offers (the
 scene's name, .png) and equal, within the golden tests' tolerance
 (scripts/png_match.py), to `workbench render SCENE` with the scene's
-own settings, which the page's render of that scene uses too.
+own settings (and --render-args, the flags a link's query gives the
+page). --site-file puts a file on the served site at its path (a link's
+?scene=URL or ?lesson=URL fetches it); --scene is the scene the page
+must show at the end.
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
 """
 
 import argparse
+import atexit
 import base64
 import json
 import os
+import shlex
 import shutil
 import subprocess
 import sys
@@ -102,7 +109,7 @@ def downloaded(folder, deadline):
     return None
 
 
-def saved_png_problems(path, scene, workbench):
+def saved_png_problems(path, scene, workbench, render_args):
     """Why the page's download `path` is not the desktop's render of
     `scene` (named as its dialog offers, equal within the goldens'
     tolerance), as sentences."""
@@ -114,7 +121,9 @@ def saved_png_problems(path, scene, workbench):
         problems.append(f"the download is named {os.path.basename(path)}, not {expected}")
     desktop = os.path.join(os.path.dirname(path), "desktop-render.png")
     run = subprocess.run(
-        [workbench, "render", scene, "-o", desktop], capture_output=True, text=True
+        [workbench, "render", scene, "-o", desktop, *shlex.split(render_args)],
+        capture_output=True,
+        text=True,
     )
     if run.returncode != 0:
         return problems + [f"workbench render {scene} failed: {run.stderr.strip()}"]
@@ -130,7 +139,8 @@ def saved_png_problems(path, scene, workbench):
     return problems
 
 
-def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, save=None):
+def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, save=None,
+          scene=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     downloads = os.path.join(profile, "downloads")
     os.mkdir(downloads)
@@ -179,6 +189,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             problems.append(f"the render did not finish: {now['render'] or 'nothing said'}")
         elif dropped and now["scene"] != os.path.basename(dropped):
             problems.append(f"the page shows {now['scene'] or 'no scene'}, not the dropped file")
+        if scene is not None and now["scene"] != scene:
+            problems.append(f"the page shows {now['scene'] or 'no scene'}, not {scene}")
         if lesson is not None and now["lesson"] != lesson:
             problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
         if screenshot:
@@ -215,12 +227,32 @@ def main():
         help="the scene file the page shows: save its render and compare with the desktop's",
     )
     parser.add_argument(
+        "--render-args", default="", help="flags for `workbench render` with --save-png"
+    )
+    parser.add_argument(
+        "--site-file",
+        action="append",
+        default=[],
+        help="a file served on the site at its (relative) path, for a link to fetch",
+    )
+    parser.add_argument("--scene", help="the scene the page must show at the end")
+    parser.add_argument(
         "--workbench",
         default=os.path.join(root, "target", "debug", "workbench"),
         help="the desktop binary that renders SCENE for --save-png",
     )
     args = parser.parse_args()
-    httpd = serve_web.server(args.dist, 0, True)
+    site = args.dist
+    if args.site_file:
+        # The built site with the files beside it, in a folder of links.
+        site = tempfile.mkdtemp(prefix="workbench-site-")
+        atexit.register(shutil.rmtree, site, True)
+        for name in os.listdir(args.dist):
+            os.symlink(os.path.abspath(os.path.join(args.dist, name)), os.path.join(site, name))
+        for path in args.site_file:
+            os.makedirs(os.path.join(site, os.path.dirname(path)), exist_ok=True)
+            os.symlink(os.path.abspath(path), os.path.join(site, path))
+    httpd = serve_web.server(site, 0, True)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     url = f"http://127.0.0.1:{httpd.server_port}/{args.query}"
     return check(
@@ -231,7 +263,8 @@ def main():
         args.lesson,
         args.drop,
         args.error,
-        (args.save_png, args.workbench) if args.save_png else None,
+        (args.save_png, args.workbench, args.render_args) if args.save_png else None,
+        args.scene,
     )
 
 
