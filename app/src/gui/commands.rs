@@ -185,7 +185,7 @@ impl Command {
     }
 
     /// Whether it opens or writes a file of the user's choosing, which
-    /// the web page cannot ([`crate::gui::platform::file_button`]).
+    /// the web page cannot (its button greyed out there, saying why).
     pub fn opens_files(self) -> bool {
         matches!(self, Command::Open | Command::SaveScene)
     }
