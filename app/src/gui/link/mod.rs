@@ -122,8 +122,14 @@ impl Link {
                 vec![flag, value.clone()]
             }
         });
-        let (settings, encoding) =
-            SettingsArgs::parse_words(words).map_err(|e| format!("the link's settings: {e}"))?;
+        let (settings, encoding) = SettingsArgs::parse_words(words).map_err(|e| {
+            let reads = if e.contains("unexpected argument") {
+                ": a link reads lesson, step, scene and `workbench render`'s settings flags"
+            } else {
+                ""
+            };
+            format!("the link's settings: {e}{reads}")
+        })?;
         if encoding.srgb {
             return Err("the link's settings: the window shows sRGB always; drop srgb".into());
         }
