@@ -16,15 +16,28 @@ Talks DevTools through check_report_page's standard-library client.
                               [--no-isolation] [--hide] [--replay]
                               [--compare SCENE --a FLAGS --b FLAGS
                                [--workbench PATH]]
+                              [--save-png SCENE [--render-args ARGS]]
+                              [--site-file FILE]... [--scene LABEL]
+
+--save-png presses Save PNG (Ctrl+S) once the render is done and checks
+the browser's download: named as the desktop's dialog offers (the
+scene's name, .png) and equal, within the golden tests' tolerance
+(scripts/png_match.py), to `workbench render SCENE` with the scene's
+own settings (and --render-args, the flags a link's query gives the
+page). --site-file puts a file on the served site at its path (a link's
+?scene=URL or ?lesson=URL fetches it); --scene is the scene the page
+must show at the end.
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
 """
 
 import argparse
+import atexit
 import base64
 import json
 import os
+import shlex
 import shutil
 import subprocess
 import sys
@@ -35,6 +48,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import check_report_page as devtools  # noqa: E402
+import png_match  # noqa: E402
 import serve_web  # noqa: E402
 
 # WebGL on the CPU: headless Chromium has no GPU here.
@@ -188,9 +202,60 @@ def render_problems(now, isolated, error, dropped):
     return problems
 
 
+
+def press_save_png(page):
+    """Ctrl+S on the page's canvas, as a user saves the render."""
+    page.command("Runtime.evaluate", expression="document.querySelector('canvas').focus()")
+    key = {"key": "s", "code": "KeyS", "windowsVirtualKeyCode": 83, "modifiers": 2}
+    page.command("Input.dispatchKeyEvent", type="keyDown", **key)
+    page.command("Input.dispatchKeyEvent", type="keyUp", **key)
+
+
+def downloaded(folder, deadline):
+    """The one file downloaded into `folder`, once complete, or None."""
+    while time.monotonic() < deadline:
+        names = [n for n in os.listdir(folder) if not n.endswith(".crdownload")]
+        if names and not any(n.endswith(".crdownload") for n in os.listdir(folder)):
+            return os.path.join(folder, sorted(names)[0])
+        time.sleep(0.1)
+    return None
+
+
+def saved_png_problems(path, scene, workbench, render_args):
+    """Why the page's download `path` is not the desktop's render of
+    `scene` (named as its dialog offers, equal within the goldens'
+    tolerance), as sentences."""
+    if path is None:
+        return ["Save PNG gave no download"]
+    problems = []
+    expected = os.path.splitext(os.path.basename(scene))[0] + ".png"
+    if os.path.basename(path) != expected:
+        problems.append(f"the download is named {os.path.basename(path)}, not {expected}")
+    desktop = os.path.join(os.path.dirname(path), "desktop-render.png")
+    run = subprocess.run(
+        [workbench, "render", scene, "-o", desktop, *shlex.split(render_args)],
+        capture_output=True,
+        text=True,
+    )
+    if run.returncode != 0:
+        return problems + [f"workbench render {scene} failed: {run.stderr.strip()}"]
+    try:
+        with open(path, "rb") as f, open(desktop, "rb") as g:
+            page_png, desktop_png = png_match.read_png(f.read()), png_match.read_png(g.read())
+    except (ValueError, OSError) as e:
+        return problems + [f"the download is not a PNG the check reads: {e}"]
+    print(f"saved PNG: {os.path.basename(path)}, {page_png[0]} x {page_png[1]}")
+    why = png_match.mismatch(page_png, desktop_png)
+    if why:
+        problems.append(f"the page's PNG differs from `workbench render {scene}`: {why}")
+    return problems
+
+
 def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True,
-          hide=False, replay=False, desktop=None):
+          hide=False, replay=False, desktop=None, save=None, scene=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
+    downloads = os.path.join(profile, "downloads")
+    os.mkdir(downloads)
     try:
         process, port = devtools.start_chromium(chromium, profile)
     except (OSError, RuntimeError) as e:
@@ -201,6 +266,7 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
         page = devtools.Page(devtools.WebSocket(devtools.page_target(port)))
         for domain in ("Runtime", "Log", "Page"):
             page.command(f"{domain}.enable")
+        page.command("Page.setDownloadBehavior", behavior="allow", downloadPath=downloads)
         start = status(page)["now"]
         page.command("Page.navigate", url=url)
         deadline = time.monotonic() + timeout
@@ -223,7 +289,12 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             if time.monotonic() > deadline:
                 break
             time.sleep(0.05)
-        problems = problems_of(page.events) + problems
+        save_problems = []
+        if save and now["render"] == "done":
+            press_save_png(page)
+            path = downloaded(downloads, time.monotonic() + 60)
+            save_problems = saved_png_problems(path, *save)
+        problems = problems_of(page.events) + problems + save_problems
         if desktop:
             print(now["said"])
             problems += compare_problems(now["compare"], desktop)
@@ -233,6 +304,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
                 problems.append(f"the lessons' replay {now['replay'] or 'did not finish'}")
         else:
             problems += render_problems(now, isolated, error, dropped)
+        if scene is not None and now["scene"] != scene:
+            problems.append(f"the page shows {now['scene'] or 'no scene'}, not {scene}")
         if lesson is not None and now["lesson"] != lesson:
             problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
         if screenshot:
@@ -274,11 +347,38 @@ def main():
     parser.add_argument("--a", default="", help="with --compare: side A's render flags")
     parser.add_argument("--b", default="", help="with --compare: side B's render flags")
     parser.add_argument("--workbench", default=os.path.join(ROOT, "target", "debug", "workbench"),
-                        help="with --compare: the desktop's binary")
+                        help="the desktop's binary, for --compare and --save-png")
     parser.add_argument("--hide", action="store_true",
                         help="after the first pass, hide the page for 4 s: the render must hold")
+    parser.add_argument(
+        "--save-png",
+        metavar="SCENE",
+        help="the scene file the page shows: save its render and compare with the desktop's",
+    )
+    parser.add_argument(
+        "--render-args", default="", help="flags for `workbench render` with --save-png"
+    )
+    parser.add_argument(
+        "--site-file",
+        action="append",
+        default=[],
+        help="a file served on the site at its (relative) path, for a link to fetch",
+    )
+    parser.add_argument("--scene", help="the scene the page must show at the end")
     args = parser.parse_args()
-    httpd = serve_web.server(args.dist, 0, not args.no_isolation)
+    site = args.dist
+    if args.site_file:
+        # The built site with the files beside it, in a folder of links.
+        site = tempfile.mkdtemp(prefix="workbench-site-")
+        atexit.register(shutil.rmtree, site, True)
+        for name in os.listdir(args.dist):
+            os.symlink(os.path.abspath(os.path.join(args.dist, name)), os.path.join(site, name))
+        for path in args.site_file:
+            os.makedirs(os.path.join(site, os.path.dirname(path)), exist_ok=True)
+            # build-web.sh already puts scenes/ beside the page.
+            if not os.path.exists(os.path.join(site, path)):
+                os.symlink(os.path.abspath(path), os.path.join(site, path))
+    httpd = serve_web.server(site, 0, not args.no_isolation)
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     query = "?replay" if args.replay else args.query
     desktop = None
@@ -290,6 +390,8 @@ def main():
     return check(
         url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
         not args.no_isolation, args.hide, args.replay, desktop,
+        (args.save_png, args.workbench, args.render_args) if args.save_png else None,
+        args.scene,
     )
 
 

@@ -874,7 +874,15 @@ impl SettingsArgs {
     /// 1.33'`). The error names the bad flag or value, e.g. "unexpected
     /// argument '--fast' found".
     pub fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
-        SettingsLine::try_parse_from(split_words(text)?)
+        Self::parse_words(split_words(text)?)
+    }
+
+    /// [`SettingsArgs::parse_str`] of words already split (a link's
+    /// flags, whose values may hold spaces).
+    pub fn parse_words(
+        words: impl IntoIterator<Item = String>,
+    ) -> Result<(SettingsArgs, EncodingArgs), String> {
+        SettingsLine::try_parse_from(words)
             .map(|line| (line.settings, line.encoding))
             .map_err(|e| {
                 let message = e.render().to_string();

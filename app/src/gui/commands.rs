@@ -17,6 +17,7 @@ pub enum Command {
     SaveExr,
     Open,
     Reload,
+    CopyLink,
     ResetCamera,
     ZoomFit,
     ZoomActualSize,
@@ -47,7 +48,7 @@ impl Command {
     ///
     /// egui matches Ctrl+Z when Ctrl+Shift+Z is pressed, so a shortcut with
     /// Shift comes before the same one without.
-    pub const ALL: [Command; 30] = [
+    pub const ALL: [Command; 31] = [
         Command::ToggleAntialiasing,
         Command::ToggleSoftShadows,
         Command::ToggleDepthOfField,
@@ -60,6 +61,7 @@ impl Command {
         Command::SaveExr,
         Command::Open,
         Command::Reload,
+        Command::CopyLink,
         Command::ResetCamera,
         Command::ZoomFit,
         Command::ZoomActualSize,
@@ -93,6 +95,7 @@ impl Command {
             Command::Save => "Save PNG...",
             Command::SaveExr => "Save as EXR...",
             Command::Open => "Open...",
+            Command::CopyLink => "Copy link",
             Command::Reload => "Reload scene",
             Command::ResetCamera => "Reset camera",
             Command::ZoomFit => "Fit to window",
@@ -172,10 +175,19 @@ impl Command {
             Command::Undo => "Take back the last edit of the edited side's scene",
             Command::Redo => "Apply again the edit last taken back",
             Command::SaveScene => "Write the edited scene to a P3F file",
+            Command::CopyLink => {
+                "Copy the web page's link to what is on screen: the lesson and its step, or the scene with its settings and edits"
+            }
             Command::ClearSelection => {
                 "Forget the selected object (no outline, nothing to move); cancels the unsaved-edits question"
             }
         }
+    }
+
+    /// Whether it opens or writes a file of the user's choosing, which
+    /// the web page cannot (its button greyed out there, saying why).
+    pub fn opens_files(self) -> bool {
+        matches!(self, Command::Open | Command::SaveScene)
     }
 
     /// The keys that trigger it; the first is the one shown.
@@ -214,6 +226,7 @@ impl Command {
             KeyboardShortcut::new(CTRL, Key::Y),
         ];
         const CTRL_SHIFT_S: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL_SHIFT, Key::S)];
+        const CTRL_SHIFT_L: &[KeyboardShortcut] = &[KeyboardShortcut::new(CTRL_SHIFT, Key::L)];
         const ESCAPE: &[KeyboardShortcut] = &[key(Key::Escape)];
         match self {
             Command::ToggleAntialiasing => A,
@@ -245,6 +258,7 @@ impl Command {
             Command::Undo => CTRL_Z,
             Command::Redo => REDO,
             Command::SaveScene => CTRL_SHIFT_S,
+            Command::CopyLink => CTRL_SHIFT_L,
             Command::ClearSelection => ESCAPE,
         }
     }

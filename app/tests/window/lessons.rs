@@ -369,8 +369,8 @@ fn a_link_to_nothing_bundled_says_what_there_is() {
         ),
         (
             "?lessons=shadows",
-            "\"lessons\", which the page does not know",
-            "lesson and scene",
+            "unexpected argument '--lessons' found",
+            "a link reads lesson, step, scene",
         ),
     ] {
         let mut harness = small_window(Harness::builder());

@@ -5,6 +5,7 @@
 use crate::gui::commands::Command;
 use crate::gui::comparison::Comparison;
 use crate::gui::editor::Pending;
+use crate::gui::platform::target;
 use crate::gui::sides::SideId;
 use crate::gui::windows::studies::Applied;
 use crate::load::SceneSource;
@@ -13,7 +14,12 @@ use super::WorkbenchApp;
 use super::saving::SaveImage;
 
 impl WorkbenchApp {
-    pub(super) fn run_command(&mut self, command: Command) {
+    pub(super) fn run_command(&mut self, command: Command, ctx: &egui::Context) {
+        // Its key on the page: said as its greyed-out button says it.
+        if let (true, Some(why)) = (command.opens_files(), target::NO_FILES) {
+            self.messages.notify(why);
+            return;
+        }
         let controls = &mut self.sides.active_mut().controls;
         match command {
             Command::ToggleAntialiasing => controls.render.antialiasing ^= true,
@@ -39,7 +45,7 @@ impl WorkbenchApp {
                 self.comparison = Comparison::default();
             }
             Command::ToggleBenchmark => self.tools.bench.open ^= true,
-            Command::ExportReport => self.tools.report.choose_file(),
+            Command::ExportReport => self.tools.report.choose_file(self.dialogs.dialog.clone()),
             Command::ToggleStudies => self.tools.studies.open ^= true,
             Command::ToggleObserver => self.observer.on ^= true,
             Command::ToggleLessons => self.lessons.open ^= true,
@@ -60,6 +66,7 @@ impl WorkbenchApp {
                     self.messages.notify("cannot open a file dialog");
                 }
             }
+            Command::CopyLink => self.copy_link(ctx),
             Command::Save => self.save_dialog(false),
             Command::SaveExr => self.save_dialog(true),
             Command::ToggleEditor => self.tools.editor.open ^= true,

@@ -38,11 +38,11 @@ impl WorkbenchApp {
     }
 
     /// Opens the bundled lesson `name` as [`Self::open_lesson`] opens a
-    /// file (a page's `?lesson=NAME`); an unknown name is said with the
-    /// names there are.
-    pub fn open_bundled_lesson(&mut self, name: &str) {
+    /// file (a page's `?lesson=NAME&step=N`), at `step` (from 1) if given;
+    /// an unknown name is said with the names there are.
+    pub fn open_bundled_lesson(&mut self, name: &str, step: Option<usize>) {
         match crate::lessons::bundled::find(name) {
-            Some(bundled) => self.set_up_lesson(read_bundled(bundled)),
+            Some(bundled) => self.set_up_lesson_at(read_bundled(bundled), step),
             None => self.messages.lasting_error(format!(
                 "no bundled lesson is called {name:?}: the lessons are {}",
                 crate::lessons::bundled::names().join(", ")
@@ -53,10 +53,28 @@ impl WorkbenchApp {
     /// Shows `lesson` in the Lessons window with its first step not done
     /// set up, or says why it does not read.
     pub(super) fn set_up_lesson(&mut self, lesson: Result<Lesson, LessonErrors>) {
+        self.set_up_lesson_at(lesson, None);
+    }
+
+    /// [`Self::set_up_lesson`] at `step` (from 1, as a link counts them)
+    /// when given; a step the lesson does not have is said.
+    pub(super) fn set_up_lesson_at(
+        &mut self,
+        lesson: Result<Lesson, LessonErrors>,
+        step: Option<usize>,
+    ) {
         match lesson {
             Ok(lesson) => {
+                let (name, steps) = (lesson.name.clone(), lesson.steps.len());
                 self.lessons.add(lesson);
                 self.lessons.open = true;
+                match step {
+                    Some(step) if step > steps => self.messages.lasting_error(format!(
+                        "lesson {name} has {steps} steps, not a step {step}"
+                    )),
+                    Some(step) => self.lessons.go_to(step - 1),
+                    None => {}
+                }
                 self.set_up_lesson_step();
             }
             Err(e) => self.messages.lasting_error(e.to_string()),

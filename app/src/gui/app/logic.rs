@@ -31,7 +31,13 @@ impl WorkbenchApp {
         for reply in self.dialogs.take() {
             match reply {
                 Reply::Open(path) => self.open_file(&path),
-                Reply::Dropped { path, bytes } => self.open_dropped_text(&path, bytes),
+                Reply::Dropped { path, bytes } => {
+                    let lesson = is_lesson_file(&path);
+                    self.open_dropped_text(&path, bytes, lesson);
+                }
+                Reply::Fetched { url, lesson, bytes } => {
+                    self.open_dropped_text(std::path::Path::new(&url), bytes, lesson);
+                }
                 Reply::LessonFolder(dir) => {
                     self.open_lesson_folder(&dir);
                 }
@@ -82,6 +88,7 @@ impl WorkbenchApp {
         }
         self.session.last_scene = Some(loaded.source.clone());
         self.finish_lesson_setup(&loaded.source);
+        self.finish_link(&loaded.source);
         if !loaded.world.warnings.is_empty() {
             self.messages.notify(loaded.world.warnings.join("; "));
         }
@@ -119,10 +126,16 @@ impl WorkbenchApp {
     }
 
     /// Opens a dropped file that is no file on disk (the web page's: its
-    /// name `path` and its `bytes`, once read) from its text: a lesson as
-    /// a lesson file opens, a scene under its name. A bare mesh is read
-    /// from disk only.
-    fn open_dropped_text(&mut self, path: &std::path::Path, bytes: Result<Vec<u8>, String>) {
+    /// name `path` and its `bytes`, once read), or a file a link fetched
+    /// (its URL), from its text: a `lesson` as a lesson file opens,
+    /// otherwise a scene under its name. A bare mesh is read from disk
+    /// only.
+    fn open_dropped_text(
+        &mut self,
+        path: &std::path::Path,
+        bytes: Result<Vec<u8>, String>,
+        lesson: bool,
+    ) {
         let name = path.display().to_string();
         if MeshFormat::of(path).is_some() {
             let e = format!("{name}: a mesh opens from a file on disk, in the desktop workbench");
@@ -140,9 +153,10 @@ impl WorkbenchApp {
                     .lasting_error(format!("cannot read {name}: {e}"));
             }
         };
-        if is_lesson_file(path) {
+        if lesson {
             let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-            self.set_up_lesson(parse_lesson(&text, &stem, &name, None));
+            let step = self.link_step.take();
+            self.set_up_lesson_at(parse_lesson(&text, &stem, &name, None), step);
         } else {
             self.open(SceneSource::Written { name, text });
         }

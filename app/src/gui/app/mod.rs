@@ -7,6 +7,7 @@
 mod command_handling;
 mod editing;
 mod lessons;
+mod linking;
 mod logic;
 mod messages;
 mod navigation;
@@ -14,7 +15,7 @@ mod persisted;
 mod saving;
 mod testing;
 
-pub use saving::{FileDialog, FileQuestion};
+pub use saving::{Answer, FileDialog, FileQuestion};
 
 use tracer::render::JobState;
 
@@ -25,7 +26,6 @@ use super::commands::Command;
 use super::comparison::Comparison;
 use super::editor;
 use super::lessons::Lessons;
-use super::link::Link;
 use super::observer::Observer;
 use super::panels::scene_list::SceneList;
 use super::panels::side_panel::{self, SidePanelView};
@@ -68,6 +68,12 @@ pub struct WorkbenchApp {
     /// frame, not at the next periodic save, so a closed tab or a crash
     /// loses no step done.
     progress_saved: crate::lessons::progress::Record,
+    /// A link's settings and edits, waiting for its scene.
+    pending_link: Option<linking::PendingLink>,
+    /// The step a link asked of the lesson it is fetching, from 1.
+    link_step: Option<usize>,
+    /// The files links fetched, for Copy link.
+    fetched: linking::Fetched,
 }
 
 /// How often the rest of the saved state is saved (eframe's default).
@@ -113,6 +119,9 @@ impl WorkbenchApp {
             lessons: Lessons::default(),
             pending_setup: None,
             progress_saved: progress.clone(),
+            pending_link: None,
+            link_step: None,
+            fetched: linking::Fetched::default(),
         };
         app.lessons.progress = progress;
         let last_scene = match app.session.last_scene.clone() {
@@ -152,35 +161,6 @@ impl WorkbenchApp {
                 Activity::Loading { .. } | Activity::Job(JobState::Building | JobState::Rendering)
             )
         })
-    }
-
-    /// Opens what a page's link asks for (its query, `?lesson=shadows`):
-    /// its scene, then its lesson (which sets up a scene of its own). A
-    /// query that does not read, or a name not bundled, is said, with the
-    /// names there are.
-    pub fn open_link(&mut self, query: &str) {
-        let link = match Link::parse(query) {
-            Ok(link) => link,
-            Err(e) => {
-                self.messages.lasting_error(e);
-                return;
-            }
-        };
-        if let Some(name) = &link.scene {
-            match bundled::find(name) {
-                Some(scene) => self.open(SceneSource::Bundled(scene.name.to_string())),
-                None => {
-                    let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
-                    self.messages.lasting_error(format!(
-                        "no bundled scene is called {name:?}: the scenes are {}",
-                        names.join(", ")
-                    ));
-                }
-            }
-        }
-        if let Some(name) = &link.lesson {
-            self.open_bundled_lesson(name);
-        }
     }
 
     /// Turns the observer view on or off, as O does.
@@ -331,7 +311,7 @@ impl eframe::App for WorkbenchApp {
         self.messages.show_notice(&ctx);
         self.tool_windows(&ctx, &mut commands);
         for command in commands {
-            self.run_command(command);
+            self.run_command(command, &ctx);
         }
         self.keep_rendering(&ctx);
         self.pacing.end();

@@ -3,7 +3,7 @@
 //! `--screenshot`.
 //! Their results come back to the UI thread as [`Reply`]s.
 
-use std::io::Write as _;
+use std::io::Cursor;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
@@ -15,8 +15,8 @@ use tracer::scene::{Scene, write_p3f_in};
 
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use crate::gui::platform::target;
+use crate::gui::platform::target::SaveTo;
 use crate::gui::sides::{Activity, Side, SideId};
-use crate::image_file::{save_exr, save_png, write_atomically};
 use crate::lessons::progress::Progress;
 use crate::load::SceneSource;
 
@@ -29,6 +29,13 @@ pub enum Reply {
     /// or why they could not be read.
     Dropped {
         path: PathBuf,
+        bytes: Result<Vec<u8>, String>,
+    },
+    /// A file a link fetched from the page's site (`url`): a lesson or
+    /// a scene, and its bytes or why they could not be fetched.
+    Fetched {
+        url: String,
+        lesson: bool,
         bytes: Result<Vec<u8>, String>,
     },
     Notice(String),
@@ -101,15 +108,17 @@ impl SaveImage {
         image.ok_or_else(|| anyhow::anyhow!("there is no image to save yet"))
     }
 
-    /// Writes the image at its full resolution to `path`.
-    pub fn write(&self, path: &Path) -> anyhow::Result<()> {
+    /// The image at its full resolution, encoded as its file.
+    pub fn encode(&self) -> anyhow::Result<Vec<u8>> {
+        let mut bytes = Cursor::new(Vec::new());
         match self {
-            SaveImage::Linear(film) => save_exr(film, path),
+            SaveImage::Linear(film) => film.write_to(&mut bytes, image::ImageFormat::OpenExr)?,
             SaveImage::Shown(snapshot) => snapshot
                 .to_image()
-                .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))
-                .and_then(|img| save_png(&img, path)),
+                .ok_or_else(|| anyhow::anyhow!("the image buffer has the wrong size"))?
+                .write_to(&mut bytes, image::ImageFormat::Png)?,
         }
+        Ok(bytes.into_inner())
     }
 }
 
@@ -136,7 +145,7 @@ pub trait FileDialog: Send + Sync {
 }
 
 /// The desktop's own dialog (rfd).
-struct NativeDialog;
+pub struct NativeDialog;
 
 impl FileDialog for NativeDialog {
     fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
@@ -157,6 +166,16 @@ impl FileDialog for NativeDialog {
         } else {
             dialog.pick_file()
         }
+    }
+}
+
+/// A dialog answered with the one path it was made with: what a test
+/// chooses without a desktop to show a dialog on.
+pub struct Answer(pub PathBuf);
+
+impl FileDialog for Answer {
+    fn ask(&self, _question: &FileQuestion) -> Option<PathBuf> {
+        Some(self.0.clone())
     }
 }
 
@@ -192,6 +211,15 @@ impl Dialogs {
         });
     }
 
+    /// Fetches `url` from the page's site (`target::fetch`) and replies
+    /// with its bytes, to open as a `lesson` or a scene.
+    pub fn fetch(&self, url: &str, lesson: bool) {
+        let (reply, url) = (self.sender.clone(), url.to_string());
+        target::fetch(&url.clone(), move |bytes| {
+            let _ = reply.send(Reply::Fetched { url, lesson, bytes });
+        });
+    }
+
     /// The replies that came in since the last frame.
     pub fn take(&self) -> Vec<Reply> {
         self.replies.try_iter().collect()
@@ -211,6 +239,32 @@ impl Dialogs {
         target::spawn(name, move || {
             let _ = reply.send(match dialog.ask(&question) {
                 Some(path) => answer(path),
+                None => Reply::Notice(unanswered.into()),
+            });
+        })
+        .is_ok()
+    }
+
+    /// Asks where to save (`question`, its name offered) on a thread
+    /// called `name`, then saves what `bytes` makes there
+    /// (`target::SaveTo`: the file chosen on the desktop, a download on
+    /// the page) and replies with `saved` of where it went, or with the
+    /// notice `unanswered`; false when no thread could be started.
+    fn save_on_thread(
+        &self,
+        name: &str,
+        question: FileQuestion,
+        unanswered: &'static str,
+        bytes: impl FnOnce() -> anyhow::Result<Vec<u8>> + Send + 'static,
+        saved: impl FnOnce(String) -> String + Send + 'static,
+    ) -> bool {
+        let (reply, dialog) = (self.sender.clone(), self.dialog.clone());
+        target::spawn(name, move || {
+            let _ = reply.send(match SaveTo::ask(&*dialog, &question) {
+                Some(to) => match bytes().and_then(|bytes| to.write(&bytes)) {
+                    Ok(()) => Reply::Notice(saved(to.describe())),
+                    Err(e) => Reply::Error(format!("{e:#}")),
+                },
                 None => Reply::Notice(unanswered.into()),
             });
         })
@@ -268,18 +322,13 @@ impl Dialogs {
             folder: None,
             name: Some(format!("{}-progress.json", progress.student_or("lessons"))),
         };
-        self.ask_on_thread(
+        self.save_on_thread(
             "save-progress-dialog",
             question,
             "progress not exported (cancelled, or no file dialog on this desktop: \
              `workbench lesson progress` reads it from the saved state)",
-            move |path| {
-                let text = progress.to_json();
-                match write_atomically(&path, |file| Ok(file.write_all(text.as_bytes())?)) {
-                    Ok(()) => Reply::Notice(format!("progress exported to {}", path.display())),
-                    Err(e) => Reply::Error(format!("cannot write {}: {e:#}", path.display())),
-                }
-            },
+            move || Ok(progress.to_json().into_bytes()),
+            |to| format!("progress exported to {to}"),
         )
     }
 
@@ -300,14 +349,12 @@ impl Dialogs {
             folder: None,
             name: Some(format!("{stem}.{}", filter.1[0])),
         };
-        self.ask_on_thread(
+        self.save_on_thread(
             "save-dialog",
             question,
             "not saved (cancelled, or no file dialog on this desktop)",
-            move |path| match image.write(&path) {
-                Ok(()) => Reply::Notice(format!("saved {}", path.display())),
-                Err(e) => Reply::Error(format!("{e:#}")),
-            },
+            move || image.encode(),
+            |to| format!("saved {to}"),
         )
     }
 }

@@ -8,6 +8,7 @@ use egui::text::LayoutJob;
 use egui::{Color32, FontId, RichText, TextFormat, Ui};
 
 use super::Lessons;
+use crate::gui::platform::file_button;
 use crate::lessons::Verdict;
 
 /// The colour of what is done: the step numbers and the check's state.
@@ -43,8 +44,7 @@ fn body(ui: &mut Ui, lessons: &mut Lessons, asked: &mut Asked) {
         ui.colored_label(ui.visuals().error_fg_color, problem);
     }
     picker(ui, lessons);
-    if ui
-        .small_button("Lesson folder...")
+    if file_button(ui, true, egui::Button::new("Lesson folder...").small())
         .on_hover_text("Add a folder of lessons to the list, by chapter")
         .clicked()
     {

@@ -11,6 +11,7 @@ use crate::describe::{describe, side_labels};
 use crate::figures::heat_map::format_number;
 use crate::gui::comparison::{CompareLayout, Comparison};
 use crate::gui::image::pixel_views::colour_bar;
+use crate::gui::platform::file_button;
 use crate::gui::sides::Side;
 use crate::measure::ab::Match;
 use crate::measure::value_difference::{ValueStats, diverging_colour};
@@ -99,14 +100,14 @@ pub fn header(ui: &mut Ui, comparison: &mut Comparison, a: &Side, b: &Side) {
 /// back to a render; `encoding` is A's, for EXR files.
 fn reference_controls(ui: &mut Ui, comparison: &mut Comparison, encoding: Encoding) {
     ui.horizontal(|ui| {
-        let button = ui
-            .add_enabled(
-                !comparison.is_picking(),
-                egui::Button::new("Compare with image..."),
-            )
-            .on_hover_text(
-                "B shows a PNG, JPEG or EXR (another renderer's output) instead of a render",
-            );
+        let button = file_button(
+            ui,
+            !comparison.is_picking(),
+            egui::Button::new("Compare with image..."),
+        )
+        .on_hover_text(
+            "B shows a PNG, JPEG or EXR (another renderer's output) instead of a render",
+        );
         if button.clicked() {
             comparison.pick_reference(encoding, ui.ctx());
         }

@@ -193,6 +193,7 @@ pub fn show(
     ui.horizontal(|ui| {
         command_button(ui, Command::Open, commands);
         command_button(ui, Command::Reload, commands);
+        command_button(ui, Command::CopyLink, commands);
     });
     egui::ScrollArea::vertical()
         .id_salt("scene_list")

@@ -8,6 +8,7 @@ use tracer::scene::Viewpoint;
 
 use crate::gui::commands::Command;
 use crate::gui::image::active_overlay::ActiveOverlay;
+use crate::gui::platform::file_button;
 use crate::gui::sides::Controls;
 
 /// The noise thresholds the slider offers, on a logarithmic scale: the
@@ -93,7 +94,13 @@ pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>
         command.description(),
         command.shortcut_text(ui.ctx())
     );
-    if ui.button(command.label()).on_hover_text(tip).clicked() {
+    let button = egui::Button::new(command.label());
+    let button = if command.opens_files() {
+        file_button(ui, true, button)
+    } else {
+        ui.add(button)
+    };
+    if button.on_hover_text(tip).clicked() {
         commands.push(command);
     }
 }

@@ -8,6 +8,8 @@
 
 pub mod clock;
 pub mod cpu_clock;
+#[cfg(target_family = "wasm")]
+pub mod download;
 pub mod frame_meter;
 #[cfg(target_family = "wasm")]
 pub mod page_modes;
@@ -17,6 +19,19 @@ pub mod screenshot;
 #[cfg_attr(not(target_family = "wasm"), path = "native.rs")]
 #[cfg_attr(target_family = "wasm", path = "web.rs")]
 pub mod target;
+#[cfg(target_family = "wasm")]
+pub mod web_link;
+
+/// A button that opens or writes files or folders on this computer
+/// (Open..., Lesson folder..., Compare with image..., a window's
+/// Export...): greyed out where that cannot work (the web page), saying
+/// why when hovered ([`target::NO_FILES`]), instead of doing nothing.
+pub fn file_button(ui: &mut egui::Ui, enabled: bool, button: egui::Button) -> egui::Response {
+    match target::NO_FILES {
+        Some(why) => ui.add_enabled(false, button).on_disabled_hover_text(why),
+        None => ui.add_enabled(enabled, button),
+    }
+}
 
 /// What background work calls when it has something to show: a repaint
 /// of the window on the desktop, nothing on the web page. A worker cannot

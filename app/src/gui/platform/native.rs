@@ -2,6 +2,7 @@
 //! ([`super::target`]): threads of its own, the desktop's file dialogs,
 //! render threads that give way to the window's.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::Context;
@@ -10,10 +11,14 @@ use tracer::stats::RenderStats;
 
 use tracer::render::driver::{Priority, render_pool as pool_of};
 
+use crate::gui::app::{FileDialog as AskFile, FileQuestion};
 use crate::load::SceneSource;
 
 /// The desktop's own file dialogs, asked from a background thread.
 pub use rfd::FileDialog;
+
+/// The desktop opens and writes any file (see [`super::file_button`]).
+pub const NO_FILES: Option<&str> = None;
 
 /// Background work wakes the window itself (egui's repaint works from
 /// any thread).
@@ -63,10 +68,49 @@ pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
     Ok(SceneSource::File(path))
 }
 
+/// Reads the file a link names (`url`, relative to the current folder as
+/// a page's is to the page) and gives its bytes to `done`, at once.
+pub fn fetch(url: &str, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
+    done(std::fs::read(url).map_err(|e| format!("{url}: {e}")));
+}
+
+/// Where Copy link's query goes after: the page's file, as the desktop
+/// has no address of its own (the query is the same as a page's).
+pub fn page_address() -> String {
+    "index.html".into()
+}
+
 /// Reads a dropped file's bytes and gives them to `done`, at once.
 pub fn read_dropped(
     file: Arc<dyn egui::DroppedFile>,
     done: impl FnOnce(Result<Vec<u8>, String>) + 'static,
 ) {
     done(file.bytes());
+}
+
+/// Where bytes the user saves go on the desktop: the file chosen in the
+/// save dialog.
+pub struct SaveTo(PathBuf);
+
+impl SaveTo {
+    /// Asks `dialog` where to save (offering `question`'s name); `None`
+    /// when cancelled.
+    pub fn ask(dialog: &dyn AskFile, question: &FileQuestion) -> Option<Self> {
+        dialog.ask(question).map(Self)
+    }
+
+    /// Where the bytes go, as the window says it.
+    pub fn describe(&self) -> String {
+        self.0.display().to_string()
+    }
+
+    /// Writes `bytes` there, whole or not at all (a temporary file
+    /// renamed over it).
+    pub fn write(&self, bytes: &[u8]) -> anyhow::Result<()> {
+        crate::image_file::write_atomically(&self.0, |file| {
+            std::io::Write::write_all(file, bytes)?;
+            Ok(())
+        })
+        .with_context(|| format!("cannot write {}", self.0.display()))
+    }
 }

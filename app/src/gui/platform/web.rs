@@ -18,6 +18,8 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::super::WorkbenchApp;
+pub use super::download::{NO_FILES, SaveTo};
+pub use super::web_link::{fetch, page_address};
 use crate::load::SceneSource;
 use tracer::scene::Scene;
 use tracer::stats::RenderStats;
@@ -365,10 +367,11 @@ impl eframe::App for Page {
             self.slice_ended = None;
         }
         self.tell_page();
+        let downloads_waiting = super::download::give_downloads();
         // Workers do not wake the page (WORK_WAKES_WINDOW): it looks again
         // while a render or other background work runs, and once after
         // (the frame that sees it done shows its result).
-        if self.app.is_rendering() || busy() {
+        if self.app.is_rendering() || busy() || downloads_waiting {
             ui.ctx().request_repaint_after(POLL);
         }
     }

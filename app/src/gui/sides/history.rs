@@ -175,11 +175,16 @@ impl History {
 
     /// The edits made, in order, as `--set` arguments for the command line.
     pub fn set_lines(&self) -> String {
-        self.done
+        self.texts()
             .iter()
-            .map(|s| format!("--set '{}'", s.edit))
+            .map(|text| format!("--set '{text}'"))
             .collect::<Vec<_>>()
             .join(" ")
+    }
+
+    /// The edits made, in order, in `--set`'s words (`object 5 ior 1.33`).
+    pub fn texts(&self) -> Vec<String> {
+        self.done.iter().map(|s| s.edit.to_string()).collect()
     }
 
     /// The edits made, described against `scene` ("sphere #5 ior 1.33"),

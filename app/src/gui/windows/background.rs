@@ -15,6 +15,7 @@ use egui::{ColorImage, TextureHandle, TextureOptions};
 use image::RgbImage;
 use image::imageops::FilterType;
 
+use crate::gui::platform::file_button;
 use crate::gui::platform::target;
 
 /// Work running on its own thread, sending updates of type `U`.
@@ -239,7 +240,9 @@ impl<P: Send + 'static, M: Send + 'static> Measuring<P, M> {
         } else if ui.button("Run").clicked() {
             *start = true;
         }
-        !self.rows.is_empty() && !self.is_running() && ui.button("Export...").clicked()
+        !self.rows.is_empty()
+            && !self.is_running()
+            && file_button(ui, true, egui::Button::new("Export...")).clicked()
     }
 
     /// Runs `write` into a folder the user picks (see [`Export::start`]);

@@ -4,11 +4,13 @@
 //! whole or not at all (a cancelled export writes nothing).
 
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
 
 use egui::Ui;
 
-use crate::gui::platform::target;
+use crate::gui::app::{Answer, FileDialog, FileQuestion};
+use crate::gui::platform::target::{self, SaveTo};
 use crate::reports::lab::{self, ReportProgress, Request};
 
 use super::background::Background;
@@ -17,18 +19,18 @@ use super::background::Background;
 enum Update {
     Progress(ReportProgress),
     /// Where the page went; `None` when cancelled.
-    Finished(Result<Option<PathBuf>, String>),
+    Finished(Result<Option<String>, String>),
 }
 
 /// The export's state: a file being chosen, the report being measured,
 /// or what the last one did.
 #[derive(Default)]
 pub struct ReportExport {
-    choosing: Option<Receiver<Option<PathBuf>>>,
+    choosing: Option<Receiver<Option<SaveTo>>>,
     task: Option<Background<Update>>,
     progress: Option<ReportProgress>,
-    /// Where the running export writes.
-    target: Option<PathBuf>,
+    /// Where the running export writes, as said.
+    target: Option<String>,
     /// What the last export did, shown until the next.
     pub message: Option<String>,
 }
@@ -43,17 +45,13 @@ impl ReportExport {
         self.progress.as_ref()
     }
 
-    /// Asks where to save the page, on a thread (the dialog must not block
-    /// the window); [`ReportExport::chosen`] gives the answer.
-    pub fn choose_file(&mut self) {
+    /// Asks `dialog` where to save the page, on a thread (the dialog must
+    /// not block the window): a file on the desktop, a download on the
+    /// page; [`ReportExport::chosen`] gives the answer.
+    pub fn choose_file(&mut self, dialog: Arc<dyn FileDialog>) {
         let (tx, rx) = channel();
         let spawned = target::spawn("report file", move || {
-            let path = target::FileDialog::new()
-                .set_title("Export the lab report")
-                .set_file_name("report.html")
-                .add_filter("HTML page", &["html"])
-                .save_file();
-            let _ = tx.send(path);
+            let _ = tx.send(SaveTo::ask(&*dialog, &question()));
         });
         match spawned {
             Ok(_) => self.choosing = Some(rx),
@@ -65,12 +63,13 @@ impl ReportExport {
     /// test does, having no desktop to show it on.
     pub fn choose(&mut self, path: PathBuf) {
         let (tx, rx) = channel();
-        let _ = tx.send(Some(path));
+        let _ = tx.send(SaveTo::ask(&Answer(path), &question()));
         self.choosing = Some(rx);
     }
 
-    /// The file the user chose, once chosen; a dismissed dialog says so.
-    pub fn chosen(&mut self) -> Option<PathBuf> {
+    /// Where the user chose to save, once chosen; a dismissed dialog says
+    /// so.
+    pub fn chosen(&mut self) -> Option<SaveTo> {
         let answer = self.choosing.as_ref()?.try_recv().ok()?;
         self.choosing = None;
         if answer.is_none() {
@@ -79,13 +78,13 @@ impl ReportExport {
         answer
     }
 
-    /// Measures `request` and writes its page to `path`, on a thread;
-    /// `wake` asks the window to redraw.
-    pub fn start(&mut self, request: Request, path: PathBuf, wake: impl Fn() + Send + 'static) {
+    /// Measures `request` and saves its page `to` the file or download
+    /// chosen, on a thread; `wake` asks the window to redraw.
+    pub fn start(&mut self, request: Request, to: SaveTo, wake: impl Fn() + Send + 'static) {
         self.cancel();
         self.message = None;
         self.progress = None;
-        self.target = Some(path.clone());
+        self.target = Some(to.describe());
         let spawned = Background::spawn("report", move |cancel, tx| {
             let outcome = lab::measure(&request, cancel, &mut |p| {
                 let _ = tx.send(Update::Progress(p.clone()));
@@ -93,8 +92,8 @@ impl ReportExport {
             })
             .and_then(|lab| match lab {
                 Some(lab) => {
-                    lab::write_atomically(&path, &lab::page(&lab)?)?;
-                    Ok(Some(path))
+                    to.write(lab::page(&lab)?.as_bytes())?;
+                    Ok(Some(to.describe()))
                 }
                 None => Ok(None),
             });
@@ -121,7 +120,7 @@ impl ReportExport {
                 Update::Progress(p) => self.progress = Some(p),
                 Update::Finished(result) => {
                     self.message = Some(match result {
-                        Ok(Some(path)) => format!("report written to {}", path.display()),
+                        Ok(Some(to)) => format!("report written to {to}"),
                         Ok(None) => "report cancelled: nothing written".into(),
                         Err(e) => format!("report not written: {e}"),
                     });
@@ -152,7 +151,7 @@ impl ReportExport {
     fn contents(&mut self, ui: &mut Ui) {
         if self.is_running() {
             if let Some(target) = &self.target {
-                ui.label(format!("Measuring for {}", target.display()));
+                ui.label(format!("Measuring for {target}"));
             }
             let (fraction, doing) = self
                 .progress
@@ -166,5 +165,16 @@ impl ReportExport {
         } else if let Some(message) = &self.message {
             ui.label(message);
         }
+    }
+}
+
+/// What Export report... asks: a name for the HTML page.
+fn question() -> FileQuestion {
+    FileQuestion {
+        save: true,
+        pick_folder: false,
+        filter: ("HTML page", &["html"]),
+        folder: None,
+        name: Some("report.html".into()),
     }
 }
