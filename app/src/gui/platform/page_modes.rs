@@ -13,9 +13,7 @@ use std::sync::mpsc;
 use anyhow::Context;
 use tracer::accel::AccelKind;
 use tracer::render::Encoding;
-use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
-use wasm_bindgen_futures::JsFuture;
 
 use crate::cli::{EncodingArgs, SettingsArgs};
 use crate::compare_side::side_from_flags;
@@ -222,18 +220,8 @@ async fn scene_source(name: String) -> Result<SceneSource, JsValue> {
 
 /// The text at `url` (relative to the page), or why not.
 async fn fetch_text(url: &str) -> Result<String, JsValue> {
-    let window = web_sys::window().ok_or_else(|| JsValue::from_str("no window"))?;
-    let response = JsFuture::from(window.fetch_with_str(url)).await?;
-    let response: web_sys::Response = response.dyn_into()?;
-    if !response.ok() {
-        return Err(JsValue::from_str(&format!(
-            "{url}: HTTP {}",
-            response.status()
-        )));
-    }
-    let text = JsFuture::from(response.text()?).await?;
-    text.as_string()
-        .ok_or_else(|| JsValue::from_str(&format!("{url}: not text")))
+    let bytes = super::web_link::fetched(url).await?;
+    String::from_utf8(bytes).map_err(|_| JsValue::from_str(&format!("{url}: not UTF-8 text")))
 }
 
 fn replay_all(tx: &mpsc::Sender<Said>) {

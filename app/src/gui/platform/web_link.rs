@@ -20,7 +20,8 @@ pub fn fetch(url: &str, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
     });
 }
 
-async fn fetched(url: &str) -> Result<Vec<u8>, JsValue> {
+/// The bytes at `url` (relative to the page), or why there are none.
+pub async fn fetched(url: &str) -> Result<Vec<u8>, JsValue> {
     let window = web_sys::window().ok_or_else(|| JsValue::from_str("no window"))?;
     let response: web_sys::Response = JsFuture::from(window.fetch_with_str(url))
         .await
