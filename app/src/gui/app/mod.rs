@@ -12,7 +12,7 @@ mod logic;
 mod messages;
 mod navigation;
 mod persisted;
-mod saving;
+pub(crate) mod saving;
 mod testing;
 
 pub use saving::{Answer, FileDialog, FileQuestion};

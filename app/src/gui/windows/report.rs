@@ -9,7 +9,7 @@ use std::sync::mpsc::{Receiver, channel};
 
 use egui::Ui;
 
-use crate::gui::app::{Answer, FileDialog, FileQuestion};
+use crate::gui::app::saving::{Answer, FileDialog, FileQuestion};
 use crate::gui::platform::target::{self, SaveTo};
 use crate::reports::lab::{self, ReportProgress, Request};
 
