@@ -15,7 +15,7 @@ mod persisted;
 pub(crate) mod saving;
 mod testing;
 
-pub use saving::{Answer, FileDialog, FileQuestion};
+pub use saving::{FileDialog, FileQuestion};
 
 use tracer::render::JobState;
 
