@@ -184,8 +184,10 @@ pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
         let _ = tracer::render::driver::set_default_host(Host::Slices);
     }
     say_panics_on_the_page();
-    let query = web_sys::window().and_then(|w| w.location().search().ok());
-    if let Some(mode) = query.as_deref().and_then(super::page_modes::asked) {
+    let query = web_sys::window()
+        .and_then(|w| w.location().search().ok())
+        .unwrap_or_default();
+    if let Some(mode) = super::page_modes::asked(&query) {
         return mode.run().await;
     }
     hold_renders_while_hidden()?;
@@ -205,10 +207,9 @@ pub async fn start(canvas_id: String, workers: usize) -> Result<(), JsValue> {
         .start(
             canvas,
             options,
-            Box::new(|cc| {
+            Box::new(move |cc| {
                 let mut app = WorkbenchApp::new(&cc.egui_ctx, cc.storage, None);
-                let query = web_sys::window().and_then(|w| w.location().search().ok());
-                app.open_link(&query.unwrap_or_default());
+                app.open_link(&query);
                 Ok(Box::new(Page {
                     app,
                     said: String::new(),
@@ -304,7 +305,7 @@ struct Page {
 
 impl Page {
     fn tell_page(&mut self) {
-        let (state, passes, rays, tiles) = match self.app.shown() {
+        let (state, passes, tiles, on) = match self.app.shown() {
             Some(shown) => (
                 match &shown.state {
                     JobState::Building => "building".to_string(),
@@ -314,10 +315,10 @@ impl Page {
                     JobState::Failed(message) => format!("failed: {message}"),
                 },
                 shown.stats.passes_done,
-                shown.stats.counters.total_rays(),
                 tiles_by_worker(&shown.stats),
+                rendered_on(&shown.stats).unwrap_or_default(),
             ),
-            None => ("starting".to_string(), 0, 0, String::new()),
+            None => ("starting".to_string(), 0, String::new(), String::new()),
         };
         let state = match self.app.error() {
             Some(error) => format!("error: {error}"),
@@ -330,7 +331,7 @@ impl Page {
         };
         let scene = self.app.engine().scene().map(|s| s.source.label());
         let scene = scene.unwrap_or_default();
-        let said = format!("{state}|{passes}|{rays}|{tiles}|{lesson}|{scene}");
+        let said = format!("{state}|{passes}|{tiles}|{lesson}|{scene}");
         if said == self.said {
             return;
         }
@@ -340,14 +341,12 @@ impl Page {
         {
             let _ = body.set_attribute("data-render", &state);
             let _ = body.set_attribute("data-passes", &passes.to_string());
-            let _ = body.set_attribute("data-rays", &rays.to_string());
             let _ = body.set_attribute("data-lesson", &lesson);
             let _ = body.set_attribute("data-scene", &scene);
             let workers = WORKERS.load(Ordering::Relaxed).to_string();
             let _ = body.set_attribute("data-workers", &workers);
             let _ = body.set_attribute("data-tiles", &tiles);
-            let on = self.app.shown().and_then(|shown| rendered_on(&shown.stats));
-            let _ = body.set_attribute("data-rendered-on", &on.unwrap_or_default());
+            let _ = body.set_attribute("data-rendered-on", &on);
         }
         self.said = said;
     }
