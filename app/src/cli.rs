@@ -33,9 +33,9 @@ pub struct Cli {
     /// Open the window with the observer view on (the scene from outside).
     #[arg(long)]
     pub observer: bool,
-    /// Open the window on this lesson file (see docs/LESSONS.md), its first
-    /// step set up.
-    #[arg(long, value_name = "TOML", conflicts_with = "scene")]
+    /// Open the window on this lesson, its first step set up: a lesson file
+    /// (see docs/LESSONS.md) or a bundled lesson's name (`--lesson shadows`).
+    #[arg(long, value_name = "NAME|TOML", conflicts_with = "scene")]
     pub lesson: Option<PathBuf>,
     /// Add a folder of lessons (its .toml files, or those its
     /// lessons.index names) to the Lessons panel's list, by chapter after

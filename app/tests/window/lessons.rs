@@ -394,3 +394,64 @@ fn a_link_to_nothing_bundled_says_what_there_is() {
         assert!(!harness.state().lessons().open, "{query} opened the panel");
     }
 }
+
+/// The Lessons panel sits beside the image, not over it: the step's text
+/// and buttons and the image's area do not overlap, at the window's
+/// default size.
+#[test]
+fn the_lessons_panel_leaves_the_image_uncovered() {
+    let (_dir, mut harness) = open_lesson("beside", LESSON);
+    harness.run_steps(2);
+    let image = harness.get_by_role_and_label(Role::Image, "Render").rect();
+    for label in [
+        "Set up this step",
+        "Next",
+        "Show a hint",
+        "Export progress...",
+    ] {
+        let Some(widget) = harness.query_by_label(label) else {
+            continue;
+        };
+        let rect = widget.rect();
+        assert!(
+            !image.intersects(rect),
+            "{label} at {rect:?} covers the image's area {image:?}"
+        );
+    }
+    let next = harness.get_by_label("Next").rect();
+    assert!(
+        next.min.x >= image.max.x,
+        "{next:?} is not right of {image:?}"
+    );
+    assert!(image.width() > 300.0, "the image got {image:?}");
+}
+
+/// `workbench --lesson NAME` opens a bundled lesson as `lesson check
+/// NAME` finds it; a name that is neither a lesson nor a file is said,
+/// with the lessons there are.
+#[test]
+fn the_lesson_argument_takes_a_bundled_name() {
+    let mut harness = ready_window(WINDOW);
+    harness
+        .state_mut()
+        .open_lesson_argument(std::path::Path::new("shadows"));
+    wait_for(&mut harness, "the shadows lesson's scene", |app| {
+        app.lessons().lesson().is_some_and(|l| l.name == "shadows")
+            && app
+                .engine()
+                .scene()
+                .is_some_and(|s| s.source.label() == "shadows.p3f")
+    });
+    assert!(harness.state().lessons().open);
+
+    harness
+        .state_mut()
+        .open_lesson_argument(std::path::Path::new("shadowz"));
+    harness.run_steps(2);
+    let error = harness.state().error().unwrap_or_default().to_string();
+    assert!(
+        error.contains("no bundled lesson called `shadowz` and no such file")
+            && error.contains("soft_shadows"),
+        "{error}"
+    );
+}

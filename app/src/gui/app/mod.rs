@@ -60,7 +60,7 @@ pub struct WorkbenchApp {
     /// Times what the window times itself (notices, undo steps, the
     /// observer's animation).
     clock: Clock,
-    /// The Lessons window: lessons, steps, checks, progress.
+    /// The Lessons panel: lessons, steps, checks, progress.
     lessons: Lessons,
     /// A lesson step being set up, waiting for its scene.
     pending_setup: Option<lessons::PendingSetup>,
@@ -275,15 +275,13 @@ impl WorkbenchApp {
         }
     }
 
-    /// The windows over the image: help, the editor, benchmark, studies,
-    /// lessons.
+    /// The windows over the image: help, the editor, benchmark, studies.
     fn tool_windows(&mut self, ctx: &egui::Context, commands: &mut Vec<Command>) {
         help::window(ctx, &mut self.tools.help_open);
         self.editor_window(ctx, commands);
         self.benchmark_window(ctx);
         self.report_window(ctx);
         self.studies_window(ctx);
-        self.lessons_window(ctx);
     }
 }
 
@@ -304,6 +302,7 @@ impl eframe::App for WorkbenchApp {
         let mut commands = Command::pressed(&ctx);
         self.side_panel(ui, &mut commands);
         self.statistics_panel(ui);
+        self.lessons_panel(ui);
         let b = self.sides.b.as_ref();
         self.tools.inspector.update(&self.sides.a, b);
         self.tools.inspector.panel(ui, b.is_some());

@@ -23,7 +23,7 @@ use crate::load::SceneSource;
 /// Results of background dialogs and saves, delivered to the UI thread.
 pub enum Reply {
     Open(PathBuf),
-    /// A folder of lessons to add to the Lessons window's list.
+    /// A folder of lessons to add to the Lessons panel's list.
     LessonFolder(PathBuf),
     /// A dropped file that is no file on disk, by name, and its bytes
     /// or why they could not be read.
