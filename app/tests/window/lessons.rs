@@ -351,6 +351,33 @@ fn a_link_opens_a_bundled_lesson_set_up() {
     assert_eq!(harness.state().error(), None);
 }
 
+/// A second scene asked for while the first is still being fetched (a
+/// link, or a pick in the page's scene list): the last asked for opens,
+/// and what the first fetch gives (here: no such file) is dropped, not
+/// said.
+#[test]
+fn the_last_scene_asked_for_wins_over_one_being_fetched() {
+    let dir = Scratch::new("last-scene-wins");
+    let wanted = dir.join("wanted.p3f");
+    let scene = workbench::bundled::find("balls_low").unwrap();
+    std::fs::write(&wanted, scene.text).unwrap();
+    let mut harness = small_window(Harness::builder());
+    let first = dir.join("missing.p3f");
+    harness
+        .state_mut()
+        .open_link(&format!("?scene={}", first.display()));
+    harness
+        .state_mut()
+        .open_link(&format!("?scene={}", wanted.display()));
+    let label = wanted.display().to_string();
+    wait_for(&mut harness, "the scene asked for last", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == label)
+    });
+    assert_eq!(harness.state().error(), None);
+}
+
 /// A link naming no bundled lesson or scene, or asking for what the page
 /// does not read, says so with the names there are, and opens nothing;
 /// the error outlasts a scene loaded after it.

@@ -16,6 +16,7 @@ use tracer::scene::{Scene, write_p3f_in};
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use crate::gui::platform::target;
 use crate::gui::platform::target::SaveTo;
+use crate::gui::platform::transfer::Transfer;
 use crate::gui::sides::{Activity, Side, SideId};
 use crate::lessons::progress::Progress;
 use crate::load::SceneSource;
@@ -31,10 +32,11 @@ pub enum Reply {
         path: PathBuf,
         bytes: Result<Vec<u8>, String>,
     },
-    /// A file a link fetched from the page's site (`url`): a lesson or
-    /// a scene, and its bytes or why they could not be fetched.
+    /// A file fetched from the page's site (`url`, fetch number `id`): a
+    /// lesson or a scene, and its bytes or why they could not be fetched.
     Fetched {
         url: String,
+        id: u64,
         lesson: bool,
         bytes: Result<Vec<u8>, String>,
     },
@@ -211,12 +213,18 @@ impl Dialogs {
         });
     }
 
-    /// Fetches `url` from the page's site (`target::fetch`) and replies
-    /// with its bytes, to open as a `lesson` or a scene.
-    pub fn fetch(&self, url: &str, lesson: bool) {
+    /// Fetches `url` from the page's site (`target::fetch`, followed by
+    /// `progress`) and replies with its bytes, as fetch number `id`, to
+    /// open as a `lesson` or a scene.
+    pub fn fetch(&self, url: &str, id: u64, lesson: bool, progress: Transfer) {
         let (reply, url) = (self.sender.clone(), url.to_string());
-        target::fetch(&url.clone(), move |bytes| {
-            let _ = reply.send(Reply::Fetched { url, lesson, bytes });
+        target::fetch(&url.clone(), progress, move |bytes| {
+            let _ = reply.send(Reply::Fetched {
+                url,
+                id,
+                lesson,
+                bytes,
+            });
         });
     }
 
