@@ -482,3 +482,23 @@ fn the_lesson_argument_takes_a_bundled_name() {
         "{error}"
     );
 }
+
+/// A link's render flags reach the render, its `width=` included (the
+/// window sizes its image by the resolution scale, which the width sets).
+#[test]
+fn a_links_settings_and_width_reach_the_render() {
+    let mut harness = ready_window(WINDOW);
+    harness
+        .state_mut()
+        .open_link("?scene=glass&width=96&spp=2&no-aa");
+    wait_for(&mut harness, "the linked scene's settings", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "glass")
+            && app.engine().settings().is_some_and(|s| s.samples == 2)
+    });
+    let settings = harness.state().engine().settings().cloned().unwrap();
+    assert_eq!(settings.width, 96, "{settings:?}");
+    assert!(!settings.antialiasing);
+    assert_eq!(harness.state().error(), None);
+}

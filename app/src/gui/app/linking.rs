@@ -162,10 +162,16 @@ impl WorkbenchApp {
             Ok(flags) => flags,
             Err(e) => return self.messages.lasting_error(e),
         };
+        // Through the controls' own change, so a link's `width=` becomes
+        // the resolution scale the window sizes its image by.
+        let scene_width = self
+            .sides
+            .a
+            .engine
+            .scene()
+            .map_or(1, |s| s.scene.view.width);
         let controls = &mut self.sides.a.controls;
-        flags.apply(&mut controls.render);
-        let accel = controls.render.accel;
-        controls.set_accel(accel);
+        controls.change_settings(scene_width, |settings| flags.apply(settings));
         for text in &flags.set {
             let Some(scene) = self.sides.a.engine.scene() else {
                 return;
