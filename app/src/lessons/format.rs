@@ -378,7 +378,10 @@ impl Source<'_> {
             let Some(dir) = dir else {
                 return Err(self.error(
                     file.span(),
-                    "a bundled lesson cannot name a scene file; use `bundled` or `p3f`".into(),
+                    "this lesson has no folder to read a scene file from (a bundled lesson, or \
+                     one dropped on or linked from the web page): give its scene as `bundled` \
+                     or `p3f`"
+                        .into(),
                 ));
             };
             let path = dir.join(file.get_ref());
@@ -574,6 +577,18 @@ solution = { settings = "--aa" }
             ("test.toml", 2, 11),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_scene_file_without_a_folder_says_where_the_scene_can_be() {
+        let text = MINIMAL.replace("bundled = \"glass\"", "file = \"prism.p3f\"");
+        assert_ne!(text, MINIMAL);
+        let e = parse(&text).unwrap_err();
+        assert!(
+            e.message.contains("no folder to read a scene file from"),
+            "{e}"
+        );
+        assert!(e.message.contains("linked from the web page"), "{e}");
     }
 
     #[test]
