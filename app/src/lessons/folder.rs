@@ -37,11 +37,15 @@ pub fn files(dir: &Path) -> Result<Vec<PathBuf>> {
 
 /// The lesson files an index in `dir` names, in its order.
 pub fn from_index(dir: &Path, text: &str) -> Vec<PathBuf> {
+    from_index_lines(text).map(|l| dir.join(l)).collect()
+}
+
+/// The lesson files an index names, as written (relative to its folder),
+/// in its order: also what a page fetches, beside the index's URL.
+pub fn from_index_lines(text: &str) -> impl Iterator<Item = &str> {
     text.lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .map(|l| dir.join(l))
-        .collect()
 }
 
 /// Every lesson of `dir` read, each with its file: a teacher sees every
@@ -65,7 +69,7 @@ pub fn in_chapter_order(lessons: &mut [Lesson]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lessons::format::parse_lesson;
+    use crate::lessons::format::{SceneFiles, parse_lesson};
 
     #[test]
     fn an_index_names_the_files_in_its_order() {
@@ -86,7 +90,7 @@ mod tests {
                  check = {{ kind = \"value\", of = \"aa\", is = \"on\" }}\n\
                  solution = {{ settings = \"--aa\" }}\n"
             );
-            parse_lesson(&text, name, name, None).unwrap()
+            parse_lesson(&text, name, name, SceneFiles::Nowhere).unwrap()
         };
         let mut lessons = vec![
             lesson("bundled 3", 3),

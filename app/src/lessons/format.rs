@@ -78,6 +78,9 @@ pub enum LessonScene {
     /// A scene file, its path made from the lesson file's folder, where
     /// the lesson names it.
     File(Located<PathBuf>),
+    /// A scene file fetched beside a lesson linked from the web page: its
+    /// URL, where the lesson names it, and its text.
+    Fetched { url: Located<String>, text: String },
     /// P3F written in the lesson; `first_line` is the lesson file's line
     /// holding the scene's line 1, so its errors name the lesson's lines.
     Inline { text: String, first_line: usize },
@@ -205,23 +208,52 @@ pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {
     let name = path
         .file_stem()
         .map_or_else(|| "lesson".into(), |s| s.to_string_lossy().into_owned());
-    parse_lesson(&text, &name, &file, path.parent())
+    let scenes = path
+        .parent()
+        .map_or(SceneFiles::Nowhere, SceneFiles::Folder);
+    parse_lesson(&text, &name, &file, scenes)
 }
 
 /// The bundled lesson `name`, read.
 pub fn read_bundled(lesson: &bundled::BundledLesson) -> Result<Lesson, LessonErrors> {
     let file = format!("lessons/{}.toml", lesson.name);
-    parse_lesson(lesson.text, lesson.name, &file, None)
+    parse_lesson(lesson.text, lesson.name, &file, SceneFiles::Nowhere)
+}
+
+/// Where a lesson's `file = ...` scene is read from.
+#[derive(Debug, Clone, Copy)]
+pub enum SceneFiles<'a> {
+    /// Nowhere: a bundled lesson, or one dropped on the web page.
+    Nowhere,
+    /// The lesson file's folder on disk.
+    Folder(&'a Path),
+    /// Fetched beside a lesson linked from the web page: the scene's URL
+    /// (the lesson's `file` read beside the lesson's URL) and its text.
+    Fetched { url: &'a str, text: &'a str },
+}
+
+/// The scene file a lesson's `[scene]` names (`file = "prism.p3f"`), if
+/// any, read before the lesson is, so a page can fetch it first.
+pub fn scene_file_named(text: &str) -> Option<String> {
+    #[derive(Deserialize)]
+    struct SceneOnly {
+        scene: Option<FileOnly>,
+    }
+    #[derive(Deserialize)]
+    struct FileOnly {
+        file: Option<String>,
+    }
+    toml::from_str::<SceneOnly>(text).ok()?.scene?.file
 }
 
 /// Reads lesson `text`, named `name`, from `file` (as errors name it);
-/// a scene `file = ...` is found from `dir`. A file TOML cannot read is
+/// a scene `file = ...` is found in `scenes`. A file TOML cannot read is
 /// one error; past that, every mistake is collected.
 pub fn parse_lesson(
     text: &str,
     name: &str,
     file: &str,
-    dir: Option<&Path>,
+    scenes: SceneFiles<'_>,
 ) -> Result<Lesson, LessonErrors> {
     let source = Source { file, text };
     source.check_version()?;
@@ -239,7 +271,7 @@ pub fn parse_lesson(
             format!("expected a chapter from 1 to 99, found {chapter}"),
         ));
     }
-    let scene = keep(&mut errors, source.scene(raw.scene, dir));
+    let scene = keep(&mut errors, source.scene(raw.scene, scenes));
     let start = match raw.start {
         Some(actions) => keep(&mut errors, source.actions(actions, Role::Setup)),
         None => Some(Actions::default()),
@@ -354,7 +386,7 @@ impl Source<'_> {
     fn scene(
         &self,
         raw: Spanned<RawScene>,
-        dir: Option<&Path>,
+        scenes: SceneFiles<'_>,
     ) -> Result<LessonScene, LessonError> {
         let span = raw.span();
         let raw = raw.into_inner();
@@ -375,26 +407,7 @@ impl Source<'_> {
             given.push(LessonScene::Bundled(name.into_inner()));
         }
         if let Some(file) = raw.file {
-            let Some(dir) = dir else {
-                return Err(self.error(
-                    file.span(),
-                    "this lesson has no folder to read a scene file from (a bundled lesson, or \
-                     one dropped on or linked from the web page): give its scene as `bundled` \
-                     or `p3f`"
-                        .into(),
-                ));
-            };
-            let path = dir.join(file.get_ref());
-            if !path.is_file() {
-                return Err(self.error(
-                    file.span(),
-                    format!(
-                        "no scene file {} (`file` is read from the lesson's folder)",
-                        path.display()
-                    ),
-                ));
-            }
-            given.push(LessonScene::File(self.located(file.span(), path)));
+            given.push(self.scene_file(file, scenes)?);
         }
         if let Some(p3f) = raw.p3f {
             let span = p3f.span();
@@ -467,6 +480,39 @@ impl Source<'_> {
                 })
             }
             _ => Err(LessonErrors(errors)),
+        }
+    }
+
+    /// The scene `file` names, from where `scenes` says files are.
+    fn scene_file(
+        &self,
+        file: Spanned<String>,
+        scenes: SceneFiles<'_>,
+    ) -> Result<LessonScene, LessonError> {
+        match scenes {
+            SceneFiles::Nowhere => Err(self.error(
+                file.span(),
+                "this lesson has no folder to read a scene file from (a bundled lesson, or \
+                 one dropped on the web page): give its scene as `bundled` or `p3f`"
+                    .into(),
+            )),
+            SceneFiles::Folder(dir) => {
+                let path = dir.join(file.get_ref());
+                if !path.is_file() {
+                    return Err(self.error(
+                        file.span(),
+                        format!(
+                            "no scene file {} (`file` is read from the lesson's folder)",
+                            path.display()
+                        ),
+                    ));
+                }
+                Ok(LessonScene::File(self.located(file.span(), path)))
+            }
+            SceneFiles::Fetched { url, text } => Ok(LessonScene::Fetched {
+                url: self.located(file.span(), url.to_string()),
+                text: text.to_string(),
+            }),
         }
     }
 
@@ -551,7 +597,8 @@ solution = { settings = "--aa" }
 
     /// The lesson, or its first mistake.
     fn parse(text: &str) -> Result<Lesson, LessonError> {
-        parse_lesson(text, "test", "test.toml", None).map_err(|LessonErrors(mut e)| e.remove(0))
+        parse_lesson(text, "test", "test.toml", SceneFiles::Nowhere)
+            .map_err(|LessonErrors(mut e)| e.remove(0))
     }
 
     #[test]
@@ -588,7 +635,7 @@ solution = { settings = "--aa" }
             e.message.contains("no folder to read a scene file from"),
             "{e}"
         );
-        assert!(e.message.contains("linked from the web page"), "{e}");
+        assert!(e.message.contains("dropped on the web page"), "{e}");
     }
 
     #[test]
@@ -648,7 +695,8 @@ solution = { settings = "--aa" }
         let current = format!("format-version = {FORMAT_VERSION}\n{MINIMAL}");
         assert!(parse(&current).is_ok());
         let later = format!("format-version = 2\nnew-key = 1\n{MINIMAL}");
-        let LessonErrors(errors) = parse_lesson(&later, "t", "t.toml", None).unwrap_err();
+        let LessonErrors(errors) =
+            parse_lesson(&later, "t", "t.toml", SceneFiles::Nowhere).unwrap_err();
         assert_eq!(errors.len(), 1, "{errors:?}");
         let e = &errors[0];
         assert_eq!((e.line, e.column), (1, 18), "{e}");

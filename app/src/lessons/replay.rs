@@ -33,21 +33,14 @@ fn load_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
     let loaded = match &lesson.scene {
         LessonScene::Bundled(name) => read(SceneSource::Bundled(name.clone()))?,
         LessonScene::File(path) => read(SceneSource::File(path.value.clone())).map_err(|e| {
-            // A problem with the whole file is the lesson's, at its line;
-            // a mistake inside the scene keeps the scene's own place.
-            match e.downcast_ref::<ParseError>() {
-                Some(parse) if parse.line == 0 => anyhow::Error::new(LessonError {
-                    file: lesson.file.clone(),
-                    line: path.line,
-                    column: path.column,
-                    message: format!("the scene {}: {}", path.value.display(), parse.kind),
-                }),
-                _ => e.context(format!(
-                    "{}:{}:{}: the lesson's scene",
-                    lesson.file, path.line, path.column
-                )),
-            }
+            let name = path.value.display().to_string();
+            at_file_line(lesson, &name, (path.line, path.column), e)
         })?,
+        LessonScene::Fetched { url, text } => read(SceneSource::Written {
+            name: url.value.clone(),
+            text: text.clone(),
+        })
+        .map_err(|e| at_file_line(lesson, &url.value, (url.line, url.column), e))?,
         LessonScene::Inline { text, first_line } => {
             let dir = Path::new(&lesson.file).parent();
             let mut scene = parse_scene(text, None, &Limits::default()).map_err(|e| {
@@ -74,6 +67,29 @@ fn load_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
         }
     };
     Ok((loaded.scene, loaded.world))
+}
+
+/// A scene file's error `e`: a problem with the whole file (`name`) is
+/// the lesson's, at its `file =` line; a mistake inside the scene keeps
+/// the scene's own place.
+fn at_file_line(
+    lesson: &Lesson,
+    name: &str,
+    (line, column): (usize, usize),
+    e: anyhow::Error,
+) -> anyhow::Error {
+    match e.downcast_ref::<ParseError>() {
+        Some(parse) if parse.line == 0 => anyhow::Error::new(LessonError {
+            file: lesson.file.clone(),
+            line,
+            column,
+            message: format!("the scene {name}: {}", parse.kind),
+        }),
+        _ => e.context(format!(
+            "{}:{line}:{column}: the lesson's scene",
+            lesson.file
+        )),
+    }
 }
 
 /// The state before step `step` is done: the start, every earlier step's

@@ -12,6 +12,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use workbench::gui::WorkbenchApp;
 use workbench::lessons::Verdict;
+use workbench::lessons::format::LessonScene;
 use workbench::lessons::progress::Progress;
 use workbench::load::SceneSource;
 
@@ -501,4 +502,53 @@ fn a_links_settings_and_width_reach_the_render() {
     assert_eq!(settings.width, 96, "{settings:?}");
     assert!(!settings.antialiasing);
     assert_eq!(harness.state().error(), None);
+}
+
+/// A class's folder linked by its index (`?folder=class/lessons.index`),
+/// as a static host serves one: the lessons it names are fetched, each
+/// with the scene file it names beside it, listed by chapter and the
+/// first set up on its own scene; a lesson whose scene is missing is said
+/// with the scene's URL, the others still listed.
+#[test]
+fn a_linked_folder_fetches_its_lessons_and_their_scene_files() {
+    let dir = Scratch::new("window-linked-folder");
+    let scene = LESSON.split("p3f = \"\"\"\n").nth(1).unwrap();
+    let scene = scene.split("\"\"\"").next().unwrap();
+    std::fs::write(dir.join("ball.p3f"), scene).unwrap();
+    let with_file = |chapter: &str, file: &str| {
+        let start = LESSON.find("[scene]").unwrap();
+        let end = LESSON.find("[start]").unwrap();
+        let scene = format!("[scene]\nfile = \"{file}\"\n\n");
+        let text = format!("{}{scene}{}", &LESSON[..start], &LESSON[end..]);
+        text.replace("chapter = 7", &format!("chapter = {chapter}"))
+    };
+    std::fs::write(dir.join("late.toml"), with_file("9", "ball.p3f")).unwrap();
+    std::fs::write(dir.join("early.toml"), with_file("1", "ball.p3f")).unwrap();
+    std::fs::write(dir.join("lost.toml"), with_file("2", "nowhere.p3f")).unwrap();
+    let index = "# the class\nlate.toml\nearly.toml\n\nlost.toml\n";
+    std::fs::write(dir.join("lessons.index"), index).unwrap();
+    let mut harness = ready_window(WINDOW);
+    let index = dir.join("lessons.index").display().to_string();
+    harness.state_mut().open_link(&format!("?folder={index}"));
+    let ball = dir.join("ball.p3f").display().to_string();
+    wait_for(&mut harness, "the folder's first lesson set up", |app| {
+        app.lessons().lesson().is_some_and(|l| l.name == "early")
+            && app
+                .engine()
+                .scene()
+                .is_some_and(|s| s.source.label() == "early.p3f")
+    });
+    let names = harness.state().lessons().names();
+    assert!(
+        names.contains(&"late") && !names.contains(&"lost"),
+        "{names:?}"
+    );
+    let lesson = harness.state().lessons().lesson().unwrap();
+    assert!(matches!(&lesson.scene, LessonScene::Fetched { url, .. } if url.value == ball));
+    let error = harness.state().error().unwrap_or_default().to_string();
+    let nowhere = dir.join("nowhere.p3f").display().to_string();
+    assert!(
+        error.contains(&format!("cannot read its scene {nowhere}")),
+        "{error}"
+    );
 }

@@ -104,19 +104,30 @@ impl WorkbenchApp {
     /// and says whether the folder gave any; the files that do not read
     /// are said, the others still listed.
     pub fn open_lesson_folder(&mut self, dir: &Path) -> bool {
-        let read = match crate::lessons::folder::read(dir) {
-            Ok(read) => read,
+        match crate::lessons::folder::read(dir) {
+            Ok(read) => {
+                self.add_lessons(read.into_iter().map(|(_, l)| l.map_err(|e| e.to_string())))
+            }
             Err(e) => {
                 self.messages.lasting_error(format!("{e:#}"));
-                return false;
+                false
             }
-        };
+        }
+    }
+
+    /// Adds a folder's lessons, each read or why not, to the Lessons
+    /// panel's list, opens it on the folder's first, says the files that
+    /// do not read, and says whether any did.
+    pub(super) fn add_lessons(
+        &mut self,
+        read: impl IntoIterator<Item = Result<Lesson, String>>,
+    ) -> bool {
         let mut problems = Vec::new();
         let mut lessons = Vec::new();
-        for (_, lesson) in read {
+        for lesson in read {
             match lesson {
                 Ok(lesson) => lessons.push(lesson),
-                Err(e) => problems.push(e.to_string()),
+                Err(e) => problems.push(e),
             }
         }
         let any = !lessons.is_empty();

@@ -12,6 +12,8 @@ use crate::gui::platform::target;
 use crate::gui::platform::transfer::Transfer;
 use crate::load::SceneSource;
 
+use super::lesson_fetch::FetchFor;
+
 use super::WorkbenchApp;
 
 /// A link's settings and edits, waiting for its scene (`label`) to load.
@@ -81,7 +83,7 @@ impl WorkbenchApp {
                 },
             },
             Some(Source::Url(url)) => {
-                self.fetch(url, false);
+                self.fetch_for(url, FetchFor::Scene);
                 Some(url.clone())
             }
             None => None,
@@ -94,22 +96,23 @@ impl WorkbenchApp {
         }
         match &link.lesson {
             Some(Source::Bundled(name)) => self.open_bundled_lesson(name, link.step),
-            Some(Source::Url(url)) => {
-                self.link_step = link.step;
-                self.fetch(url, true);
-            }
+            Some(Source::Url(url)) => self.fetch_lesson(url, link.step),
             None => {}
+        }
+        if let Some(folder) = &link.folder {
+            self.fetch_folder(folder);
         }
     }
 
     /// Fetches `url` from the page's site (`target::fetch`), then opens it
-    /// as a dropped file is opened: a lesson (`lesson`) or a scene. A
-    /// scene fetch replaces the one under way: the last asked for opens.
-    fn fetch(&mut self, url: &str, lesson: bool) {
+    /// as `for_what` says: a scene as a dropped file opens, or a lesson's
+    /// file ([`Self::lesson_file_fetched`]). A scene fetch replaces the one
+    /// under way: the last asked for opens.
+    pub(super) fn fetch_for(&mut self, url: &str, for_what: FetchFor) -> u64 {
         self.fetched.urls.push(url.to_string());
         self.fetched.started += 1;
         let (id, transfer) = (self.fetched.started, Transfer::default());
-        if !lesson {
+        if for_what == FetchFor::Scene {
             self.cancel_scene_fetch();
             self.fetched.scene = Some(SceneFetch {
                 url: url.to_string(),
@@ -117,13 +120,14 @@ impl WorkbenchApp {
                 id,
             });
         }
-        self.dialogs.fetch(url, id, lesson, transfer);
+        self.dialogs.fetch(url, id, for_what, transfer);
+        id
     }
 
     /// Fetches a scene of `scenes/` the page does not embed (picked in the
     /// scene list, or named by a link), to open once it arrives.
     pub(super) fn fetch_site_scene(&mut self, scene: &SiteScene) {
-        self.fetch(&scene.url(), false);
+        self.fetch_for(&scene.url(), FetchFor::Scene);
     }
 
     /// Stops the scene fetch under way, if any: another scene was opened.
@@ -139,16 +143,17 @@ impl WorkbenchApp {
         &mut self,
         url: &str,
         id: u64,
-        lesson: bool,
+        for_what: FetchFor,
         bytes: Result<Vec<u8>, String>,
     ) {
-        if !lesson {
-            if self.fetched.scene.as_ref().is_none_or(|f| f.id != id) {
-                return;
-            }
-            self.fetched.scene = None;
+        if for_what != FetchFor::Scene {
+            return self.lesson_file_fetched(url, id, for_what, bytes);
         }
-        self.open_dropped_text(std::path::Path::new(url), bytes, lesson);
+        if self.fetched.scene.as_ref().is_none_or(|f| f.id != id) {
+            return;
+        }
+        self.fetched.scene = None;
+        self.open_dropped_text(std::path::Path::new(url), bytes, false);
     }
 
     /// Once a linked scene (`loaded`) is in: the link's settings on A's

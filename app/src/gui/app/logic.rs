@@ -5,7 +5,7 @@
 
 use tracer::render::{JobState, RenderSettings};
 
-use crate::lessons::format::parse_lesson;
+use crate::lessons::format::{SceneFiles, parse_lesson};
 use crate::load::SceneSource;
 use crate::load::is_lesson_file;
 use tracer::scene::mesh_io::MeshFormat;
@@ -38,9 +38,9 @@ impl WorkbenchApp {
                 Reply::Fetched {
                     url,
                     id,
-                    lesson,
+                    for_what,
                     bytes,
-                } => self.open_fetched(&url, id, lesson, bytes),
+                } => self.open_fetched(&url, id, for_what, bytes),
                 Reply::LessonFolder(dir) => {
                     self.open_lesson_folder(&dir);
                 }
@@ -158,8 +158,8 @@ impl WorkbenchApp {
         };
         if lesson {
             let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-            let step = self.link_step.take();
-            self.set_up_lesson_at(parse_lesson(&text, &stem, &name, None), step);
+            let lesson = parse_lesson(&text, &stem, &name, SceneFiles::Nowhere);
+            self.set_up_lesson(lesson);
         } else {
             self.open(SceneSource::Written { name, text });
         }

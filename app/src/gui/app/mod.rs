@@ -6,6 +6,7 @@
 
 mod command_handling;
 mod editing;
+mod lesson_fetch;
 mod lessons;
 mod linking;
 mod logic;
@@ -70,8 +71,8 @@ pub struct WorkbenchApp {
     progress_saved: crate::lessons::progress::Record,
     /// A link's settings and edits, waiting for its scene.
     pending_link: Option<linking::PendingLink>,
-    /// The step a link asked of the lesson it is fetching, from 1.
-    link_step: Option<usize>,
+    /// Lessons a link is fetching, with their scene files.
+    lesson_fetch: Option<lesson_fetch::LessonFetch>,
     /// The files links fetched, for Copy link.
     fetched: linking::Fetched,
 }
@@ -120,7 +121,7 @@ impl WorkbenchApp {
             pending_setup: None,
             progress_saved: progress.clone(),
             pending_link: None,
-            link_step: None,
+            lesson_fetch: None,
             fetched: linking::Fetched::default(),
         };
         app.lessons.progress = progress;

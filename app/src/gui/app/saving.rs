@@ -21,6 +21,8 @@ use crate::gui::sides::{Activity, Side, SideId};
 use crate::lessons::progress::Progress;
 use crate::load::SceneSource;
 
+use super::lesson_fetch::FetchFor;
+
 /// Results of background dialogs and saves, delivered to the UI thread.
 pub enum Reply {
     Open(PathBuf),
@@ -32,12 +34,12 @@ pub enum Reply {
         path: PathBuf,
         bytes: Result<Vec<u8>, String>,
     },
-    /// A file fetched from the page's site (`url`, fetch number `id`): a
-    /// lesson or a scene, and its bytes or why they could not be fetched.
+    /// A file fetched from the page's site (`url`, fetch number `id`),
+    /// what it is for, and its bytes or why they could not be fetched.
     Fetched {
         url: String,
         id: u64,
-        lesson: bool,
+        for_what: FetchFor,
         bytes: Result<Vec<u8>, String>,
     },
     Notice(String),
@@ -214,15 +216,15 @@ impl Dialogs {
     }
 
     /// Fetches `url` from the page's site (`target::fetch`, followed by
-    /// `progress`) and replies with its bytes, as fetch number `id`, to
-    /// open as a `lesson` or a scene.
-    pub fn fetch(&self, url: &str, id: u64, lesson: bool, progress: Transfer) {
+    /// `progress`) and replies with its bytes, as fetch number `id`, for
+    /// what `for_what` says.
+    pub fn fetch(&self, url: &str, id: u64, for_what: FetchFor, progress: Transfer) {
         let (reply, url) = (self.sender.clone(), url.to_string());
         target::fetch(&url.clone(), progress, move |bytes| {
             let _ = reply.send(Reply::Fetched {
                 url,
                 id,
-                lesson,
+                for_what,
                 bytes,
             });
         });

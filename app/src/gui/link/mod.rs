@@ -49,6 +49,9 @@ impl Source {
 pub struct Link {
     /// A lesson: opened in the Lessons panel, its step set up.
     pub lesson: Option<Source>,
+    /// A class's folder, by the URL of its index file (`lessons.index`,
+    /// one lesson file a line): its lessons listed, the first set up.
+    pub folder: Option<String>,
     /// The lesson's step to set up, counted from 1 as the Lessons panel
     /// counts them (the first when not given).
     pub step: Option<usize>,
@@ -93,6 +96,21 @@ impl Link {
                         return Err(twice());
                     }
                 }
+                "folder" => {
+                    if value.is_empty() {
+                        return Err(empty());
+                    }
+                    let Source::Url(url) = Source::read(key, value)? else {
+                        return Err(
+                            "the link's folder is a lessons.index file beside the page, \
+                             as folder=class/lessons.index"
+                                .into(),
+                        );
+                    };
+                    if link.folder.replace(url).is_some() {
+                        return Err(twice());
+                    }
+                }
                 "step" => {
                     let step = value.parse().ok().filter(|&s| s >= 1).ok_or_else(|| {
                         format!("the link's step is {value:?}, not a step number from 1")
@@ -106,6 +124,9 @@ impl Link {
         }
         if link.step.is_some() && link.lesson.is_none() {
             return Err("the link gives a step but no lesson: add lesson=NAME".into());
+        }
+        if link.folder.is_some() && link.lesson.is_some() {
+            return Err("the link gives a folder and a lesson: give one".into());
         }
         link.render_flags()?;
         Ok(link)
@@ -142,6 +163,9 @@ impl Link {
         let mut pairs = Vec::new();
         if let Some(lesson) = &self.lesson {
             pairs.push(format!("lesson={}", encode(lesson.text())));
+        }
+        if let Some(folder) = &self.folder {
+            pairs.push(format!("folder={}", encode(folder)));
         }
         if let Some(step) = self.step {
             pairs.push(format!("step={step}"));
@@ -229,6 +253,15 @@ pub fn settings_flags(now: &RenderSettings, base: &RenderSettings) -> Vec<(Strin
         flag("seed", now.seed.to_string());
     }
     flags
+}
+
+/// `relative` read beside `url`, as a page reads a relative link:
+/// `beside("class/lessons.index", "prism.toml")` is `class/prism.toml`.
+pub fn beside(url: &str, relative: &str) -> String {
+    match url.rfind('/') {
+        Some(slash) => format!("{}/{relative}", &url[..slash]),
+        None => relative.to_string(),
+    }
 }
 
 /// `text` with `+` as a space and `%XX` as that byte, or `None` when an

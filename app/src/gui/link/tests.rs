@@ -81,6 +81,20 @@ fn unknown_repeated_empty_and_broken_values_are_refused_by_name() {
         ("?lesson=a&step=0", "not a step number"),
         ("?lesson=a&step=two", "not a step number"),
         ("?step=2", "no lesson"),
+        ("?folder=class", "a lessons.index file beside the page"),
+        ("?folder=", "folder is empty"),
+        (
+            "?folder=a/lessons.index&folder=b/lessons.index",
+            "folder twice",
+        ),
+        (
+            "?folder=a/lessons.index&lesson=shadows",
+            "a folder and a lesson",
+        ),
+        (
+            "?folder=https://example.com/lessons.index",
+            "not on the page's own site",
+        ),
     ] {
         let error = Link::parse(query).unwrap_err();
         assert!(error.contains(said), "{query}: {error}");
@@ -110,6 +124,7 @@ fn settings_are_the_render_flags_and_their_errors_name_the_flag() {
 fn a_query_written_reads_back_as_the_same_link() {
     let link = Link {
         lesson: url("lessons/my lesson.toml"),
+        folder: None,
         step: Some(3),
         scene: bundled("balls_low"),
         settings: vec![
@@ -192,4 +207,24 @@ fn the_settings_on_screen_become_flags_that_set_them_again() {
         ),
         [("sampling".to_string(), "uniform".to_string())]
     );
+}
+
+#[test]
+fn a_folder_is_its_index_files_url_and_reads_back() {
+    let link = Link::parse("?folder=class/lessons.index").unwrap();
+    assert_eq!(link.folder.as_deref(), Some("class/lessons.index"));
+    assert_eq!(Link::parse(&link.query()), Ok(link));
+}
+
+#[test]
+fn a_file_is_read_beside_the_url_that_names_it() {
+    assert_eq!(
+        beside("class/lessons.index", "prism.toml"),
+        "class/prism.toml"
+    );
+    assert_eq!(
+        beside("a/b/mine.toml", "../scenes/x.p3f"),
+        "a/b/../scenes/x.p3f"
+    );
+    assert_eq!(beside("lessons.index", "prism.toml"), "prism.toml");
 }

@@ -61,7 +61,7 @@ pub fn write(name: &str) -> Result<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lessons::format::parse_lesson;
+    use crate::lessons::format::{SceneFiles, parse_lesson};
 
     #[test]
     fn the_starting_file_reads_and_is_titled_by_its_name() {
@@ -73,8 +73,13 @@ mod tests {
             !text.contains("{title}") && !text.contains("{file}"),
             "{text}"
         );
-        let lesson = parse_lesson(&text, "light_and-shadow", "light_and-shadow.toml", None)
-            .unwrap_or_else(|e| panic!("{e}"));
+        let lesson = parse_lesson(
+            &text,
+            "light_and-shadow",
+            "light_and-shadow.toml",
+            SceneFiles::Nowhere,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(lesson.title, "Light and shadow");
         assert_eq!(lesson.steps.len(), 2);
     }
