@@ -70,7 +70,10 @@ pub fn show(ui: &mut Ui, view: &StatsView) {
         .show(ui, |ui| {
             row(ui, "Resolution", format!("{} x {}", s.width, s.height));
             if let Some(on) = target::rendered_on(s) {
-                row(ui, "Rendered on", on);
+                // Its short form in the grid, which a long value would
+                // widen past the image's room; the whole on hover.
+                let short = on.split(" (").next().unwrap_or(&on).to_string();
+                row(ui, "Rendered on", short).on_hover_text(on);
             }
             match &s.adaptive {
                 None => {

@@ -91,7 +91,7 @@ fn busy() -> bool {
 pub fn rendered_on(stats: &RenderStats) -> Option<String> {
     let tiles = tiles_by_worker(stats);
     Some(match WORKERS.load(Ordering::Relaxed) {
-        0 => "this page's thread, in time slices (the page is not cross-origin isolated)".into(),
+        0 => "page thread, in slices (the page is not cross-origin isolated: no workers)".into(),
         1 => format!("1 Web Worker (tiles: {tiles})"),
         n => format!("{n} Web Workers (tiles: {tiles})"),
     })
