@@ -84,6 +84,26 @@ pub fn chart(param: Param, points: &[Point], subject: &str) -> Result<RgbImage> 
     RgbImage::from_raw(w, h, buffer).ok_or_else(|| anyhow!("the chart has the wrong size"))
 }
 
+/// [`chart`] as PNG bytes, for a download or a save dialog's file.
+pub fn chart_png(param: Param, points: &[Point], subject: &str) -> Result<Vec<u8>> {
+    let mut png = std::io::Cursor::new(Vec::new());
+    chart(param, points, subject)?.write_to(&mut png, image::ImageFormat::Png)?;
+    Ok(png.into_inner())
+}
+
+/// The name a chart is saved under: `study-PARAM-STEM.png`.
+pub fn chart_file_name(param: Param, subject: &str) -> String {
+    format!("study-{param}-{}.png", subject_stem(subject))
+}
+
+/// What names a study's files: its subject's file stem (of a scene
+/// file, or a generator's name).
+pub fn subject_stem(subject: &str) -> String {
+    std::path::Path::new(subject)
+        .file_stem()
+        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
+}
+
 fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
     anyhow!("cannot draw the chart: {e}")
 }
