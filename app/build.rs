@@ -34,10 +34,13 @@ fn main() {
     let mut scenes = files_in(&scenes_dir, &["p3f", "nff"]);
     // The web page embeds only the scenes it opens by itself: the default
     // (`bundled::DEFAULT_SCENE`) and those a lesson names; the whole
-    // folder (20 MB) would be most of the page's download.
+    // folder (20 MB) would be most of the page's download. The others
+    // are files beside the page (`scripts/build-web.sh` copies them),
+    // listed here so its scene list offers them without asking the site.
+    let mut on_site = Vec::new();
     if std::env::var("CARGO_CFG_TARGET_FAMILY").as_deref() == Ok("wasm") {
         let wanted = lesson_scenes(&lessons_dir);
-        scenes.retain(|path| {
+        (scenes, on_site) = scenes.into_iter().partition(|path| {
             let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
             name == "showcase" || wanted.iter().any(|w| w == name)
         });
@@ -50,16 +53,30 @@ fn main() {
         let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
         let file = path.file_name().and_then(|s| s.to_str()).unwrap_or("scene");
         let text = std::fs::read_to_string(path).unwrap_or_default();
-        // The first comment line says how the scene was made and what it shows.
-        let description = text
-            .lines()
-            .find_map(|l| l.trim().strip_prefix('#'))
-            .map(str::trim)
-            .unwrap_or("");
+        let description = description(&text);
         writeln!(
             out,
             "    BundledScene {{ name: {name:?}, file: {file:?}, description: {description:?}, text: include_str!({:?}) }},",
             path.canonicalize().unwrap_or(path.clone()).display().to_string()
+        )
+        .unwrap();
+    }
+    out.push_str("];\n\n");
+
+    out.push_str(
+        "/// Scenes of `scenes/` left out of [`SCENES`] (on the web page), sorted\n\
+         /// by file name: fetched from `scenes/FILE` beside the page when picked.\n",
+    );
+    out.push_str("pub const SITE_SCENES: &[SiteScene] = &[\n");
+    for path in &on_site {
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
+        let file = path.file_name().and_then(|s| s.to_str()).unwrap_or("scene");
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let description = description(&text);
+        let size = text.len();
+        writeln!(
+            out,
+            "    SiteScene {{ name: {name:?}, file: {file:?}, description: {description:?}, size: {size} }},",
         )
         .unwrap();
     }
@@ -142,6 +159,15 @@ fn expose_commit(root: &Path) {
             println!("cargo:rerun-if-changed={path}");
         }
     }
+}
+
+/// A scene's first comment line, which says how it was made and what it
+/// shows.
+fn description(text: &str) -> &str {
+    text.lines()
+        .find_map(|l| l.trim().strip_prefix('#'))
+        .map(str::trim)
+        .unwrap_or("")
 }
 
 /// The bundled scenes the lessons in `dir` open (`bundled = "NAME"`).

@@ -18,6 +18,7 @@ Talks DevTools through check_report_page's standard-library client.
                                [--workbench PATH]]
                               [--save-png SCENE [--render-args ARGS]]
                               [--site-file FILE]... [--scene LABEL]
+                              [--step N] [--missing PATH]
                               [--study SCENE [--param P --values V]]
 
 --save-png presses Save PNG (Ctrl+S) once the render is done and checks
@@ -27,10 +28,13 @@ scene's name, .png) and equal, within the golden tests' tolerance
 own settings (and --render-args, the flags a link's query gives the
 page). --site-file puts a file on the served site at its path (a link's
 ?scene=URL or ?lesson=URL fetches it); --scene is the scene the page
-must show at the end. --study opens ?study=SCENE&param=P&values=V: a
-study run on a worker, as the Studies window runs it, whose chart the
-page draws there and downloads; the PNG must be a chart panel with its
-text drawn (ink in the title's band and in the y axis's label).
+must show at the end, --step the lesson's step its Lessons panel must
+show. --missing PATH: the query links to PATH, which the site lacks:
+Chromium's own console error for that one 404 is expected, no other.
+--study opens ?study=SCENE&param=P&values=V: a study run on a worker,
+as the Studies window runs it, whose chart the page draws there and
+downloads; the PNG must be a chart panel with its text drawn (ink in
+the title's band and in the y axis's label).
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -68,7 +72,8 @@ STATUS = (
     "(() => { const data = document.body ? document.body.dataset : {};"
     " return JSON.stringify({isolated: self.crossOriginIsolated,"
     " render: data.render || '', passes: Number(data.passes || 0),"
-    " workers: Number(data.workers || 0), lesson: data.lesson || '', scene: data.scene || '',"
+    " workers: Number(data.workers || 0), lesson: data.lesson || '', step: data.step || '',"
+    " scene: data.scene || '',"
     " renderedOn: data.renderedOn || '', tiles: data.tiles || '',"
     " rays: typeof self.workbench?.rays_traced === 'function' ? self.workbench.rays_traced() : -1,"
     " replay: data.replay || '', compare: data.compare || '', study: data.study || '',"
@@ -92,6 +97,19 @@ def problems_of(events):
         elif method == "Log.entryAdded" and params["entry"].get("level") == "error":
             problems.append(f"logged error: {params['entry'].get('text')}")
     return problems
+
+
+def without_expected_404(events, path):
+    """`events` without Chromium's own log of the one 404 expected: of
+    `path`, a link's missing file (the page says so itself, which the
+    check reads). Any other error, or a second one, stays."""
+    for i, event in enumerate(events):
+        entry = event.get("params", {}).get("entry", {})
+        if (event.get("method") == "Log.entryAdded" and entry.get("level") == "error"
+                and "status of 404" in entry.get("text", "")
+                and urllib.parse.urlsplit(entry.get("url", "")).path == "/" + path):
+            return events[:i] + events[i + 1:]
+    return events
 
 
 def status(page):
@@ -292,7 +310,8 @@ def chart_ink(rows, ys, xs):
 
 
 def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True,
-          hide=False, replay=False, desktop=None, save=None, scene=None, study=None):
+          hide=False, replay=False, desktop=None, save=None, scene=None, step=None,
+          missing=None, study=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     downloads = os.path.join(profile, "downloads")
     os.mkdir(downloads)
@@ -337,7 +356,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             press_save_png(page)
             path = downloaded(downloads, time.monotonic() + 60)
             save_problems = saved_png_problems(path, *save)
-        problems = problems_of(page.events) + problems + save_problems
+        events = without_expected_404(page.events, missing) if missing else page.events
+        problems = problems_of(events) + problems + save_problems
         if study:
             print(now["said"])
             if not now["study"].startswith("drawn"):
@@ -358,6 +378,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             problems.append(f"the page shows {now['scene'] or 'no scene'}, not {scene}")
         if lesson is not None and now["lesson"] != lesson:
             problems.append(f"the Lessons panel shows {now['lesson'] or 'nothing'}, not {lesson}")
+        if step is not None and now["step"] != str(step):
+            problems.append(f"the Lessons panel shows step {now['step'] or 'none'}, not {step}")
         if screenshot:
             shot = page.command("Page.captureScreenshot", format="png")
             with open(screenshot, "wb") as f:
@@ -415,6 +437,11 @@ def main():
         help="a file served on the site at its (relative) path, for a link to fetch",
     )
     parser.add_argument("--scene", help="the scene the page must show at the end")
+    parser.add_argument("--step", type=int,
+                        help="the lesson's step (from 1) the Lessons panel must show at the end")
+    parser.add_argument("--missing", metavar="PATH",
+                        help="a file the site lacks, which the query links to: Chromium's"
+                             " one console error for its 404 is expected (--error: the page's)")
     parser.add_argument("--study", metavar="SCENE",
                         help="open ?study=SCENE: a study's chart must be drawn and downloaded")
     parser.add_argument("--param", default="depth", help="with --study: the parameter studied")
@@ -450,7 +477,7 @@ def main():
         url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
         not args.no_isolation, args.hide, args.replay, desktop,
         (args.save_png, args.workbench, args.render_args) if args.save_png else None,
-        args.scene, study,
+        args.scene, args.step, args.missing, study,
     )
 
 

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use tracer::accel::{AccelKind, StructureLayer};
-use tracer::render::{Encoding, HeatScale, RenderSettings, Sampling, View, ViewHeatmap};
+use tracer::render::vocabulary::{self, Overrides, SamplingChoice};
+use tracer::render::{Encoding, HeatScale, RenderSettings, View, ViewHeatmap};
 
 use crate::measure::ab::Heatmap;
 use crate::measure::study::Param;
@@ -33,9 +34,9 @@ pub struct Cli {
     /// Open the window with the observer view on (the scene from outside).
     #[arg(long)]
     pub observer: bool,
-    /// Open the window on this lesson file (see docs/LESSONS.md), its first
-    /// step set up.
-    #[arg(long, value_name = "TOML", conflicts_with = "scene")]
+    /// Open the window on this lesson, its first step set up: a lesson file
+    /// (see docs/LESSONS.md) or a bundled lesson's name (`--lesson shadows`).
+    #[arg(long, value_name = "NAME|TOML", conflicts_with = "scene")]
     pub lesson: Option<PathBuf>,
     /// Add a folder of lessons (its .toml files, or those its
     /// lessons.index names) to the Lessons panel's list, by chapter after
@@ -874,7 +875,7 @@ impl SettingsArgs {
     /// 1.33'`). The error names the bad flag or value, e.g. "unexpected
     /// argument '--fast' found".
     pub fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
-        Self::parse_words(split_words(text)?)
+        Self::parse_words(vocabulary::split_words(text).map_err(|e| e.to_string())?)
     }
 
     /// [`SettingsArgs::parse_str`] of words already split (a link's
@@ -893,112 +894,38 @@ impl SettingsArgs {
 
     /// Applies the overrides to settings taken from the scene.
     pub fn apply(&self, s: &mut RenderSettings) {
-        if let Some(w) = self.width {
-            s.width = w;
-        }
-        if let Some(h) = self.height {
-            s.height = h;
-        }
-        if let Some(d) = self.depth {
-            s.max_depth = d;
-        }
-        if self.aa {
-            s.antialiasing = true;
-        }
-        if let Some(n) = self.spp {
-            s.set_samples(n.max(1));
-        }
-        self.apply_sampling(s);
-        if self.no_aa {
-            s.antialiasing = false;
-        }
-        if self.soft_shadows {
-            s.soft_shadows = true;
-        }
-        if self.no_shadows {
-            s.shadows = false;
-        }
-        if let Some(size) = self.light_size {
-            s.light_size = size;
-        }
-        if let Some(a) = self.aperture {
-            s.lens_override.aperture = Some(a);
-            s.depth_of_field = a > 0.0;
-        }
-        if self.dof {
-            s.depth_of_field = true;
-        }
-        if let Some(f) = self.focal {
-            s.lens_override.focal = Some(f);
-        }
-        if let Some(a) = self.ambient {
-            s.ambient = a;
-        }
-        if let Some(a) = self.accel {
-            s.accel = a;
-        }
-        if let Some(m) = self.grid_m {
-            s.grid_multiplier = m;
-        }
-        if let Some(seed) = self.seed {
-            s.seed = seed;
-        }
+        self.overrides().apply(s);
     }
 
-    /// `--sampling` and the adaptive knobs: adaptive sampling (with
-    /// anti-aliasing on) from N's defaults, or the settings' own adaptive
-    /// sampling (the scene's, its bounds following `--spp`), with the
-    /// knobs given; `--sampling uniform` wins over them.
-    fn apply_sampling(&self, s: &mut RenderSettings) {
-        let knobs =
-            self.noise_threshold.is_some() || self.min_spp.is_some() || self.max_spp.is_some();
-        match self.sampling {
-            Some(SamplingMode::Uniform) => {
-                s.sampling = Sampling::Uniform;
-                return;
-            }
-            None if !knobs => return,
-            _ => {}
-        }
-        s.sample_adaptively(|adaptive| {
-            if let Some(t) = self.noise_threshold {
-                adaptive.noise_threshold = t;
-            }
-            if let Some(max) = self.max_spp {
-                adaptive.max_spp = max;
-                adaptive.min_spp = adaptive.min_spp.min(max);
-            }
-            if let Some(min) = self.min_spp {
-                adaptive.min_spp = min;
-            }
-        });
-        s.antialiasing = true;
-    }
-}
-
-/// `text` split into words as a shell splits them, at whitespace outside
-/// single or double quotes, the quotes removed.
-fn split_words(text: &str) -> Result<Vec<String>, String> {
-    let mut words = Vec::new();
-    let mut word: Option<String> = None;
-    let mut quote = None;
-    for c in text.chars() {
-        match (quote, c) {
-            (Some(q), c) if c == q => quote = None,
-            (Some(_), c) => word.get_or_insert_default().push(c),
-            (None, '\'' | '"') => {
-                quote = Some(c);
-                word.get_or_insert_default();
-            }
-            (None, c) if c.is_whitespace() => words.extend(word.take()),
-            (None, c) => word.get_or_insert_default().push(c),
+    /// The flags in the settings' own vocabulary, which lessons read
+    /// without this parser: the command line is one front end to it.
+    pub fn overrides(&self) -> Overrides {
+        Overrides {
+            width: self.width,
+            height: self.height,
+            depth: self.depth,
+            aa: self.aa,
+            spp: self.spp,
+            sampling: self.sampling.map(|mode| match mode {
+                SamplingMode::Uniform => SamplingChoice::Uniform,
+                SamplingMode::Adaptive => SamplingChoice::Adaptive,
+            }),
+            noise_threshold: self.noise_threshold,
+            min_spp: self.min_spp,
+            max_spp: self.max_spp,
+            no_aa: self.no_aa,
+            soft_shadows: self.soft_shadows,
+            no_shadows: self.no_shadows,
+            light_size: self.light_size,
+            aperture: self.aperture,
+            dof: self.dof,
+            focal: self.focal,
+            ambient: self.ambient,
+            accel: self.accel,
+            grid_m: self.grid_m,
+            seed: self.seed,
         }
     }
-    if let Some(q) = quote {
-        return Err(format!("a {q} quote is not closed in \"{text}\""));
-    }
-    words.extend(word);
-    Ok(words)
 }
 
 /// Most worker threads accepted: starting and stopping threads costs more
@@ -1042,9 +969,28 @@ mod tests {
                 .unwrap();
         assert_eq!(args.set, ["object 5 ior 1.33", "camera focal 2"]);
         assert!(args.aa);
-        assert_eq!(split_words(" a  ''  'b c'd ").unwrap(), ["a", "", "b cd"]);
         let open = SettingsArgs::parse_str("--set 'object 5").unwrap_err();
         assert!(open.contains("quote is not closed"), "{open}");
+    }
+
+    /// The command line is one front end to the settings' vocabulary:
+    /// each word, given as a flag, means what the vocabulary reads it as
+    /// (a flag renamed here fails this test, and no lesson).
+    #[test]
+    fn every_setting_word_is_a_flag_that_means_the_same() {
+        use tracer::render::vocabulary::{Takes, WORDS};
+        for word in WORDS {
+            let mut line = vec![format!("--{}", word.name)];
+            match word.takes {
+                Takes::Nothing => {}
+                Takes::Whole => line.push("3".into()),
+                Takes::Number => line.push("0.25".into()),
+                Takes::OneOf(names) => line.push(names[names.len() - 1].into()),
+            }
+            let (flags, _) = SettingsArgs::parse_words(line.clone()).unwrap();
+            let words = Overrides::parse(&line).unwrap();
+            assert_eq!(flags.overrides(), words, "{line:?}");
+        }
     }
 
     #[test]

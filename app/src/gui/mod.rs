@@ -48,8 +48,8 @@ pub const TITLE: &str = "Whitted Workbench";
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
 /// with the observer view on when `observer`, the lessons of
-/// `lesson_folder` listed and the first set up, the lesson file `lesson`
-/// (if given) set up instead, and runs until it is closed or until the
+/// `lesson_folder` listed and the first set up, the lesson `lesson` (a file
+/// or a bundled lesson's name; if given) set up instead, and runs until it is closed or until the
 /// screenshot of `screenshot` is taken.
 #[cfg(not(target_family = "wasm"))]
 pub fn run(
@@ -93,7 +93,7 @@ pub fn run(
                 app.open_class(dir);
             }
             if let Some(path) = &lesson {
-                app.open_lesson(path);
+                app.open_lesson_argument(path);
             }
             Ok(Box::new(match plan {
                 Some(plan) => app.with_screenshot(plan, app_outcome),

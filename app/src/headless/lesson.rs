@@ -13,7 +13,6 @@ use anyhow::{Context as _, Result, anyhow, bail};
 use crate::cli::{
     ExplainArgs, LessonArgs, LessonCommand, MetricsFormat, ProgressArgs, ProgressFormat,
 };
-use crate::lessons::format::read_lesson_file;
 use crate::lessons::progress::table as tables;
 use crate::lessons::replay::replay;
 use crate::lessons::{Lesson, LessonErrors, bundled};
@@ -92,7 +91,7 @@ fn progress(args: &ProgressArgs) -> Result<()> {
 }
 
 fn explain(args: &ExplainArgs) -> Result<()> {
-    let lesson = read(&args.lesson)?;
+    let lesson = bundled::read_name_or_file(Path::new(&args.lesson))?;
     let text = if args.find.is_empty() {
         let pixel = args.pixel.as_deref().map(|p| (p[0], p[1]));
         explain::explain(&lesson, args.step, pixel)?
@@ -169,22 +168,6 @@ fn print_list(format: MetricsFormat, lessons: &[Lesson]) -> Result<()> {
     Ok(())
 }
 
-/// A bundled lesson by name, or a lesson file: a `.toml` name or a path
-/// that exists is a file.
-fn read(name_or_file: &str) -> Result<Lesson> {
-    let path = Path::new(name_or_file);
-    if path.extension().is_some_and(|e| e == "toml") || path.exists() {
-        return Ok(read_lesson_file(path)?);
-    }
-    let lesson = bundled::find(name_or_file).ok_or_else(|| {
-        anyhow!(
-            "no bundled lesson called `{name_or_file}` and no such file; lessons: {}",
-            bundled::names().join(", ")
-        )
-    })?;
-    Ok(crate::lessons::format::read_bundled(lesson)?)
-}
-
 fn check(names: &[String], format: MetricsFormat) -> Result<()> {
     let lessons: Vec<(String, Result<Lesson>)> = if names.is_empty() {
         (bundled::all()?.into_iter())
@@ -198,7 +181,9 @@ fn check(names: &[String], format: MetricsFormat) -> Result<()> {
                     (folder::read(dir)?.into_iter())
                         .map(|(path, l)| (path.display().to_string(), l.map_err(Into::into))),
                 ),
-                _ => lessons.push((name.clone(), read(name))),
+                file_or_name => {
+                    lessons.push((name.clone(), bundled::read_name_or_file(file_or_name)))
+                }
             }
         }
         lessons

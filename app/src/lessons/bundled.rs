@@ -1,9 +1,13 @@
 //! The lessons shipped in the binary (`assets/lessons/`, embedded by
 //! `build.rs`), in the course's order.
 
+use std::path::Path;
+
+use anyhow::{Result, anyhow};
+
 use crate::bundled::{BundledLesson, LESSONS};
 
-use super::format::{Lesson, LessonErrors, read_bundled};
+use super::format::{Lesson, LessonErrors, read_bundled, read_lesson_file};
 
 /// The bundled lesson called `name`.
 pub fn find(name: &str) -> Option<&'static BundledLesson> {
@@ -24,4 +28,20 @@ pub fn all() -> Result<Vec<Lesson>, LessonErrors> {
         .collect::<Result<Vec<_>, _>>()?;
     lessons.sort_by(|a, b| (a.chapter, &a.name).cmp(&(b.chapter, &b.name)));
     Ok(lessons)
+}
+
+/// What `workbench --lesson` and `lesson check` take: a bundled lesson by
+/// name, or a lesson file (a `.toml` name or a path that exists is a file).
+pub fn read_name_or_file(name_or_file: &Path) -> Result<Lesson> {
+    if name_or_file.extension().is_some_and(|e| e == "toml") || name_or_file.exists() {
+        return Ok(read_lesson_file(name_or_file)?);
+    }
+    let name = name_or_file.to_string_lossy();
+    let lesson = find(&name).ok_or_else(|| {
+        anyhow!(
+            "no bundled lesson called `{name}` and no such file; lessons: {}",
+            names().join(", ")
+        )
+    })?;
+    Ok(read_bundled(lesson)?)
 }

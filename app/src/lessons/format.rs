@@ -11,9 +11,8 @@ use toml::Spanned;
 use tracer::render::View;
 
 use crate::bundled;
-use crate::cli::SettingsArgs;
 
-use super::actions::{Actions, Located};
+use super::actions::{Actions, Located, SettingsLine};
 use super::check::Check;
 use super::check::Part;
 use super::check::written::{Reader, WrittenCheck, WrittenValue};
@@ -470,15 +469,15 @@ impl Source<'_> {
 
     fn actions(&self, raw: Spanned<RawActions>, role: Role) -> Result<Actions, LessonError> {
         let raw = raw.into_inner();
-        let flags = |text: Spanned<String>| -> Result<Located<SettingsArgs>, LessonError> {
+        let flags = |text: Spanned<String>| -> Result<Located<SettingsLine>, LessonError> {
             let span = text.span();
-            let (args, _) = SettingsArgs::parse_str(text.get_ref()).map_err(|e| {
+            let line = SettingsLine::parse(text.get_ref()).map_err(|e| {
                 self.error(
                     span.clone(),
-                    format!("expected `workbench render` flags: {e}"),
+                    format!("expected settings (docs/guide/settings.md): {e}"),
                 )
             })?;
-            Ok(self.located(span, args))
+            Ok(self.located(span, line))
         };
         let answer = match raw.answer {
             Some(answer) if role == Role::Setup => {
@@ -563,7 +562,7 @@ solution = { settings = "--aa" }
         assert!(step.required);
         assert_eq!(step.line, 11);
         assert_eq!((step.check.line, step.check.column), (14, 9));
-        assert!(step.solution.settings.as_ref().unwrap().value.aa);
+        assert!(step.solution.settings.as_ref().unwrap().value.overrides.aa);
     }
 
     #[test]
@@ -582,7 +581,7 @@ solution = { settings = "--aa" }
         let broken = MINIMAL.replace("--aa\" }", "--fast\" }");
         let e = parse(&broken).unwrap_err();
         assert_eq!((e.line, e.column), (15, 25), "{e}");
-        assert!(e.message.contains("'--fast'"), "{e}");
+        assert!(e.message.contains("`--fast` is not a setting"), "{e}");
     }
 
     #[test]

@@ -10,10 +10,9 @@ use tracer::render::{RenderSettings, View};
 use tracer::scene::Scene;
 use tracer::world::World;
 
-use crate::cli::SettingsArgs;
 use crate::load::with_edits;
 
-use super::actions::{Actions, Located};
+use super::actions::{Actions, Located, SettingsLine};
 
 /// One side: its scene as edited, the world built from it, its settings.
 #[derive(Debug, Clone)]
@@ -145,9 +144,9 @@ fn edit_side(side: &mut SideState, lines: &[Located<String>], file: &str) -> Res
 }
 
 /// `flags` over `side`: its settings, then its `--set` lines as edits.
-fn apply_flags(side: &mut SideState, flags: &Located<SettingsArgs>, file: &str) -> Result<()> {
+fn apply_flags(side: &mut SideState, flags: &Located<SettingsLine>, file: &str) -> Result<()> {
     let at = || format!("{file}:{}:{}", flags.line, flags.column);
-    flags.value.apply(&mut side.settings);
+    flags.value.overrides.apply(&mut side.settings);
     side.settings
         .validate()
         .map_err(|e| anyhow!("{}: {e}", at()))?;

@@ -351,6 +351,33 @@ fn a_link_opens_a_bundled_lesson_set_up() {
     assert_eq!(harness.state().error(), None);
 }
 
+/// A second scene asked for while the first is still being fetched (a
+/// link, or a pick in the page's scene list): the last asked for opens,
+/// and what the first fetch gives (here: no such file) is dropped, not
+/// said.
+#[test]
+fn the_last_scene_asked_for_wins_over_one_being_fetched() {
+    let dir = Scratch::new("last-scene-wins");
+    let wanted = dir.join("wanted.p3f");
+    let scene = workbench::bundled::find("balls_low").unwrap();
+    std::fs::write(&wanted, scene.text).unwrap();
+    let mut harness = small_window(Harness::builder());
+    let first = dir.join("missing.p3f");
+    harness
+        .state_mut()
+        .open_link(&format!("?scene={}", first.display()));
+    harness
+        .state_mut()
+        .open_link(&format!("?scene={}", wanted.display()));
+    let label = wanted.display().to_string();
+    wait_for(&mut harness, "the scene asked for last", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == label)
+    });
+    assert_eq!(harness.state().error(), None);
+}
+
 /// A link naming no bundled lesson or scene, or asking for what the page
 /// does not read, says so with the names there are, and opens nothing;
 /// the error outlasts a scene loaded after it.
@@ -393,4 +420,85 @@ fn a_link_to_nothing_bundled_says_what_there_is() {
         assert_eq!(now, opened, "{query} changed the lesson shown");
         assert!(!harness.state().lessons().open, "{query} opened the panel");
     }
+}
+
+/// The Lessons panel sits beside the image, not over it: the step's text
+/// and buttons and the image's area do not overlap, at the window's
+/// default size.
+#[test]
+fn the_lessons_panel_leaves_the_image_uncovered() {
+    let (_dir, mut harness) = open_lesson("beside", LESSON);
+    harness.run_steps(2);
+    let image = harness.get_by_role_and_label(Role::Image, "Render").rect();
+    for label in [
+        "Set up this step",
+        "Next",
+        "Show a hint",
+        "Export progress...",
+    ] {
+        let Some(widget) = harness.query_by_label(label) else {
+            continue;
+        };
+        let rect = widget.rect();
+        assert!(
+            !image.intersects(rect),
+            "{label} at {rect:?} covers the image's area {image:?}"
+        );
+    }
+    let next = harness.get_by_label("Next").rect();
+    assert!(
+        next.min.x >= image.max.x,
+        "{next:?} is not right of {image:?}"
+    );
+    assert!(image.width() > 300.0, "the image got {image:?}");
+}
+
+/// `workbench --lesson NAME` opens a bundled lesson as `lesson check
+/// NAME` finds it; a name that is neither a lesson nor a file is said,
+/// with the lessons there are.
+#[test]
+fn the_lesson_argument_takes_a_bundled_name() {
+    let mut harness = ready_window(WINDOW);
+    harness
+        .state_mut()
+        .open_lesson_argument(std::path::Path::new("shadows"));
+    wait_for(&mut harness, "the shadows lesson's scene", |app| {
+        app.lessons().lesson().is_some_and(|l| l.name == "shadows")
+            && app
+                .engine()
+                .scene()
+                .is_some_and(|s| s.source.label() == "shadows.p3f")
+    });
+    assert!(harness.state().lessons().open);
+
+    harness
+        .state_mut()
+        .open_lesson_argument(std::path::Path::new("shadowz"));
+    harness.run_steps(2);
+    let error = harness.state().error().unwrap_or_default().to_string();
+    assert!(
+        error.contains("no bundled lesson called `shadowz` and no such file")
+            && error.contains("soft_shadows"),
+        "{error}"
+    );
+}
+
+/// A link's render flags reach the render, its `width=` included (the
+/// window sizes its image by the resolution scale, which the width sets).
+#[test]
+fn a_links_settings_and_width_reach_the_render() {
+    let mut harness = ready_window(WINDOW);
+    harness
+        .state_mut()
+        .open_link("?scene=glass&width=96&spp=2&no-aa");
+    wait_for(&mut harness, "the linked scene's settings", |app| {
+        app.engine()
+            .scene()
+            .is_some_and(|s| s.source.label() == "glass")
+            && app.engine().settings().is_some_and(|s| s.samples == 2)
+    });
+    let settings = harness.state().engine().settings().cloned().unwrap();
+    assert_eq!(settings.width, 96, "{settings:?}");
+    assert!(!settings.antialiasing);
+    assert_eq!(harness.state().error(), None);
 }

@@ -131,14 +131,14 @@ impl Nearest {
 
 /// What a structure's leaves list: a world shape's index, or the BVH's
 /// packed copy of it. Both intersect bit for bit like the world's shape.
-trait Primitive {
+trait LeafShape {
     /// The index of the shape in the world's shapes.
     fn id(&self) -> u32;
     /// `shapes[self.id()].intersect(ray, t_min, t_max)`.
     fn intersect(&self, shapes: &[Shape], ray: &Ray, t_min: f32, t_max: f32) -> Option<f32>;
 }
 
-impl Primitive for u32 {
+impl LeafShape for u32 {
     #[inline(always)]
     fn id(&self) -> u32 {
         *self
@@ -154,7 +154,7 @@ impl Primitive for u32 {
 /// ray meets to `nearest`, adding one to `tests` per primitive. (The BVH
 /// runs it on a leaf's records after its groups of four spheres or triangles.)
 #[inline(always)]
-fn offer_each<P: Primitive>(
+fn offer_each<P: LeafShape>(
     prims: &[P],
     shapes: &[Shape],
     ray: &Ray,
@@ -174,7 +174,7 @@ fn offer_each<P: Primitive>(
 /// meets in `(t_min, t_max)`, adding one to `tests` per primitive tested.
 /// (The BVH runs it on a leaf's records after its groups of four.)
 #[inline(always)]
-fn first_occluder<P: Primitive>(
+fn first_occluder<P: LeafShape>(
     prims: &[P],
     shapes: &[Shape],
     ray: &Ray,

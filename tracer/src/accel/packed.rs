@@ -18,7 +18,7 @@ use crate::geometry::{
     intersect_spheres, intersect_triangles,
 };
 
-use super::{Nearest, Primitive, first_occluder, offer_each};
+use super::{LeafShape, Nearest, first_occluder, offer_each};
 
 /// What a record holds, stored in `b.w` (see [`tag`]).
 const SPHERE: u32 = 0;
@@ -137,7 +137,7 @@ impl PackedShape {
     }
 }
 
-impl Primitive for PackedShape {
+impl LeafShape for PackedShape {
     #[inline(always)]
     fn id(&self) -> u32 {
         untag(self.c.w)
@@ -454,7 +454,7 @@ pub(super) fn leaf_ids(
     };
     groups(leaf.spheres, Spheres::RECORDS);
     groups(leaf.triangles, Triangles::RECORDS);
-    ids.extend(leaf.records.iter().map(Primitive::id));
+    ids.extend(leaf.records.iter().map(LeafShape::id));
     Some(leaf.len())
 }
 

@@ -19,6 +19,7 @@ pub mod strategy;
 mod tests;
 mod trace;
 mod view;
+pub mod vocabulary;
 
 use std::sync::Arc;
 

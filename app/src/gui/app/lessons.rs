@@ -1,4 +1,4 @@
-//! The Lessons window's part of the frame: the current step's check kept
+//! The Lessons panel's part of the frame: the current step's check kept
 //! evaluated against the window's real state (both sides' scenes and
 //! settings, the pinned pixel, the layout), and "Set up this step", which
 //! opens the step's scene, settings and layout as `lesson check` replays
@@ -31,10 +31,19 @@ pub(super) struct PendingSetup {
 }
 
 impl WorkbenchApp {
-    /// Opens the lesson file `path` in the Lessons window and sets up its
-    /// first step (`workbench --lesson FILE`).
+    /// Opens the lesson file `path` in the Lessons panel and sets up its
+    /// first step (a dropped or opened file).
     pub fn open_lesson(&mut self, path: &Path) {
         self.set_up_lesson(read_lesson_file(path));
+    }
+
+    /// Opens `workbench --lesson`'s argument: a lesson file, or a bundled
+    /// lesson's name as `workbench lesson check` takes it.
+    pub fn open_lesson_argument(&mut self, name_or_file: &Path) {
+        match crate::lessons::bundled::read_name_or_file(name_or_file) {
+            Ok(lesson) => self.set_up_lesson(Ok(lesson)),
+            Err(e) => self.messages.lasting_error(format!("{e:#}")),
+        }
     }
 
     /// Opens the bundled lesson `name` as [`Self::open_lesson`] opens a
@@ -50,7 +59,7 @@ impl WorkbenchApp {
         }
     }
 
-    /// Shows `lesson` in the Lessons window with its first step not done
+    /// Shows `lesson` in the Lessons panel with its first step not done
     /// set up, or says why it does not read.
     pub(super) fn set_up_lesson(&mut self, lesson: Result<Lesson, LessonErrors>) {
         self.set_up_lesson_at(lesson, None);
@@ -90,7 +99,7 @@ impl WorkbenchApp {
         }
     }
 
-    /// Adds the lessons of folder `dir` to the Lessons window's list (the
+    /// Adds the lessons of folder `dir` to the Lessons panel's list (the
     /// "Lesson folder..." button), opens it on the folder's first lesson,
     /// and says whether the folder gave any; the files that do not read
     /// are said, the others still listed.
@@ -119,12 +128,13 @@ impl WorkbenchApp {
         any
     }
 
-    /// The Lessons window, what it asked for, and the check kept current.
-    pub(super) fn lessons_window(&mut self, ctx: &egui::Context) {
+    /// The Lessons panel, what it asked for, and the check kept current.
+    pub(super) fn lessons_panel(&mut self, ui: &mut egui::Ui) {
         if !self.lessons.open {
             return;
         }
-        let asked = lessons::show(ctx, &mut self.lessons);
+        let ctx = ui.ctx().clone();
+        let asked = lessons::show(ui, &mut self.lessons);
         if asked.set_up {
             self.set_up_lesson_step();
         }
@@ -143,7 +153,7 @@ impl WorkbenchApp {
         self.lessons.keep_checking(
             looked_at,
             || window_state(sides, tools.inspector.pinned, layout),
-            waker(ctx),
+            waker(&ctx),
         );
     }
 

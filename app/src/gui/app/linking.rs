@@ -6,9 +6,10 @@
 use tracer::render::RenderSettings;
 use tracer::scene::edit::Edit;
 
-use crate::bundled;
+use crate::bundled::{self, SiteScene};
 use crate::gui::link::{self, Link, Source};
 use crate::gui::platform::target;
+use crate::gui::platform::transfer::Transfer;
 use crate::load::SceneSource;
 
 use super::WorkbenchApp;
@@ -19,9 +20,32 @@ pub(super) struct PendingLink {
     link: Link,
 }
 
-/// The files a link fetched, by URL, so Copy link links to them again.
+/// The files fetched from the page's site (by a link or the scene list),
+/// by URL, so Copy link links to them again; and the scene being fetched.
 #[derive(Default)]
-pub(super) struct Fetched(Vec<String>);
+pub(super) struct Fetched {
+    urls: Vec<String>,
+    /// Fetches started, which number them.
+    started: u64,
+    /// The scene fetch under way: the last one asked for, the only one
+    /// that opens when it arrives.
+    scene: Option<SceneFetch>,
+}
+
+impl Fetched {
+    /// The scene fetch under way, for the scene panel.
+    pub(super) fn scene(&self) -> Option<&SceneFetch> {
+        self.scene.as_ref()
+    }
+}
+
+/// A scene being fetched from the page's site, for the scene panel's
+/// progress bar.
+pub struct SceneFetch {
+    pub url: String,
+    pub transfer: Transfer,
+    id: u64,
+}
 
 impl WorkbenchApp {
     /// Opens what a page's link asks for (its query, `?lesson=shadows`,
@@ -34,25 +58,35 @@ impl WorkbenchApp {
             Ok(link) => link,
             Err(e) => return self.messages.lasting_error(e),
         };
-        match &link.scene {
+        let label = match &link.scene {
             Some(Source::Bundled(name)) => match bundled::find(name) {
-                Some(scene) => self.open(SceneSource::Bundled(scene.name.to_string())),
-                None => {
-                    let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
-                    return self.messages.lasting_error(format!(
-                        "no bundled scene is called {name:?}: the scenes are {}",
-                        names.join(", ")
-                    ));
+                Some(scene) => {
+                    self.open(SceneSource::Bundled(scene.name.to_string()));
+                    Some(name.clone())
                 }
+                // A scene of `scenes/` the page does not embed.
+                None => match bundled::site_scene(name) {
+                    Some(scene) => {
+                        self.fetch_site_scene(scene);
+                        Some(scene.url())
+                    }
+                    None => {
+                        let offered = bundled::offered();
+                        let names: Vec<&str> = offered.iter().map(|s| s.name()).collect();
+                        return self.messages.lasting_error(format!(
+                            "no bundled scene is called {name:?}: the scenes are {}",
+                            names.join(", ")
+                        ));
+                    }
+                },
             },
-            Some(Source::Url(url)) => self.fetch(url, false),
-            None => {}
-        }
-        if let Some(scene) = &link.scene {
-            let label = match scene {
-                Source::Bundled(name) => name.clone(),
-                Source::Url(url) => url.clone(),
-            };
+            Some(Source::Url(url)) => {
+                self.fetch(url, false);
+                Some(url.clone())
+            }
+            None => None,
+        };
+        if let Some(label) = label {
             self.pending_link = Some(PendingLink {
                 label,
                 link: link.clone(),
@@ -69,10 +103,52 @@ impl WorkbenchApp {
     }
 
     /// Fetches `url` from the page's site (`target::fetch`), then opens it
-    /// as a dropped file is opened: a lesson (`lesson`) or a scene.
+    /// as a dropped file is opened: a lesson (`lesson`) or a scene. A
+    /// scene fetch replaces the one under way: the last asked for opens.
     fn fetch(&mut self, url: &str, lesson: bool) {
-        self.fetched.0.push(url.to_string());
-        self.dialogs.fetch(url, lesson);
+        self.fetched.urls.push(url.to_string());
+        self.fetched.started += 1;
+        let (id, transfer) = (self.fetched.started, Transfer::default());
+        if !lesson {
+            self.cancel_scene_fetch();
+            self.fetched.scene = Some(SceneFetch {
+                url: url.to_string(),
+                transfer: transfer.clone(),
+                id,
+            });
+        }
+        self.dialogs.fetch(url, id, lesson, transfer);
+    }
+
+    /// Fetches a scene of `scenes/` the page does not embed (picked in the
+    /// scene list, or named by a link), to open once it arrives.
+    pub(super) fn fetch_site_scene(&mut self, scene: &SiteScene) {
+        self.fetch(&scene.url(), false);
+    }
+
+    /// Stops the scene fetch under way, if any: another scene was opened.
+    pub(super) fn cancel_scene_fetch(&mut self) {
+        if let Some(fetch) = self.fetched.scene.take() {
+            fetch.transfer.cancel();
+        }
+    }
+
+    /// Opens what fetch `id` of `url` gave, or says why it gave nothing;
+    /// a scene only if it is still the one wanted (no later pick).
+    pub(super) fn open_fetched(
+        &mut self,
+        url: &str,
+        id: u64,
+        lesson: bool,
+        bytes: Result<Vec<u8>, String>,
+    ) {
+        if !lesson {
+            if self.fetched.scene.as_ref().is_none_or(|f| f.id != id) {
+                return;
+            }
+            self.fetched.scene = None;
+        }
+        self.open_dropped_text(std::path::Path::new(url), bytes, lesson);
     }
 
     /// Once a linked scene (`loaded`) is in: the link's settings on A's
@@ -86,10 +162,16 @@ impl WorkbenchApp {
             Ok(flags) => flags,
             Err(e) => return self.messages.lasting_error(e),
         };
+        // Through the controls' own change, so a link's `width=` becomes
+        // the resolution scale the window sizes its image by.
+        let scene_width = self
+            .sides
+            .a
+            .engine
+            .scene()
+            .map_or(1, |s| s.scene.view.width);
         let controls = &mut self.sides.a.controls;
-        flags.apply(&mut controls.render);
-        let accel = controls.render.accel;
-        controls.set_accel(accel);
+        controls.change_settings(scene_width, |settings| flags.apply(settings));
         for text in &flags.set {
             let Some(scene) = self.sides.a.engine.scene() else {
                 return;
@@ -118,7 +200,7 @@ impl WorkbenchApp {
                 Some(_) => Source::Bundled(lesson.name.clone()),
                 None => match self
                     .fetched
-                    .0
+                    .urls
                     .iter()
                     .find(|url| url_names(url, &lesson.name))
                 {
@@ -142,7 +224,7 @@ impl WorkbenchApp {
         let loaded = a.engine.scene().ok_or("no scene is open yet")?;
         let source = match &loaded.source {
             SceneSource::Bundled(name) => Source::Bundled(name.clone()),
-            SceneSource::Written { name, .. } if self.fetched.0.contains(name) => {
+            SceneSource::Written { name, .. } if self.fetched.urls.contains(name) => {
                 Source::Url(name.clone())
             }
             other => {

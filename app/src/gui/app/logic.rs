@@ -35,9 +35,12 @@ impl WorkbenchApp {
                     let lesson = is_lesson_file(&path);
                     self.open_dropped_text(&path, bytes, lesson);
                 }
-                Reply::Fetched { url, lesson, bytes } => {
-                    self.open_dropped_text(std::path::Path::new(&url), bytes, lesson);
-                }
+                Reply::Fetched {
+                    url,
+                    id,
+                    lesson,
+                    bytes,
+                } => self.open_fetched(&url, id, lesson, bytes),
                 Reply::LessonFolder(dir) => {
                     self.open_lesson_folder(&dir);
                 }
@@ -130,7 +133,7 @@ impl WorkbenchApp {
     /// (its URL), from its text: a `lesson` as a lesson file opens,
     /// otherwise a scene under its name. A bare mesh is read from disk
     /// only.
-    fn open_dropped_text(
+    pub(super) fn open_dropped_text(
         &mut self,
         path: &std::path::Path,
         bytes: Result<Vec<u8>, String>,

@@ -27,7 +27,7 @@ use super::comparison::Comparison;
 use super::editor;
 use super::lessons::Lessons;
 use super::observer::Observer;
-use super::panels::scene_list::SceneList;
+use super::panels::scene_list::{Picked, SceneList};
 use super::panels::side_panel::{self, SidePanelView};
 use super::panels::{central, stats, unfilled};
 use super::platform::clock::Clock;
@@ -60,7 +60,7 @@ pub struct WorkbenchApp {
     /// Times what the window times itself (notices, undo steps, the
     /// observer's animation).
     clock: Clock,
-    /// The Lessons window: lessons, steps, checks, progress.
+    /// The Lessons panel: lessons, steps, checks, progress.
     lessons: Lessons,
     /// A lesson step being set up, waiting for its scene.
     pending_setup: Option<lessons::PendingSetup>,
@@ -136,7 +136,15 @@ impl WorkbenchApp {
         };
         // Restoring the last session keeps the saved controls.
         let restoring = initial.is_none() && last_scene.is_some();
-        if let Some(source) = initial.or(last_scene).or_else(default_scene) {
+        let first = initial.or(last_scene).or_else(default_scene);
+        // A scene beside the page, remembered by name: fetched again.
+        let on_site = match &first {
+            Some(SceneSource::Bundled(name)) => bundled::site_scene(name),
+            _ => None,
+        };
+        if let Some(scene) = on_site {
+            app.fetch_site_scene(scene);
+        } else if let Some(source) = first {
             app.sides.adopt_loaded_scene = !restoring;
             app.sides.a.engine.load(source);
         }
@@ -150,10 +158,13 @@ impl WorkbenchApp {
         self
     }
 
-    /// Whether a side's or the observer's engine is loading a scene or
-    /// rendering: the web page, which its workers cannot wake, keeps
-    /// looking while so.
+    /// Whether a scene is being fetched, or a side's or the observer's
+    /// engine is loading a scene or rendering: the web page, which its
+    /// workers cannot wake, keeps looking while so.
     pub fn is_rendering(&self) -> bool {
+        if self.fetched.scene().is_some() {
+            return true;
+        }
         let sides = self.sides.each().map(|side| &side.engine);
         sides.chain([self.observer.engine()]).any(|engine| {
             matches!(
@@ -171,6 +182,8 @@ impl WorkbenchApp {
     /// Opens a scene as the user would: first asking, when edits are
     /// unsaved, whether to throw them away.
     pub fn open(&mut self, source: SceneSource) {
+        // The last scene asked for wins over one still being fetched.
+        self.cancel_scene_fetch();
         self.open_or_ask(editor::Pending::Open(source));
     }
 
@@ -207,6 +220,7 @@ impl WorkbenchApp {
             scene_list: &self.scene_list,
             current: current.as_ref(),
             recent: &self.session.recent,
+            fetching: self.fetched.scene().map(|f| (f.url.as_str(), &f.transfer)),
             counts: counts.as_ref(),
             editing: comparing.then_some(editing),
             controls,
@@ -226,8 +240,10 @@ impl WorkbenchApp {
                     picked = side_panel::show(ui, view, commands);
                 });
             });
-        if let Some(source) = picked {
-            self.open(source);
+        match picked {
+            Some(Picked::Scene(source)) => self.open(source),
+            Some(Picked::Site(scene)) => self.fetch_site_scene(scene),
+            None => {}
         }
     }
 
@@ -275,15 +291,13 @@ impl WorkbenchApp {
         }
     }
 
-    /// The windows over the image: help, the editor, benchmark, studies,
-    /// lessons.
+    /// The windows over the image: help, the editor, benchmark, studies.
     fn tool_windows(&mut self, ctx: &egui::Context, commands: &mut Vec<Command>) {
         help::window(ctx, &mut self.tools.help_open);
         self.editor_window(ctx, commands);
         self.benchmark_window(ctx);
         self.report_window(ctx);
         self.studies_window(ctx);
-        self.lessons_window(ctx);
     }
 }
 
@@ -304,6 +318,7 @@ impl eframe::App for WorkbenchApp {
         let mut commands = Command::pressed(&ctx);
         self.side_panel(ui, &mut commands);
         self.statistics_panel(ui);
+        self.lessons_panel(ui);
         let b = self.sides.b.as_ref();
         self.tools.inspector.update(&self.sides.a, b);
         self.tools.inspector.panel(ui, b.is_some());

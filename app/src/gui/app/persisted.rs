@@ -8,6 +8,7 @@ use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
 use tracer::render::{LensOverride, RenderSettings};
 
+use crate::bundled::{self, SiteScene};
 use crate::gui::sides::Controls;
 use crate::lessons::progress::{Record, StepNotes, StepsDone};
 use crate::load::SceneSource;
@@ -110,7 +111,10 @@ pub fn save(
 ) {
     let saved = Saved {
         controls: controls.clone(),
-        last_scene: session.last_scene.clone(),
+        last_scene: session
+            .last_scene
+            .as_ref()
+            .map(|s| remembered(s, bundled::site_scene_at)),
         recent: session.recent.clone(),
         show_stats: session.show_stats,
         lessons: progress.done.clone(),
@@ -118,6 +122,23 @@ pub fn save(
         student: progress.student.clone(),
     };
     eframe::set_value(storage, eframe::APP_KEY, &saved);
+}
+
+/// How the saved state names scene `source`: one fetched from beside the
+/// page (`site`: the site scene at a URL) by its name, fetched again when
+/// the page opens, for its text could outgrow the browser's storage for
+/// the site, and the lesson progress saved with it would be lost; any
+/// other as it is.
+fn remembered(
+    source: &SceneSource,
+    site: impl Fn(&str) -> Option<&'static SiteScene>,
+) -> SceneSource {
+    match source {
+        SceneSource::Written { name, .. } => {
+            site(name).map_or_else(|| source.clone(), |s| SceneSource::Bundled(s.name.into()))
+        }
+        _ => source.clone(),
+    }
 }
 
 /// Reads a saved state. Before the controls held the render settings as
@@ -210,6 +231,33 @@ mod tests {
         assert_eq!(back.controls, controls);
         assert_eq!(back.last_scene, saved.last_scene);
         assert_eq!((back.recent, back.show_stats), (session.recent, false));
+    }
+
+    #[test]
+    fn a_scene_fetched_from_beside_the_page_is_remembered_by_name() {
+        static TETRA: SiteScene = SiteScene {
+            name: "tetra",
+            file: "tetra.p3f",
+            description: "",
+            size: 423_667,
+        };
+        let site = |url: &str| (url == TETRA.url()).then_some(&TETRA);
+        let fetched = SceneSource::Written {
+            name: "scenes/tetra.p3f".into(),
+            text: "v from 0 0 5 ...".into(),
+        };
+        assert_eq!(
+            remembered(&fetched, site),
+            SceneSource::Bundled("tetra".into())
+        );
+        // A file a link fetched, or a lesson's step: kept as it is.
+        let linked = SceneSource::Written {
+            name: "mine/scene.p3f".into(),
+            text: "v".into(),
+        };
+        assert_eq!(remembered(&linked, site), linked);
+        let bundled = SceneSource::Bundled("glass".into());
+        assert_eq!(remembered(&bundled, site), bundled);
     }
 
     /// `lesson progress` reads the window's saved lessons under the names

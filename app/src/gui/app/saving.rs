@@ -17,6 +17,7 @@ use crate::figures::study_plot;
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use crate::gui::platform::target;
 use crate::gui::platform::target::SaveTo;
+use crate::gui::platform::transfer::Transfer;
 use crate::gui::sides::{Activity, Side, SideId};
 use crate::lessons::progress::Progress;
 use crate::load::SceneSource;
@@ -25,7 +26,7 @@ use crate::measure::study::{Param, Point};
 /// Results of background dialogs and saves, delivered to the UI thread.
 pub enum Reply {
     Open(PathBuf),
-    /// A folder of lessons to add to the Lessons window's list.
+    /// A folder of lessons to add to the Lessons panel's list.
     LessonFolder(PathBuf),
     /// A dropped file that is no file on disk, by name, and its bytes
     /// or why they could not be read.
@@ -33,10 +34,11 @@ pub enum Reply {
         path: PathBuf,
         bytes: Result<Vec<u8>, String>,
     },
-    /// A file a link fetched from the page's site (`url`): a lesson or
-    /// a scene, and its bytes or why they could not be fetched.
+    /// A file fetched from the page's site (`url`, fetch number `id`): a
+    /// lesson or a scene, and its bytes or why they could not be fetched.
     Fetched {
         url: String,
+        id: u64,
         lesson: bool,
         bytes: Result<Vec<u8>, String>,
     },
@@ -213,12 +215,18 @@ impl Dialogs {
         });
     }
 
-    /// Fetches `url` from the page's site (`target::fetch`) and replies
-    /// with its bytes, to open as a `lesson` or a scene.
-    pub fn fetch(&self, url: &str, lesson: bool) {
+    /// Fetches `url` from the page's site (`target::fetch`, followed by
+    /// `progress`) and replies with its bytes, as fetch number `id`, to
+    /// open as a `lesson` or a scene.
+    pub fn fetch(&self, url: &str, id: u64, lesson: bool, progress: Transfer) {
         let (reply, url) = (self.sender.clone(), url.to_string());
-        target::fetch(&url.clone(), move |bytes| {
-            let _ = reply.send(Reply::Fetched { url, lesson, bytes });
+        target::fetch(&url.clone(), progress, move |bytes| {
+            let _ = reply.send(Reply::Fetched {
+                url,
+                id,
+                lesson,
+                bytes,
+            });
         });
     }
 

@@ -55,12 +55,12 @@ impl WorkbenchApp {
         &self.observer
     }
 
-    /// The Lessons window: the lesson, step, verdict and progress.
+    /// The Lessons panel: the lesson, step, verdict and progress.
     pub fn lessons(&self) -> &Lessons {
         &self.lessons
     }
 
-    /// The Lessons window, as typing in it changes it.
+    /// The Lessons panel, as typing in it changes it.
     pub fn lessons_mut(&mut self) -> &mut Lessons {
         &mut self.lessons
     }

@@ -1,4 +1,4 @@
-//! The Lessons window: the lesson picker with each lesson's progress, the
+//! The Lessons panel: the lesson picker with each lesson's progress, the
 //! current step's text (emphasis, code and indented formulas set apart),
 //! its hints on request, the question and answer, the check's state, the
 //! buttons that move between steps or set one up, and the student's name
@@ -8,6 +8,7 @@ use egui::text::LayoutJob;
 use egui::{Color32, FontId, RichText, TextFormat, Ui};
 
 use super::Lessons;
+use crate::gui::panels::unfilled;
 use crate::gui::platform::file_button;
 use crate::lessons::Verdict;
 
@@ -25,17 +26,35 @@ pub struct Asked {
     pub export: bool,
 }
 
-/// Draws the window when it is open.
-pub fn show(ctx: &egui::Context, lessons: &mut Lessons) -> Asked {
+/// Draws the panel when it is open: docked at the right of the image, so
+/// the image shrinks beside the step's text instead of hiding under it (a
+/// floating window covered the right of the image, where a teacher's
+/// lesson had put the object the step was about).
+pub fn show(ui: &mut Ui, lessons: &mut Lessons) -> Asked {
     let mut asked = Asked::default();
-    let mut open = lessons.open;
-    egui::Window::new("Lessons")
-        .open(&mut open)
-        .default_size([420.0, 640.0])
-        .default_pos([870.0, 40.0])
-        .vscroll(true)
-        .show(ctx, |ui| body(ui, lessons, &mut asked));
-    lessons.open = open;
+    if !lessons.open {
+        return asked;
+    }
+    egui::Panel::right("lessons")
+        .resizable(true)
+        .default_size(380.0)
+        .size_range(240.0..=720.0)
+        .frame(unfilled(egui::Frame::side_top_panel(ui.style())))
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.heading("Lessons");
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    if ui
+                        .small_button("Close")
+                        .on_hover_text("Close the Lessons panel (L)")
+                        .clicked()
+                    {
+                        lessons.open = false;
+                    }
+                });
+            });
+            egui::ScrollArea::vertical().show(ui, |ui| body(ui, lessons, &mut asked));
+        });
     asked
 }
 

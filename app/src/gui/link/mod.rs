@@ -47,9 +47,9 @@ impl Source {
 /// What a page's query asks the window to open.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Link {
-    /// A lesson: opened in the Lessons window, its step set up.
+    /// A lesson: opened in the Lessons panel, its step set up.
     pub lesson: Option<Source>,
-    /// The lesson's step to set up, counted from 1 as the Lessons window
+    /// The lesson's step to set up, counted from 1 as the Lessons panel
     /// counts them (the first when not given).
     pub step: Option<usize>,
     /// A scene: opened as the scene picker or a dropped file would.

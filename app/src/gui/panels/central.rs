@@ -127,13 +127,19 @@ pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
             tools.editor.pick_at = Some(pixel);
         }
     }
+    // The hovered pixel's readout at the right, the status line in what is
+    // left: each cut short with an ellipsis when the image area is narrow
+    // (beside the Lessons panel) rather than drawn over the other.
     ui.horizontal(|ui| {
-        ui.label(status_line(a, moving || response.dragging_camera));
-        if let Some(readout) = pixel_readout(a, tools, response.hovered_pixel) {
-            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                ui.monospace(readout);
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            if let Some(readout) = pixel_readout(a, tools, response.hovered_pixel) {
+                ui.add(egui::Label::new(egui::RichText::new(readout).monospace()).truncate());
+            }
+            ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
+                let status = status_line(a, moving || response.dragging_camera);
+                ui.add(egui::Label::new(status).truncate());
             });
-        }
+        });
     });
     CentralOutcome {
         viewport: response,

@@ -1,5 +1,6 @@
-//! Choosing a scene: the bundled ones with their sizes, files in `scenes/`
-//! on disk, recent files, and a native open dialog.
+//! Choosing a scene: the bundled ones with their sizes (on the web page
+//! also those beside it, fetched when picked, with a progress bar), files
+//! in `scenes/` on disk, recent files, and a native open dialog.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -10,11 +11,12 @@ use web_time::Instant;
 
 use crate::gui::platform::clock::Clock;
 use crate::gui::platform::target;
+use crate::gui::platform::transfer::{self, Transfer};
 
 use egui::{RichText, Ui};
 use tracer::scene::{Limits, Primitive, Scene, parse_scene};
 
-use crate::bundled;
+use crate::bundled::{self, Offered, SiteScene};
 use crate::describe::si;
 use crate::load::SceneSource;
 
@@ -179,14 +181,35 @@ pub fn is_scene_file(path: &Path) -> bool {
         || tracer::scene::mesh_io::MeshFormat::of(path).is_some()
 }
 
+/// What the user picked in the list.
+pub enum Picked {
+    /// A scene to open as it is.
+    Scene(SceneSource),
+    /// A scene beside the page, to fetch first.
+    Site(&'static SiteScene),
+}
+
+/// What the picker shows beside its list.
+pub struct Shown<'a> {
+    /// The scene open on side A.
+    pub current: Option<&'a SceneSource>,
+    pub recent: &'a [PathBuf],
+    /// The scene being fetched from the page's site, and its progress.
+    pub fetching: Option<(&'a str, &'a Transfer)>,
+}
+
 /// Draws the picker; returns the scene the user chose, if any.
 pub fn show(
     ui: &mut Ui,
     list: &SceneList,
-    current: Option<&SceneSource>,
-    recent: &[PathBuf],
+    shown: Shown<'_>,
     commands: &mut Vec<Command>,
-) -> Option<SceneSource> {
+) -> Option<Picked> {
+    let Shown {
+        current,
+        recent,
+        fetching,
+    } = shown;
     let (catalog, disk_scenes) = (&list.catalog, &list.disk_scenes);
     let mut chosen = None;
     ui.heading("Scene");
@@ -195,26 +218,40 @@ pub fn show(
         command_button(ui, Command::Reload, commands);
         command_button(ui, Command::CopyLink, commands);
     });
+    let current_label = current.map(SceneSource::label);
     egui::ScrollArea::vertical()
         .id_salt("scene_list")
         .max_height(220.0)
         .show(ui, |ui| {
-            for scene in bundled::SCENES {
-                let source = SceneSource::Bundled(scene.name.to_string());
-                let selected = current == Some(&source);
+            for offered in bundled::offered() {
+                let (hover, picked, selected, side_note) = match offered {
+                    Offered::Embedded(scene) => {
+                        let source = SceneSource::Bundled(scene.name.to_string());
+                        let selected = current == Some(&source);
+                        let summary = catalog.summary(scene.name);
+                        (scene.description, Picked::Scene(source), selected, summary)
+                    }
+                    Offered::Site(scene) => {
+                        let url = scene.url();
+                        let selected = current_label.as_ref() == Some(&url)
+                            || fetching.is_some_and(|(fetched, _)| fetched == url);
+                        let size = transfer::bytes(scene.size);
+                        (scene.description, Picked::Site(scene), selected, Some(size))
+                    }
+                };
                 let response = ui
                     .horizontal(|ui| {
                         let response = ui
-                            .selectable_label(selected, scene.name)
-                            .on_hover_text(scene.description);
-                        if let Some(summary) = catalog.summary(scene.name) {
-                            ui.weak(summary);
+                            .selectable_label(selected, offered.name())
+                            .on_hover_text(hover);
+                        if let Some(note) = side_note {
+                            ui.weak(note);
                         }
                         response
                     })
                     .inner;
                 if response.clicked() {
-                    chosen = Some(source);
+                    chosen = Some(picked);
                 }
             }
             // Files on disk that are not bundled copies (edited or new).
@@ -230,17 +267,20 @@ pub fn show(
                     .on_hover_text(path.display().to_string())
                     .clicked()
                 {
-                    chosen = Some(source);
+                    chosen = Some(Picked::Scene(source));
                 }
             }
         });
-    if let Some(SceneSource::Bundled(name)) = current
-        && let Some(scene) = bundled::find(name)
-    {
+    if let Some((url, transfer)) = fetching {
+        // Where the user looks after picking: under the list.
+        let text = format!("fetching {url}: {}", transfer.describe());
+        ui.add(egui::ProgressBar::new(transfer.fraction().unwrap_or(0.0)).text(text));
+    }
+    if let Some(description) = current.and_then(description_of) {
         // The first sentence; the whole line on hover.
-        let first = scene.description.split(';').next().unwrap_or_default();
+        let first = description.split(';').next().unwrap_or_default();
         ui.label(RichText::new(first).small().weak())
-            .on_hover_text(scene.description);
+            .on_hover_text(description);
     }
     if !recent.is_empty() {
         ui.collapsing("Recent files", |ui| {
@@ -251,10 +291,20 @@ pub fn show(
                     .on_hover_text(path.display().to_string())
                     .clicked()
                 {
-                    chosen = Some(source);
+                    chosen = Some(Picked::Scene(source));
                 }
             }
         });
     }
     chosen
+}
+
+/// The description of scene `source` when it is one of `scenes/`:
+/// embedded, or fetched from beside the page.
+fn description_of(source: &SceneSource) -> Option<&'static str> {
+    match source {
+        SceneSource::Bundled(name) => bundled::find(name).map(|s| s.description),
+        SceneSource::Written { name, .. } => bundled::site_scene_at(name).map(|s| s.description),
+        SceneSource::File(_) => None,
+    }
 }

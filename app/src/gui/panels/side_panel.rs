@@ -8,13 +8,14 @@ use egui::Ui;
 use tracer::scene::Viewpoint;
 use tracer::stats::SceneCounts;
 
-use super::scene_list::{self, SceneList};
+use super::scene_list::{self, Picked, SceneList};
 use super::settings::{self, command_button, command_toggle};
 use crate::gui::commands::Command;
 use crate::gui::image::active_overlay::ActiveOverlay;
 use crate::gui::image::pixel_views::PixelViews;
 use crate::gui::image::structure_overlay::StructureOverlay;
 use crate::gui::observer::Observer;
+use crate::gui::platform::transfer::Transfer;
 use crate::gui::sides::{Controls, SideId};
 use crate::load::SceneSource;
 
@@ -23,6 +24,8 @@ pub struct SidePanelView<'a> {
     pub scene_list: &'a SceneList,
     pub current: Option<&'a SceneSource>,
     pub recent: &'a [PathBuf],
+    /// The scene being fetched from the page's site, and its progress.
+    pub fetching: Option<(&'a str, &'a Transfer)>,
     pub counts: Option<&'a SceneCounts>,
     /// `Some` in compare mode: the side being edited.
     pub editing: Option<&'a mut SideId>,
@@ -39,12 +42,13 @@ pub struct SidePanelView<'a> {
 }
 
 /// Draws the panel's contents; returns the scene the user picked.
-pub fn show(
-    ui: &mut Ui,
-    view: SidePanelView<'_>,
-    commands: &mut Vec<Command>,
-) -> Option<SceneSource> {
-    let picked = scene_list::show(ui, view.scene_list, view.current, view.recent, commands);
+pub fn show(ui: &mut Ui, view: SidePanelView<'_>, commands: &mut Vec<Command>) -> Option<Picked> {
+    let shown = scene_list::Shown {
+        current: view.current,
+        recent: view.recent,
+        fetching: view.fetching,
+    };
+    let picked = scene_list::show(ui, view.scene_list, shown, commands);
     if let Some(counts) = view.counts {
         ui.small(format!(
             "{} objects, {} lights",

@@ -3,7 +3,7 @@
 //! read, the software rasterizer's priority, screenshots for
 //! `--screenshot`, and `target`: what differs between the desktop
 //! (`native.rs`) and the web page (`web.rs`), the one place the window
-//! asks which it runs on; on the web, `page_modes`: what a page's query
+//! asks which it runs on; `transfer`, a fetch's progress; on the web, `page_modes`: what a page's query
 //! can ask instead of the window (`?replay`).
 
 pub mod clock;
@@ -19,6 +19,7 @@ pub mod screenshot;
 #[cfg_attr(not(target_family = "wasm"), path = "native.rs")]
 #[cfg_attr(target_family = "wasm", path = "web.rs")]
 pub mod target;
+pub mod transfer;
 #[cfg(target_family = "wasm")]
 pub mod web_link;
 

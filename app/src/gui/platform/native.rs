@@ -11,6 +11,7 @@ use tracer::stats::RenderStats;
 
 use tracer::render::driver::{Priority, render_pool as pool_of};
 
+use super::transfer::Transfer;
 use crate::gui::app::{FileDialog as AskFile, FileQuestion};
 use crate::load::SceneSource;
 
@@ -69,8 +70,9 @@ pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
 }
 
 /// Reads the file a link names (`url`, relative to the current folder as
-/// a page's is to the page) and gives its bytes to `done`, at once.
-pub fn fetch(url: &str, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
+/// a page's is to the page) and gives its bytes to `done`, at once: no
+/// progress to follow.
+pub fn fetch(url: &str, _: Transfer, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
     done(std::fs::read(url).map_err(|e| format!("{url}: {e}")));
 }
 

@@ -302,7 +302,7 @@ async fn scene_source(name: String) -> Result<SceneSource, JsValue> {
 
 /// The text at `url` (relative to the page), or why not.
 async fn fetch_text(url: &str) -> Result<String, JsValue> {
-    let bytes = super::web_link::fetched(url).await?;
+    let bytes = super::web_link::fetched(url, &Default::default()).await?;
     String::from_utf8(bytes).map_err(|_| JsValue::from_str(&format!("{url}: not UTF-8 text")))
 }
 

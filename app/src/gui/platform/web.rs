@@ -325,13 +325,14 @@ impl Page {
             None => state,
         };
         let lessons = self.app.lessons();
-        let lesson = match lessons.lesson() {
-            Some(lesson) if lessons.open => lesson.name.clone(),
-            _ => String::new(),
+        // The step as the panel counts it, from 1.
+        let (lesson, step) = match lessons.lesson() {
+            Some(lesson) if lessons.open => (lesson.name.clone(), (lessons.step() + 1).to_string()),
+            _ => (String::new(), String::new()),
         };
         let scene = self.app.engine().scene().map(|s| s.source.label());
         let scene = scene.unwrap_or_default();
-        let said = format!("{state}|{passes}|{tiles}|{lesson}|{scene}");
+        let said = format!("{state}|{passes}|{tiles}|{lesson}|{step}|{scene}");
         if said == self.said {
             return;
         }
@@ -342,6 +343,7 @@ impl Page {
             let _ = body.set_attribute("data-render", &state);
             let _ = body.set_attribute("data-passes", &passes.to_string());
             let _ = body.set_attribute("data-lesson", &lesson);
+            let _ = body.set_attribute("data-step", &step);
             let _ = body.set_attribute("data-scene", &scene);
             let workers = WORKERS.load(Ordering::Relaxed).to_string();
             let _ = body.set_attribute("data-workers", &workers);

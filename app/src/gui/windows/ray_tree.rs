@@ -189,7 +189,7 @@ fn show_tree(
 }
 
 /// All, or a step through the `n` visits: Home, back, next, End (named
-/// apart from the Lessons window's Back and Next).
+/// apart from the Lessons panel's Back and Next).
 fn step_controls(ui: &mut Ui, step: &mut VisitStep, n: usize) {
     let current = step.current(n);
     ui.horizontal(|ui| {
