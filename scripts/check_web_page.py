@@ -19,6 +19,7 @@ Talks DevTools through check_report_page's standard-library client.
                               [--save-png SCENE [--render-args ARGS]]
                               [--site-file FILE]... [--scene LABEL]
                               [--step N] [--missing PATH]
+                              [--study SCENE [--param P --values V]]
 
 --save-png presses Save PNG (Ctrl+S) once the render is done and checks
 the browser's download: named as the desktop's dialog offers (the
@@ -30,6 +31,10 @@ page). --site-file puts a file on the served site at its path (a link's
 must show at the end, --step the lesson's step its Lessons panel must
 show. --missing PATH: the query links to PATH, which the site lacks:
 Chromium's own console error for that one 404 is expected, no other.
+--study opens ?study=SCENE&param=P&values=V: a study run on a worker,
+as the Studies window runs it, whose chart the page draws there and
+downloads; the PNG must be a chart panel with its text drawn (ink in
+the title's band and in the y axis's label).
 
 Exits 0 when the page passes, 1 with the reasons when it does not, 2 when
 Chromium cannot be started.
@@ -71,7 +76,7 @@ STATUS = (
     " scene: data.scene || '',"
     " renderedOn: data.renderedOn || '', tiles: data.tiles || '',"
     " rays: typeof self.workbench?.rays_traced === 'function' ? self.workbench.rays_traced() : -1,"
-    " replay: data.replay || '', compare: data.compare || '',"
+    " replay: data.replay || '', compare: data.compare || '', study: data.study || '',"
     " said: (document.getElementById('status') || {}).textContent || '',"
     " now: performance.now()}); })()"
 )
@@ -271,9 +276,42 @@ def saved_png_problems(path, scene, workbench, render_args):
     return problems
 
 
+def study_chart_problems(path, expected):
+    """Why the page's download `path` is not a study's chart named
+    `expected` with its text drawn, as sentences."""
+    if path is None:
+        return ["the study gave no chart download"]
+    problems = []
+    if os.path.basename(path) != expected:
+        problems.append(f"the chart is named {os.path.basename(path)}, not {expected}")
+    try:
+        with open(path, "rb") as f:
+            width, height, rows = png_match.read_png(f.read())
+    except (ValueError, OSError) as e:
+        return problems + [f"the chart is not a PNG the check reads: {e}"]
+    # study_plot::PANEL; the title alone is in the top band, the y axis's
+    # label (turned) alone in the left band.
+    if (width, height) != (800, 500):
+        problems.append(f"the chart is {width} x {height}, not one 800 x 500 panel")
+    title, label = chart_ink(rows, range(0, 40), range(width)), chart_ink(rows, range(height), range(0, 28))
+    print(f"study chart: {os.path.basename(path)}, {width} x {height}, "
+          f"ink of its title {title} pixels, of its y axis's label {label}")
+    if title < 200 or label < 200:
+        problems.append("the chart's title or axis label is not drawn: its text is missing")
+    return problems
+
+
+def chart_ink(rows, ys, xs):
+    """How many pixels in rows `ys`, columns `xs` are dark (text)."""
+    return sum(
+        1 for y in ys if y < len(rows) for x in xs
+        if 3 * x + 2 < len(rows[y]) and max(rows[y][3 * x : 3 * x + 3]) < 128
+    )
+
+
 def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, isolated=True,
           hide=False, replay=False, desktop=None, save=None, scene=None, step=None,
-          missing=None):
+          missing=None, study=None):
     profile = tempfile.mkdtemp(prefix="workbench-web-")
     downloads = os.path.join(profile, "downloads")
     os.mkdir(downloads)
@@ -303,7 +341,10 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
                 if hide:
                     problems += hidden_holds_the_render(page)
                     continue
-            if (replay and now["replay"]) or (desktop and now["compare"]):
+            if (replay and now["replay"]) or (desktop and now["compare"]) or (study and now["study"]):
+                break
+            # A worker that panics says so only on the console.
+            if study and problems_of(page.events):
                 break
             if now["render"] == "done" or now["render"].startswith(("failed", "error", "panic")):
                 break
@@ -317,7 +358,14 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             save_problems = saved_png_problems(path, *save)
         events = without_expected_404(page.events, missing) if missing else page.events
         problems = problems_of(events) + problems + save_problems
-        if desktop:
+        if study:
+            print(now["said"])
+            if not now["study"].startswith("drawn"):
+                problems.append(f"the study's chart: {now['study'] or 'not drawn in time'}")
+            else:
+                path = downloaded(downloads, time.monotonic() + 60)
+                problems += study_chart_problems(path, study)
+        elif desktop:
             print(now["said"])
             problems += compare_problems(now["compare"], desktop)
         elif replay:
@@ -336,8 +384,8 @@ def check(url, timeout, screenshot, chromium, lesson, dropped=None, error=None, 
             shot = page.command("Page.captureScreenshot", format="png")
             with open(screenshot, "wb") as f:
                 f.write(base64.b64decode(shot["data"]))
-        if replay or desktop:
-            print(f"{'replay' if replay else 'comparison'} done: {(now['now'] - start) / 1000:.2f} s after navigation started")
+        if replay or desktop or study:
+            print(f"{'replay' if replay else 'study' if study else 'comparison'} done: {(now['now'] - start) / 1000:.2f} s after navigation started")
         else:
             print(f"workers: {now['workers']}, passes: {now['passes']}, on: {now['renderedOn']}")
             if first_pass is not None:
@@ -394,6 +442,10 @@ def main():
     parser.add_argument("--missing", metavar="PATH",
                         help="a file the site lacks, which the query links to: Chromium's"
                              " one console error for its 404 is expected (--error: the page's)")
+    parser.add_argument("--study", metavar="SCENE",
+                        help="open ?study=SCENE: a study's chart must be drawn and downloaded")
+    parser.add_argument("--param", default="depth", help="with --study: the parameter studied")
+    parser.add_argument("--values", default="1..3", help="with --study: its values")
     args = parser.parse_args()
     site = args.dist
     if args.site_file:
@@ -415,12 +467,17 @@ def main():
         quote = urllib.parse.quote
         query = f"?compare={quote(args.compare)}&a={quote(args.a)}&b={quote(args.b)}"
         desktop = desktop_metrics(args.workbench, args.compare, args.a, args.b)
+    study = None
+    if args.study:
+        quote = urllib.parse.quote
+        query = f"?study={quote(args.study)}&param={quote(args.param)}&values={quote(args.values)}"
+        study = f"study-{args.param}-{args.study}.png"
     url = f"http://127.0.0.1:{httpd.server_port}/{query}"
     return check(
         url, args.timeout, args.screenshot, args.chromium, args.lesson, args.drop, args.error,
         not args.no_isolation, args.hide, args.replay, desktop,
         (args.save_png, args.workbench, args.render_args) if args.save_png else None,
-        args.scene, args.step, args.missing,
+        args.scene, args.step, args.missing, study,
     )
 
 

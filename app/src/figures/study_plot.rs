@@ -2,7 +2,9 @@
 //! against the parameter, one line per structure, the best point ringed;
 //! log-log axes for the level study, and for `spp` a second panel of image
 //! error against frame time. The font is egui's embedded one, rasterized in
-//! Rust, so drawing needs nothing from the system.
+//! Rust ([`chart_text`]), so drawing needs nothing from the system, nor
+//! on the web page from the browser: a study's chart is drawn on a worker
+//! there.
 
 use std::ops::Range;
 
@@ -14,6 +16,7 @@ use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use tracer::accel::AccelKind;
 
+use super::chart_text::{EmbeddedText, legend};
 use crate::measure::study::analysis::{self, Best};
 use crate::measure::study::{Param, Point, values};
 
@@ -29,30 +32,12 @@ pub fn colour(accel: AccelKind) -> [u8; 3] {
     }
 }
 
-/// The font family the charts use, registered on first use.
+/// The font family the charts name (the embedded font draws them all).
 const FONT: &str = "sans-serif";
 
-#[cfg(not(target_family = "wasm"))]
-fn register_font() -> Result<()> {
-    static REGISTER: std::sync::Once = std::sync::Once::new();
-    let mut result = Ok(());
-    REGISTER.call_once(|| {
-        result = plotters::style::register_font(
-            FONT,
-            FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        )
-        .map_err(|_| anyhow!("the embedded chart font cannot be read"));
-    });
-    result
-}
-
-/// On the web plotters draws text with the browser's canvas, which a
-/// worker (where studies run) does not have.
-#[cfg(target_family = "wasm")]
-fn register_font() -> Result<()> {
-    anyhow::bail!("study charts are not drawn on the web page yet")
-}
+/// What a chart draws on: a pixel buffer, its text drawn by
+/// [`EmbeddedText`].
+type Chart<'a> = EmbeddedText<BitMapBackend<'a>>;
 
 /// One line of a panel.
 struct Curve {
@@ -83,12 +68,12 @@ struct Panel {
 /// The chart of `points` (a study of `param` on `subject`, a name for the
 /// title) as an image: one panel, two side by side for `spp`.
 pub fn chart(param: Param, points: &[Point], subject: &str) -> Result<RgbImage> {
-    register_font()?;
     let panels = panels(param, points, subject);
     let (w, h) = (PANEL.0 * panels.len() as u32, PANEL.1);
     let mut buffer = vec![0u8; (w * h * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
+        let root =
+            EmbeddedText(BitMapBackend::with_buffer(&mut buffer, (w, h))).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let areas = root.split_evenly((1, panels.len()));
         for (panel, area) in panels.iter().zip(&areas) {
@@ -97,6 +82,26 @@ pub fn chart(param: Param, points: &[Point], subject: &str) -> Result<RgbImage> 
         root.present().map_err(drawing)?;
     }
     RgbImage::from_raw(w, h, buffer).ok_or_else(|| anyhow!("the chart has the wrong size"))
+}
+
+/// [`chart`] as PNG bytes, for a download or a save dialog's file.
+pub fn chart_png(param: Param, points: &[Point], subject: &str) -> Result<Vec<u8>> {
+    let mut png = std::io::Cursor::new(Vec::new());
+    chart(param, points, subject)?.write_to(&mut png, image::ImageFormat::Png)?;
+    Ok(png.into_inner())
+}
+
+/// The name a chart is saved under: `study-PARAM-STEM.png`.
+pub fn chart_file_name(param: Param, subject: &str) -> String {
+    format!("study-{param}-{}.png", subject_stem(subject))
+}
+
+/// What names a study's files: its subject's file stem (of a scene
+/// file, or a generator's name).
+pub fn subject_stem(subject: &str) -> String {
+    std::path::Path::new(subject)
+        .file_stem()
+        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
 }
 
 fn drawing(e: impl std::fmt::Display) -> anyhow::Error {
@@ -282,7 +287,7 @@ fn tick(v: &f64) -> String {
     values::format(format!("{v:.digits$}").parse().unwrap_or(*v))
 }
 
-fn draw_panel(panel: &Panel, area: &DrawingArea<BitMapBackend, Shift>) -> Result<()> {
+fn draw_panel(panel: &Panel, area: &DrawingArea<Chart, Shift>) -> Result<()> {
     let all = || panel.curves.iter().flat_map(|c| c.points.iter());
     let x = range(all().map(|p| p.0), panel.log_x, false);
     let y = range(all().map(|p| p.1), panel.log_y, panel.y_from_zero);
@@ -301,12 +306,7 @@ fn draw_panel(panel: &Panel, area: &DrawingArea<BitMapBackend, Shift>) -> Result
     }
 }
 
-fn draw_axes<X, Y>(
-    panel: &Panel,
-    area: &DrawingArea<BitMapBackend, Shift>,
-    x: X,
-    y: Y,
-) -> Result<()>
+fn draw_axes<X, Y>(panel: &Panel, area: &DrawingArea<Chart, Shift>, x: X, y: Y) -> Result<()>
 where
     X: AsRangedCoord<Value = f64>,
     Y: AsRangedCoord<Value = f64>,
@@ -344,11 +344,7 @@ where
                 curve.points.iter().copied(),
                 colour.stroke_width(2),
             ))
-            .map_err(drawing)?
-            .label(&curve.name)
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-            });
+            .map_err(drawing)?;
         chart
             .draw_series(
                 curve
@@ -370,13 +366,16 @@ where
             chart.draw_series([marker]).map_err(drawing)?;
         }
     }
-    chart
-        .configure_series_labels()
-        .position(panel.legend.clone())
-        .label_font((FONT, 15))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(drawing)?;
+    let lines: Vec<(&str, RGBColor)> = (panel.curves.iter())
+        .map(|c| (c.name.as_str(), c.colour))
+        .collect();
+    legend(
+        &chart.plotting_area().strip_coord_spec(),
+        &lines,
+        &panel.legend,
+        &(FONT, 15).into_text_style(area),
+        (WHITE.mix(0.85).filled(), BLACK.into()),
+    )
+    .map_err(drawing)?;
     Ok(())
 }

@@ -8,7 +8,7 @@ use egui_kittest::kittest::Queryable;
 use tracer::accel::AccelKind;
 use workbench::gui::WorkbenchApp;
 
-use crate::harness::{small_window_sized, wait_for, wait_for_scene};
+use crate::harness::{answer_dialogs, small_window_sized, wait_for, wait_for_scene};
 
 type Window = Harness<'static, WorkbenchApp>;
 
@@ -153,5 +153,39 @@ fn a_study_runs_shows_progress_cancels_and_applies_a_point() {
         app.engine()
             .settings()
             .is_some_and(|s| s.grid_multiplier == wanted)
+    });
+}
+
+#[test]
+fn save_chart_asks_a_png_name_and_writes_the_study_chart() {
+    let dir = crate::support::scratch("studies-save-chart");
+    let mut harness = studies_window();
+    let answers = answer_dialogs(&mut harness);
+    assert!(
+        harness.query_by_label("Save chart...").is_none(),
+        "nothing to save before a study"
+    );
+    type_values(&mut harness, "1,2");
+    harness.get_by_role_and_label(Role::Button, "Run").click();
+    wait_for(&mut harness, "the study", |app| {
+        !app.studies().is_running() && app.studies().points().count() == 2
+    });
+    harness.run_steps(2);
+    let chart = dir.join("chart.png");
+    answers.next(Some(&chart));
+    harness
+        .get_by_role_and_label(Role::Button, "Save chart...")
+        .click();
+    wait_for(&mut harness, "the saved chart", |_| chart.exists());
+    let (filter, name, save) = answers.last();
+    assert_eq!(
+        (filter, name.as_deref(), save),
+        (vec!["png"], Some("study-grid-m-balls_low.png"), true)
+    );
+    let image = image::open(&chart).unwrap().to_rgb8();
+    assert_eq!(image.dimensions(), (800, 500));
+    tracer::waiting::wait_until("the notice", || {
+        harness.step();
+        harness.query_by_label_contains("chart saved to").is_some()
     });
 }

@@ -376,6 +376,11 @@ impl WorkbenchApp {
                 waker(ctx),
             );
         }
+        if let Some((param, points, subject)) = studies.chart_to_save()
+            && !self.dialogs.save_study_chart(param, points, &subject)
+        {
+            self.messages.notify("cannot open a file dialog");
+        }
         if let Some(applied) = applied {
             self.apply_study_point(&applied);
         }

@@ -13,6 +13,7 @@ use anyhow::Context as _;
 use tracer::render::{JobState, Snapshot};
 use tracer::scene::{Scene, write_p3f_in};
 
+use crate::figures::study_plot;
 use crate::gui::platform::screenshot::{self, ScreenshotOutcome, ScreenshotPlan};
 use crate::gui::platform::target;
 use crate::gui::platform::target::SaveTo;
@@ -20,6 +21,7 @@ use crate::gui::platform::transfer::Transfer;
 use crate::gui::sides::{Activity, Side, SideId};
 use crate::lessons::progress::Progress;
 use crate::load::SceneSource;
+use crate::measure::study::{Param, Point};
 
 use super::lesson_fetch::FetchFor;
 
@@ -339,6 +341,27 @@ impl Dialogs {
              `workbench lesson progress` reads it from the saved state)",
             move || Ok(progress.to_json().into_bytes()),
             |to| format!("progress exported to {to}"),
+        )
+    }
+
+    /// The native save dialog for a study's chart (its `points` of
+    /// `param` on `subject`), and the chart drawn and written, off the
+    /// window's thread; false when no thread could be started.
+    pub fn save_study_chart(&self, param: Param, points: Vec<Point>, subject: &str) -> bool {
+        let question = FileQuestion {
+            save: true,
+            pick_folder: false,
+            filter: ("PNG image", &["png"]),
+            folder: None,
+            name: Some(study_plot::chart_file_name(param, subject)),
+        };
+        let subject = subject.to_string();
+        self.save_on_thread(
+            "save-chart-dialog",
+            question,
+            "chart not saved (cancelled, or no file dialog on this desktop)",
+            move || study_plot::chart_png(param, &points, &subject),
+            |to| format!("chart saved to {to}"),
         )
     }
 

@@ -37,6 +37,11 @@ impl SaveTo {
         ))
     }
 
+    /// A download named `name`, asking no one.
+    pub fn named(name: String) -> Self {
+        Self(name)
+    }
+
     /// Where the bytes go, as the window says it.
     pub fn describe(&self) -> String {
         format!("{} (a download)", self.0)

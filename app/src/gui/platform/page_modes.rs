@@ -5,23 +5,28 @@
 //! `?bench=SCENE` times `workbench bench`'s frame of a scene on the
 //! page's workers, for the web's speed against the desktop's;
 //! `?compare=SCENE&a=FLAGS&b=FLAGS` measures what `workbench compare`
-//! does (MSE, PSNR, FLIP), for the web's metrics against the desktop's.
+//! does (MSE, PSNR, FLIP), for the web's metrics against the desktop's;
+//! `?study=SCENE&param=P&values=V` runs a study on a worker and gives its
+//! chart as a download, for a script to see that charts draw on the web.
 
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
 
 use anyhow::Context;
 use tracer::accel::AccelKind;
-use tracer::render::Encoding;
+use tracer::render::{Encoding, RenderSettings};
 use wasm_bindgen::prelude::*;
 
 use crate::cli::{EncodingArgs, SettingsArgs};
 use crate::compare_side::side_from_flags;
+use crate::figures::study_plot;
 use crate::gui::link::decode;
 use crate::lessons::{bundled, replay};
 use crate::load::{Loaded, SceneSource};
 use crate::measure::ab::{self, Heatmap, SideOptions};
-use crate::measure::benchmark::{self, RunOptions};
+use crate::measure::benchmark::{self, RunOptions, Stop};
+use crate::measure::study::{self, Param, Study, Subject};
+use crate::reports::study_table;
 
 use super::target;
 
@@ -43,6 +48,13 @@ pub fn asked(query: &str) -> Option<PageMode> {
             b: flags("b")?,
         });
     }
+    if let Some(scene) = value("study") {
+        return Some(PageMode::Study {
+            scene: decode(scene)?,
+            param: decode(value("param").unwrap_or("depth"))?,
+            values: decode(value("values").unwrap_or("1..3"))?,
+        });
+    }
     let scene = value("bench")?.to_string();
     // `workers` is web/index.html's: the pool is made before the module runs.
     let runs = value("runs").and_then(|r| r.parse().ok()).unwrap_or(5);
@@ -62,6 +74,14 @@ pub enum PageMode {
     /// `workbench compare SCENE --a A --b B`'s metrics, the scene found
     /// as for [`PageMode::Bench`].
     Compare { scene: String, a: String, b: String },
+    /// `workbench sweep SCENE --param PARAM --values VALUES --structures
+    /// grid,bvh --runs 1`, run as the Studies window runs it (on a worker,
+    /// refused without them), its chart drawn there and downloaded.
+    Study {
+        scene: String,
+        param: String,
+        values: String,
+    },
 }
 
 impl PageMode {
@@ -86,6 +106,17 @@ impl PageMode {
                 let spawned = target::spawn("compare", move || compare(source, &a, &b, &tx));
                 ("data-compare", spawned)
             }
+            PageMode::Study {
+                scene,
+                param,
+                values,
+            } => {
+                let source = scene_source(scene).await?;
+                let spawned = target::spawn_long("study", move || {
+                    study(source, &param, &values, &tx);
+                });
+                ("data-study", spawned)
+            }
         };
         spawned.map_err(|e| JsValue::from_str(&e.to_string()))?;
         let mut said = String::new();
@@ -98,6 +129,7 @@ impl PageMode {
                 }
             }
             show(&said, None);
+            super::download::give_downloads();
             if let Some(verdict) = finished {
                 show(&said, Some((attribute, &verdict)));
                 return Ok(());
@@ -203,6 +235,56 @@ fn compare(source: SceneSource, a: &str, b: &str, tx: &mpsc::Sender<Said>) {
             format!("error: {e:#}")
         }
     };
+    let _ = tx.send(Said::Finished(verdict));
+}
+
+/// Runs a one-run study of `param` over `values` on `source` with the
+/// grid and the BVH, draws its chart and gives it as a download
+/// (`study-PARAM-SCENE.png`); the verdict is `drawn: …`, or why not.
+fn study(source: SceneSource, param: &str, values: &str, tx: &mpsc::Sender<Said>) {
+    let say = |line: String| {
+        let _ = tx.send(Said::Line(line));
+    };
+    let drawn = (|| {
+        let param: Param = param.parse().map_err(anyhow::Error::msg)?;
+        let loaded = Loaded::read(source, &[], &mut |_| {})?;
+        let name = loaded.source.label();
+        let mut base = RenderSettings::from_scene(&loaded.scene);
+        base.antialiasing = false;
+        let study = Study {
+            param,
+            values: study::values::parse(values)?,
+            structures: vec![AccelKind::Grid, AccelKind::Bvh],
+            options: RunOptions {
+                runs: 1,
+                threads: None,
+            },
+            encoding: Encoding::default(),
+            reference_samples: None,
+        };
+        let subject = Subject::Scene {
+            world: loaded.world,
+            base,
+        };
+        study.check(&subject)?;
+        let stop = AtomicBool::new(false);
+        let stop = Stop {
+            now: &stop,
+            after_frame: &stop,
+        };
+        let outcome = study::run(&study, &subject, stop, &mut |_| {})?;
+        for line in study_table::summary(param, &outcome.points) {
+            say(line);
+        }
+        let png = study_plot::chart_png(param, &outcome.points, &name)?;
+        let name = study_plot::chart_file_name(param, &name);
+        super::download::SaveTo::named(name).write(&png)?;
+        anyhow::Ok(format!("drawn: a PNG of {} bytes", png.len()))
+    })();
+    let verdict = drawn.unwrap_or_else(|e| {
+        say(format!("cannot draw the study's chart: {e:#}"));
+        format!("error: {e:#}")
+    });
     let _ = tx.send(Said::Finished(verdict));
 }
 

@@ -3,7 +3,9 @@
 //! study, run on a thread of its own. The chart fills in point by point
 //! with the best point ringed; hovering a point shows its numbers and
 //! image, clicking it (or its row's Apply) shows its settings in the main
-//! view. Exports the table (Markdown, CSV) and the chart (PNG).
+//! view. Exports the table (Markdown, CSV) and the chart (PNG) into a
+//! folder, or saves the chart alone (Save chart...: a download on the
+//! web page, which has no folders).
 
 use std::sync::Arc;
 
@@ -51,6 +53,8 @@ pub struct StudiesWindow {
     measuring: Measuring<StudyProgress, Point>,
     /// Show error against time instead of time against the value.
     error_view: bool,
+    /// Save chart... was clicked, not yet taken by [`Self::chart_to_save`].
+    chart_asked: bool,
 }
 
 impl Default for StudiesWindow {
@@ -67,6 +71,7 @@ impl Default for StudiesWindow {
             subject: String::new(),
             measuring: Measuring::default(),
             error_view: false,
+            chart_asked: false,
         }
     }
 }
@@ -198,6 +203,15 @@ impl StudiesWindow {
             if self.measuring.buttons(ui, start) {
                 self.export();
             }
+            let measured = !self.measuring.rows.is_empty() && idle;
+            if measured
+                && ui
+                    .button("Save chart...")
+                    .on_hover_text("The chart as a PNG image (on the web page, a download)")
+                    .clicked()
+            {
+                self.chart_asked = true;
+            }
         });
         self.progress_bar(ui);
         if let Some(message) = &self.measuring.message {
@@ -316,6 +330,20 @@ impl StudiesWindow {
             accel: point.accel(),
             generator: (param == Param::Level).then_some(self.generator),
         }
+    }
+
+    /// Once Save chart... was clicked: the study's parameter, its points
+    /// and its subject's name, for the window's save dialog.
+    pub fn chart_to_save(&mut self) -> Option<(Param, Vec<Point>, String)> {
+        if !std::mem::take(&mut self.chart_asked) {
+            return None;
+        }
+        let param = self.study.as_ref()?.param;
+        Some((
+            param,
+            self.points().cloned().collect(),
+            self.subject.clone(),
+        ))
     }
 
     /// Writes the table and chart into a folder the user picks, off the

@@ -23,9 +23,7 @@ pub fn write_export(
     points: &[Point],
     subject: &str,
 ) -> anyhow::Result<PathBuf> {
-    let stem = Path::new(subject)
-        .file_stem()
-        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+    let stem = study_plot::subject_stem(subject);
     let dir = dir.join(format!("study-{param}-{stem}"));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for (name, format) in [("table.md", Format::Markdown), ("table.csv", Format::Csv)] {
