@@ -475,3 +475,55 @@ fn a_timed_speedup_reads_frame_times() {
         "{verdict:?}"
     );
 }
+
+#[test]
+fn an_answer_check_names_its_question_and_quantity_even_inside_all() {
+    let answer = Check::Answer {
+        question: "Which object blocks the light?".into(),
+        of: Quantity::parse("tree blocker 0").unwrap(),
+        tolerance: None,
+        choices: vec!["0".into(), "1".into()],
+        side: Which::B,
+    };
+    let choices = ["0".to_string(), "1".to_string()];
+    let asked = Some(("Which object blocks the light?", &choices[..]));
+    let of = Quantity::parse("tree blocker 0").unwrap();
+    assert_eq!(answer.question(), asked);
+    assert_eq!(answer.answer_of(), Some((&of, Which::B)));
+    let all = Check::All {
+        checks: vec![value("spp", ">= 4"), answer],
+    };
+    assert_eq!(all.question(), asked);
+    assert_eq!(all.answer_of(), Some((&of, Which::B)));
+    let plain = value("spp", ">= 4");
+    assert_eq!(plain.question(), None);
+    assert_eq!(plain.answer_of(), None);
+}
+
+#[test]
+fn a_check_of_side_b_says_so() {
+    let mut state = state_of(SHADOWED);
+    let check = Check::Value {
+        of: Quantity::parse("spp").unwrap(),
+        is: Expect::parse(">= 4").unwrap(),
+        side: Which::B,
+    };
+    let missing = evaluate(&check, &state);
+    assert_eq!(
+        missing,
+        Verdict::NotYet("compare mode is off: there is no side B".into())
+    );
+    let mut b = state.a.clone();
+    b.settings.samples = 2;
+    state.b = Some(b);
+    assert_eq!(
+        evaluate(&check, &state),
+        Verdict::NotYet("B's spp is 2, expected >= 4".into())
+    );
+    state.a.settings.samples = 2;
+    assert_eq!(
+        evaluate(&value("spp", ">= 4"), &state),
+        Verdict::NotYet("spp is 2, expected >= 4".into())
+    );
+}
+
