@@ -238,7 +238,7 @@ fn a_picked_answer_must_be_one_of_the_choices() {
 
 /// The bundled ten-sphere flake at 24 x 24: enough objects for structures
 /// to matter.
-fn balls() -> LessonState {
+pub(super) fn balls() -> LessonState {
     let loaded = Loaded::read(SceneSource::Bundled("balls_low".into()), &[], &mut |_| {}).unwrap();
     let mut state = LessonState::new(loaded.scene, loaded.world);
     state.a.settings.width = 24;
@@ -527,3 +527,22 @@ fn a_check_of_side_b_says_so() {
     );
 }
 
+/// A side that cannot render is said, never timed.
+#[test]
+fn a_timed_speedup_of_a_side_that_cannot_render_is_not_yet() {
+    let mut state = balls();
+    let mut b = state.a.clone();
+    b.settings.width = 0;
+    state.b = Some(b);
+    let check = Check::Measure {
+        metric: Metric::Speedup,
+        is: Expect::parse("> 0").unwrap(),
+        by: By::Time,
+        values: vec![],
+    };
+    let verdict = evaluate(&check, &state);
+    assert!(
+        matches!(&verdict, Verdict::NotYet(why) if why.contains("width")),
+        "{verdict:?}"
+    );
+}
