@@ -246,15 +246,20 @@ pub(super) fn balls() -> LessonState {
     state
 }
 
+/// A speedup of B over A, compared by `by`, expected to be `is`.
+fn speedup(is: &str, by: By) -> Check {
+    Check::Measure {
+        metric: Metric::Speedup,
+        is: Expect::parse(is).unwrap(),
+        by,
+        values: vec![],
+    }
+}
+
 #[test]
 fn a_speedup_is_measured_between_the_sides() {
     let mut state = balls();
-    let check = Check::Measure {
-        metric: Metric::Speedup,
-        is: Expect::parse(">= 2").unwrap(),
-        by: By::Work,
-        values: vec![],
-    };
+    let check = speedup(">= 2", By::Work);
     let verdict = evaluate(&check, &state);
     assert!(verdict.reason().contains("no side B"), "{verdict:?}");
     state.a.settings.accel = AccelKind::None;
@@ -462,12 +467,7 @@ fn numbers_naming_the_scene_are_kept_with_their_place() {
 fn a_timed_speedup_reads_frame_times() {
     let mut state = balls();
     state.b = Some(state.a.clone());
-    let check = Check::Measure {
-        metric: Metric::Speedup,
-        is: Expect::parse("> 0").unwrap(),
-        by: By::Time,
-        values: vec![],
-    };
+    let check = speedup("> 0", By::Time);
     let verdict = evaluate(&check, &state);
     assert!(verdict.is_done(), "{verdict:?}");
     assert!(
@@ -534,15 +534,11 @@ fn a_timed_speedup_of_a_side_that_cannot_render_is_not_yet() {
     let mut b = state.a.clone();
     b.settings.width = 0;
     state.b = Some(b);
-    let check = Check::Measure {
-        metric: Metric::Speedup,
-        is: Expect::parse("> 0").unwrap(),
-        by: By::Time,
-        values: vec![],
-    };
+    let check = speedup("> 0", By::Time);
     let verdict = evaluate(&check, &state);
     assert!(
         matches!(&verdict, Verdict::NotYet(why) if why.contains("width")),
         "{verdict:?}"
     );
 }
+
