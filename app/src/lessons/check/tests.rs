@@ -542,3 +542,124 @@ fn a_timed_speedup_of_a_side_that_cannot_render_is_not_yet() {
     );
 }
 
+#[test]
+fn each_quantity_reads_its_kind_of_value() {
+    let reads = |of: &str| Quantity::parse(of).unwrap().reads();
+    for switch in ["aa", "soft-shadows", "dof"] {
+        assert_eq!(reads(switch), Reads::OnOff, "{switch}");
+    }
+    assert_eq!(reads("sampling"), Reads::Word(vec!["uniform", "adaptive"]));
+    let kinds = [
+        "sphere", "plane", "triangle", "polygon", "patch", "box", "cone", "mesh",
+    ];
+    assert_eq!(reads("object 2 kind"), Reads::Word(kinds.to_vec()));
+    let eye_kinds = [&kinds[..], &["none"]].concat();
+    assert_eq!(reads("tree eye-kind"), Reads::Word(eye_kinds));
+    let views = tracer::render::View::ALL.iter().map(|v| v.name()).collect();
+    assert_eq!(reads("view"), Reads::Word(views));
+    assert_eq!(reads("spp"), Reads::Number);
+}
+
+#[test]
+fn a_quantity_names_the_part_of_the_scene_it_reads() {
+    let part = |of: &str| Quantity::parse(of).unwrap().part();
+    assert_eq!(part("object 3 kd"), Some((Part::Object(3), 1)));
+    assert_eq!(part("focus-error 2"), Some((Part::Object(2), 1)));
+    assert_eq!(part("material 4 ior"), Some((Part::Material(4), 1)));
+    assert_eq!(part("tree blocker 1"), Some((Part::Light(1), 2)));
+    assert_eq!(part("spp"), None);
+    let needs = |of: &str| Quantity::parse(of).unwrap().needs_pixel();
+    for of in [
+        "tree eye-kind",
+        "tree blocker 0",
+        "eye steps",
+        "eye tests",
+        "pixel samples",
+    ] {
+        assert!(needs(of), "{of}");
+    }
+    for of in ["spp", "samples mean", "grid cells", "object 0 kind"] {
+        assert!(!needs(of), "{of}");
+    }
+}
+
+#[test]
+fn the_camera_distance_is_from_the_eye_to_the_point_looked_at() {
+    let state = state_of(INSIDE_GLASS);
+    let read = Quantity::parse("camera distance")
+        .unwrap()
+        .read(&state, Which::A);
+    assert_eq!(read, Ok(Value::Number(1.0)));
+}
+
+#[test]
+fn the_grid_is_read_cell_by_axis_and_in_all() {
+    let state = balls();
+    let read = |of: &str| match Quantity::parse(of).unwrap().read(&state, Which::A) {
+        Ok(Value::Number(n)) => n,
+        other => panic!("{of}: {other:?}"),
+    };
+    let axes = [read("grid nx"), read("grid ny"), read("grid nz")];
+    assert!(axes.iter().all(|&n| n >= 2.0), "{axes:?}");
+    assert_eq!(read("grid cells"), axes.iter().product::<f64>());
+}
+
+/// With no structure the eye ray tests every shape and walks nothing.
+#[test]
+fn the_eye_rays_walk_is_read_at_the_pinned_pixel() {
+    let mut state = state_of(SHADOWED);
+    state.pixel = Some((16, 16));
+    state.a.settings.accel = AccelKind::None;
+    let read = |of: &str| Quantity::parse(of).unwrap().read(&state, Which::A);
+    let shapes = read("brute-force tests").unwrap();
+    assert_eq!(read("eye tests"), Ok(shapes));
+    assert_eq!(read("eye steps"), Ok(Value::Number(0.0)));
+}
+
+#[test]
+fn an_expectation_fits_the_kind_of_value_it_is_checked_against() {
+    let accepts = |reads: Reads, is: &str| reads.accepts(&Expect::parse(is).unwrap()).is_ok();
+    assert!(Reads::Number.is_numeric() && Reads::NumberOrOff.is_numeric());
+    assert!(!Reads::OnOff.is_numeric() && !Reads::ObjectOrNone.is_numeric());
+    let accel = Quantity::parse("accel").unwrap().reads();
+    assert!(accepts(accel.clone(), "grid"));
+    assert!(!accepts(accel, "kd-tree"));
+    assert!(!accepts(Reads::Word(vec!["grid"]), "4"));
+    assert!(accepts(Reads::ObjectOrNone, "1") && accepts(Reads::ObjectOrNone, "none"));
+    for never in ["1.5", "-1", "sphere"] {
+        assert!(!accepts(Reads::ObjectOrNone, never), "{never}");
+    }
+    assert_eq!(Reads::YesNo.show(&Value::Bool(true)), "yes");
+    assert_eq!(Reads::YesNo.show(&Value::Bool(false)), "no");
+    assert_eq!(Reads::OnOff.show(&Value::Bool(false)), "off");
+}
+
+/// SHADOWED looking at a point 5 from the eye, with a box 12 along the
+/// view from the eye (its centre at z = -2) and a square behind it.
+#[test]
+fn a_box_is_focused_on_its_centre_and_a_square_is_a_polygon() {
+    let view = SHADOWED.replace("at 0 0 0", "at 0 0 5");
+    let scene = format!("{view}box -1 -1 -3 1 1 -1\np 4\n-1 -1 -5\n1 -1 -5\n1 1 -5\n-1 1 -5\n");
+    let mut state = state_of(&scene);
+    state.a.settings.lens_override.focal = Some(1.0);
+    let read = |of: &str| Quantity::parse(of).unwrap().read(&state, Which::A);
+    let Ok(Value::Number(error)) = read("focus-error 2") else {
+        panic!("{:?}", read("focus-error 2"));
+    };
+    // The plane in focus at 5, the box's centre at 12.
+    assert!((error - 7.0 / 12.0).abs() < 1e-6, "{error}");
+    assert_eq!(read("object 3 kind"), Ok(Value::Word("polygon".into())));
+    assert_eq!(read("object 0 kind"), Ok(Value::Word("triangle".into())));
+}
+
+/// The centre pixel's rays all hit (the triangle, the light); a corner
+/// pixel's eye ray meets nothing.
+#[test]
+fn the_misses_are_the_rays_that_met_nothing() {
+    let mut state = state_of(SHADOWED);
+    let misses = Quantity::parse("tree misses").unwrap();
+    state.pixel = Some((16, 16));
+    assert_eq!(misses.read(&state, Which::A), Ok(Value::Number(0.0)));
+    state.pixel = Some((0, 0));
+    assert_eq!(misses.read(&state, Which::A), Ok(Value::Number(1.0)));
+}
