@@ -439,9 +439,9 @@ fn every_mistake_of_a_check_is_reported() {
     assert!(words[4].contains("no metric `speed`"), "{words:#?}");
 }
 
-#[test]
-fn numbers_naming_the_scene_are_kept_with_their_place() {
-    let text = r#"check = { kind = "value", of = "tree blocker 12", is = 3 }"#;
+/// The parts of the scene a check line names, each with the text at its
+/// place.
+fn references_in(text: &str) -> Vec<(quantity::Part, &str)> {
     #[derive(serde::Deserialize)]
     struct Line {
         check: toml::Spanned<written::WrittenCheck>,
@@ -449,16 +449,24 @@ fn numbers_naming_the_scene_are_kept_with_their_place() {
     let line: Line = toml::from_str(text).unwrap();
     let mut reader = written::Reader::new(text);
     assert!(reader.check(line.check).is_some());
-    let found: Vec<(quantity::Part, &str)> = (reader.references.iter())
+    (reader.references.iter())
         .map(|r| (r.part, &text[r.span.clone()]))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn numbers_naming_the_scene_are_kept_with_their_place() {
+    let text = r#"check = { kind = "value", of = "tree blocker 12", is = 3 }"#;
     assert_eq!(
-        found,
+        references_in(text),
         [
             (quantity::Part::Light(12), "12"),
             (quantity::Part::Object(3), "3")
         ]
     );
+    // In triple quotes the places start after the three quotes.
+    let text = r#"check = { kind = "value", of = '''tree blocker 12''', is = "none" }"#;
+    assert_eq!(references_in(text), [(quantity::Part::Light(12), "12")]);
 }
 
 /// Timed measurements read frame times (never compared with a bound here:
@@ -662,4 +670,62 @@ fn the_misses_are_the_rays_that_met_nothing() {
     assert_eq!(misses.read(&state, Which::A), Ok(Value::Number(0.0)));
     state.pixel = Some((0, 0));
     assert_eq!(misses.read(&state, Which::A), Ok(Value::Number(1.0)));
+}
+
+#[test]
+fn measure_and_answer_checks_read_as_written() {
+    let sweep =
+        read(r#"{ kind = "measure", metric = "grid-sweep", is = "<= 20", values = [1, 2.5] }"#);
+    assert_eq!(
+        sweep,
+        Ok(Check::Measure {
+            metric: Metric::GridSweep,
+            is: Expect::AtMost(20.0),
+            by: By::Work,
+            values: vec![1.0, 2.5],
+        })
+    );
+    let answer = read(
+        r#"{ kind = "answer", question = "How many?", of = "lights", tolerance = "1", side = "b" }"#,
+    );
+    assert_eq!(
+        answer,
+        Ok(Check::Answer {
+            question: "How many?".into(),
+            of: Quantity::Lights,
+            tolerance: Some("1".into()),
+            choices: vec![],
+            side: Which::B,
+        })
+    );
+    // A tolerance on a value that is not a number can never apply.
+    let word = read(r#"{ kind = "answer", question = "Which?", of = "accel", tolerance = "1" }"#);
+    let mistakes = word.unwrap_err();
+    assert!(
+        mistakes[0].1.contains("a tolerance needs a number to read"),
+        "{mistakes:?}"
+    );
+}
+
+#[test]
+fn only_a_grid_sweep_takes_values_and_each_above_0() {
+    let sweep = |values: &str| {
+        read(&format!(
+            r#"{{ kind = "measure", metric = "grid-sweep", is = "<= 20", values = {values} }}"#
+        ))
+    };
+    for bad in ["[0]", "[1, -1]", "[inf]", "[nan]"] {
+        let mistakes = sweep(bad).unwrap_err();
+        assert!(
+            mistakes[0].1.contains("must be above 0"),
+            "{bad}: {mistakes:?}"
+        );
+    }
+    let flip = read(r#"{ kind = "measure", metric = "flip", is = "< 0.1", values = [1] }"#);
+    assert!(
+        flip.unwrap_err()[0]
+            .1
+            .contains("only a `grid-sweep` takes `values`")
+    );
+    assert!(read(r#"{ kind = "measure", metric = "flip", is = "< 0.1" }"#).is_ok());
 }
