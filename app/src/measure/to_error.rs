@@ -360,3 +360,290 @@ pub fn measure(
 pub fn default_reference_samples(n: u32) -> u32 {
     (4 * n).min(MAX_SAMPLES)
 }
+
+#[cfg(test)]
+mod tests {
+    use tracer::scene::{Limits, parse_scene};
+
+    use super::*;
+
+    /// Two spheres on a floor at 32 x 24: the edges alias, so fewer
+    /// samples or a larger threshold leave a larger error.
+    const SCENE: &str = "\
+v from 0 -6 2 at 0 0 0.6 up 0 0 1 angle 40 hither 0.01 resolution 32 24
+l 3 -3 6 1 1 1
+f 0.6 0.6 0.6 1 1 1 1 0 10 0 1
+box -5 -5 -0.2 5 5 0
+f 0.9 0.1 0.1 0.8 1 1 1 0.3 40 0 1
+s -0.6 0 0.8 0.8
+s 0.9 1.6 0.5 0.5
+";
+
+    /// Renders a search may need: the uniform Ns below the reference, ten
+    /// halvings from 0.08 down to 1e-4, four doublings up to 1, four
+    /// narrowings.
+    const MOST_ATTEMPTS: usize = 5 + 10 + 4 + 4;
+
+    fn plan(samples: u32, target_mse: Option<f64>) -> (Arc<World>, ToErrorPlan) {
+        let scene = parse_scene(SCENE, None, &Limits::default()).unwrap();
+        let plan = ToErrorPlan {
+            base: RenderSettings {
+                samples,
+                ..RenderSettings::from_scene(&scene)
+            },
+            reference_samples: 6,
+            target_mse,
+            noise_threshold: None,
+            runs: 1,
+            threads: Some(1),
+            encoding: Encoding::default(),
+        };
+        (Arc::new(World::build(&scene)), plan)
+    }
+
+    /// `measure`, with the renders it tried as `on_attempt` heard them; a
+    /// search that goes on past every render it may need fails here
+    /// rather than rendering for ever.
+    fn run(world: &Arc<World>, plan: &ToErrorPlan) -> (ToError, Vec<Attempt>) {
+        let mut heard = Vec::new();
+        let found = measure(world, plan, &mut |a| {
+            assert!(heard.len() < MOST_ATTEMPTS, "endless search: {heard:?}");
+            heard.push(a.clone());
+        })
+        .unwrap();
+        (found, heard)
+    }
+
+    /// The thresholds tried, in order, with whether each reached the target.
+    fn thresholds(attempts: &[Attempt]) -> Vec<(f32, bool)> {
+        let tried: Vec<_> = attempts
+            .iter()
+            .filter_map(|a| {
+                let t = a.label.strip_prefix("adaptive T = ")?;
+                Some((t.parse().unwrap(), a.reached))
+            })
+            .collect();
+        let uniform = attempts
+            .iter()
+            .filter(|a| a.label.starts_with("uniform N = "))
+            .count();
+        assert_eq!(tried.len() + uniform, attempts.len(), "{attempts:?}");
+        tried
+    }
+
+    /// Whether `m` reaches the target `found` names, worked out apart.
+    fn reaches(found: &ToError, m: &Metrics) -> bool {
+        m.mse <= found.target_mse && found.target_flip.is_none_or(|f| m.flip <= f)
+    }
+
+    /// The last four thresholds each bisect, on a log scale, the bracket
+    /// between the largest that reached the target and the smallest above
+    /// it that missed, as the tries before them left it (labels keep five
+    /// decimals).
+    fn assert_narrowed(tried: &[(f32, bool)]) {
+        let (search, narrowing) = tried.split_at(tried.len() - NARROWING_STEPS);
+        let mut low = search
+            .iter()
+            .filter(|t| t.1)
+            .map(|t| t.0)
+            .fold(0.0, f32::max);
+        let mut high = search
+            .iter()
+            .filter(|t| !t.1 && t.0 > low)
+            .map(|t| t.0)
+            .fold(f32::INFINITY, f32::min);
+        assert!(low > 0.0 && high.is_finite(), "{tried:?}");
+        for &(t, reached) in narrowing {
+            assert!(
+                (t - (low * high).sqrt()).abs() < 2e-5,
+                "{t} in {low}..{high}: {tried:?}"
+            );
+            if reached {
+                low = t;
+            } else {
+                high = t;
+            }
+        }
+    }
+
+    #[test]
+    fn a_target_the_first_threshold_misses_is_searched_by_halving() {
+        // Uniform 3 x 3's error: adaptive 0.08 is coarser than that.
+        let (world, plan) = plan(3, None);
+        let (found, heard) = run(&world, &plan);
+        assert_eq!(found.attempts.len(), heard.len());
+        assert_eq!(heard[0].label, "uniform N = 3");
+        assert_eq!(found.uniform.settings.samples, 3);
+        assert_eq!(found.target_mse, heard[0].metrics.mse);
+        assert_eq!(found.target_flip, Some(heard[0].metrics.flip));
+        for a in &heard[1..] {
+            assert_eq!(a.reached, reaches(&found, &a.metrics), "{a:?}");
+        }
+        let tried = thresholds(&heard);
+        // Halved from the first threshold until one reaches it, never
+        // doubled.
+        let first_hit = tried.iter().position(|t| t.1).unwrap();
+        assert!(first_hit >= 1, "{tried:?}");
+        for (i, &(t, reached)) in tried[..=first_hit].iter().enumerate() {
+            let halved = FIRST_THRESHOLD / 2f32.powi(i as i32);
+            assert!((t - halved).abs() < 6e-6, "{tried:?}");
+            assert_eq!(reached, i == first_hit, "{tried:?}");
+        }
+        assert_eq!(tried.len(), first_hit + 1 + NARROWING_STEPS, "{tried:?}");
+        assert_narrowed(&tried);
+        // The one found is the largest tried that reached the target.
+        let adaptive = found.adaptive.as_ref().unwrap();
+        let best = tried
+            .iter()
+            .filter(|t| t.1)
+            .map(|t| t.0)
+            .fold(0.0, f32::max);
+        let threshold = adaptive.settings.adaptive().unwrap().noise_threshold;
+        assert!((threshold - best).abs() < 1e-5, "{threshold} {tried:?}");
+        assert!(reaches(&found, &adaptive.metrics));
+    }
+
+    #[test]
+    fn a_target_the_first_threshold_meets_is_searched_by_doubling() {
+        // An MSE between adaptive 0.08's and 0.16's (N = 4: at least 4
+        // samples a pixel, at most 64): 0.08 reaches it, 0.16 does not.
+        let (world, mut plan) = plan(4, Some(1e9));
+        let mut mse_at = |t| {
+            plan.noise_threshold = Some(t);
+            run(&world, &plan).0.adaptive.unwrap().metrics.mse
+        };
+        let (fine, coarse) = (mse_at(0.08), mse_at(0.16));
+        assert!(fine < coarse, "{fine} {coarse}");
+        plan.noise_threshold = None;
+        plan.target_mse = Some((fine + coarse) / 2.0);
+        let (found, heard) = run(&world, &plan);
+        assert_eq!(found.target_flip, None);
+        for a in &heard {
+            assert_eq!(a.reached, reaches(&found, &a.metrics), "{a:?}");
+        }
+        let tried = thresholds(&heard);
+        let first_miss = tried.iter().position(|t| !t.1).unwrap();
+        assert!(first_miss >= 1, "{tried:?}");
+        for (i, &(t, _)) in tried[..=first_miss].iter().enumerate() {
+            let doubled = (FIRST_THRESHOLD * 2f32.powi(i as i32)).min(LARGEST_THRESHOLD);
+            assert_eq!(t, doubled, "{tried:?}");
+        }
+        assert_eq!(tried.len(), first_miss + 1 + NARROWING_STEPS, "{tried:?}");
+        assert_narrowed(&tried);
+    }
+
+    #[test]
+    fn an_mse_target_takes_the_smallest_uniform_n_that_reaches_it() {
+        // Uniform 3 x 3's MSE: N = 1 and 2 miss it, N = 3 reaches it.
+        let (world, plan3) = plan(3, None);
+        let (three, _) = run(&world, &plan3);
+        let (world, plan) = plan(3, Some(three.target_mse));
+        let (found, heard) = run(&world, &plan);
+        let uniform: Vec<_> = heard
+            .iter()
+            .filter(|a| a.label.starts_with("uniform N = "))
+            .map(|a| (a.label.as_str(), a.reached))
+            .collect();
+        assert_eq!(
+            uniform,
+            [
+                ("uniform N = 1", false),
+                ("uniform N = 2", false),
+                ("uniform N = 3", true)
+            ]
+        );
+        assert!(heard[..2].iter().all(|a| a.metrics.mse > found.target_mse));
+        assert_eq!(found.uniform.settings.samples, 3);
+        assert_eq!(found.uniform.metrics.mse, three.uniform.metrics.mse);
+    }
+
+    #[test]
+    fn a_target_any_render_meets_doubles_up_to_the_largest_threshold() {
+        let (world, plan) = plan(2, Some(1e9));
+        let (found, heard) = run(&world, &plan);
+        let tried = thresholds(&heard);
+        assert_eq!(
+            tried,
+            [
+                (0.08, true),
+                (0.16, true),
+                (0.32, true),
+                (0.64, true),
+                (1.0, true)
+            ]
+        );
+        let adaptive = found.adaptive.unwrap().settings;
+        assert_eq!(adaptive.adaptive().unwrap().noise_threshold, 1.0);
+    }
+
+    #[test]
+    fn the_reference_must_take_more_samples_than_uniform() {
+        let (world, mut plan) = plan(3, None);
+        plan.reference_samples = 3;
+        let error = measure(&world, &plan, &mut |_| {}).unwrap_err();
+        assert!(error.to_string().contains("N = 3"), "{error}");
+        plan.reference_samples = 4;
+        plan.noise_threshold = Some(0.05);
+        assert!(measure(&world, &plan, &mut |_| {}).is_ok());
+    }
+
+    #[test]
+    fn the_time_ratio_is_adaptive_median_over_uniform_median() {
+        let (world, mut plan) = plan(2, None);
+        plan.noise_threshold = Some(1e-9);
+        let (mut found, _) = run(&world, &plan);
+        let ms = Duration::from_millis;
+        found.uniform.times = vec![ms(9), ms(4), ms(5)];
+        assert_eq!(found.uniform.median(), ms(5));
+        found.adaptive.as_mut().unwrap().times = vec![ms(2)];
+        assert!((found.time_ratio().unwrap() - 0.4).abs() < 1e-12);
+        found.adaptive = None;
+        assert_eq!(found.time_ratio(), None);
+    }
+
+    #[test]
+    fn each_side_keeps_the_base_settings_but_its_sampling() {
+        let knobs = AdaptiveSampling {
+            noise_threshold: 0.5,
+            min_spp: 8,
+            max_spp: 36,
+            budget: None,
+        };
+        let base = RenderSettings {
+            width: 40,
+            antialiasing: false,
+            samples: 5,
+            sampling: Sampling::Adaptive(knobs),
+            keep_refining: true,
+            ..RenderSettings::default()
+        };
+        let u = uniform(&base, 3);
+        assert!(u.antialiasing && !u.keep_refining);
+        assert_eq!((u.width, u.samples, u.sampling), (40, 3, Sampling::Uniform));
+        let a = adaptive(&base, 0.02);
+        assert!(a.antialiasing && !a.keep_refining);
+        assert_eq!((a.width, a.samples), (40, 5));
+        let expected = AdaptiveSampling {
+            noise_threshold: 0.02,
+            ..knobs
+        };
+        assert_eq!(a.sampling, Sampling::Adaptive(expected));
+        // A uniform base: N's minimum and maximum.
+        let base = RenderSettings {
+            samples: 3,
+            sampling: Sampling::Uniform,
+            ..base
+        };
+        let a = adaptive(&base, 0.02);
+        assert_eq!(
+            a.sampling,
+            Sampling::Adaptive(AdaptiveSampling::for_samples(3, 0.02))
+        );
+    }
+
+    #[test]
+    fn the_default_reference_takes_four_times_n_up_to_the_most() {
+        assert_eq!(default_reference_samples(3), 12);
+        assert_eq!(default_reference_samples(MAX_SAMPLES / 2), MAX_SAMPLES);
+    }
+}

@@ -28,12 +28,8 @@ impl Display for Value {
 
 /// A number as people write it: `4`, `1.5`, `0.333`.
 pub fn number(n: f64) -> String {
-    if n.fract() == 0.0 && n.abs() < 1e15 {
-        format!("{n:.0}")
-    } else {
-        let text = format!("{n:.4}");
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    }
+    let text = format!("{n:.4}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 impl Value {
@@ -264,5 +260,46 @@ mod tests {
         assert_eq!(Value::parse("  "), None);
         assert_eq!(number(0.25), "0.25");
         assert_eq!(number(3.0), "3");
+        assert_eq!(number(-10.0), "-10");
+        assert_eq!(number(1e16), "10000000000000000");
+        assert_eq!(number(2.0 / 3.0), "0.6667");
+    }
+
+    #[test]
+    fn tolerances_read_as_written_and_refuse_what_is_not_one() {
+        assert_eq!(Tolerance::parse(" 0.01 "), Ok(Tolerance::Absolute(0.01)));
+        assert_eq!(Tolerance::parse("0"), Ok(Tolerance::Absolute(0.0)));
+        assert_eq!(Tolerance::parse("2 %"), Ok(Tolerance::Relative(0.02)));
+        for bad in ["-1", "-2%", "inf", "inf%", "NaN", "lots", "%"] {
+            assert!(Tolerance::parse(bad).is_err(), "{bad}");
+        }
+        assert_eq!(Tolerance::Absolute(0.01).to_string(), "0.01");
+        assert_eq!(Tolerance::Relative(0.02).to_string(), "2%");
+        assert_eq!(
+            Expect::Near(1.5, Tolerance::Relative(0.02)).to_string(),
+            "1.5 +- 2%"
+        );
+    }
+
+    #[test]
+    fn a_relative_tolerance_scales_with_the_expected_value() {
+        // 10% of 10 is 1: 10.5 is within it, 11.5 is not.
+        assert!(Tolerance::Relative(0.1).holds(10.5, 10.0));
+        assert!(Tolerance::Relative(0.1).holds(-10.5, -10.0));
+        assert!(!Tolerance::Relative(0.1).holds(11.5, 10.0));
+        // Exact still allows a millionth of a large value (an f32
+        // setting's last bits), not more.
+        assert!(Tolerance::Absolute(0.0).holds(1e6 + 0.5, 1e6));
+        assert!(!Tolerance::Absolute(0.0).holds(1e6 + 2.0, 1e6));
+    }
+
+    #[test]
+    fn strict_bounds_refuse_the_bound_itself() {
+        let four = Value::Number(4.0);
+        assert!(!Expect::Below(4.0).holds(&four));
+        assert!(Expect::Below(4.0).holds(&Value::Number(3.9)));
+        assert!(!Expect::Above(4.0).holds(&four));
+        assert!(Expect::AtMost(4.0).holds(&four));
+        assert!(!Expect::AtMost(4.0).holds(&Value::Number(4.1)));
     }
 }

@@ -236,3 +236,62 @@ fn grid_sweep(side: &SideState, by: By, values: &[f32]) -> Result<Measured, Stri
         ),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::balls;
+    use super::*;
+
+    #[test]
+    fn each_metric_and_comparison_is_named_by_the_word_a_lesson_writes() {
+        for by in [By::Work, By::Time] {
+            let read: By = serde_json::from_str(&format!("\"{}\"", by.name())).unwrap();
+            assert_eq!(read, by);
+        }
+        for metric in [Metric::Speedup, Metric::Flip, Metric::GridSweep] {
+            let read: Metric = serde_json::from_str(&format!("\"{}\"", metric.name())).unwrap();
+            assert_eq!(read, metric);
+        }
+    }
+
+    #[test]
+    fn the_median_is_the_middle_value_or_the_upper_of_two() {
+        assert_eq!(median(&mut [3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&mut [4.0, 1.0, 3.0, 2.0]), 3.0);
+        assert_eq!(median(&mut []), 0.0);
+    }
+
+    /// A's multiplier's cost in tests and steps.
+    fn cost_at(side: &SideState, m: f32) -> f64 {
+        let mut settings = side.settings.clone();
+        settings.accel = AccelKind::Grid;
+        settings.grid_multiplier = m;
+        work(&frames(side, &settings, 1).unwrap())
+    }
+
+    #[test]
+    fn a_grid_sweep_gives_how_many_percent_the_chosen_costs_above_the_best() {
+        let mut state = balls();
+        state.a.settings.grid_multiplier = 0.25;
+        let (chosen, best) = (cost_at(&state.a, 0.25), cost_at(&state.a, 4.0));
+        assert!(best < chosen, "{best} {chosen}");
+        let swept = grid_sweep(&state.a, By::Work, &[4.0]).unwrap();
+        assert_eq!(swept.value, (chosen / best - 1.0) * 100.0);
+        assert!(
+            swept.detail.starts_with(&format!(
+                "m = 0.25 costs {} tests and steps; the sweep's best, m = 4, costs {} ",
+                number(chosen),
+                number(best)
+            )),
+            "{}",
+            swept.detail
+        );
+        // Nothing cheaper: the chosen is the best, 0% more.
+        assert_eq!(grid_sweep(&state.a, By::Work, &[]).unwrap().value, 0.0);
+        // A multiplier that costs the same keeps the one chosen as best.
+        let same = 0.2501;
+        assert_eq!(cost_at(&state.a, same), chosen);
+        let tie = grid_sweep(&state.a, By::Work, &[same]).unwrap();
+        assert!(tie.detail.contains("best, m = 0.25,"), "{}", tie.detail);
+    }
+}

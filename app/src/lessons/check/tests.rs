@@ -238,7 +238,7 @@ fn a_picked_answer_must_be_one_of_the_choices() {
 
 /// The bundled ten-sphere flake at 24 x 24: enough objects for structures
 /// to matter.
-fn balls() -> LessonState {
+pub(super) fn balls() -> LessonState {
     let loaded = Loaded::read(SceneSource::Bundled("balls_low".into()), &[], &mut |_| {}).unwrap();
     let mut state = LessonState::new(loaded.scene, loaded.world);
     state.a.settings.width = 24;
@@ -246,15 +246,20 @@ fn balls() -> LessonState {
     state
 }
 
+/// A speedup of B over A, compared by `by`, expected to be `is`.
+fn speedup(is: &str, by: By) -> Check {
+    Check::Measure {
+        metric: Metric::Speedup,
+        is: Expect::parse(is).unwrap(),
+        by,
+        values: vec![],
+    }
+}
+
 #[test]
 fn a_speedup_is_measured_between_the_sides() {
     let mut state = balls();
-    let check = Check::Measure {
-        metric: Metric::Speedup,
-        is: Expect::parse(">= 2").unwrap(),
-        by: By::Work,
-        values: vec![],
-    };
+    let check = speedup(">= 2", By::Work);
     let verdict = evaluate(&check, &state);
     assert!(verdict.reason().contains("no side B"), "{verdict:?}");
     state.a.settings.accel = AccelKind::None;
@@ -434,9 +439,9 @@ fn every_mistake_of_a_check_is_reported() {
     assert!(words[4].contains("no metric `speed`"), "{words:#?}");
 }
 
-#[test]
-fn numbers_naming_the_scene_are_kept_with_their_place() {
-    let text = r#"check = { kind = "value", of = "tree blocker 12", is = 3 }"#;
+/// The parts of the scene a check line names, each with the text at its
+/// place.
+fn references_in(text: &str) -> Vec<(quantity::Part, &str)> {
     #[derive(serde::Deserialize)]
     struct Line {
         check: toml::Spanned<written::WrittenCheck>,
@@ -444,16 +449,24 @@ fn numbers_naming_the_scene_are_kept_with_their_place() {
     let line: Line = toml::from_str(text).unwrap();
     let mut reader = written::Reader::new(text);
     assert!(reader.check(line.check).is_some());
-    let found: Vec<(quantity::Part, &str)> = (reader.references.iter())
+    (reader.references.iter())
         .map(|r| (r.part, &text[r.span.clone()]))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn numbers_naming_the_scene_are_kept_with_their_place() {
+    let text = r#"check = { kind = "value", of = "tree blocker 12", is = 3 }"#;
     assert_eq!(
-        found,
+        references_in(text),
         [
             (quantity::Part::Light(12), "12"),
             (quantity::Part::Object(3), "3")
         ]
     );
+    // In triple quotes the places start after the three quotes.
+    let text = r#"check = { kind = "value", of = '''tree blocker 12''', is = "none" }"#;
+    assert_eq!(references_in(text), [(quantity::Part::Light(12), "12")]);
 }
 
 /// Timed measurements read frame times (never compared with a bound here:
@@ -462,16 +475,257 @@ fn numbers_naming_the_scene_are_kept_with_their_place() {
 fn a_timed_speedup_reads_frame_times() {
     let mut state = balls();
     state.b = Some(state.a.clone());
-    let check = Check::Measure {
-        metric: Metric::Speedup,
-        is: Expect::parse("> 0").unwrap(),
-        by: By::Time,
-        values: vec![],
-    };
+    let check = speedup("> 0", By::Time);
     let verdict = evaluate(&check, &state);
     assert!(verdict.is_done(), "{verdict:?}");
     assert!(
         verdict.reason().starts_with("A ") && verdict.reason().contains(" ms and B "),
         "{verdict:?}"
     );
+}
+
+#[test]
+fn an_answer_check_names_its_question_and_quantity_even_inside_all() {
+    let answer = Check::Answer {
+        question: "Which object blocks the light?".into(),
+        of: Quantity::parse("tree blocker 0").unwrap(),
+        tolerance: None,
+        choices: vec!["0".into(), "1".into()],
+        side: Which::B,
+    };
+    let choices = ["0".to_string(), "1".to_string()];
+    let asked = Some(("Which object blocks the light?", &choices[..]));
+    let of = Quantity::parse("tree blocker 0").unwrap();
+    assert_eq!(answer.question(), asked);
+    assert_eq!(answer.answer_of(), Some((&of, Which::B)));
+    let all = Check::All {
+        checks: vec![value("spp", ">= 4"), answer],
+    };
+    assert_eq!(all.question(), asked);
+    assert_eq!(all.answer_of(), Some((&of, Which::B)));
+    let plain = value("spp", ">= 4");
+    assert_eq!(plain.question(), None);
+    assert_eq!(plain.answer_of(), None);
+}
+
+#[test]
+fn a_check_of_side_b_says_so() {
+    let mut state = state_of(SHADOWED);
+    let check = Check::Value {
+        of: Quantity::parse("spp").unwrap(),
+        is: Expect::parse(">= 4").unwrap(),
+        side: Which::B,
+    };
+    let missing = evaluate(&check, &state);
+    assert_eq!(
+        missing,
+        Verdict::NotYet("compare mode is off: there is no side B".into())
+    );
+    let mut b = state.a.clone();
+    b.settings.samples = 2;
+    state.b = Some(b);
+    assert_eq!(
+        evaluate(&check, &state),
+        Verdict::NotYet("B's spp is 2, expected >= 4".into())
+    );
+    state.a.settings.samples = 2;
+    assert_eq!(
+        evaluate(&value("spp", ">= 4"), &state),
+        Verdict::NotYet("spp is 2, expected >= 4".into())
+    );
+}
+
+/// A side that cannot render is said, never timed.
+#[test]
+fn a_timed_speedup_of_a_side_that_cannot_render_is_not_yet() {
+    let mut state = balls();
+    let mut b = state.a.clone();
+    b.settings.width = 0;
+    state.b = Some(b);
+    let check = speedup("> 0", By::Time);
+    let verdict = evaluate(&check, &state);
+    assert!(
+        matches!(&verdict, Verdict::NotYet(why) if why.contains("width")),
+        "{verdict:?}"
+    );
+}
+
+#[test]
+fn each_quantity_reads_its_kind_of_value() {
+    let reads = |of: &str| Quantity::parse(of).unwrap().reads();
+    for switch in ["aa", "soft-shadows", "dof"] {
+        assert_eq!(reads(switch), Reads::OnOff, "{switch}");
+    }
+    assert_eq!(reads("sampling"), Reads::Word(vec!["uniform", "adaptive"]));
+    let kinds = [
+        "sphere", "plane", "triangle", "polygon", "patch", "box", "cone", "mesh",
+    ];
+    assert_eq!(reads("object 2 kind"), Reads::Word(kinds.to_vec()));
+    let eye_kinds = [&kinds[..], &["none"]].concat();
+    assert_eq!(reads("tree eye-kind"), Reads::Word(eye_kinds));
+    let views = tracer::render::View::ALL.iter().map(|v| v.name()).collect();
+    assert_eq!(reads("view"), Reads::Word(views));
+    assert_eq!(reads("spp"), Reads::Number);
+}
+
+#[test]
+fn a_quantity_names_the_part_of_the_scene_it_reads() {
+    let part = |of: &str| Quantity::parse(of).unwrap().part();
+    assert_eq!(part("object 3 kd"), Some((Part::Object(3), 1)));
+    assert_eq!(part("focus-error 2"), Some((Part::Object(2), 1)));
+    assert_eq!(part("material 4 ior"), Some((Part::Material(4), 1)));
+    assert_eq!(part("tree blocker 1"), Some((Part::Light(1), 2)));
+    assert_eq!(part("spp"), None);
+    let needs = |of: &str| Quantity::parse(of).unwrap().needs_pixel();
+    for of in [
+        "tree eye-kind",
+        "tree blocker 0",
+        "eye steps",
+        "eye tests",
+        "pixel samples",
+    ] {
+        assert!(needs(of), "{of}");
+    }
+    for of in ["spp", "samples mean", "grid cells", "object 0 kind"] {
+        assert!(!needs(of), "{of}");
+    }
+}
+
+#[test]
+fn the_camera_distance_is_from_the_eye_to_the_point_looked_at() {
+    let state = state_of(INSIDE_GLASS);
+    let read = Quantity::parse("camera distance")
+        .unwrap()
+        .read(&state, Which::A);
+    assert_eq!(read, Ok(Value::Number(1.0)));
+}
+
+#[test]
+fn the_grid_is_read_cell_by_axis_and_in_all() {
+    let state = balls();
+    let read = |of: &str| match Quantity::parse(of).unwrap().read(&state, Which::A) {
+        Ok(Value::Number(n)) => n,
+        other => panic!("{of}: {other:?}"),
+    };
+    let axes = [read("grid nx"), read("grid ny"), read("grid nz")];
+    assert!(axes.iter().all(|&n| n >= 2.0), "{axes:?}");
+    assert_eq!(read("grid cells"), axes.iter().product::<f64>());
+}
+
+/// With no structure the eye ray tests every shape and walks nothing.
+#[test]
+fn the_eye_rays_walk_is_read_at_the_pinned_pixel() {
+    let mut state = state_of(SHADOWED);
+    state.pixel = Some((16, 16));
+    state.a.settings.accel = AccelKind::None;
+    let read = |of: &str| Quantity::parse(of).unwrap().read(&state, Which::A);
+    let shapes = read("brute-force tests").unwrap();
+    assert_eq!(read("eye tests"), Ok(shapes));
+    assert_eq!(read("eye steps"), Ok(Value::Number(0.0)));
+}
+
+#[test]
+fn an_expectation_fits_the_kind_of_value_it_is_checked_against() {
+    let accepts = |reads: Reads, is: &str| reads.accepts(&Expect::parse(is).unwrap()).is_ok();
+    assert!(Reads::Number.is_numeric() && Reads::NumberOrOff.is_numeric());
+    assert!(!Reads::OnOff.is_numeric() && !Reads::ObjectOrNone.is_numeric());
+    let accel = Quantity::parse("accel").unwrap().reads();
+    assert!(accepts(accel.clone(), "grid"));
+    assert!(!accepts(accel, "kd-tree"));
+    assert!(!accepts(Reads::Word(vec!["grid"]), "4"));
+    assert!(accepts(Reads::ObjectOrNone, "1") && accepts(Reads::ObjectOrNone, "none"));
+    for never in ["1.5", "-1", "sphere"] {
+        assert!(!accepts(Reads::ObjectOrNone, never), "{never}");
+    }
+    assert_eq!(Reads::YesNo.show(&Value::Bool(true)), "yes");
+    assert_eq!(Reads::YesNo.show(&Value::Bool(false)), "no");
+    assert_eq!(Reads::OnOff.show(&Value::Bool(false)), "off");
+}
+
+/// SHADOWED looking at a point 5 from the eye, with a box 12 along the
+/// view from the eye (its centre at z = -2) and a square behind it.
+#[test]
+fn a_box_is_focused_on_its_centre_and_a_square_is_a_polygon() {
+    let view = SHADOWED.replace("at 0 0 0", "at 0 0 5");
+    let scene = format!("{view}box -1 -1 -3 1 1 -1\np 4\n-1 -1 -5\n1 -1 -5\n1 1 -5\n-1 1 -5\n");
+    let mut state = state_of(&scene);
+    state.a.settings.lens_override.focal = Some(1.0);
+    let read = |of: &str| Quantity::parse(of).unwrap().read(&state, Which::A);
+    let Ok(Value::Number(error)) = read("focus-error 2") else {
+        panic!("{:?}", read("focus-error 2"));
+    };
+    // The plane in focus at 5, the box's centre at 12.
+    assert!((error - 7.0 / 12.0).abs() < 1e-6, "{error}");
+    assert_eq!(read("object 3 kind"), Ok(Value::Word("polygon".into())));
+    assert_eq!(read("object 0 kind"), Ok(Value::Word("triangle".into())));
+}
+
+/// The centre pixel's rays all hit (the triangle, the light); a corner
+/// pixel's eye ray meets nothing.
+#[test]
+fn the_misses_are_the_rays_that_met_nothing() {
+    let mut state = state_of(SHADOWED);
+    let misses = Quantity::parse("tree misses").unwrap();
+    state.pixel = Some((16, 16));
+    assert_eq!(misses.read(&state, Which::A), Ok(Value::Number(0.0)));
+    state.pixel = Some((0, 0));
+    assert_eq!(misses.read(&state, Which::A), Ok(Value::Number(1.0)));
+}
+
+#[test]
+fn measure_and_answer_checks_read_as_written() {
+    let sweep =
+        read(r#"{ kind = "measure", metric = "grid-sweep", is = "<= 20", values = [1, 2.5] }"#);
+    assert_eq!(
+        sweep,
+        Ok(Check::Measure {
+            metric: Metric::GridSweep,
+            is: Expect::AtMost(20.0),
+            by: By::Work,
+            values: vec![1.0, 2.5],
+        })
+    );
+    let answer = read(
+        r#"{ kind = "answer", question = "How many?", of = "lights", tolerance = "1", side = "b" }"#,
+    );
+    assert_eq!(
+        answer,
+        Ok(Check::Answer {
+            question: "How many?".into(),
+            of: Quantity::Lights,
+            tolerance: Some("1".into()),
+            choices: vec![],
+            side: Which::B,
+        })
+    );
+    // A tolerance on a value that is not a number can never apply.
+    let word = read(r#"{ kind = "answer", question = "Which?", of = "accel", tolerance = "1" }"#);
+    let mistakes = word.unwrap_err();
+    assert!(
+        mistakes[0].1.contains("a tolerance needs a number to read"),
+        "{mistakes:?}"
+    );
+}
+
+#[test]
+fn only_a_grid_sweep_takes_values_and_each_above_0() {
+    let sweep = |values: &str| {
+        read(&format!(
+            r#"{{ kind = "measure", metric = "grid-sweep", is = "<= 20", values = {values} }}"#
+        ))
+    };
+    for bad in ["[0]", "[1, -1]", "[inf]", "[nan]"] {
+        let mistakes = sweep(bad).unwrap_err();
+        assert!(
+            mistakes[0].1.contains("must be above 0"),
+            "{bad}: {mistakes:?}"
+        );
+    }
+    let flip = read(r#"{ kind = "measure", metric = "flip", is = "< 0.1", values = [1] }"#);
+    assert!(
+        flip.unwrap_err()[0]
+            .1
+            .contains("only a `grid-sweep` takes `values`")
+    );
+    assert!(read(r#"{ kind = "measure", metric = "flip", is = "< 0.1" }"#).is_ok());
 }
