@@ -232,18 +232,29 @@ pub enum SceneFiles<'a> {
     Fetched { url: &'a str, text: &'a str },
 }
 
-/// The scene file a lesson's `[scene]` names (`file = "prism.p3f"`), if
-/// any, read before the lesson is, so a page can fetch it first.
-pub fn scene_file_named(text: &str) -> Option<String> {
+/// A scene a lesson's `[scene]` names by file or bundled name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum NamedScene {
+    /// `file = "prism.p3f"`, relative to the lesson.
+    File(String),
+    /// `bundled = "tetra"`.
+    Bundled(String),
+}
+
+/// The scene a lesson's `[scene]` names by file or bundled name, if any,
+/// read before the lesson is, so a page can fetch it first.
+pub fn scene_named(text: &str) -> Option<NamedScene> {
     #[derive(Deserialize)]
     struct SceneOnly {
-        scene: Option<FileOnly>,
+        scene: Option<Named>,
     }
     #[derive(Deserialize)]
-    struct FileOnly {
+    struct Named {
         file: Option<String>,
+        bundled: Option<String>,
     }
-    toml::from_str::<SceneOnly>(text).ok()?.scene?.file
+    let named = toml::from_str::<SceneOnly>(text).ok()?.scene?;
+    (named.file.map(NamedScene::File)).or(named.bundled.map(NamedScene::Bundled))
 }
 
 /// Reads lesson `text`, named `name`, from `file` (as errors name it);
@@ -392,19 +403,7 @@ impl Source<'_> {
         let raw = raw.into_inner();
         let mut given = Vec::new();
         if let Some(name) = raw.bundled {
-            let known = bundled::find(name.get_ref()).is_some();
-            if !known {
-                let names: Vec<&str> = bundled::SCENES.iter().map(|s| s.name).collect();
-                return Err(self.error(
-                    name.span(),
-                    format!(
-                        "no bundled scene called `{}`; expected one of {}",
-                        name.get_ref(),
-                        names.join(", ")
-                    ),
-                ));
-            }
-            given.push(LessonScene::Bundled(name.into_inner()));
+            given.push(self.bundled_scene(name, scenes)?);
         }
         if let Some(file) = raw.file {
             given.push(self.scene_file(file, scenes)?);
@@ -481,6 +480,46 @@ impl Source<'_> {
             }
             _ => Err(LessonErrors(errors)),
         }
+    }
+
+    /// The bundled scene `name`: embedded, or on the page a scene of
+    /// `scenes/` it does not embed, fetched with the lesson.
+    fn bundled_scene(
+        &self,
+        name: Spanned<String>,
+        scenes: SceneFiles<'_>,
+    ) -> Result<LessonScene, LessonError> {
+        if bundled::find(name.get_ref()).is_some() {
+            return Ok(LessonScene::Bundled(name.into_inner()));
+        }
+        if let SceneFiles::Fetched { url, text } = scenes
+            && bundled::site_scene(name.get_ref()).is_some_and(|s| s.url() == url)
+        {
+            return Ok(LessonScene::Fetched {
+                url: self.located(name.span(), url.to_string()),
+                text: text.to_string(),
+            });
+        }
+        if bundled::site_scene(name.get_ref()).is_some() {
+            return Err(self.error(
+                name.span(),
+                format!(
+                    "the scene `{}` is beside the page, not in it: a lesson linked from the \
+                     page (?lesson=URL or ?folder=INDEX) fetches it, a dropped one cannot",
+                    name.get_ref()
+                ),
+            ));
+        }
+        let offered = bundled::offered();
+        let names: Vec<&str> = offered.iter().map(|s| s.name()).collect();
+        Err(self.error(
+            name.span(),
+            format!(
+                "no bundled scene called `{}`; expected one of {}",
+                name.get_ref(),
+                names.join(", ")
+            ),
+        ))
     }
 
     /// The scene `file` names, from where `scenes` says files are.

@@ -167,12 +167,13 @@ fn every_bundled_lesson_passes_its_check() {
 
 /// The class folder the web page's CI check opens by its index
 /// (`?folder=app/tests/class/lessons.index`) passes on the desktop, its
-/// lessons in the index's order, each reading its scene file beside it.
+/// lessons in chapter order, reading their scene file beside them or a
+/// bundled scene (which the page fetches from `scenes/`).
 #[test]
 fn the_class_folder_of_the_page_check_passes() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/class");
     let out = workbench_ok(&["lesson", "check", dir]);
-    assert!(out.contains("all 2 steps pass"), "{out}");
+    assert!(out.contains("all 3 steps pass"), "{out}");
     let eye = out.find("eye_rays (chapter 1)").expect(&out);
     let aa = out.find("anti_aliasing (chapter 2)").expect(&out);
     assert!(eye < aa, "{out}");

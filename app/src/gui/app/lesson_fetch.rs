@@ -1,13 +1,15 @@
 //! Lessons fetched from the page's site: one lesson by a link
 //! (`?lesson=lessons/mine.toml`), or a class's folder by its index file
 //! (`?folder=class/lessons.index`), since a static host lists no folder.
-//! Each lesson's `file =` scene is fetched beside it before the lesson is
-//! read, so a teacher's folder works on the page as it does on disk.
+//! Each lesson's `file =` scene is fetched beside it (a `bundled` scene
+//! the page does not embed, from `scenes/`) before the lesson is read, so
+//! a teacher's folder works on the page as it does on disk.
 
+use crate::bundled;
 use crate::gui::link::beside;
 use crate::lessons::Lesson;
 use crate::lessons::folder::from_index_lines;
-use crate::lessons::format::{SceneFiles, parse_lesson, scene_file_named};
+use crate::lessons::format::{NamedScene, SceneFiles, parse_lesson, scene_named};
 
 use super::WorkbenchApp;
 
@@ -82,6 +84,19 @@ impl FetchedLesson {
         let name = self.url.rsplit('/').next().unwrap_or(&self.url);
         let stem = name.strip_suffix(".toml").unwrap_or(name);
         parse_lesson(text, stem, &self.url, scenes).map_err(|e| e.to_string())
+    }
+}
+
+/// The URL of the scene file the lesson at `url` (its `text`) names, to
+/// fetch with it: a `file` beside it, or a bundled scene the page does
+/// not embed, in `scenes/`.
+fn scene_url(url: &str, text: &str) -> Option<String> {
+    match scene_named(text)? {
+        NamedScene::File(file) => Some(beside(url, &file)),
+        NamedScene::Bundled(name) if bundled::find(&name).is_none() => {
+            bundled::site_scene(&name).map(|s| s.url())
+        }
+        NamedScene::Bundled(_) => None,
     }
 }
 
@@ -165,8 +180,7 @@ impl WorkbenchApp {
                 let Some(lesson) = fetch.lessons.get_mut(i) else {
                     return;
                 };
-                if let Some(file) = text.as_deref().ok().and_then(scene_file_named) {
-                    let scene = beside(&lesson.url, &file);
+                if let Some(scene) = text.as_deref().ok().and_then(|t| scene_url(&lesson.url, t)) {
                     next.push((scene.clone(), FetchFor::LessonScene(i)));
                     lesson.scene = Some((scene, None));
                 }
