@@ -157,6 +157,12 @@ fn film(pixels: &[(&[f32], &[f32])]) -> Film {
 
 /// Gives each pixel of `film` (row-major) its samples in `pass`.
 fn add_pass(film: &mut Film, pass: &[&[f32]]) {
+    // Synthetic samples cost nothing.
+    add_costed_pass(film, pass, &vec![0; pass.len()]);
+}
+
+/// [`add_pass`] whose pixels made `tests[i]` intersection tests in all.
+fn add_costed_pass(film: &mut Film, pass: &[&[f32]], tests: &[u64]) {
     let tile = Tile {
         x: 0,
         y: 0,
@@ -168,38 +174,56 @@ fn add_pass(film: &mut Film, pass: &[&[f32]]) {
         .iter()
         .flat_map(|h| h.iter().map(|&v| Vec3A::splat(v)))
         .collect();
-    // Synthetic samples cost nothing.
-    film.add_samples(&tile, &counts, &values, &vec![0; counts.len()]);
+    film.add_samples(&tile, &counts, &values, tests);
 }
 
 /// A column of three pixels: an edge A above a flat pixel B above a
-/// pixel C whose samples vary but whose halves agree. Only A refines
-/// after the minimum, and its error grows: B, two rows from C and
-/// never sampled again, becomes noisy through A, and C refines for
-/// B's sake. A decision that re-pooled only the rows sampled, or
-/// decided only the rows it re-pooled, would leave both stopped; one
-/// that took the rows to re-measure from the film's active pixels
-/// would stop A when a budget cut it from a pass.
+/// pixel C whose samples vary but whose halves agree, and the same
+/// column upside down. Only A refines after the minimum, and its error
+/// grows: B, two rows from C and never sampled again, becomes noisy
+/// through A, and C refines for B's sake. A decision that re-pooled only
+/// the rows sampled, or decided only the rows it re-pooled (above them
+/// as below), would leave both stopped; one that took the rows to
+/// re-measure from the film's active pixels would stop A when a budget
+/// cut it from a pass.
 #[test]
 fn a_pass_changes_decisions_two_rows_away_as_a_fresh_decision_does() {
     let a = settings(0.05, 4, 64);
-    let mut film = Film::with_error_estimate(1, 3);
-    add_pass(&mut film, &[&[0.5], &[0.3], &[0.9]]);
-    add_pass(&mut film, &[&[0.5], &[0.3], &[0.1]]);
-    add_pass(&mut film, &[&[0.7, 0.7], &[0.3, 0.3], &[0.1, 0.9]]);
-    let mut refinement = Refinement::default();
-    let first = refinement.decide(&film, &a);
-    assert_eq!(first, [true, false, false]);
-    // A budget that cut every pixel from the pass: nothing changed,
-    // and A is still above the threshold.
-    film.set_active(vec![false; 3]);
-    assert_eq!(refinement.decide(&film, &a), first);
-    film.set_active(first);
-    add_pass(&mut film, &[&[0.0; 4], &[], &[]]);
-    let second = refinement.decide(&film, &a);
-    assert_eq!(second, [true, true, true]);
-    let mean = refinement.mean_per_sample().expect("measured");
-    assert_eq!(Refinement::relative_to(mean).decide(&film, &a), second);
+    for upside_down in [false, true] {
+        // Rows A, B, C top down, or C, B, A.
+        let column = |a: &[f32], b: &[f32], c: &[f32]| -> Vec<Vec<f32>> {
+            let mut rows = vec![a.to_vec(), b.to_vec(), c.to_vec()];
+            if upside_down {
+                rows.reverse();
+            }
+            rows
+        };
+        let mut film = Film::with_error_estimate(1, 3);
+        let pass = |film: &mut Film, rows: Vec<Vec<f32>>| {
+            let rows: Vec<&[f32]> = rows.iter().map(Vec::as_slice).collect();
+            add_pass(film, &rows);
+        };
+        pass(&mut film, column(&[0.5], &[0.3], &[0.9]));
+        pass(&mut film, column(&[0.5], &[0.3], &[0.1]));
+        pass(&mut film, column(&[0.7, 0.7], &[0.3, 0.3], &[0.1, 0.9]));
+        let mut refinement = Refinement::default();
+        let first = refinement.decide(&film, &a);
+        let only_a: Vec<bool> = column(&[1.0], &[], &[])
+            .iter()
+            .map(|r| !r.is_empty())
+            .collect();
+        assert_eq!(first, only_a, "{upside_down}");
+        // A budget that cut every pixel from the pass: nothing changed,
+        // and A is still above the threshold.
+        film.set_active(vec![false; 3]);
+        assert_eq!(refinement.decide(&film, &a), first, "{upside_down}");
+        film.set_active(first);
+        pass(&mut film, column(&[0.0; 4], &[], &[]));
+        let second = refinement.decide(&film, &a);
+        assert_eq!(second, [true, true, true], "{upside_down}");
+        let mean = refinement.mean_per_sample().expect("measured");
+        assert_eq!(Refinement::relative_to(mean).decide(&film, &a), second);
+    }
 }
 
 #[test]
@@ -317,4 +341,82 @@ fn a_pixels_cost_is_its_tests_per_sample_over_the_films() {
     given.decide(&film, &a);
     assert_eq!(given.mean_per_sample(), Some(4.0));
     close(costs(&given), [4.0 / 6.0, 2.0 / 6.0]);
+}
+
+#[test]
+fn pixels_past_the_minimum_refine_only_when_noisy() {
+    // Flat pixels of 8 samples, above a minimum of 4: no error, nothing
+    // refines.
+    let flat: (&[f32], &[f32]) = (&[0.3; 4], &[0.3; 4]);
+    let active = Refinement::default().decide(&film(&[flat, flat]), &settings(0.05, 4, 64));
+    assert_eq!(active, [false, false]);
+}
+
+#[test]
+fn a_varying_pixel_at_the_maximum_stops_beside_a_noisy_one() {
+    // 8 samples each. The edge's halves have means 0.3 and 0.7: error
+    // 0.4 * sqrt(4 * 4) / 8 = 0.2, pooled with the lucky pixel's 0:
+    // sqrt((0.2^2 * 8 * 4) / ((2 + 3) * 8)) = 0.179 >= the threshold at
+    // 8 samples, 0.05 * 8 / 4 = 0.1: noisy. The lucky pixel's halves
+    // agree (error 0), but its samples (two 0.9, six 0.1) vary:
+    // sqrt((2 * 0.6^2 + 6 * 0.2^2) / 7 / 8) = 0.131 >= 0.1.
+    let edge: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.9, 0.9, 0.1]);
+    let lucky: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.1, 0.1, 0.1]);
+    let film = film(&[edge, lucky]);
+    let below = Refinement::default().decide(&film, &settings(0.05, 4, 16));
+    assert_eq!(below, [true, true], "below the maximum both refine");
+    let at = Refinement::default().decide(&film, &settings(0.05, 4, 8));
+    assert_eq!(at, [false, false], "the maximum ends both");
+}
+
+#[test]
+fn errors_pool_over_the_window_own_four_times_and_costs_per_pixel() {
+    // 2 x 2 pixels, each the others' neighbour. Errors (halves' means
+    // apart times sqrt(a b) / n) and tests per sample:
+    //   0: 0.5, 0.5 | 0.1, 0.1: 0.4 * 2 / 4 = 0.2, n 4, 3 tests a sample;
+    //   1: 0.3 | 0.3: 0, n 2, none;
+    //   2: 0.5 x 4 | 0.3 x 4: 0.2 * 4 / 8 = 0.1, n 8, none;
+    //   3: 0.7 x 3 | 0.7 x 3: 0, n 6, 1 test a sample.
+    let mut film = Film::with_error_estimate(2, 2);
+    for (pass, tests) in [
+        ([0.5, 0.3, 0.5, 0.7], [6, 0, 0, 3]),
+        ([0.1, 0.3, 0.3, 0.7], [6, 0, 0, 3]),
+    ] {
+        let halves: Vec<Vec<f32>> = [2, 1, 4, 3]
+            .iter()
+            .zip(pass)
+            .map(|(&n, v)| vec![v; n])
+            .collect();
+        let halves: Vec<&[f32]> = halves.iter().map(Vec::as_slice).collect();
+        add_costed_pass(&mut film, &halves, &tests);
+    }
+    let mut refinement = Refinement::default();
+    refinement.decide(&film, &settings(0.05, 2, 64));
+    // Each pixel brings e^2 n: 0.16, 0, 0.08, 0; the window sums 0.24
+    // over 4 pixels. Pooled: sqrt((0.24 + 3 e^2 n) / ((4 + 3) n)).
+    let expected = [
+        (0.72f32 / 28.0).sqrt(),
+        (0.24f32 / 14.0).sqrt(),
+        (0.48f32 / 56.0).sqrt(),
+        (0.24f32 / 42.0).sqrt(),
+    ];
+    let pooled = refinement.pooled_errors();
+    let close = pooled
+        .iter()
+        .zip(expected)
+        .all(|(p, e)| (p - e).abs() < 1e-5);
+    assert!(
+        close && pooled.len() == 4,
+        "{pooled:?} against {expected:?}"
+    );
+    // Tests per sample 3, 0, 0, 1: mean 1, overhead 0.5; costs
+    // 3.5 / 1.5, 0.5 / 1.5, 0.5 / 1.5, 1.5 / 1.5.
+    assert_eq!(refinement.mean_per_sample(), Some(1.0));
+    let costs: Vec<f32> = (0..4).map(|i| refinement.relative_cost(i)).collect();
+    let expected = [3.5 / 1.5, 0.5 / 1.5, 0.5 / 1.5, 1.0];
+    let close = costs
+        .iter()
+        .zip(expected)
+        .all(|(c, e)| (c - e).abs() < 1e-6);
+    assert!(close, "{costs:?} against {expected:?}");
 }
