@@ -348,8 +348,16 @@ fn pixels_past_the_minimum_refine_only_when_noisy() {
     // Flat pixels of 8 samples, above a minimum of 4: no error, nothing
     // refines.
     let flat: (&[f32], &[f32]) = (&[0.3; 4], &[0.3; 4]);
-    let active = Refinement::default().decide(&film(&[flat, flat]), &settings(0.05, 4, 64));
-    assert_eq!(active, [false, false]);
+    let a = settings(0.05, 4, 64);
+    let mut refinement = Refinement::default();
+    assert_eq!(refinement.decide(&film(&[flat, flat]), &a), [false, false]);
+    // Given a film of another size, of one row again, it measures every
+    // row afresh, not only those its last decision refined (none). The
+    // edge's error 0.4 * sqrt(4 * 4) / 8 = 0.2, pooled with two zeros:
+    // sqrt((0.2^2 * 8 * 4) / ((3 + 3) * 8)) = 0.163 >= 0.05 * 8 / 4.
+    let edge: (&[f32], &[f32]) = (&[0.9, 0.1, 0.1, 0.1], &[0.9, 0.9, 0.9, 0.1]);
+    let wider = film(&[flat, edge, flat]);
+    assert_eq!(refinement.decide(&wider, &a), [false, true, false]);
 }
 
 #[test]
@@ -391,7 +399,7 @@ fn errors_pool_over_the_window_own_four_times_and_costs_per_pixel() {
         add_costed_pass(&mut film, &halves, &tests);
     }
     let mut refinement = Refinement::default();
-    refinement.decide(&film, &settings(0.05, 2, 64));
+    let active = refinement.decide(&film, &settings(0.05, 2, 64));
     // Each pixel brings e^2 n: 0.16, 0, 0.08, 0; the window sums 0.24
     // over 4 pixels. Pooled: sqrt((0.24 + 3 e^2 n) / ((4 + 3) n)).
     let expected = [
@@ -419,4 +427,9 @@ fn errors_pool_over_the_window_own_four_times_and_costs_per_pixel() {
         .zip(expected)
         .all(|(c, e)| (c - e).abs() < 1e-6);
     assert!(close, "{costs:?} against {expected:?}");
+    // Thresholds 0.05 * n / 2 * cost: 0.233, 0.0167, 0.0667, 0.15.
+    // Pixels 1 and 2 are above theirs; 0 and 3 below, beside them, but
+    // their samples vary less than their thresholds (0's four samples
+    // sqrt(4 * 0.2^2 / 3 / 4) = 0.115, 3's none).
+    assert_eq!(active, [false, true, true, false]);
 }
