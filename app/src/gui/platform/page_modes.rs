@@ -172,21 +172,25 @@ fn bench(source: SceneSource, runs: usize, tx: &mpsc::Sender<Said>) {
         let measured = outcome.measurements.into_iter().next();
         measured.context("no frame was measured")
     })();
-    let verdict = match measured {
-        Ok(m) => {
-            say(format!(
-                "bvh: median {:.4} s, {} rays, {:.0} rays/s",
-                m.median().as_secs_f64(),
-                m.rays(),
-                m.rays_per_second()
-            ));
-            format!("{:.0}", m.rays_per_second())
-        }
-        Err(e) => {
-            say(format!("cannot benchmark: {e:#}"));
-            format!("error: {e:#}")
-        }
-    };
+    let verdict = measured.map(|m| {
+        say(format!(
+            "bvh: median {:.4} s, {} rays, {:.0} rays/s",
+            m.median().as_secs_f64(),
+            m.rays(),
+            m.rays_per_second()
+        ));
+        format!("{:.0}", m.rays_per_second())
+    });
+    conclude(tx, "benchmark", verdict);
+}
+
+/// How each measuring mode ends: `done`'s verdict sent, or why it could
+/// not be had said (`cannot WHAT: …`) with the verdict `error: …`.
+fn conclude(tx: &mpsc::Sender<Said>, what: &str, done: anyhow::Result<String>) {
+    let verdict = done.unwrap_or_else(|e| {
+        let _ = tx.send(Said::Line(format!("cannot {what}: {e:#}")));
+        format!("error: {e:#}")
+    });
     let _ = tx.send(Said::Finished(verdict));
 }
 
@@ -220,22 +224,16 @@ fn compare(source: SceneSource, a: &str, b: &str, tx: &mpsc::Sender<Said>) {
         );
         compared?.context("the comparison was cancelled")
     })();
-    let verdict = match measured {
-        Ok(c) => {
-            let m = &c.metrics;
-            say(format!("A: {}\nB: {}", c.labels.0, c.labels.1));
-            say(format!(
-                "MSE {:.6}, PSNR {:.4} dB, FLIP {:.6}",
-                m.mse, m.psnr, m.flip
-            ));
-            serde_json::json!({ "mse": m.mse, "psnr": m.psnr, "flip": m.flip }).to_string()
-        }
-        Err(e) => {
-            say(format!("cannot compare: {e:#}"));
-            format!("error: {e:#}")
-        }
-    };
-    let _ = tx.send(Said::Finished(verdict));
+    let verdict = measured.map(|c| {
+        let m = &c.metrics;
+        say(format!("A: {}\nB: {}", c.labels.0, c.labels.1));
+        say(format!(
+            "MSE {:.6}, PSNR {:.4} dB, FLIP {:.6}",
+            m.mse, m.psnr, m.flip
+        ));
+        serde_json::json!({ "mse": m.mse, "psnr": m.psnr, "flip": m.flip }).to_string()
+    });
+    conclude(tx, "compare", verdict);
 }
 
 /// Runs a one-run study of `param` over `values` on `source` with the
@@ -281,11 +279,7 @@ fn study(source: SceneSource, param: &str, values: &str, tx: &mpsc::Sender<Said>
         super::download::SaveTo::named(name).write(&png)?;
         anyhow::Ok(format!("drawn: a PNG of {} bytes", png.len()))
     })();
-    let verdict = drawn.unwrap_or_else(|e| {
-        say(format!("cannot draw the study's chart: {e:#}"));
-        format!("error: {e:#}")
-    });
-    let _ = tx.send(Said::Finished(verdict));
+    conclude(tx, "draw the study's chart", drawn);
 }
 
 /// Where scene `name` is read from: the embedded scene of that name, else
