@@ -878,9 +878,8 @@ impl SettingsArgs {
         Self::parse_words(vocabulary::split_words(text).map_err(|e| e.to_string())?)
     }
 
-    /// [`SettingsArgs::parse_str`] of words already split (a link's
-    /// flags, whose values may hold spaces).
-    pub fn parse_words(
+    /// [`SettingsArgs::parse_str`] of words already split.
+    fn parse_words(
         words: impl IntoIterator<Item = String>,
     ) -> Result<(SettingsArgs, EncodingArgs), String> {
         SettingsLine::try_parse_from(words)

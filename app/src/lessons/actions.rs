@@ -51,9 +51,17 @@ impl SettingsLine {
     /// Reads `text`: words split as a shell splits them, `--set EDIT`
     /// taken out, the rest read by the vocabulary.
     pub fn parse(text: &str) -> Result<SettingsLine, VocabularyError> {
+        Self::from_words(split_words(text)?)
+    }
+
+    /// [`SettingsLine::parse`] of words already split (a link's
+    /// settings, whose values may hold spaces).
+    pub fn from_words(
+        words: impl IntoIterator<Item = String>,
+    ) -> Result<SettingsLine, VocabularyError> {
         let mut set = Vec::new();
         let mut settings = Vec::new();
-        let mut words = split_words(text)?.into_iter();
+        let mut words = words.into_iter();
         while let Some(word) = words.next() {
             if word == "--set" {
                 set.push(words.next().ok_or(VocabularyError::Missing("set"))?);

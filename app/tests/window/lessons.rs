@@ -397,8 +397,8 @@ fn a_link_to_nothing_bundled_says_what_there_is() {
         ),
         (
             "?lessons=shadows",
-            "unexpected argument '--lessons' found",
-            "a link reads lesson, step, scene",
+            "the link's `lessons` is not a setting",
+            "a link reads lesson, folder, step, scene",
         ),
     ] {
         let mut harness = small_window(Harness::builder());

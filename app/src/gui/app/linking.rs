@@ -163,8 +163,8 @@ impl WorkbenchApp {
         let Some(pending) = self.pending_link.take_if(|p| p.label == loaded.label()) else {
             return;
         };
-        let flags = match pending.link.render_flags() {
-            Ok(flags) => flags,
+        let line = match pending.link.settings_line() {
+            Ok(line) => line,
             Err(e) => return self.messages.lasting_error(e),
         };
         // Through the controls' own change, so a link's `width=` becomes
@@ -176,8 +176,8 @@ impl WorkbenchApp {
             .scene()
             .map_or(1, |s| s.scene.view.width);
         let controls = &mut self.sides.a.controls;
-        controls.change_settings(scene_width, |settings| flags.apply(settings));
-        for text in &flags.set {
+        controls.change_settings(scene_width, |settings| line.overrides.apply(settings));
+        for text in &line.set {
             let Some(scene) = self.sides.a.engine.scene() else {
                 return;
             };

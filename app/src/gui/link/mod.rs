@@ -6,7 +6,9 @@
 
 use tracer::render::{RenderSettings, Sampling};
 
-use crate::cli::SettingsArgs;
+use tracer::render::vocabulary::{VocabularyError, WORDS};
+
+use crate::lessons::actions::SettingsLine;
 
 /// Where a link's scene or lesson comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -66,8 +68,8 @@ pub struct Link {
 impl Link {
     /// Reads `query` (`?a=b&c=d`, with or without its `?`, values
     /// percent-encoded as browsers write them). `lesson`, `step` and
-    /// `scene` say what opens; every other key is one of `workbench
-    /// render`'s settings flags (`spp=4`, `accel=bvh`, `aa`, `set=object 5
+    /// `scene` say what opens; every other key is a word of the settings'
+    /// vocabulary (`spp=4`, `accel=bvh`, `aa`) or an edit (`set=object 5
     /// ior 1.33`, repeatable as on the command line). A key it does not
     /// know, a value the flag refuses, a lesson, step or scene given twice
     /// or empty is an error naming it: a link that silently opened
@@ -128,33 +130,37 @@ impl Link {
         if link.folder.is_some() && link.lesson.is_some() {
             return Err("the link gives a folder and a lesson: give one".into());
         }
-        link.render_flags()?;
+        link.settings_line()?;
         Ok(link)
     }
 
-    /// The settings as `workbench render` reads them, or the flag it
-    /// refuses ("unexpected argument '--fast' found").
-    pub fn render_flags(&self) -> Result<SettingsArgs, String> {
-        let words = self.settings.iter().flat_map(|(key, value)| {
-            let flag = format!("--{key}");
-            if value.is_empty() {
-                vec![flag]
-            } else {
-                vec![flag, value.clone()]
-            }
-        });
-        let (settings, encoding) = SettingsArgs::parse_words(words).map_err(|e| {
-            let reads = if e.contains("unexpected argument") {
-                ": a link reads lesson, step, scene and `workbench render`'s settings flags"
-            } else {
-                ""
-            };
-            format!("the link's settings: {e}{reads}")
-        })?;
-        if encoding.srgb {
+    /// The settings in the settings' own words (`docs/guide/settings.md`,
+    /// as a lesson writes them), or the word or value refused ("the
+    /// link's `fast` is not a setting ..."). No command-line parser reads
+    /// them, so a renamed flag breaks no link a teacher sent.
+    pub fn settings_line(&self) -> Result<SettingsLine, String> {
+        if self.settings.iter().any(|(key, _)| key == "srgb") {
             return Err("the link's settings: the window shows sRGB always; drop srgb".into());
         }
-        Ok(settings)
+        let words = self
+            .settings
+            .iter()
+            .map(|(key, value)| match value.is_empty() {
+                true => format!("--{key}"),
+                false => format!("--{key}={value}"),
+            });
+        SettingsLine::from_words(words).map_err(|e| match e {
+            VocabularyError::Unknown(word) => format!(
+                "the link's `{}` is not a setting: a link reads lesson, folder, step, \
+                 scene, set and the settings {}",
+                word.trim_start_matches("--")
+                    .split('=')
+                    .next()
+                    .unwrap_or_default(),
+                WORDS.iter().map(|w| w.name).collect::<Vec<_>>().join(", ")
+            ),
+            e => format!("the link's settings: {e}"),
+        })
     }
 
     /// The query that opens this link (`?scene=balls_low&spp=4`), its

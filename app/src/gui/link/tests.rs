@@ -69,7 +69,7 @@ fn unknown_repeated_empty_and_broken_values_are_refused_by_name() {
     for (query, said) in [
         (
             "?lessons=shadows",
-            "'--lessons' found: a link reads lesson, step, scene",
+            "the link's `lessons` is not a setting: a link reads lesson, folder, step",
         ),
         ("?lesson=a&lesson=b", "lesson twice"),
         ("?lesson=a&step=1&step=2", "step twice"),
@@ -102,22 +102,24 @@ fn unknown_repeated_empty_and_broken_values_are_refused_by_name() {
 }
 
 #[test]
-fn settings_are_the_render_flags_and_their_errors_name_the_flag() {
+fn settings_are_the_settings_words_and_their_errors_name_the_word() {
     let link = Link::parse("?scene=balls_low&spp=4&accel=grid&aa&set=object+0+ior+1.5").unwrap();
-    let flags = link.render_flags().unwrap();
-    assert_eq!(flags.spp, Some(4));
-    assert_eq!(flags.accel, Some(AccelKind::Grid));
-    assert!(flags.aa);
-    assert_eq!(flags.set, ["object 0 ior 1.5"]);
-    let error = |query: &str| Link::parse(query).unwrap_err();
-    assert!(
-        error("?spp=many").contains("'many'"),
-        "{}",
-        error("?spp=many")
-    );
-    assert!(error("?accel=kd").contains("kd"), "{}", error("?accel=kd"));
-    assert!(error("?fast").contains("'--fast'"), "{}", error("?fast"));
-    assert!(error("?srgb").contains("srgb"), "{}", error("?srgb"));
+    let line = link.settings_line().unwrap();
+    assert_eq!(line.overrides.spp, Some(4));
+    assert_eq!(line.overrides.accel, Some(AccelKind::Grid));
+    assert!(line.overrides.aa);
+    assert_eq!(line.set, ["object 0 ior 1.5"]);
+    for (query, said) in [
+        ("?spp=many", "`--spp` takes a whole number, not `many`"),
+        ("?spp", "`--spp` needs a value"),
+        ("?aa=yes", "`--aa` takes no value"),
+        ("?accel=kd", "`--accel` takes none, grid or bvh, not `kd`"),
+        ("?fast", "the link's `fast` is not a setting"),
+        ("?srgb", "the window shows sRGB always; drop srgb"),
+    ] {
+        let error = Link::parse(query).unwrap_err();
+        assert!(error.contains(said), "{query}: {error}");
+    }
 }
 
 #[test]
@@ -156,7 +158,7 @@ fn round_trip(change: impl FnOnce(&mut RenderSettings)) -> Vec<(String, String)>
         ..Link::default()
     };
     let mut back = base.clone();
-    link.render_flags().unwrap().apply(&mut back);
+    link.settings_line().unwrap().overrides.apply(&mut back);
     assert_eq!(back, now, "{flags:?}");
     flags
 }
