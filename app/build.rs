@@ -47,7 +47,7 @@ fn main() {
     }
 
     let mut out = String::from("/// Scenes embedded from `scenes/`, sorted by file name.\n");
-    out.push_str("pub const SCENES: &[BundledScene] = &[\n");
+    out.push_str("pub(crate) const SCENES: &[BundledScene] = &[\n");
     for path in &scenes {
         println!("cargo:rerun-if-changed={}", path.display());
         let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
@@ -67,7 +67,7 @@ fn main() {
         "/// Scenes of `scenes/` left out of [`SCENES`] (on the web page), sorted\n\
          /// by file name: fetched from `scenes/FILE` beside the page when picked.\n",
     );
-    out.push_str("pub const SITE_SCENES: &[SiteScene] = &[\n");
+    out.push_str("pub(crate) const SITE_SCENES: &[SiteScene] = &[\n");
     for path in &on_site {
         let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
         let file = path.file_name().and_then(|s| s.to_str()).unwrap_or("scene");
@@ -83,7 +83,7 @@ fn main() {
     out.push_str("];\n\n");
 
     out.push_str("/// Lessons embedded from `assets/lessons/`, sorted by file name.\n");
-    out.push_str("pub const LESSONS: &[BundledLesson] = &[\n");
+    out.push_str("pub(crate) const LESSONS: &[BundledLesson] = &[\n");
     for path in files_in(&lessons_dir, &["toml"]) {
         println!("cargo:rerun-if-changed={}", path.display());
         let name = path
@@ -113,7 +113,7 @@ fn main() {
          /// decoded here to RGB bytes: a start then decodes nothing.\n",
     );
     if files.len() == 6 {
-        out.push_str("pub const SKYBOX: Option<[tracer::skybox::Rgb8Face; 6]> = Some([\n");
+        out.push_str("pub(crate) const SKYBOX: Option<[tracer::skybox::Rgb8Face; 6]> = Some([\n");
         let out_dir = std::env::var_os("OUT_DIR").unwrap();
         for (face, file) in faces.iter().zip(&files) {
             let (width, height, rgb) = decode_rgb8(file);
@@ -128,7 +128,7 @@ fn main() {
         }
         out.push_str("]);\n");
     } else {
-        out.push_str("pub const SKYBOX: Option<[tracer::skybox::Rgb8Face; 6]> = None;\n");
+        out.push_str("pub(crate) const SKYBOX: Option<[tracer::skybox::Rgb8Face; 6]> = None;\n");
     }
     let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("bundled.rs");
     std::fs::write(dest, out).unwrap();

@@ -4,11 +4,11 @@
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BundledScene {
     /// File stem, e.g. `balls_medium`.
-    pub name: &'static str,
+    pub(crate) name: &'static str,
     /// File name, e.g. `balls_medium.p3f`.
-    pub file: &'static str,
+    pub(crate) file: &'static str,
     /// The file's first comment line.
-    pub description: &'static str,
+    pub(crate) description: &'static str,
     pub text: &'static str,
 }
 
@@ -19,18 +19,18 @@ pub struct BundledScene {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SiteScene {
     /// File stem, e.g. `tetra`.
-    pub name: &'static str,
+    pub(crate) name: &'static str,
     /// File name, e.g. `tetra.p3f`.
-    pub file: &'static str,
+    pub(crate) file: &'static str,
     /// The file's first comment line.
-    pub description: &'static str,
+    pub(crate) description: &'static str,
     /// The file's size in bytes, for the scene list.
-    pub size: u64,
+    pub(crate) size: u64,
 }
 
 impl SiteScene {
     /// Where the page fetches it: `scenes/FILE`, relative to the page.
-    pub fn url(&self) -> String {
+    pub(crate) fn url(&self) -> String {
         format!("scenes/{}", self.file)
     }
 }
@@ -39,14 +39,14 @@ impl SiteScene {
 #[derive(Debug, Clone, Copy)]
 pub struct BundledLesson {
     /// File stem, e.g. `camera`: the name `workbench lesson check` takes.
-    pub name: &'static str,
-    pub text: &'static str,
+    pub(crate) name: &'static str,
+    pub(crate) text: &'static str,
 }
 
 include!(concat!(env!("OUT_DIR"), "/bundled.rs"));
 
 /// The scene the window opens when it has none to restore.
-pub const DEFAULT_SCENE: &str = "showcase";
+pub(crate) const DEFAULT_SCENE: &str = "showcase";
 
 /// A bundled scene by name.
 pub fn find(name: &str) -> Option<&'static BundledScene> {
@@ -54,24 +54,24 @@ pub fn find(name: &str) -> Option<&'static BundledScene> {
 }
 
 /// A scene of `scenes/` the binary does not embed, by name.
-pub fn site_scene(name: &str) -> Option<&'static SiteScene> {
+pub(crate) fn site_scene(name: &str) -> Option<&'static SiteScene> {
     SITE_SCENES.iter().find(|s| s.name == name)
 }
 
 /// The site scene fetched from `url` ([`SiteScene::url`]), if any.
-pub fn site_scene_at(url: &str) -> Option<&'static SiteScene> {
+pub(crate) fn site_scene_at(url: &str) -> Option<&'static SiteScene> {
     SITE_SCENES.iter().find(|s| s.url() == url)
 }
 
 /// A scene the scene list offers: embedded, or a file beside the page.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Offered {
+pub(crate) enum Offered {
     Embedded(&'static BundledScene),
     Site(&'static SiteScene),
 }
 
 impl Offered {
-    pub fn name(&self) -> &'static str {
+    pub(crate) fn name(&self) -> &'static str {
         match self {
             Offered::Embedded(scene) => scene.name,
             Offered::Site(scene) => scene.name,
@@ -81,7 +81,7 @@ impl Offered {
 
 /// Every scene of `scenes/`, embedded or beside the page, by name: what
 /// the scene list offers and a link may name.
-pub fn offered() -> Vec<Offered> {
+pub(crate) fn offered() -> Vec<Offered> {
     offered_of(SCENES, SITE_SCENES)
 }
 

@@ -23,36 +23,36 @@ use crate::reports::bench_table::Format;
 )]
 pub struct Cli {
     #[command(subcommand)]
-    pub command: Option<Headless>,
+    pub(crate) command: Option<Headless>,
     /// A scene file to open in the window (default: the bundled showcase).
     #[arg(long, global = false)]
-    pub scene: Option<PathBuf>,
+    pub(crate) scene: Option<PathBuf>,
     /// Save a screenshot of the window to this PNG file once the render is
     /// done (or an error is shown), then close.
     #[arg(long, value_name = "PNG")]
-    pub screenshot: Option<PathBuf>,
+    pub(crate) screenshot: Option<PathBuf>,
     /// Open the window with the observer view on (the scene from outside).
     #[arg(long)]
-    pub observer: bool,
+    pub(crate) observer: bool,
     /// Open the window on this lesson, its first step set up: a lesson file
     /// (see docs/LESSONS.md) or a bundled lesson's name (`--lesson shadows`).
     #[arg(long, value_name = "NAME|TOML", conflicts_with = "scene")]
-    pub lesson: Option<PathBuf>,
+    pub(crate) lesson: Option<PathBuf>,
     /// Add a folder of lessons (its .toml files, or those its
     /// lessons.index names) to the Lessons panel's list, by chapter after
     /// the bundled ones of the same chapter, and set up the folder's first
     /// (or the --lesson file, if given).
     #[arg(long, value_name = "DIR", conflicts_with = "scene")]
-    pub lesson_folder: Option<PathBuf>,
+    pub(crate) lesson_folder: Option<PathBuf>,
     /// Take the screenshot this many seconds after opening instead.
     #[arg(long, value_name = "SECONDS", requires = "screenshot")]
-    pub screenshot_after: Option<f64>,
+    pub(crate) screenshot_after: Option<f64>,
 }
 
 impl Cli {
     /// The window's screenshot request, checked: a delay must be a finite,
     /// non-negative number of seconds.
-    pub fn screenshot_plan(&self) -> anyhow::Result<Option<ScreenshotPlan>> {
+    pub(crate) fn screenshot_plan(&self) -> anyhow::Result<Option<ScreenshotPlan>> {
         let Some(path) = &self.screenshot else {
             return Ok(None);
         };
@@ -73,15 +73,15 @@ impl Cli {
 /// When and where the window takes its screenshot (`--screenshot`).
 #[derive(Debug, Clone)]
 pub struct ScreenshotPlan {
-    pub path: PathBuf,
+    pub(crate) path: PathBuf,
     /// Take it this long after the window opened; `None`: once the render
     /// is finished and on screen (or an error is shown).
-    pub after: Option<std::time::Duration>,
+    pub(crate) after: Option<std::time::Duration>,
 }
 
 /// The subcommands: the engine run without the window.
 #[derive(Subcommand, Debug)]
-pub enum Headless {
+pub(crate) enum Headless {
     /// Render a scene to a PNG file.
     Render(RenderArgs),
     /// Show every ray one sample of one pixel spawned: what each hit, its
@@ -137,44 +137,44 @@ without a network and prints to PDF. Ctrl-C stops and writes nothing.
 
   workbench report scenes/balls_medium.p3f -o report.html --quick
   workbench report scene.p3f -o report.html --runs 7 --json times.json")]
-pub struct ReportArgs {
+pub(crate) struct ReportArgs {
     /// The scene file (.p3f or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// Where to write the HTML page.
     #[arg(short, long, default_value = "report.html")]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     /// Frames per timed configuration; the median and spread are reported.
     #[arg(long, default_value_t = 5)]
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// A quick report: images at most 128 pixels on their longer side and
     /// at most 3 runs per time (said in the page).
     #[arg(long)]
-    pub quick: bool,
+    pub(crate) quick: bool,
     /// The pixel to explain (default: one the report chooses, with a
     /// reflection and a blocked shadow ray), in the measured image.
     #[arg(long, num_args = 2, value_names = ["X", "Y"])]
-    pub pixel: Option<Vec<u32>>,
+    pub(crate) pixel: Option<Vec<u32>>,
     /// Also write the timing table as `bench --matrix --format json`
     /// writes it.
     #[arg(long, value_name = "FILE")]
-    pub json: Option<PathBuf>,
+    pub(crate) json: Option<PathBuf>,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     #[command(flatten)]
-    pub encoding: EncodingArgs,
+    pub(crate) encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 #[derive(Args, Debug)]
-pub struct LessonArgs {
+pub(crate) struct LessonArgs {
     #[command(subcommand)]
-    pub command: LessonCommand,
+    pub(crate) command: LessonCommand,
 }
 
 #[derive(Subcommand, Debug)]
-pub enum LessonCommand {
+pub(crate) enum LessonCommand {
     /// The bundled lessons, or a folder's: name, chapter, title and steps,
     /// in chapter order.
     List {
@@ -229,25 +229,25 @@ A merged table has a row per file, named by its `student` (the name typed
 in the Lessons panel) or else by the file's stem, and a column per lesson
 with the steps done. A progress file can be edited: it is a record, not a
 proof.")]
-pub struct ProgressArgs {
+pub(crate) struct ProgressArgs {
     /// An exported progress file (.json), or the window's saved state
     /// (app.ron); default: the window's saved state in the data folder.
     #[arg(value_name = "FILE", conflicts_with = "merge")]
-    pub file: Option<PathBuf>,
+    pub(crate) file: Option<PathBuf>,
     /// Merge these students' exported files into one table.
     #[arg(long, num_args = 1.., value_name = "FILE")]
-    pub merge: Vec<PathBuf>,
+    pub(crate) merge: Vec<PathBuf>,
     /// The output's format; default: from -o's extension, else JSON.
     #[arg(long, value_enum)]
-    pub format: Option<ProgressFormat>,
+    pub(crate) format: Option<ProgressFormat>,
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    pub(crate) output: Option<PathBuf>,
 }
 
 /// How `lesson progress` writes.
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum ProgressFormat {
+pub(crate) enum ProgressFormat {
     Json,
     Csv,
     Html,
@@ -263,20 +263,20 @@ pub enum ProgressFormat {
 may be left out) and what it must be as a check's `is` writes it: tir=yes,
 eye-object=2, rays>=6, \"blocker 0=1\". Every --find must hold. The pixels
 are listed row by row, read on side A's first sample as the step starts.")]
-pub struct ExplainArgs {
+pub(crate) struct ExplainArgs {
     /// A bundled lesson's name or a lesson file (.toml).
     #[arg(value_name = "NAME|FILE")]
-    pub lesson: String,
+    pub(crate) lesson: String,
     /// The step, counted from 1 as `lesson check` numbers them.
     #[arg(long, default_value_t = 1, value_name = "N")]
-    pub step: usize,
+    pub(crate) step: usize,
     /// List the pixels where this tree figure holds (repeat to ask for
     /// several at once), instead of explaining the step.
     #[arg(long, value_name = "QUANTITY=VALUE")]
-    pub find: Vec<String>,
+    pub(crate) find: Vec<String>,
     /// Explain the step with this pixel pinned instead of the step's own.
     #[arg(long, num_args = 2, value_names = ["X", "Y"], conflicts_with = "find")]
-    pub pixel: Option<Vec<u32>>,
+    pub(crate) pixel: Option<Vec<u32>>,
 }
 
 #[derive(Args, Debug)]
@@ -309,44 +309,44 @@ time; the noise-threshold study does the same (reference: twice the
 strata of its --max-spp) and gives each point's samples per pixel.
 Ctrl-C stops after the frame under way and prints what was measured
 (a second Ctrl-C stops at once); the exit status is then non-zero.")]
-pub struct SweepArgs {
+pub(crate) struct SweepArgs {
     /// The scene file (.p3f or .nff); none for --param level.
-    pub scene: Option<PathBuf>,
+    pub(crate) scene: Option<PathBuf>,
     /// What to sweep: grid-m, spp, depth, light-size, aperture, resolution,
     /// noise-threshold or level.
     #[arg(long, value_parser = study_param)]
-    pub param: Param,
+    pub(crate) param: Param,
     /// The values (see below; default: a range suited to the parameter).
     /// --levels is the same option.
     #[arg(long, alias = "levels", value_name = "VALUES")]
-    pub values: Option<String>,
+    pub(crate) values: Option<String>,
     /// For --param level: the generator (balls, mount, tetra, ...).
     #[arg(long)]
-    pub generator: Option<String>,
+    pub(crate) generator: Option<String>,
     /// Structures to measure (default: grid for grid-m, all three for
     /// level, else the scene's or --accel's).
     #[arg(long, value_parser = accel_kind, value_delimiter = ',')]
-    pub structures: Option<Vec<AccelKind>>,
+    pub(crate) structures: Option<Vec<AccelKind>>,
     /// Frames per point; the median and min..max are reported.
     #[arg(long, default_value_t = 3)]
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// How to print the table.
     #[arg(long, value_enum, default_value_t = TableFormat::Text)]
-    pub format: TableFormat,
+    pub(crate) format: TableFormat,
     /// Write the chart to this PNG file.
     #[arg(long, value_name = "PNG")]
-    pub plot: Option<PathBuf>,
+    pub(crate) plot: Option<PathBuf>,
     /// For --param spp and noise-threshold: N of the reference image
     /// (default: twice the largest N).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
-    pub reference_spp: Option<u32>,
+    pub(crate) reference_spp: Option<u32>,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     #[command(flatten)]
-    pub encoding: EncodingArgs,
+    pub(crate) encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 /// `--param NAME`, one of the study parameters.
@@ -355,23 +355,23 @@ fn study_param(text: &str) -> Result<Param, String> {
 }
 
 #[derive(Args, Debug)]
-pub struct GenArgs {
+pub(crate) struct GenArgs {
     /// balls, mount, tetra, rings, tree, gears, shells, lattice, jacks,
     /// sombrero, teapot or sky.
-    pub name: String,
+    pub(crate) name: String,
     /// Size of the scene (its meaning depends on the generator: for balls,
     /// level 2 is 91 spheres).
     #[arg(long)]
-    pub level: Option<u32>,
+    pub(crate) level: Option<u32>,
     /// Seed of the generator's randomness (default 0).
     #[arg(long)]
-    pub seed: Option<u64>,
+    pub(crate) seed: Option<u64>,
     /// Output file (default: standard output); a folder for `sky`.
     #[arg(short, long)]
-    pub output: Option<PathBuf>,
+    pub(crate) output: Option<PathBuf>,
     /// Side of each sky face in pixels (default 512), for `sky`.
     #[arg(long)]
-    pub size: Option<u32>,
+    pub(crate) size: Option<u32>,
 }
 
 #[derive(Args, Debug)]
@@ -385,63 +385,63 @@ structure, hard and soft shadows, each with one sample, anti-aliasing (N x N
 with the report's N = 4, or --spp N) and anti-aliasing with depth of field
 (the scene's aperture, or 8 pixels when it has none): 18 rows for none, grid
 and bvh. Other options (size, light size, focal, ...) apply to every row.")]
-pub struct BenchArgs {
+pub(crate) struct BenchArgs {
     /// The scene file (.p3f or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// Frames rendered per row; the median, min..max and median absolute
     /// deviation are reported.
     #[arg(long, default_value_t = 5)]
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// Structures to measure (default: --accel's, or none, grid and bvh;
     /// with --rays one, default bvh). --structure is the same option.
     #[arg(long, alias = "structure", value_parser = accel_kind, value_delimiter = ',')]
-    pub structures: Option<Vec<AccelKind>>,
+    pub(crate) structures: Option<Vec<AccelKind>>,
     /// Time the structure alone on the ray set Embree is measured on: eye
     /// rays through each pixel centre in 16 x 16 tiles (closest hit), then
     /// shadow rays from their hits to each light the surface faces (any
     /// hit), each kind on its own, --runs casts after a warm-up (text or
     /// json).
     #[arg(long, conflicts_with_all = ["matrix", "images"])]
-    pub rays: bool,
+    pub(crate) rays: bool,
     /// Measure the course report's matrix: structure x soft shadows x {one sample,
     /// AA, AA with depth of field}.
     #[arg(long)]
-    pub matrix: bool,
+    pub(crate) matrix: bool,
     /// Measure the time to a given error: render a uniform reference
     /// (--reference-spp), take uniform N x N's error (--spp, default 4) or
     /// --target-mse as the target, find the cheapest uniform N and the
     /// largest adaptive --noise-threshold that reach it (MSE and FLIP),
     /// then time both --runs times, alternated.
     #[arg(long, conflicts_with_all = ["matrix", "rays", "images"])]
-    pub to_error: bool,
+    pub(crate) to_error: bool,
     /// With --to-error: N of the uniform reference (default 4 N, at most
     /// 64).
     #[arg(long, value_name = "N", requires = "to_error", value_parser = clap::value_parser!(u32).range(1..))]
-    pub reference_spp: Option<u32>,
+    pub(crate) reference_spp: Option<u32>,
     /// With --to-error: the MSE to reach (8-bit units) instead of uniform
     /// N x N's error.
     #[arg(long, value_name = "MSE", requires = "to_error")]
-    pub target_mse: Option<f64>,
+    pub(crate) target_mse: Option<f64>,
     /// How to print the table.
     #[arg(long, value_enum, default_value_t = TableFormat::Text)]
-    pub format: TableFormat,
+    pub(crate) format: TableFormat,
     /// Write each row's image into this folder (e.g. grid_soft_aa4_dof.png).
     #[arg(long, value_name = "DIR")]
-    pub images: Option<PathBuf>,
+    pub(crate) images: Option<PathBuf>,
     /// Scale the --images down so their longer side is at most PX pixels.
     #[arg(long, value_name = "PX", value_parser = clap::value_parser!(u32).range(1..))]
-    pub thumbnail: Option<u32>,
+    pub(crate) thumbnail: Option<u32>,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     #[command(flatten)]
-    pub encoding: EncodingArgs,
+    pub(crate) encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum TableFormat {
+pub(crate) enum TableFormat {
     /// Aligned columns.
     Text,
     /// A Markdown table.
@@ -485,9 +485,9 @@ With --view VIEW the image is A's view | B's view | |A - B| of the view's
 values, A and B on one shared scale, so both read against one legend. Each
 side renders once more to measure its view: the times stay those of the
 plain render.")]
-pub struct CompareArgs {
+pub(crate) struct CompareArgs {
     /// The scene file (.p3f or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// Side A: flags of `workbench render` in one string (e.g. "--aa --spp 4").
     #[arg(
         long,
@@ -495,7 +495,7 @@ pub struct CompareArgs {
         default_value = "",
         allow_hyphen_values = true
     )]
-    pub a: String,
+    pub(crate) a: String,
     /// Side B: flags of `workbench render` in one string.
     #[arg(
         long,
@@ -504,42 +504,42 @@ pub struct CompareArgs {
         allow_hyphen_values = true,
         conflicts_with = "b_image"
     )]
-    pub b: String,
+    pub(crate) b: String,
     /// Side B is this image (PNG, JPEG or EXR) instead of a second render.
     #[arg(long, value_name = "IMAGE")]
-    pub b_image: Option<PathBuf>,
+    pub(crate) b_image: Option<PathBuf>,
     /// B, adaptive, at A's cost: it stops when its samples reach the total
     /// A's render took (`samples`), or once it has rendered as long as A
     /// did (`time`, which depends on the machine). A renders first.
     #[arg(long, value_enum, value_name = "COST", conflicts_with = "b_image")]
-    pub b_matches: Option<crate::measure::ab::Match>,
+    pub(crate) b_matches: Option<crate::measure::ab::Match>,
     /// Resize the --b-image to the render's size instead of refusing a
     /// mismatch.
     #[arg(long, requires = "b_image")]
-    pub fit: bool,
+    pub(crate) fit: bool,
     /// Where to write the A | B | difference PNG.
     #[arg(short, long, default_value = "compare.png")]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     /// What the difference panel shows.
     #[arg(long, value_enum, default_value_t = HeatmapArg::Flip)]
-    pub heatmap: HeatmapArg,
+    pub(crate) heatmap: HeatmapArg,
     /// How to print the times and metrics.
     #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
-    pub format: MetricsFormat,
+    pub(crate) format: MetricsFormat,
     // With --view: A's view | B's view | their difference, on one scale.
     #[command(flatten)]
-    pub view: ViewArgs,
+    pub(crate) view: ViewArgs,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     #[command(flatten)]
-    pub encoding: EncodingArgs,
+    pub(crate) encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum HeatmapArg {
+pub(crate) enum HeatmapArg {
     /// FLIP's perceptual error map.
     Flip,
     /// The largest channel difference, amplified 8 times.
@@ -556,48 +556,48 @@ impl From<HeatmapArg> for Heatmap {
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum MetricsFormat {
+pub(crate) enum MetricsFormat {
     Text,
     Json,
 }
 
 #[derive(Args, Debug)]
-pub struct RenderArgs {
+pub(crate) struct RenderArgs {
     /// The scene file (.p3f or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// Where to write the PNG.
     #[arg(short, long, default_value = "out.png")]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     #[command(flatten)]
-    pub encoding: EncodingArgs,
+    pub(crate) encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
     /// Write the image after each pass into this folder, to see convergence.
     #[arg(long, value_name = "DIR")]
-    pub progressive_out: Option<PathBuf>,
+    pub(crate) progressive_out: Option<PathBuf>,
     /// Print the statistics in this format instead of the summary.
     #[arg(long, value_name = "FORMAT")]
-    pub stats: Option<StatsFormat>,
+    pub(crate) stats: Option<StatsFormat>,
     /// Write the scene, after its --set edits, to this P3F file.
     #[arg(long, value_name = "P3F")]
-    pub save_scene: Option<PathBuf>,
+    pub(crate) save_scene: Option<PathBuf>,
     #[command(flatten)]
-    pub view: ViewArgs,
+    pub(crate) view: ViewArgs,
     /// Draw the acceleration structure over the image: bvh:DEPTH (the
     /// BVH's boxes at that depth), bvh:leaves, or grid (the grid's box and
     /// cell lattice), projected through the camera.
     #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
-    pub overlay: Option<StructureLayer>,
+    pub(crate) overlay: Option<StructureLayer>,
     /// With --overlay: highlight the grid cells (or BVH nodes and leaves)
     /// this pixel's eye ray visited, from yellow (first) to red (last).
     #[arg(long, num_args = 2, value_names = ["X", "Y"], requires = "overlay")]
-    pub pixel: Option<Vec<u32>>,
+    pub(crate) pixel: Option<Vec<u32>>,
     /// Which of the --pixel's samples (the pass that traces it, from 0).
     #[arg(long, default_value_t = 0, value_name = "K", requires = "pixel")]
-    pub sample: u32,
+    pub(crate) sample: u32,
 }
 
 /// `--accel NAME` and each of `--structures A,B`.
@@ -620,28 +620,28 @@ fn parse_overlay(text: &str) -> Result<StructureLayer, String> {
 
 /// A per-pixel view instead of the shaded image, and its heat map's scale.
 #[derive(Args, Debug, Clone, Default)]
-pub struct ViewArgs {
+pub(crate) struct ViewArgs {
     /// Write this view instead of the shaded image: tests, steps, rays,
     /// shadow, blocked, depth, distance (heat maps with a legend), normals
     /// or objects (colours).
     #[arg(long, value_parser = parse_view, value_name = "VIEW")]
-    pub view: Option<View>,
+    pub(crate) view: Option<View>,
     /// Top of the heat map: max, p99 (the 99th percentile) or a number.
     #[arg(long, value_parser = parse_heat_scale, value_name = "max|p99|VALUE", requires = "view")]
-    pub view_scale: Option<HeatScale>,
+    pub(crate) view_scale: Option<HeatScale>,
     /// Heat map on log(1 + value).
     #[arg(long, requires = "view")]
-    pub log: bool,
+    pub(crate) log: bool,
 }
 
 impl ViewArgs {
     /// The view asked for, unless it is the shaded image.
-    pub fn view(&self) -> Option<View> {
+    pub(crate) fn view(&self) -> Option<View> {
         self.view.filter(|&v| v != View::Shaded)
     }
 
     /// The heat map fitting `sides` together (one shared scale).
-    pub fn heatmap(&self, sides: &[&[Option<f32>]]) -> ViewHeatmap {
+    pub(crate) fn heatmap(&self, sides: &[&[Option<f32>]]) -> ViewHeatmap {
         ViewHeatmap::fit(self.view_scale.unwrap_or_default(), self.log, sides)
     }
 }
@@ -678,48 +678,48 @@ What a surface hides is drawn faint.
 
   workbench observe scene.p3f --pixel 160 150 -o figure.png
   workbench observe scene.p3f --pixel 160 150 --pixels row:150 --format json")]
-pub struct ObserveArgs {
+pub(crate) struct ObserveArgs {
     /// The scene file (.p3f or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// The pixel whose rays are drawn, from the top-left corner.
     #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
-    pub pixel: Vec<u32>,
+    pub(crate) pixel: Vec<u32>,
     /// Also draw these pixels' rays: row:Y, column:X (32 pixels along it)
     /// or grid:STEP (one pixel every STEP).
     #[arg(long, value_parser = pixel_pattern, value_name = "row:Y|column:X|grid:STEP")]
-    pub pixels: Option<crate::figures::observer::PixelPattern>,
+    pub(crate) pixels: Option<crate::figures::observer::PixelPattern>,
     /// Which of the pixels' samples (the pass that traces it, from 0).
     #[arg(long, default_value_t = 0, value_name = "K")]
-    pub sample: u32,
+    pub(crate) sample: u32,
     /// Where the observer stands (default: framed on the scene).
     #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], requires = "at", allow_negative_numbers = true)]
-    pub from: Option<Vec<f32>>,
+    pub(crate) from: Option<Vec<f32>>,
     /// What the observer looks at.
     #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], requires = "from", allow_negative_numbers = true)]
-    pub at: Option<Vec<f32>>,
+    pub(crate) at: Option<Vec<f32>>,
     /// The observer's up (default: the scene camera's).
     #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], allow_negative_numbers = true)]
-    pub up: Option<Vec<f32>>,
+    pub(crate) up: Option<Vec<f32>>,
     /// The figure's size in pixels.
     #[arg(long, num_args = 2, value_names = ["W", "H"], default_values_t = [800, 600])]
-    pub size: Vec<u32>,
+    pub(crate) size: Vec<u32>,
     /// Draw the acceleration structure too: bvh:DEPTH, bvh:leaves or grid,
     /// with the pixel's eye-ray walk through it.
     #[arg(long, value_parser = parse_overlay, value_name = "bvh:DEPTH|bvh:leaves|grid")]
-    pub overlay: Option<StructureLayer>,
+    pub(crate) overlay: Option<StructureLayer>,
     /// Where to write the figure.
     #[arg(short, long, default_value = "observe.png")]
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
     /// A summary, or every drawn segment as JSON.
     #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
-    pub format: MetricsFormat,
+    pub(crate) format: MetricsFormat,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     #[command(flatten)]
-    pub encoding: EncodingArgs,
+    pub(crate) encoding: EncodingArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = thread_count)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 fn pixel_pattern(text: &str) -> Result<crate::figures::observer::PixelPattern, String> {
@@ -727,30 +727,30 @@ fn pixel_pattern(text: &str) -> Result<crate::figures::observer::PixelPattern, S
 }
 
 #[derive(Args, Debug)]
-pub struct InspectArgs {
+pub(crate) struct InspectArgs {
     /// The scene file (.p3f or .nff).
-    pub scene: PathBuf,
+    pub(crate) scene: PathBuf,
     /// The pixel, from the top-left corner.
     #[arg(long, num_args = 2, value_names = ["X", "Y"], required = true)]
-    pub pixel: Vec<u32>,
+    pub(crate) pixel: Vec<u32>,
     /// Which of the pixel's samples (the pass that traces it, from 0).
     #[arg(long, default_value_t = 0, value_name = "K")]
-    pub sample: u32,
+    pub(crate) sample: u32,
     #[command(flatten)]
-    pub settings: SettingsArgs,
+    pub(crate) settings: SettingsArgs,
     /// An indented tree to read, or JSON for scripts.
     #[arg(long, value_enum, default_value_t = MetricsFormat::Text)]
-    pub format: MetricsFormat,
+    pub(crate) format: MetricsFormat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum StatsFormat {
+pub(crate) enum StatsFormat {
     Json,
 }
 
 /// `--sampling`: how anti-aliasing spends its samples.
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum SamplingMode {
+pub(crate) enum SamplingMode {
     /// N x N jittered samples in every pixel.
     Uniform,
     /// Samples where each pixel's estimated error asks for them.
@@ -763,79 +763,79 @@ pub enum SamplingMode {
 pub struct SettingsArgs {
     /// Image width in pixels.
     #[arg(long)]
-    pub width: Option<u32>,
+    pub(crate) width: Option<u32>,
     /// Image height in pixels.
     #[arg(long)]
-    pub height: Option<u32>,
+    pub(crate) height: Option<u32>,
     /// Maximum number of bounces (default 4).
     #[arg(long)]
-    pub depth: Option<u32>,
+    pub(crate) depth: Option<u32>,
     /// Anti-aliasing on (jittered N x N samples per pixel).
     #[arg(long, overrides_with = "no_aa")]
-    pub aa: bool,
+    pub(crate) aa: bool,
     /// Anti-aliasing off (one sample at the pixel centre).
     #[arg(long, overrides_with = "aa")]
-    pub no_aa: bool,
+    pub(crate) no_aa: bool,
     /// N: N x N samples per pixel (and lens / soft-shadow strata).
     #[arg(long, value_name = "N")]
-    pub spp: Option<u32>,
+    pub(crate) spp: Option<u32>,
     /// How anti-aliasing spends its samples: uniform (N x N in every
     /// pixel) or adaptive (until each pixel's estimated error is below
     /// --noise-threshold; turns anti-aliasing on).
     #[arg(long, value_enum, value_name = "MODE")]
-    pub sampling: Option<SamplingMode>,
+    pub(crate) sampling: Option<SamplingMode>,
     /// Adaptive sampling: a pixel stops once its error estimate (its last
     /// pass's mean against the mean before it) is below T, in display
     /// units 0..1 (default 0.01, 2.55 levels of 255; 0 takes --max-spp
     /// everywhere). Implies --sampling adaptive.
     #[arg(long, value_name = "T")]
-    pub noise_threshold: Option<f32>,
+    pub(crate) noise_threshold: Option<f32>,
     /// Adaptive sampling: samples every pixel takes first (default N^2/4,
     /// at least 4). Implies --sampling adaptive.
     #[arg(long, value_name = "M")]
-    pub min_spp: Option<u32>,
+    pub(crate) min_spp: Option<u32>,
     /// Adaptive sampling: samples no pixel exceeds (default (2N)^2).
     /// Implies --sampling adaptive.
     #[arg(long, value_name = "X")]
-    pub max_spp: Option<u32>,
+    pub(crate) max_spp: Option<u32>,
     /// Soft shadows: lights get an area.
     #[arg(long)]
-    pub soft_shadows: bool,
+    pub(crate) soft_shadows: bool,
     /// Shadows off: no shadow rays, every light reaches every point that
     /// faces it (local shading only).
     #[arg(long)]
-    pub no_shadows: bool,
+    pub(crate) no_shadows: bool,
     /// Side of the square a point light becomes with soft shadows (scene units).
     #[arg(long, value_name = "SIZE")]
-    pub light_size: Option<f32>,
+    pub(crate) light_size: Option<f32>,
     /// Depth of field with the scene's (or the given) aperture and focal ratio.
     #[arg(long)]
-    pub dof: bool,
+    pub(crate) dof: bool,
     /// Lens diameter in pixels (implies --dof when > 0).
     #[arg(long)]
-    pub aperture: Option<f32>,
+    pub(crate) aperture: Option<f32>,
     /// Focal distance as a multiple of the view-plane distance.
     #[arg(long)]
-    pub focal: Option<f32>,
+    pub(crate) focal: Option<f32>,
     /// Ambient light intensity (default 0.1).
     #[arg(long)]
-    pub ambient: Option<f32>,
+    pub(crate) ambient: Option<f32>,
     /// Acceleration structure: none, grid (the course's uniform grid) or
     /// bvh.
     #[arg(long, value_parser = accel_kind)]
-    pub accel: Option<AccelKind>,
+    pub(crate) accel: Option<AccelKind>,
     /// Uniform grid cell multiplier m.
     #[arg(long, value_name = "M")]
-    pub grid_m: Option<f32>,
+    pub(crate) grid_m: Option<f32>,
     /// Seed of the random numbers.
     #[arg(long)]
-    pub seed: Option<u64>,
+    pub(crate) seed: Option<u64>,
     /// Edit the scene before it is prepared, e.g. 'object 5 ior 1.33',
     /// 'material 2 kd 0.5', 'light 0 position 1 2 3', 'camera aperture 8';
     /// repeatable, applied in order. Objects count from 0 in the file's
     /// order, as `inspect` numbers them.
     #[arg(long = "set", value_name = "EDIT")]
-    pub set: Vec<String>,
+    pub(crate) set: Vec<String>,
 }
 
 /// How images are written: what the commands that write images take
@@ -844,11 +844,11 @@ pub struct SettingsArgs {
 pub struct EncodingArgs {
     /// Encode the output with the sRGB curve instead of writing linear values.
     #[arg(long)]
-    pub srgb: bool,
+    pub(crate) srgb: bool,
 }
 
 impl EncodingArgs {
-    pub fn encoding(&self) -> Encoding {
+    pub(crate) fn encoding(&self) -> Encoding {
         if self.srgb {
             Encoding::Srgb
         } else {
@@ -874,7 +874,7 @@ impl SettingsArgs {
     /// separates the words, except inside quotes (`--set 'object 5 ior
     /// 1.33'`). The error names the bad flag or value, e.g. "unexpected
     /// argument '--fast' found".
-    pub fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
+    pub(crate) fn parse_str(text: &str) -> Result<(SettingsArgs, EncodingArgs), String> {
         Self::parse_words(vocabulary::split_words(text).map_err(|e| e.to_string())?)
     }
 
@@ -892,13 +892,13 @@ impl SettingsArgs {
     }
 
     /// Applies the overrides to settings taken from the scene.
-    pub fn apply(&self, s: &mut RenderSettings) {
+    pub(crate) fn apply(&self, s: &mut RenderSettings) {
         self.overrides().apply(s);
     }
 
     /// The flags in the settings' own vocabulary, which lessons read
     /// without this parser: the command line is one front end to it.
-    pub fn overrides(&self) -> Overrides {
+    pub(crate) fn overrides(&self) -> Overrides {
         Overrides {
             width: self.width,
             height: self.height,
@@ -930,7 +930,7 @@ impl SettingsArgs {
 /// Most worker threads accepted: starting and stopping threads costs more
 /// than they render beyond this (20 000 threads took over a minute for an
 /// 8 x 8 image).
-pub const MAX_THREADS: usize = 1024;
+pub(crate) const MAX_THREADS: usize = 1024;
 
 /// `--threads N` with N in 0..=[`MAX_THREADS`] (0: every core).
 fn thread_count(text: &str) -> Result<usize, String> {

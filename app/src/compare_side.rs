@@ -15,17 +15,17 @@ use crate::measure::benchmark::Case;
 
 /// One side of a comparison: its case, the world it renders (the scene
 /// with the side's own `--set` edits) and those edits in words.
-pub struct SideSetup {
-    pub case: Case,
-    pub world: Arc<World>,
-    pub edits: Vec<String>,
+pub(crate) struct SideSetup {
+    pub(crate) case: Case,
+    pub(crate) world: Arc<World>,
+    pub(crate) edits: Vec<String>,
 }
 
 /// Side `name` (`a`, `b`) of a comparison of `loaded`, from `flags`,
 /// `workbench render`'s flags in one string, over `base` and
 /// `base_encoding`, what both sides share: `workbench compare --a` and the
 /// web page's `?compare` set their sides up alike.
-pub fn side_from_flags(
+pub(crate) fn side_from_flags(
     loaded: &Loaded,
     name: &str,
     flags: &str,

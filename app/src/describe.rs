@@ -118,7 +118,7 @@ fn aspects(s: &RenderSettings, view: &Viewpoint, show_n: bool) -> Vec<Aspect> {
 /// The features of `s` rendering `view` the workbench compares (structure,
 /// anti-aliasing, shadows, depth of field) in one line, e.g. "BVH, AA 4x4,
 /// hard shadows, no DOF".
-pub fn describe(s: &RenderSettings, view: &Viewpoint) -> String {
+pub(crate) fn describe(s: &RenderSettings, view: &Viewpoint) -> String {
     aspects(s, view, false)
         .into_iter()
         .take(4)
@@ -129,15 +129,15 @@ pub fn describe(s: &RenderSettings, view: &Viewpoint) -> String {
 
 /// One aspect on which two settings differ, as each side has it.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Difference {
-    pub a: String,
-    pub b: String,
+pub(crate) struct Difference {
+    pub(crate) a: String,
+    pub(crate) b: String,
 }
 
 /// What differs between `a` and `b`, rendering `views` (a side's lens is
 /// its view's unless its settings override it), in the order of the
 /// settings panel; empty when they render the same image.
-pub fn differences(
+pub(crate) fn differences(
     a: &RenderSettings,
     b: &RenderSettings,
     views: [&Viewpoint; 2],
@@ -166,7 +166,7 @@ pub fn differences(
 
 /// Labels for the two sides of a comparison: each side's differences
 /// joined, or "same settings" for both when nothing differs.
-pub fn side_labels(
+pub(crate) fn side_labels(
     a: &RenderSettings,
     b: &RenderSettings,
     views: [&Viewpoint; 2],
@@ -181,7 +181,7 @@ pub fn side_labels(
 }
 
 /// A count with a metric suffix: 1234567 -> "1.23M".
-pub fn si(n: f64) -> String {
+pub(crate) fn si(n: f64) -> String {
     match n {
         n if n >= 1e9 => format!("{:.2}G", n / 1e9),
         n if n >= 1e6 => format!("{:.2}M", n / 1e6),

@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 
 /// Writes `image` as PNG to `path` atomically.
-pub fn save_png(image: &image::RgbImage, path: &Path) -> Result<()> {
+pub(crate) fn save_png(image: &image::RgbImage, path: &Path) -> Result<()> {
     write_atomically(path, |file| {
         image.write_to(file, image::ImageFormat::Png)?;
         Ok(())
@@ -18,7 +18,7 @@ pub fn save_png(image: &image::RgbImage, path: &Path) -> Result<()> {
 
 /// Writes linear float `image` as OpenEXR (32-bit float channels) to
 /// `path` atomically: values above 1 and below the 8-bit step survive.
-pub fn save_exr(image: &image::Rgb32FImage, path: &Path) -> Result<()> {
+pub(crate) fn save_exr(image: &image::Rgb32FImage, path: &Path) -> Result<()> {
     write_atomically(path, |file| {
         image.write_to(file, image::ImageFormat::OpenExr)?;
         Ok(())
@@ -27,7 +27,7 @@ pub fn save_exr(image: &image::Rgb32FImage, path: &Path) -> Result<()> {
 }
 
 /// Whether `path` names an OpenEXR file (by its extension, any case).
-pub fn is_exr(path: &Path) -> bool {
+pub(crate) fn is_exr(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
@@ -36,7 +36,7 @@ pub fn is_exr(path: &Path) -> bool {
 /// Runs `write` on a temporary file beside `path`, syncs it and renames
 /// it over `path`; the temporary file is removed if anything fails. Every
 /// file the workbench writes (images, the lab report) goes through it.
-pub fn write_atomically(
+pub(crate) fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<std::fs::File>) -> Result<()>,
 ) -> Result<()> {

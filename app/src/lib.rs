@@ -1,20 +1,27 @@
 //! The Whitted Workbench application: the command line, the headless
 //! commands and the window. The binary only calls [`run`].
+//!
+//! Items are `pub(crate)` unless the binary or the tests use them. Some
+//! serve only the window (study charts, lesson progress) or only the
+//! headless commands, so a build without the window, or for the web,
+//! leaves them unused; the default build's dead-code lint, which CI runs,
+//! still finds code that nothing uses.
+#![cfg_attr(any(not(feature = "window"), target_family = "wasm"), allow(dead_code))]
 
 pub mod bundled;
 pub mod cli;
-pub mod compare_side;
-pub mod describe;
-pub mod figures;
+pub(crate) mod compare_side;
+pub(crate) mod describe;
+pub(crate) mod figures;
 #[cfg(feature = "window")]
 pub mod gui;
 #[cfg(not(target_family = "wasm"))]
-pub mod headless;
-pub mod image_file;
+pub(crate) mod headless;
+pub(crate) mod image_file;
 pub mod lessons;
 pub mod load;
 pub mod measure;
-pub mod reports;
+pub(crate) mod reports;
 
 #[cfg(not(target_family = "wasm"))]
 use clap::Parser;

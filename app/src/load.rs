@@ -45,7 +45,7 @@ impl SceneSource {
 
     /// Whether this is a bare OBJ or PLY mesh, framed into a scene when
     /// loaded (see [`mesh_io::frame`]).
-    pub fn is_bare_mesh(&self) -> bool {
+    pub(crate) fn is_bare_mesh(&self) -> bool {
         matches!(self, SceneSource::File(path) if MeshFormat::of(path).is_some())
     }
 }
@@ -60,7 +60,7 @@ pub struct Loaded {
     pub scene: Scene,
     pub world: Arc<World>,
     /// How long parsing and preparing took.
-    pub load_time: Duration,
+    pub(crate) load_time: Duration,
 }
 
 impl Loaded {
@@ -94,7 +94,7 @@ impl Loaded {
     /// Parses a scene file (or frames a bare mesh) for the headless
     /// commands, with `--set` edits applied before the world is built;
     /// warnings, and progress while a large mesh is read, go to stderr.
-    pub fn for_command(path: &Path, edits: &[String]) -> Result<Self> {
+    pub(crate) fn for_command(path: &Path, edits: &[String]) -> Result<Self> {
         if is_lesson_file(path) {
             let path = path.display();
             anyhow::bail!(
@@ -119,7 +119,7 @@ impl Loaded {
 
     /// This scene with more `--set` edits (one side of a comparison), and
     /// the edits in words (see [`with_edits`]).
-    pub fn edited(&self, lines: &[String]) -> Result<(Loaded, Vec<String>)> {
+    pub(crate) fn edited(&self, lines: &[String]) -> Result<(Loaded, Vec<String>)> {
         let (scene, world, described) = with_edits(&self.scene, &self.world, lines)?;
         let edited = Loaded {
             source: self.source.clone(),
@@ -134,7 +134,7 @@ impl Loaded {
 /// `scene` and its `world` with more `--set` edits, and the edits in
 /// words. The world follows each edit ([`World::update`]) instead of being
 /// built again: the skybox and the untouched shapes are kept.
-pub fn with_edits(
+pub(crate) fn with_edits(
     scene: &Scene,
     world: &Arc<World>,
     lines: &[String],
@@ -187,7 +187,7 @@ fn read_source(
 /// 1.5`); returns each edit in words (`sphere #5 ior 1.33`). The error
 /// quotes the line and says what is wrong, naming the valid range or the
 /// fields.
-pub fn apply_edits(scene: &mut Scene, lines: &[String]) -> Result<Vec<String>> {
+pub(crate) fn apply_edits(scene: &mut Scene, lines: &[String]) -> Result<Vec<String>> {
     apply_edits_then(scene, lines, |_, _| {})
 }
 
@@ -216,7 +216,7 @@ fn apply_edits_then(
 /// falls back to the bundled sky (not the flat background), with a warning.
 /// The bundled sky is painted y-up; it is stood upright on the camera's
 /// `up`, so a z-up course scene shows sky, not ground, above its horizon.
-pub fn build_with_sky(scene: &Scene) -> World {
+pub(crate) fn build_with_sky(scene: &Scene) -> World {
     let problem = RefCell::new(None);
     let mut world = World::build_with_skybox(scene, |name| {
         let dir = scene
@@ -304,7 +304,7 @@ impl<'a> MeshProgress<'a> {
 
 /// Whether `path` names a lesson file: TOML, as the window's Open and
 /// drop tell a lesson from a scene, and the headless commands refuse one.
-pub fn is_lesson_file(path: &Path) -> bool {
+pub(crate) fn is_lesson_file(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
 }

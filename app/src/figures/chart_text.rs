@@ -20,7 +20,7 @@ use plotters_backend::{
 /// The chart font could not be read (the embedded bytes are not a font).
 #[derive(Debug, Clone, Copy, thiserror::Error)]
 #[error("the embedded chart font cannot be read")]
-pub struct FontUnreadable;
+pub(crate) struct FontUnreadable;
 
 /// egui's embedded sans-serif font, parsed once.
 fn font() -> Result<&'static FontRef<'static>, FontUnreadable> {
@@ -33,7 +33,7 @@ fn font() -> Result<&'static FontRef<'static>, FontUnreadable> {
 /// The box `text` takes at `size` pixels: its advance (kerning included)
 /// wide, and as high as plotters' own measure says (an em at 1.24 line
 /// spacing), so the charts keep the layout they had on the desktop.
-pub fn text_box(text: &str, size: f64) -> Result<(i32, i32), FontUnreadable> {
+pub(crate) fn text_box(text: &str, size: f64) -> Result<(i32, i32), FontUnreadable> {
     let font = font()?.as_scaled(size as f32);
     let mut width = 0.0;
     let mut previous = None;
@@ -132,7 +132,7 @@ impl<S: BackendTextStyle> BackendTextStyle for Embedded<'_, S> {
 
 /// A drawing backend whose text is the embedded font's: everything else
 /// goes to `B` as it is.
-pub struct EmbeddedText<B>(pub B);
+pub(crate) struct EmbeddedText<B>(pub B);
 
 impl<B: DrawingBackend> DrawingBackend for EmbeddedText<B> {
     type ErrorType = B::ErrorType;
@@ -233,7 +233,7 @@ impl<B: DrawingBackend> DrawingBackend for EmbeddedText<B> {
 /// a line of `style`'s text for each of `lines` (a name and its colour)
 /// with a short stroke of that colour before it, placed as plotters'
 /// own legend places them.
-pub fn legend<B: DrawingBackend>(
+pub(crate) fn legend<B: DrawingBackend>(
     area: &DrawingArea<B, Shift>,
     lines: &[(&str, RGBColor)],
     position: &SeriesLabelPosition,

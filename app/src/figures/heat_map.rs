@@ -19,7 +19,7 @@ const DOT: u32 = 2;
 
 /// A view as an RGB image: the heat map of a scalar view or the colours of
 /// normals and objects. `None` for the shaded view.
-pub fn view_image(film: &ViewFilm, view: View, heat: &ViewHeatmap) -> Option<RgbImage> {
+pub(crate) fn view_image(film: &ViewFilm, view: View, heat: &ViewHeatmap) -> Option<RgbImage> {
     let rgba = film.to_rgba8(view, heat)?;
     tracer::render::rgba_to_rgb_image(film.width(), film.height(), &rgba)
 }
@@ -29,7 +29,7 @@ pub fn view_image(film: &ViewFilm, view: View, heat: &ViewHeatmap) -> Option<Rgb
 /// where B is, as in the window), each scale's legend with its numbers
 /// under it; with the difference's statistics. Colour views (normals,
 /// objects) get the largest channel difference instead, without numbers.
-pub fn compose_sides(
+pub(crate) fn compose_sides(
     a: &ViewFilm,
     b: &ViewFilm,
     view: View,
@@ -73,7 +73,7 @@ fn diverging_legend(t: f32) -> Rgb<u8> {
 
 /// `image` with a legend strip under it: the palette from 0 to the scale's
 /// top, with both numbers written at its ends.
-pub fn with_legend(image: &RgbImage, heat: &ViewHeatmap) -> RgbImage {
+pub(crate) fn with_legend(image: &RgbImage, heat: &ViewHeatmap) -> RgbImage {
     let top = format_number(heat.top);
     let top = if heat.log { format!("{top} log") } else { top };
     legend_under(image, |t| tracer::render::HEAT_PALETTE.colour(t), "0", &top)
@@ -106,7 +106,7 @@ fn legend_under(
 }
 
 /// A compact number for a legend: 3 significant digits, k and M suffixes.
-pub fn format_number(v: f32) -> String {
+pub(crate) fn format_number(v: f32) -> String {
     let (v, suffix) = match v.abs() {
         a if a >= 1e6 => (v / 1e6, "M"),
         a if a >= 1e4 => (v / 1e3, "k"),

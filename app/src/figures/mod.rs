@@ -5,9 +5,9 @@
 //! (its text drawn in Rust on every target: [`chart_text`]).
 //! Nothing here writes a file: [`crate::image_file`] does.
 
-pub mod chart_text;
-pub mod heat_map;
-pub mod observer;
-pub mod overlay;
-pub mod projection;
-pub mod study_plot;
+pub(crate) mod chart_text;
+pub(crate) mod heat_map;
+pub(crate) mod observer;
+pub(crate) mod overlay;
+pub(crate) mod projection;
+pub(crate) mod study_plot;

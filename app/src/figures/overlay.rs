@@ -10,11 +10,11 @@ use super::projection::Projector;
 
 /// The colour of the wireframe: visible on both the shaded image and the
 /// heat maps.
-pub const WIRE: Rgb<u8> = Rgb([80, 255, 120]);
+pub(crate) const WIRE: Rgb<u8> = Rgb([80, 255, 120]);
 
 /// Draws each 3D segment of `segments` projected by `camera`, clipped at
 /// the eye.
-pub fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A; 2]]) {
+pub(crate) fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A; 2]]) {
     let projector = Projector::new(camera);
     for &[a, b] in segments {
         if let Some([a, b]) = projector.segment(a, b) {
@@ -26,7 +26,7 @@ pub fn draw_wireframe(image: &mut RgbImage, camera: &Camera, segments: &[[Vec3A;
 /// The colour of visit `i` of `n` in a traversal: yellow for the first,
 /// through orange, to red for the last, so the order of a walk reads off
 /// the image. The window's overlay uses it too.
-pub fn visit_colour(i: usize, n: usize) -> [u8; 3] {
+pub(crate) fn visit_colour(i: usize, n: usize) -> [u8; 3] {
     let t = i as f32 / n.saturating_sub(1).max(1) as f32;
     [255, (230.0 - 200.0 * t) as u8, (40.0 * t) as u8]
 }
@@ -34,7 +34,7 @@ pub fn visit_colour(i: usize, n: usize) -> [u8; 3] {
 /// Which of one ray's visits are drawn: all of them, or the first `k + 1`
 /// while the user steps through the traversal, visit `k` highlighted.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum VisitStep {
+pub(crate) enum VisitStep {
     #[default]
     All,
     At(usize),
@@ -42,12 +42,12 @@ pub enum VisitStep {
 
 /// The colour of the visit a step is at: white, apart from the walk's
 /// yellow to red and the structure's green.
-pub const CURRENT_VISIT: [u8; 3] = [255, 255, 255];
+pub(crate) const CURRENT_VISIT: [u8; 3] = [255, 255, 255];
 
 impl VisitStep {
     /// The visit it is at among `n` (the last one for a step beyond them,
     /// as a new pixel's walk may be shorter), `None` showing all.
-    pub fn current(self, n: usize) -> Option<usize> {
+    pub(crate) fn current(self, n: usize) -> Option<usize> {
         match self {
             VisitStep::All => None,
             VisitStep::At(k) => n.checked_sub(1).map(|last| k.min(last)),
@@ -55,12 +55,12 @@ impl VisitStep {
     }
 
     /// How many of `n` visits it draws.
-    pub fn drawn(self, n: usize) -> usize {
+    pub(crate) fn drawn(self, n: usize) -> usize {
         self.current(n).map_or(n, |k| k + 1)
     }
 
     /// One visit on among `n`: from all, the first.
-    pub fn next(self, n: usize) -> VisitStep {
+    pub(crate) fn next(self, n: usize) -> VisitStep {
         match self.current(n) {
             None => VisitStep::At(0),
             Some(k) => VisitStep::At((k + 1).min(n.saturating_sub(1))),
@@ -68,7 +68,7 @@ impl VisitStep {
     }
 
     /// One visit back among `n`: from all, the last.
-    pub fn back(self, n: usize) -> VisitStep {
+    pub(crate) fn back(self, n: usize) -> VisitStep {
         match self.current(n) {
             None => VisitStep::At(n.saturating_sub(1)),
             Some(k) => VisitStep::At(k.saturating_sub(1)),
@@ -78,7 +78,7 @@ impl VisitStep {
     /// The visits of `visits` drawn at this step, each with its colour:
     /// the whole walk's yellow to red, so a visit keeps its colour as the
     /// steps go on, and [`CURRENT_VISIT`] for the step's own.
-    pub fn coloured(self, visits: &[Visit]) -> impl Iterator<Item = (&Visit, Colour)> {
+    pub(crate) fn coloured(self, visits: &[Visit]) -> impl Iterator<Item = (&Visit, Colour)> {
         let n = visits.len();
         let current = self.current(n);
         visits[..self.drawn(n)]
@@ -98,7 +98,7 @@ impl VisitStep {
 /// How a drawn visit is coloured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Colour {
+pub(crate) enum Colour {
     /// Its place in the walk ([`visit_colour`]).
     Order([u8; 3]),
     /// The step's own visit: [`CURRENT_VISIT`], drawn thicker.
@@ -106,7 +106,7 @@ pub enum Colour {
 }
 
 impl Colour {
-    pub fn rgb(self) -> [u8; 3] {
+    pub(crate) fn rgb(self) -> [u8; 3] {
         match self {
             Colour::Order(rgb) => rgb,
             Colour::Current => CURRENT_VISIT,
@@ -116,7 +116,7 @@ impl Colour {
 
 /// Draws the boxes of one ray's `visits` over `image`, coloured by their
 /// order ([`visit_colour`]).
-pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
+pub(crate) fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
     let projector = Projector::new(camera);
     for (i, visit) in visits.iter().enumerate() {
         let colour = Rgb(visit_colour(i, visits.len()));
@@ -131,7 +131,7 @@ pub fn draw_visits(image: &mut RgbImage, camera: &Camera, visits: &[Visit]) {
 /// A one-pixel line from `a` to `b` (image coordinates), clipped to the
 /// image first, so a segment reaching far off-screen costs no more than
 /// one across it.
-pub fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
+pub(crate) fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
     for (x, y) in line_pixels(a, b, image.width(), image.height()) {
         image.put_pixel(x, y, colour);
     }
@@ -139,7 +139,7 @@ pub fn draw_line(image: &mut RgbImage, a: Vec2, b: Vec2, colour: Rgb<u8>) {
 
 /// The pixels of a one-pixel line from `a` to `b` inside a `width` x
 /// `height` image.
-pub fn line_pixels(a: Vec2, b: Vec2, width: u32, height: u32) -> Vec<(u32, u32)> {
+pub(crate) fn line_pixels(a: Vec2, b: Vec2, width: u32, height: u32) -> Vec<(u32, u32)> {
     let size = Vec2::new(width as f32, height as f32);
     let Some((a, b)) = clip(a, b, size) else {
         return Vec::new();

@@ -12,13 +12,13 @@ use tracer::camera::Camera;
 const NEAR: f32 = 1e-3;
 
 /// A camera to project through, with the near plane it clips at.
-pub struct Projector<'a> {
+pub(crate) struct Projector<'a> {
     camera: &'a Camera,
     near: f32,
 }
 
 impl<'a> Projector<'a> {
-    pub fn new(camera: &'a Camera) -> Self {
+    pub(crate) fn new(camera: &'a Camera) -> Self {
         let distance = camera.depth(
             camera.view_plane_point(0.5 * camera.width() as f32, 0.5 * camera.height() as f32),
         );
@@ -30,7 +30,7 @@ impl<'a> Projector<'a> {
 
     /// Where `point` lands in the image (continuous pixel coordinates), or
     /// `None` in front of the near plane.
-    pub fn point(&self, point: Vec3A) -> Option<Vec2> {
+    pub(crate) fn point(&self, point: Vec3A) -> Option<Vec2> {
         if self.camera.depth(point) < self.near {
             return None;
         }
@@ -39,7 +39,7 @@ impl<'a> Projector<'a> {
 
     /// The part of segment `a`-`b` in front of the near plane, as 3D ends,
     /// or `None` when all of it is behind.
-    pub fn clip(&self, a: Vec3A, b: Vec3A) -> Option<[Vec3A; 2]> {
+    pub(crate) fn clip(&self, a: Vec3A, b: Vec3A) -> Option<[Vec3A; 2]> {
         let (da, db) = (self.camera.depth(a), self.camera.depth(b));
         if !(da.is_finite() && db.is_finite()) || (da < self.near && db < self.near) {
             return None;
@@ -55,21 +55,21 @@ impl<'a> Projector<'a> {
     }
 
     /// Segment `a`-`b` in image coordinates, clipped at the near plane.
-    pub fn segment(&self, a: Vec3A, b: Vec3A) -> Option<[Vec2; 2]> {
+    pub(crate) fn segment(&self, a: Vec3A, b: Vec3A) -> Option<[Vec2; 2]> {
         let [a, b] = self.clip(a, b)?;
         Some([self.point(a)?, self.point(b)?])
     }
 
     /// How far `point` is from the eye, in scene units (what a rendered
     /// distance is compared with).
-    pub fn distance(&self, point: Vec3A) -> f32 {
+    pub(crate) fn distance(&self, point: Vec3A) -> f32 {
         (point - self.camera.eye()).length()
     }
 }
 
 /// The distance to the nearest surface along each pixel's eye ray, from a
 /// render's distance view: what hides a line drawn into that image.
-pub struct DepthMap {
+pub(crate) struct DepthMap {
     width: u32,
     height: u32,
     /// Row by row; `None` where the eye ray met nothing.
@@ -82,7 +82,7 @@ const ON_SURFACE: f32 = 0.02;
 
 impl DepthMap {
     /// `None` unless there is one distance per pixel.
-    pub fn new(width: u32, height: u32, distances: Vec<Option<f32>>) -> Option<Self> {
+    pub(crate) fn new(width: u32, height: u32, distances: Vec<Option<f32>>) -> Option<Self> {
         (distances.len() == width as usize * height as usize).then_some(Self {
             width,
             height,
@@ -91,7 +91,7 @@ impl DepthMap {
     }
 
     /// Whether a surface nearer than `point` covers it.
-    pub fn hides(&self, projector: &Projector<'_>, point: Vec3A) -> bool {
+    pub(crate) fn hides(&self, projector: &Projector<'_>, point: Vec3A) -> bool {
         let Some(p) = projector.point(point) else {
             return false;
         };
@@ -102,7 +102,7 @@ impl DepthMap {
     }
 
     /// Whether the surface pixel `(x, y)` sees is nearer than `distance`.
-    pub fn nearer_than(&self, x: u32, y: u32, distance: f32) -> bool {
+    pub(crate) fn nearer_than(&self, x: u32, y: u32, distance: f32) -> bool {
         if x >= self.width || y >= self.height {
             return false;
         }
@@ -112,7 +112,7 @@ impl DepthMap {
 
     /// Segment `a`-`b` cut into `pieces` equal parts, each with whether it
     /// is hidden (tested at its middle), neighbours of the same kind merged.
-    pub fn split(
+    pub(crate) fn split(
         &self,
         projector: &Projector<'_>,
         [a, b]: [Vec3A; 2],
@@ -126,7 +126,7 @@ impl DepthMap {
 
     /// [`DepthMap::split`] as parameters along the segment (0 at `a`, 1 at
     /// `b`), for drawing part of it (an animation growing the segment).
-    pub fn split_params(
+    pub(crate) fn split_params(
         &self,
         projector: &Projector<'_>,
         [a, b]: [Vec3A; 2],

@@ -21,10 +21,10 @@ use crate::measure::study::analysis::{self, Best};
 use crate::measure::study::{Param, Point, values};
 
 /// Size of a chart panel in pixels.
-pub const PANEL: (u32, u32) = (800, 500);
+pub(crate) const PANEL: (u32, u32) = (800, 500);
 
 /// The colour of a structure's line, the same in the window's chart.
-pub fn colour(accel: AccelKind) -> [u8; 3] {
+pub(crate) fn colour(accel: AccelKind) -> [u8; 3] {
     match accel {
         AccelKind::None => [214, 69, 65],
         AccelKind::Grid => [52, 120, 198],
@@ -67,7 +67,7 @@ struct Panel {
 
 /// The chart of `points` (a study of `param` on `subject`, a name for the
 /// title) as an image: one panel, two side by side for `spp`.
-pub fn chart(param: Param, points: &[Point], subject: &str) -> Result<RgbImage> {
+pub(crate) fn chart(param: Param, points: &[Point], subject: &str) -> Result<RgbImage> {
     let panels = panels(param, points, subject);
     let (w, h) = (PANEL.0 * panels.len() as u32, PANEL.1);
     let mut buffer = vec![0u8; (w * h * 3) as usize];
@@ -85,20 +85,20 @@ pub fn chart(param: Param, points: &[Point], subject: &str) -> Result<RgbImage> 
 }
 
 /// [`chart`] as PNG bytes, for a download or a save dialog's file.
-pub fn chart_png(param: Param, points: &[Point], subject: &str) -> Result<Vec<u8>> {
+pub(crate) fn chart_png(param: Param, points: &[Point], subject: &str) -> Result<Vec<u8>> {
     let mut png = std::io::Cursor::new(Vec::new());
     chart(param, points, subject)?.write_to(&mut png, image::ImageFormat::Png)?;
     Ok(png.into_inner())
 }
 
 /// The name a chart is saved under: `study-PARAM-STEM.png`.
-pub fn chart_file_name(param: Param, subject: &str) -> String {
+pub(crate) fn chart_file_name(param: Param, subject: &str) -> String {
     format!("study-{param}-{}.png", subject_stem(subject))
 }
 
 /// What names a study's files: its subject's file stem (of a scene
 /// file, or a generator's name).
-pub fn subject_stem(subject: &str) -> String {
+pub(crate) fn subject_stem(subject: &str) -> String {
     std::path::Path::new(subject)
         .file_stem()
         .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
@@ -240,7 +240,7 @@ fn rays_by_kind(param: Param, points: &[Point], accel: AccelKind) -> Panel {
 /// Whether the frame time chart has a log x and a log y axis: both for
 /// the level study (scaling is a power law), x alone when the values span
 /// a factor of 8 or more (a doubling sweep).
-pub fn log_axes(param: Param, points: &[Point]) -> (bool, bool) {
+pub(crate) fn log_axes(param: Param, points: &[Point]) -> (bool, bool) {
     if param == Param::Level {
         return (true, true);
     }

@@ -83,7 +83,7 @@ impl Command {
     ];
 
     /// The name on buttons and in the help.
-    pub fn label(self) -> &'static str {
+    pub(crate) fn label(self) -> &'static str {
         match self {
             Command::ToggleAntialiasing => "Anti-aliasing",
             Command::ToggleSoftShadows => "Soft shadows",
@@ -120,7 +120,7 @@ impl Command {
     }
 
     /// What it does, for tooltips and the help.
-    pub fn description(self) -> &'static str {
+    pub(crate) fn description(self) -> &'static str {
         match self {
             Command::ToggleAntialiasing => {
                 "Jittered N x N samples per pixel instead of one at the centre"
@@ -186,7 +186,7 @@ impl Command {
 
     /// Whether it opens or writes a file of the user's choosing, which
     /// the web page cannot (its button greyed out there, saying why).
-    pub fn opens_files(self) -> bool {
+    pub(crate) fn opens_files(self) -> bool {
         matches!(self, Command::Open | Command::SaveScene)
     }
 
@@ -272,7 +272,7 @@ impl Command {
     /// The commands whose shortcut was pressed this frame, consuming the
     /// key presses. Shortcuts with modifiers are checked first so that
     /// Ctrl+S saves rather than toggling soft shadows.
-    pub fn pressed(ctx: &egui::Context) -> Vec<Command> {
+    pub(crate) fn pressed(ctx: &egui::Context) -> Vec<Command> {
         let typing = ctx.egui_wants_keyboard_input();
         let mut found = Vec::new();
         ctx.input_mut(|input| {
@@ -293,7 +293,7 @@ impl Command {
     }
 
     /// The shortcut as text, e.g. "Ctrl+S" or "H / ?".
-    pub fn shortcut_text(self, ctx: &egui::Context) -> String {
+    pub(crate) fn shortcut_text(self, ctx: &egui::Context) -> String {
         self.shortcuts()
             .iter()
             .map(|s| match s.logical_key {

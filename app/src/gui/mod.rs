@@ -28,23 +28,16 @@ pub use app::{FileDialog, FileQuestion, WorkbenchApp};
 pub use commands::Command;
 pub use comparison::{CompareLayout, Comparison, ReferenceImage};
 pub use editor::{Editor, Pending};
-pub use image::pixel_views::PixelViews;
-pub use image::structure_overlay::StructureOverlay;
-pub use lessons::Lessons;
-pub use observer::{Observer, ObserverLayout};
 pub use platform::clock::Clock;
-pub use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
+pub(crate) use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use sides::{Activity, Controls, Engine, Side, SideId};
-pub use windows::benchmark::BenchWindow;
-pub use windows::ray_tree::Inspector;
-pub use windows::studies::{Applied, StudiesWindow};
 
 #[cfg(not(target_family = "wasm"))]
 use crate::load::SceneSource;
 
 /// The window's title, which names the folder eframe saves its state in
 /// (`lessons::progress::window_state_file` looks there).
-pub const TITLE: &str = "Whitted Workbench";
+pub(crate) const TITLE: &str = "Whitted Workbench";
 
 /// Opens the window on `scene` (or the last scene, or the bundled default),
 /// with the observer view on when `observer`, the lessons of

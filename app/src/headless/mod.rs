@@ -1,14 +1,14 @@
 //! One module per subcommand.
 
-pub mod bench;
-pub mod compare;
-pub mod generate;
-pub mod inspect;
-pub mod lesson;
-pub mod observe;
-pub mod render;
-pub mod report;
-pub mod sweep;
+pub(crate) mod bench;
+pub(crate) mod compare;
+pub(crate) mod generate;
+pub(crate) mod inspect;
+pub(crate) mod lesson;
+pub(crate) mod observe;
+pub(crate) mod render;
+pub(crate) mod report;
+pub(crate) mod sweep;
 
 use std::io::IsTerminal;
 
@@ -26,7 +26,7 @@ use crate::measure::cost::BruteForceCost;
 /// shell), once, for every subcommand and every line it prints. The window
 /// keeps SIGPIPE ignored: a socket it writes to closing (the display
 /// server, the file dialog's portal) is an error it handles, not its end.
-pub fn quiet_on_closed_stdout() {
+pub(crate) fn quiet_on_closed_stdout() {
     #[cfg(unix)]
     // SAFETY: `signal` with `SIG_DFL` only resets the disposition of
     // SIGPIPE; it runs before any thread of ours is started.

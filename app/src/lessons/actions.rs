@@ -10,53 +10,53 @@ use tracer::render::vocabulary::{Overrides, VocabularyError, split_words};
 #[derive(Debug, Clone, PartialEq)]
 pub struct Located<T> {
     pub value: T,
-    pub line: usize,
-    pub column: usize,
+    pub(crate) line: usize,
+    pub(crate) column: usize,
 }
 
 /// What a lesson's start, a step's setup or a solution does to the state.
 #[derive(Debug, Clone, Default)]
-pub struct Actions {
+pub(crate) struct Actions {
     /// Side A's settings; their `--set` lines edit A's scene.
-    pub settings: Option<Located<SettingsLine>>,
+    pub(crate) settings: Option<Located<SettingsLine>>,
     /// Scene edits of side A in the `--set` language, in order.
-    pub edits: Vec<Located<String>>,
+    pub(crate) edits: Vec<Located<String>>,
     /// Compare mode on, side B being A with these flags over it (their
     /// `--set` lines edit B's scene).
-    pub compare: Option<Located<SettingsLine>>,
+    pub(crate) compare: Option<Located<SettingsLine>>,
     /// Scene edits of side B alone, in the `--set` language, after
     /// `compare`: B's scene differs from A's, the point of the layout.
-    pub compare_edits: Vec<Located<String>>,
+    pub(crate) compare_edits: Vec<Located<String>>,
     /// The pixel pinned for the ray tree and the observer.
-    pub pixel: Option<(u32, u32)>,
+    pub(crate) pixel: Option<(u32, u32)>,
     /// The answer typed or picked (solutions only).
-    pub answer: Option<String>,
+    pub(crate) answer: Option<String>,
     /// The image view to show (window layout).
-    pub view: Option<View>,
+    pub(crate) view: Option<View>,
     /// The observer view on or off (window layout).
-    pub observer: Option<bool>,
+    pub(crate) observer: Option<bool>,
 }
 
 /// A lesson's line of settings (`"--no-aa --spp 4"`): the settings' own
 /// words (`tracer::render::vocabulary`, which no command-line flag's
 /// rename changes) and `--set` edits of the scene.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct SettingsLine {
-    pub overrides: Overrides,
+pub(crate) struct SettingsLine {
+    pub(crate) overrides: Overrides,
     /// Scene edits in the `--set` language, in order.
-    pub set: Vec<String>,
+    pub(crate) set: Vec<String>,
 }
 
 impl SettingsLine {
     /// Reads `text`: words split as a shell splits them, `--set EDIT`
     /// taken out, the rest read by the vocabulary.
-    pub fn parse(text: &str) -> Result<SettingsLine, VocabularyError> {
+    pub(crate) fn parse(text: &str) -> Result<SettingsLine, VocabularyError> {
         Self::from_words(split_words(text)?)
     }
 
     /// [`SettingsLine::parse`] of words already split (a link's
     /// settings, whose values may hold spaces).
-    pub fn from_words(
+    pub(crate) fn from_words(
         words: impl IntoIterator<Item = String>,
     ) -> Result<SettingsLine, VocabularyError> {
         let mut set = Vec::new();

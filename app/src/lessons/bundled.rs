@@ -10,12 +10,12 @@ use crate::bundled::{BundledLesson, LESSONS};
 use super::format::{Lesson, LessonErrors, read_bundled, read_lesson_file};
 
 /// The bundled lesson called `name`.
-pub fn find(name: &str) -> Option<&'static BundledLesson> {
+pub(crate) fn find(name: &str) -> Option<&'static BundledLesson> {
     LESSONS.iter().find(|l| l.name == name)
 }
 
 /// The names of the bundled lessons, for messages.
-pub fn names() -> Vec<&'static str> {
+pub(crate) fn names() -> Vec<&'static str> {
     LESSONS.iter().map(|l| l.name).collect()
 }
 
@@ -32,7 +32,7 @@ pub fn all() -> Result<Vec<Lesson>, LessonErrors> {
 
 /// What `workbench --lesson` and `lesson check` take: a bundled lesson by
 /// name, or a lesson file (a `.toml` name or a path that exists is a file).
-pub fn read_name_or_file(name_or_file: &Path) -> Result<Lesson> {
+pub(crate) fn read_name_or_file(name_or_file: &Path) -> Result<Lesson> {
     if name_or_file.extension().is_some_and(|e| e == "toml") || name_or_file.exists() {
         return Ok(read_lesson_file(name_or_file)?);
     }

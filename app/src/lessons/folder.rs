@@ -14,11 +14,11 @@ use crate::load::is_lesson_file;
 
 /// The index file's name: one lesson file a line, relative to the folder;
 /// blank lines and lines starting with `#` are skipped.
-pub const INDEX: &str = "lessons.index";
+pub(crate) const INDEX: &str = "lessons.index";
 
 /// The lesson files of `dir`: those its index names, else every `.toml`
 /// file in it, by name.
-pub fn files(dir: &Path) -> Result<Vec<PathBuf>> {
+pub(crate) fn files(dir: &Path) -> Result<Vec<PathBuf>> {
     let index = dir.join(INDEX);
     if index.is_file() {
         let text = std::fs::read_to_string(&index)
@@ -36,13 +36,13 @@ pub fn files(dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 /// The lesson files an index in `dir` names, in its order.
-pub fn from_index(dir: &Path, text: &str) -> Vec<PathBuf> {
+pub(crate) fn from_index(dir: &Path, text: &str) -> Vec<PathBuf> {
     from_index_lines(text).map(|l| dir.join(l)).collect()
 }
 
 /// The lesson files an index names, as written (relative to its folder),
 /// in its order: also what a page fetches, beside the index's URL.
-pub fn from_index_lines(text: &str) -> impl Iterator<Item = &str> {
+pub(crate) fn from_index_lines(text: &str) -> impl Iterator<Item = &str> {
     text.lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
@@ -50,7 +50,7 @@ pub fn from_index_lines(text: &str) -> impl Iterator<Item = &str> {
 
 /// Every lesson of `dir` read, each with its file: a teacher sees every
 /// file that does not read, the others still offered.
-pub fn read(dir: &Path) -> Result<Vec<(PathBuf, Result<Lesson, LessonErrors>)>> {
+pub(crate) fn read(dir: &Path) -> Result<Vec<(PathBuf, Result<Lesson, LessonErrors>)>> {
     Ok(files(dir)?
         .into_iter()
         .map(|path| {
@@ -62,7 +62,7 @@ pub fn read(dir: &Path) -> Result<Vec<(PathBuf, Result<Lesson, LessonErrors>)>> 
 
 /// `lessons` in the panel's order: by chapter, and within a chapter in the
 /// order they came (the bundled ones first, then each folder's by file).
-pub fn in_chapter_order(lessons: &mut [Lesson]) {
+pub(crate) fn in_chapter_order(lessons: &mut [Lesson]) {
     lessons.sort_by_key(|l| l.chapter);
 }
 

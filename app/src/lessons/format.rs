@@ -23,12 +23,12 @@ use super::state::Which;
 #[error("{file}{}: {message}", place(*.line, *.column))]
 pub struct LessonError {
     /// The file's path, or `lessons/NAME.toml` for a bundled lesson.
-    pub file: String,
+    pub(crate) file: String,
     /// 1-based line; 0 when the whole file is at fault (it cannot be read).
-    pub line: usize,
+    pub(crate) line: usize,
     /// 1-based column, in characters; 0 with line 0.
-    pub column: usize,
-    pub message: String,
+    pub(crate) column: usize,
+    pub(crate) message: String,
 }
 
 /// `:line:column`, or nothing for the whole file.
@@ -58,16 +58,16 @@ pub struct Lesson {
     /// The file stem: what `workbench lesson check NAME` takes.
     pub name: String,
     /// The file as errors name it.
-    pub file: String,
+    pub(crate) file: String,
     pub title: String,
     /// The course report's chapter it follows (1 = the camera).
     pub chapter: u32,
     /// What the lesson is about, in a sentence or two.
-    pub summary: String,
+    pub(crate) summary: String,
     pub scene: LessonScene,
     /// Settings, edits and layout before the first step.
-    pub start: Actions,
-    pub steps: Vec<LessonStep>,
+    pub(crate) start: Actions,
+    pub(crate) steps: Vec<LessonStep>,
 }
 
 /// Where a lesson's scene comes from.
@@ -88,30 +88,28 @@ pub enum LessonScene {
 
 /// One step: what to read, what to do, and the check that says it is done.
 #[derive(Debug, Clone)]
-pub struct LessonStep {
-    pub title: String,
+pub(crate) struct LessonStep {
+    pub(crate) title: String,
     /// The why, with the formula where the course gives one (Markdown).
-    pub text: String,
+    pub(crate) text: String,
     /// Shown one at a time, on request.
-    pub hints: Vec<String>,
+    pub(crate) hints: Vec<String>,
     /// Optional steps may be skipped; the lesson's summary counts them apart.
-    pub required: bool,
+    pub(crate) required: bool,
     /// Applied over the earlier steps' solutions when the step is set up.
-    pub setup: Actions,
-    pub check: Located<Check>,
+    pub(crate) setup: Actions,
+    pub(crate) check: Located<Check>,
     /// The objects, materials and lights its check names, with the side
     /// read, checked against the scene when the lesson opens.
-    pub references: Vec<Located<(Part, Which)>>,
+    pub(crate) references: Vec<Located<(Part, Which)>>,
     /// What a student who solved the step did: `lesson check` applies it
     /// and expects the check to pass.
-    pub solution: Actions,
-    /// Where the step's `[[step]]` table starts.
-    pub line: usize,
+    pub(crate) solution: Actions,
 }
 
 impl Actions {
     /// Whether it does nothing at all.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.settings.is_none()
             && self.edits.is_empty()
             && self.compare.is_none()
@@ -127,7 +125,7 @@ impl Actions {
 /// absent meaning this one. A later change to the format's names raises
 /// it, so that an older workbench refuses a newer file clearly rather than
 /// at its first unknown key.
-pub const FORMAT_VERSION: i64 = 1;
+pub(crate) const FORMAT_VERSION: i64 = 1;
 
 /// The version alone, read before the rest (whose keys a later version
 /// may have changed).
@@ -197,7 +195,7 @@ fn required_by_default() -> bool {
 
 /// Reads a lesson file from disk. A file that cannot be read is an error
 /// about the whole file, with no line.
-pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {
+pub(crate) fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| LessonError {
         file: file.clone(),
@@ -215,14 +213,14 @@ pub fn read_lesson_file(path: &Path) -> Result<Lesson, LessonErrors> {
 }
 
 /// The bundled lesson `name`, read.
-pub fn read_bundled(lesson: &bundled::BundledLesson) -> Result<Lesson, LessonErrors> {
+pub(crate) fn read_bundled(lesson: &bundled::BundledLesson) -> Result<Lesson, LessonErrors> {
     let file = format!("lessons/{}.toml", lesson.name);
     parse_lesson(lesson.text, lesson.name, &file, SceneFiles::Nowhere)
 }
 
 /// Where a lesson's `file = ...` scene is read from.
 #[derive(Debug, Clone, Copy)]
-pub enum SceneFiles<'a> {
+pub(crate) enum SceneFiles<'a> {
     /// Nowhere: a bundled lesson, or one dropped on the web page.
     Nowhere,
     /// The lesson file's folder on disk.
@@ -234,7 +232,7 @@ pub enum SceneFiles<'a> {
 
 /// A scene a lesson's `[scene]` names by file or bundled name.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum NamedScene {
+pub(crate) enum NamedScene {
     /// `file = "prism.p3f"`, relative to the lesson.
     File(String),
     /// `bundled = "tetra"`.
@@ -243,7 +241,7 @@ pub enum NamedScene {
 
 /// The scene a lesson's `[scene]` names by file or bundled name, if any,
 /// read before the lesson is, so a page can fetch it first.
-pub fn scene_named(text: &str) -> Option<NamedScene> {
+pub(crate) fn scene_named(text: &str) -> Option<NamedScene> {
     #[derive(Deserialize)]
     struct SceneOnly {
         scene: Option<Named>,
@@ -260,7 +258,7 @@ pub fn scene_named(text: &str) -> Option<NamedScene> {
 /// Reads lesson `text`, named `name`, from `file` (as errors name it);
 /// a scene `file = ...` is found in `scenes`. A file TOML cannot read is
 /// one error; past that, every mistake is collected.
-pub fn parse_lesson(
+pub(crate) fn parse_lesson(
     text: &str,
     name: &str,
     file: &str,
@@ -437,7 +435,6 @@ impl Source<'_> {
 
     /// A step, with every mistake of its check, its actions and its texts.
     fn step(&self, raw: Spanned<RawStep>) -> Result<LessonStep, LessonErrors> {
-        let (line, _) = self.locate(raw.span().start);
         let raw = raw.into_inner();
         let check_span = raw.check.span();
         let mut reader = Reader::new(self.text);
@@ -475,7 +472,6 @@ impl Source<'_> {
                     check: self.located(check_span, check),
                     references,
                     solution,
-                    line,
                 })
             }
             _ => Err(LessonErrors(errors)),
@@ -649,7 +645,6 @@ solution = { settings = "--aa" }
         assert_eq!(lesson.steps.len(), 1);
         let step = &lesson.steps[0];
         assert!(step.required);
-        assert_eq!(step.line, 11);
         assert_eq!((step.check.line, step.check.column), (14, 9));
         assert!(step.solution.settings.as_ref().unwrap().value.overrides.aa);
     }

@@ -6,18 +6,16 @@
 //! and the window's "Set up this step"), `bundled` is the set shipped in
 //! the binary, `progress` what a student did, as kept and handed in.
 
-pub mod actions;
+pub(crate) mod actions;
 pub mod bundled;
-pub mod check;
-pub mod explain;
-pub mod folder;
+pub(crate) mod check;
+pub(crate) mod explain;
+pub(crate) mod folder;
 pub mod format;
-pub mod new;
+pub(crate) mod new;
 pub mod progress;
-pub mod replay;
-pub mod state;
+pub(crate) mod replay;
+pub(crate) mod state;
 
-pub use actions::Actions;
 pub use check::{Check, Verdict, evaluate};
-pub use format::{Lesson, LessonError, LessonErrors, LessonScene, LessonStep};
-pub use state::{LessonState, SideState, Which};
+pub(crate) use format::{Lesson, LessonErrors};

@@ -22,7 +22,7 @@ use super::state::LessonState;
 /// references to its objects, materials and lights checked. An inline
 /// scene's parse error and its objects' places name the lesson file's
 /// lines; a scene file that cannot be read, the lesson's `file =` line.
-pub fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
+pub(crate) fn open_scene(lesson: &Lesson) -> Result<(Scene, Arc<World>)> {
     let (scene, world) = load_scene(lesson)?;
     check_references(lesson, &scene, &world)?;
     Ok((scene, world))
@@ -94,7 +94,7 @@ fn at_file_line(
 
 /// The state before step `step` is done: the start, every earlier step's
 /// setup and solution, this step's setup; no answer given.
-pub fn state_at_step(
+pub(crate) fn state_at_step(
     lesson: &Lesson,
     scene: &Scene,
     world: &Arc<World>,
@@ -173,21 +173,21 @@ fn enter(state: &mut LessonState, step: &LessonStep, file: &str) -> Result<()> {
 
 /// One step replayed.
 #[derive(Debug, Clone)]
-pub struct StepReplay {
-    pub title: String,
+pub(crate) struct StepReplay {
+    pub(crate) title: String,
     /// The check on the step's starting state: it must not hold.
-    pub before: Verdict,
+    pub(crate) before: Verdict,
     /// The check once the solution is applied: it must hold.
-    pub after: Verdict,
+    pub(crate) after: Verdict,
     /// When the solution's answer is wrong, the value the workbench
     /// computed, in the format's words: for the teacher, to tell a wrong
     /// question from a wrong answer (the student's panel never shows it).
-    pub computed: Option<String>,
+    pub(crate) computed: Option<String>,
 }
 
 impl StepReplay {
     /// `None` when the step is sound, else what is wrong with it.
-    pub fn failure(&self) -> Option<String> {
+    pub(crate) fn failure(&self) -> Option<String> {
         if self.before.is_done() {
             Some(format!(
                 "the check already holds before the student acts ({})",
@@ -209,7 +209,7 @@ impl StepReplay {
 /// Replays every step of `lesson`, calling `on_step` as each is done. An
 /// error is a lesson that cannot be walked at all (its scene does not load,
 /// an edit is refused).
-pub fn replay(
+pub(crate) fn replay(
     lesson: &Lesson,
     on_step: &mut dyn FnMut(usize, &StepReplay),
 ) -> Result<Vec<StepReplay>> {

@@ -16,10 +16,10 @@ use super::actions::{Actions, Located, SettingsLine};
 
 /// One side: its scene as edited, the world built from it, its settings.
 #[derive(Debug, Clone)]
-pub struct SideState {
-    pub scene: Scene,
-    pub world: Arc<World>,
-    pub settings: RenderSettings,
+pub(crate) struct SideState {
+    pub(crate) scene: Scene,
+    pub(crate) world: Arc<World>,
+    pub(crate) settings: RenderSettings,
 }
 
 /// Which side a check reads.
@@ -33,29 +33,29 @@ pub enum Which {
 
 /// What the window shows, as far as a lesson sets it.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Layout {
+pub(crate) struct Layout {
     /// The image view (`None`: the shaded image).
-    pub view: Option<View>,
-    pub observer: bool,
+    pub(crate) view: Option<View>,
+    pub(crate) observer: bool,
 }
 
 /// Everything a check may look at.
 #[derive(Debug, Clone)]
 pub struct LessonState {
-    pub a: SideState,
+    pub(crate) a: SideState,
     /// Side B, in compare mode.
-    pub b: Option<SideState>,
+    pub(crate) b: Option<SideState>,
     /// The pinned pixel.
-    pub pixel: Option<(u32, u32)>,
+    pub(crate) pixel: Option<(u32, u32)>,
     /// The answer typed or picked for the current step.
-    pub answer: Option<String>,
-    pub layout: Layout,
+    pub(crate) answer: Option<String>,
+    pub(crate) layout: Layout,
 }
 
 impl LessonState {
     /// The lesson's scene with the settings it asks for, nothing pinned,
     /// no compare.
-    pub fn new(scene: Scene, world: Arc<World>) -> Self {
+    pub(crate) fn new(scene: Scene, world: Arc<World>) -> Self {
         let settings = RenderSettings::from_scene(&scene);
         LessonState {
             a: SideState {
@@ -72,7 +72,7 @@ impl LessonState {
 
     /// Side `which`; an error naming compare mode when B is asked for
     /// without it.
-    pub fn side(&self, which: Which) -> Result<&SideState, String> {
+    pub(crate) fn side(&self, which: Which) -> Result<&SideState, String> {
         match which {
             Which::A => Ok(&self.a),
             Which::B => self
@@ -86,7 +86,7 @@ impl LessonState {
     /// flags, B's own edits, the pixel, the answer, the layout. An edit the
     /// scene refuses, or B's edits without compare mode, is an error naming
     /// the lesson file's line.
-    pub fn apply(&mut self, actions: &Actions, file: &str) -> Result<()> {
+    pub(crate) fn apply(&mut self, actions: &Actions, file: &str) -> Result<()> {
         if let Some(flags) = &actions.settings {
             apply_flags(&mut self.a, flags, file)?;
         }

@@ -28,11 +28,11 @@ pub enum Heatmap {
 }
 
 /// Gain of [`Heatmap::Absolute`]: a difference of 32 levels is full red.
-pub const ABSOLUTE_GAIN: f32 = 8.0;
+pub(crate) const ABSOLUTE_GAIN: f32 = 8.0;
 
 impl Heatmap {
     /// The colour scale, for a legend.
-    pub fn palette(self) -> Palette {
+    pub(crate) fn palette(self) -> Palette {
         match self {
             Heatmap::Flip => Palette::Magma,
             Heatmap::Absolute => Palette::Heat,
@@ -40,7 +40,7 @@ impl Heatmap {
     }
 
     /// What the legend's ends mean.
-    pub fn legend(self) -> String {
+    pub(crate) fn legend(self) -> String {
         match self {
             Heatmap::Flip => "FLIP error, 0 (black) to 1 (pale yellow)".into(),
             Heatmap::Absolute => format!(
@@ -63,7 +63,7 @@ pub struct Metrics {
 }
 
 /// The metrics of `a` against `b` and the heat map of their difference.
-pub fn measure(a: &RgbImage, b: &RgbImage, heatmap: Heatmap) -> Result<(Metrics, RgbImage)> {
+pub(crate) fn measure(a: &RgbImage, b: &RgbImage, heatmap: Heatmap) -> Result<(Metrics, RgbImage)> {
     let mismatch = || "the two sides differ in size";
     let mse = metrics::mse(a, b).with_context(mismatch)?;
     let flip = metrics::flip_map(a, b).with_context(mismatch)?;
@@ -82,17 +82,17 @@ pub fn measure(a: &RgbImage, b: &RgbImage, heatmap: Heatmap) -> Result<(Metrics,
 /// A finished comparison.
 #[derive(Debug, Clone)]
 pub struct RenderComparison {
-    pub a: Measurement,
-    pub b: Measurement,
+    pub(crate) a: Measurement,
+    pub(crate) b: Measurement,
     /// What differs, as each side has it (see [`side_labels`]).
-    pub labels: (String, String),
-    pub metrics: Metrics,
-    pub heatmap: RgbImage,
+    pub(crate) labels: (String, String),
+    pub(crate) metrics: Metrics,
+    pub(crate) heatmap: RgbImage,
 }
 
 impl RenderComparison {
     /// A's frame time over B's: above 1 when B is faster.
-    pub fn time_ratio(&self) -> f64 {
+    pub(crate) fn time_ratio(&self) -> f64 {
         self.a.median().as_secs_f64() / self.b.median().as_secs_f64().max(1e-9)
     }
 }
@@ -101,19 +101,19 @@ impl RenderComparison {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct SideOptions {
     /// Worker threads; `None` uses every core.
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
     /// Measure the per-pixel views in the same frames (each side is still
     /// rendered once).
-    pub views: bool,
+    pub(crate) views: bool,
     /// B, adaptive, stops at A's samples or A's time.
-    pub b_matches: Option<Match>,
+    pub(crate) b_matches: Option<Match>,
 }
 
 /// Adaptive B against A at equal cost: B's budget is what A's finished
 /// render took (the command line's `--b-matches`, the window's compare
 /// header alike).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Match {
+pub(crate) enum Match {
     /// B stops when its samples reach A's total.
     Samples,
     /// B stops when it has rendered as long as A did.
@@ -122,7 +122,7 @@ pub enum Match {
 
 impl Match {
     /// B's budget from the statistics of A's finished render.
-    pub fn budget(self, a: &RenderStats) -> Budget {
+    pub(crate) fn budget(self, a: &RenderStats) -> Budget {
         match self {
             Match::Samples => Budget::Samples(a.samples_taken()),
             Match::Time => Budget::Time(a.render_time),
@@ -131,7 +131,7 @@ impl Match {
 
     /// `settings` (adaptive) stopped at `budget`; an error for uniform
     /// sampling, which has no budget.
-    pub fn apply(settings: &mut RenderSettings, budget: Budget) -> Result<()> {
+    pub(crate) fn apply(settings: &mut RenderSettings, budget: Budget) -> Result<()> {
         match &mut settings.sampling {
             Sampling::Adaptive(a) if settings.antialiasing || settings.depth_of_field => {
                 a.budget = Some(budget);
@@ -213,15 +213,15 @@ pub fn run(
 
 /// A reference image read for side B, at the size it is compared at.
 #[derive(Debug, Clone)]
-pub struct FittedReference {
-    pub image: RgbImage,
+pub(crate) struct FittedReference {
+    pub(crate) image: RgbImage,
     /// The file's own size, when it was resized to fit the render.
-    pub resized_from: Option<(u32, u32)>,
+    pub(crate) resized_from: Option<(u32, u32)>,
 }
 
 /// Reads a PNG, JPEG or OpenEXR image to compare a render with. EXR holds
 /// linear floats: they are encoded with `encoding`, as the render is.
-pub fn read_reference(path: &Path, encoding: Encoding) -> Result<RgbImage> {
+pub(crate) fn read_reference(path: &Path, encoding: Encoding) -> Result<RgbImage> {
     let image = image::open(path)
         .with_context(|| format!("cannot read the reference image {}", path.display()))?;
     Ok(match image {
@@ -237,7 +237,11 @@ pub fn read_reference(path: &Path, encoding: Encoding) -> Result<RgbImage> {
 
 /// `image` at `size` (the render's): resized when `fit`, else refused with
 /// what to do when the sizes differ.
-pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<FittedReference> {
+pub(crate) fn fit_reference(
+    image: RgbImage,
+    size: (u32, u32),
+    fit: bool,
+) -> Result<FittedReference> {
     let own = image.dimensions();
     if own == size {
         return Ok(FittedReference {
@@ -271,17 +275,17 @@ pub fn fit_reference(image: RgbImage, size: (u32, u32), fit: bool) -> Result<Fit
 
 /// A render compared with a reference image.
 #[derive(Debug, Clone)]
-pub struct ImageComparison {
-    pub a: Measurement,
-    pub reference: FittedReference,
-    pub metrics: Metrics,
-    pub heatmap: RgbImage,
+pub(crate) struct ImageComparison {
+    pub(crate) a: Measurement,
+    pub(crate) reference: FittedReference,
+    pub(crate) metrics: Metrics,
+    pub(crate) heatmap: RgbImage,
 }
 
 /// Renders `a` once and compares it with `reference` (fitted to A's size
 /// by [`fit_reference`] first, so a mismatch costs no render). `None` when
 /// `cancel` stopped it.
-pub fn run_against_image(
+pub(crate) fn run_against_image(
     world: &Arc<World>,
     a: Case,
     reference: FittedReference,
@@ -316,7 +320,7 @@ const BACKGROUND: Rgb<u8> = Rgb([32, 32, 32]);
 /// A | B | heat map side by side on a dark background, with a legend bar of
 /// `palette` (0 on the left, 1 on the right) under the heat map. The images
 /// must have one size.
-pub fn compose(a: &RgbImage, b: &RgbImage, heat: &RgbImage, palette: Palette) -> RgbImage {
+pub(crate) fn compose(a: &RgbImage, b: &RgbImage, heat: &RgbImage, palette: Palette) -> RgbImage {
     let (w, h) = a.dimensions();
     let bar = (h / 16).clamp(4, 24);
     let mut out = RgbImage::from_pixel(3 * w + 2 * GAP, h + GAP + bar, BACKGROUND);

@@ -26,12 +26,12 @@ pub struct Case {
     pub label: String,
     pub settings: RenderSettings,
     /// How the kept image is encoded (does not change the timing).
-    pub encoding: Encoding,
+    pub(crate) encoding: Encoding,
 }
 
 impl Case {
     /// A case of a scene seen from `view`, labelled with [`describe`].
-    pub fn new(settings: RenderSettings, view: &Viewpoint, encoding: Encoding) -> Self {
+    pub(crate) fn new(settings: RenderSettings, view: &Viewpoint, encoding: Encoding) -> Self {
         Self {
             label: describe(&settings, view),
             settings,
@@ -62,7 +62,7 @@ impl Case {
 /// asks for more; anti-aliasing samples uniformly, as the course's table
 /// did, whatever the scene suggests. `workbench bench` and the web page's
 /// `?bench` measure the same frame.
-pub fn frame_settings(scene: &Scene) -> RenderSettings {
+pub(crate) fn frame_settings(scene: &Scene) -> RenderSettings {
     let mut settings = RenderSettings::from_scene(scene);
     settings.antialiasing = false;
     settings.depth_of_field = false;
@@ -72,7 +72,7 @@ pub fn frame_settings(scene: &Scene) -> RenderSettings {
 
 /// The sampling column of the course's timing matrix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SamplingColumn {
+pub(crate) enum SamplingColumn {
     /// One sample per pixel.
     Single,
     /// Jittered N x N anti-aliasing.
@@ -84,7 +84,7 @@ pub enum SamplingColumn {
 impl SamplingColumn {
     /// The column `settings` belong in (depth of field without
     /// anti-aliasing, which the course did not measure, counts as DOF).
-    pub fn of(settings: &RenderSettings) -> SamplingColumn {
+    pub(crate) fn of(settings: &RenderSettings) -> SamplingColumn {
         match (settings.antialiasing, settings.depth_of_field) {
             (_, true) => SamplingColumn::AntialiasingDof,
             (true, false) => SamplingColumn::Antialiasing,
@@ -95,11 +95,11 @@ impl SamplingColumn {
 
 /// The course measured its matrix with N = 4 (4 x 4 samples per pixel); a
 /// scene's own `spp` is its everyday choice, not the benchmark's.
-pub const MATRIX_SAMPLES: u32 = 4;
+pub(crate) const MATRIX_SAMPLES: u32 = 4;
 
 /// Aperture (pixels) of the matrix's depth-of-field rows when the scene
 /// has none, so those rows blur and sample a lens as the course's did.
-pub const MATRIX_APERTURE: f32 = 8.0;
+pub(crate) const MATRIX_APERTURE: f32 = 8.0;
 
 /// The course report's timing table (Figure 5.1) over `accels`: for each structure,
 /// hard then soft shadows, each with one sample, AA, and AA with DOF; the
@@ -107,7 +107,7 @@ pub const MATRIX_APERTURE: f32 = 8.0;
 /// Everything else (size, N, light size, lens, depth, seed) comes from
 /// `base` rendering `view`: set its `samples` to [`MATRIX_SAMPLES`] for the
 /// course's N.
-pub fn matrix(
+pub(crate) fn matrix(
     base: &RenderSettings,
     view: &Viewpoint,
     accels: &[AccelKind],
@@ -146,7 +146,11 @@ pub fn matrix(
 }
 
 /// `base` with each structure in turn: today's `workbench bench` table.
-pub fn structures(base: &RenderSettings, accels: &[AccelKind], encoding: Encoding) -> Vec<Case> {
+pub(crate) fn structures(
+    base: &RenderSettings,
+    accels: &[AccelKind],
+    encoding: Encoding,
+) -> Vec<Case> {
     accels
         .iter()
         .map(|&accel| {
@@ -165,11 +169,11 @@ pub fn structures(base: &RenderSettings, accels: &[AccelKind], encoding: Encodin
 
 /// How to run the cases.
 #[derive(Debug, Clone, Copy)]
-pub struct RunOptions {
+pub(crate) struct RunOptions {
     /// Frames per case (at least one).
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// Worker threads; `None` uses every core.
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 /// What the runner reports while it works, for a progress bar or a table
@@ -192,7 +196,7 @@ pub enum Event<'a> {
 impl Event<'_> {
     /// The event as the runner of more cases tells it, this case being
     /// its `first + case`.
-    pub fn offset(self, first: usize) -> Self {
+    pub(crate) fn offset(self, first: usize) -> Self {
         match self {
             Event::Rendering {
                 case,
@@ -219,68 +223,68 @@ pub struct Measurement {
     /// order.
     pub times: Vec<Duration>,
     /// The last frame's statistics (every frame does the same work).
-    pub stats: RenderStats,
+    pub(crate) stats: RenderStats,
     /// The structure traced against, with its build time and memory.
-    pub index: AccelInfo,
+    pub(crate) index: AccelInfo,
     /// The lens chosen for the scene (its view's, or the settings'
     /// override), seen through only with depth of field on: what the
     /// tables say the case rendered with.
-    pub lens: Lens,
+    pub(crate) lens: Lens,
     /// The last frame's image.
     pub image: RgbImage,
     /// The last frame's per-pixel views, when the run measured them
     /// ([`run_cases`] with `views`).
-    pub views: Option<ViewFilm>,
+    pub(crate) views: Option<ViewFilm>,
 }
 
 impl Measurement {
     /// The median frame time: what the reports call the frame time.
-    pub fn median(&self) -> Duration {
+    pub(crate) fn median(&self) -> Duration {
         median(&self.times)
     }
 
-    pub fn min(&self) -> Duration {
+    pub(crate) fn min(&self) -> Duration {
         self.times.iter().copied().min().unwrap_or_default()
     }
 
-    pub fn max(&self) -> Duration {
+    pub(crate) fn max(&self) -> Duration {
         self.times.iter().copied().max().unwrap_or_default()
     }
 
     /// Median absolute deviation from the median: a spread that one
     /// disturbed frame on a shared machine does not inflate.
-    pub fn mad(&self) -> Duration {
+    pub(crate) fn mad(&self) -> Duration {
         let m = self.median();
         let deviations: Vec<Duration> = self.times.iter().map(|&t| t.abs_diff(m)).collect();
         median(&deviations)
     }
 
     /// Rays of every kind in one frame.
-    pub fn rays(&self) -> u64 {
+    pub(crate) fn rays(&self) -> u64 {
         self.stats.counters.total_rays()
     }
 
     /// Rays per second at the median frame time.
-    pub fn rays_per_second(&self) -> f64 {
+    pub(crate) fn rays_per_second(&self) -> f64 {
         self.rays() as f64 / self.median().as_secs_f64().max(1e-9)
     }
 
     /// Ray-primitive intersection tests per ray: the work a structure
     /// failed to avoid.
-    pub fn tests_per_ray(&self) -> f64 {
+    pub(crate) fn tests_per_ray(&self) -> f64 {
         self.per_ray(self.stats.counters.intersection_tests)
     }
 
     /// Grid cells or BVH nodes visited per ray: what the structure itself
     /// costs to walk.
-    pub fn steps_per_ray(&self) -> f64 {
+    pub(crate) fn steps_per_ray(&self) -> f64 {
         self.per_ray(self.stats.counters.nodes_visited)
     }
 
     /// `row` (a JSON object) with the timing figures every report gives:
     /// runs, frame times, build time, memory, rays and rays per second,
     /// times in seconds.
-    pub fn with_timing_json(&self, mut row: serde_json::Value) -> serde_json::Value {
+    pub(crate) fn with_timing_json(&self, mut row: serde_json::Value) -> serde_json::Value {
         let secs = |d: Duration| serde_json::json!(d.as_secs_f64());
         if let Some(fields) = row.as_object_mut() {
             let times: Vec<f64> = self.times.iter().map(Duration::as_secs_f64).collect();
@@ -312,7 +316,7 @@ impl Measurement {
 
 /// The middle duration (the mean of the two middle ones for an even
 /// count); zero for none.
-pub fn median(values: &[Duration]) -> Duration {
+pub(crate) fn median(values: &[Duration]) -> Duration {
     let mut sorted = values.to_vec();
     sorted.sort_unstable();
     match sorted.len() {
@@ -324,9 +328,9 @@ pub fn median(values: &[Duration]) -> Duration {
 
 /// The cases measured so far, and whether the run stopped early.
 #[derive(Debug, Clone, Default)]
-pub struct BenchOutcome {
-    pub measurements: Vec<Measurement>,
-    pub cancelled: bool,
+pub(crate) struct BenchOutcome {
+    pub(crate) measurements: Vec<Measurement>,
+    pub(crate) cancelled: bool,
 }
 
 /// How often a waiting runner looks at the render and the cancel flag.
@@ -337,14 +341,14 @@ const POLL: Duration = Duration::from_millis(10);
 /// later run over the same world) tracing against the same structure uses
 /// the one already built.
 #[derive(Default)]
-pub struct Structures {
+pub(crate) struct Structures {
     built: Vec<Arc<SceneIndex>>,
 }
 
 impl Structures {
     /// The structure `accel` (with cell multiplier `grid_multiplier` for a
     /// grid) over `world`, built on first use.
-    pub fn get(
+    pub(crate) fn get(
         &mut self,
         world: &World,
         accel: AccelKind,
@@ -365,12 +369,12 @@ impl Structures {
 
 /// When a run stops before its last case.
 #[derive(Debug, Clone, Copy)]
-pub struct Stop<'a> {
+pub(crate) struct Stop<'a> {
     /// Stop at once: the frame under way is abandoned between tiles.
-    pub now: &'a AtomicBool,
+    pub(crate) now: &'a AtomicBool,
     /// Stop when the frame under way is done: that frame counts, and the
     /// case it belongs to is reported with the frames it has.
-    pub after_frame: &'a AtomicBool,
+    pub(crate) after_frame: &'a AtomicBool,
 }
 
 /// Renders every case `options.runs` times, in order. Structures are built
@@ -394,7 +398,7 @@ pub fn run(
 
 /// [`run`] with structures kept by the caller (a study measures one world
 /// in several runs) and a stop that can wait for the frame under way.
-pub fn run_with(
+pub(crate) fn run_with(
     world: &Arc<World>,
     cases: &[Case],
     options: RunOptions,
@@ -408,7 +412,7 @@ pub fn run_with(
 /// The runner behind [`run`] and [`run_with`], measuring the per-pixel
 /// views in the same frames or not: a comparison of views renders each
 /// side once (the frame times then include the views' bookkeeping).
-pub fn run_cases(
+pub(crate) fn run_cases(
     world: &Arc<World>,
     cases: &[Case],
     options: RunOptions,

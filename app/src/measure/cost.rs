@@ -13,22 +13,22 @@ use crate::describe::si;
 /// warning: at roughly 10^8 tests a second per core, several seconds to
 /// many minutes on this kind of machine (a 100 000-triangle course file at
 /// 512 x 512 is 5 x 10^10 and ran over 10 minutes).
-pub const WARN_ABOVE_TESTS: f64 = 2e9;
+pub(crate) const WARN_ABOVE_TESTS: f64 = 2e9;
 
 /// The cost of one brute-force frame, when it is large.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BruteForceCost {
-    pub primitives: usize,
+pub(crate) struct BruteForceCost {
+    pub(crate) primitives: usize,
     /// Estimated ray-primitive tests per frame: primitives x rays, with an
     /// eye ray and a shadow ray per light for every sample (reflections
     /// and refractions only add to it).
-    pub tests: f64,
+    pub(crate) tests: f64,
 }
 
 impl BruteForceCost {
     /// The cost of rendering with `settings`, when they ask for no
     /// acceleration structure and it exceeds [`WARN_ABOVE_TESTS`].
-    pub fn of(settings: &RenderSettings, counts: &SceneCounts) -> Option<BruteForceCost> {
+    pub(crate) fn of(settings: &RenderSettings, counts: &SceneCounts) -> Option<BruteForceCost> {
         if settings.accel != AccelKind::None {
             return None;
         }
@@ -45,7 +45,7 @@ impl BruteForceCost {
 
     /// The estimate in words, without the fix (which depends on where it
     /// is shown).
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         format!(
             "no acceleration structure (accel 0) over {} primitives: about {} ray-primitive \
              tests per frame, which may take many minutes",

@@ -7,9 +7,9 @@
 //! [`crate::reports`]; nothing here prints or touches a window.
 
 pub mod ab;
-pub mod benchmark;
-pub mod cost;
-pub mod ray_cast;
-pub mod study;
-pub mod to_error;
-pub mod value_difference;
+pub(crate) mod benchmark;
+pub(crate) mod cost;
+pub(crate) mod ray_cast;
+pub(crate) mod study;
+pub(crate) mod to_error;
+pub(crate) mod value_difference;

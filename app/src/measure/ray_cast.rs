@@ -20,32 +20,32 @@ const SHADOW_CHUNK: usize = 4096;
 
 /// What to measure.
 #[derive(Debug, Clone, Copy)]
-pub struct RayBenchOptions {
-    pub accel: AccelKind,
-    pub grid_multiplier: f32,
+pub(crate) struct RayBenchOptions {
+    pub(crate) accel: AccelKind,
+    pub(crate) grid_multiplier: f32,
     /// Timed casts of each kind (at least one), after one warm-up.
-    pub runs: usize,
+    pub(crate) runs: usize,
     /// Worker threads; `None` uses every core.
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
 }
 
 /// One kind of ray, cast `runs` times.
 #[derive(Debug, Clone, PartialEq)]
-pub struct KindTiming {
-    pub rays: u64,
+pub(crate) struct KindTiming {
+    pub(crate) rays: u64,
     /// Eye rays that hit a surface, shadow rays that are blocked.
-    pub hits: u64,
+    pub(crate) hits: u64,
     /// Median, fastest and slowest cast of all the rays, in seconds.
-    pub seconds: f64,
-    pub min_seconds: f64,
-    pub max_seconds: f64,
+    pub(crate) seconds: f64,
+    pub(crate) min_seconds: f64,
+    pub(crate) max_seconds: f64,
     /// Structure nodes (grid cells) visited and primitives tested per ray.
-    pub nodes_per_ray: f64,
-    pub tests_per_ray: f64,
+    pub(crate) nodes_per_ray: f64,
+    pub(crate) tests_per_ray: f64,
 }
 
 impl KindTiming {
-    pub fn rays_per_second(&self) -> f64 {
+    pub(crate) fn rays_per_second(&self) -> f64 {
         if self.seconds > 0.0 {
             self.rays as f64 / self.seconds
         } else {
@@ -69,15 +69,15 @@ impl KindTiming {
 
 /// Both kinds on one structure.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RayBench {
-    pub accel: AccelKind,
-    pub width: u32,
-    pub height: u32,
-    pub threads: usize,
-    pub runs: usize,
-    pub build_seconds: f64,
-    pub eye: KindTiming,
-    pub shadow: KindTiming,
+pub(crate) struct RayBench {
+    pub(crate) accel: AccelKind,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) threads: usize,
+    pub(crate) runs: usize,
+    pub(crate) build_seconds: f64,
+    pub(crate) eye: KindTiming,
+    pub(crate) shadow: KindTiming,
 }
 
 /// Builds the structure, makes the ray set of `camera`'s frame and times
@@ -172,7 +172,7 @@ impl RayBench {
     /// One JSON object: the setup, then `eye` and `shadow`, each with
     /// `rays`, `hits`, `seconds` (the median), `rays_per_second`,
     /// `nodes_per_ray` and `tests_per_ray`.
-    pub fn json(&self, scene: &str) -> Value {
+    pub(crate) fn json(&self, scene: &str) -> Value {
         json!({
             "scene": scene,
             "structure": self.accel.name(),
@@ -187,7 +187,7 @@ impl RayBench {
     }
 
     /// A header line and one aligned row per kind.
-    pub fn text(&self, scene: &str) -> String {
+    pub(crate) fn text(&self, scene: &str) -> String {
         let mut out = format!(
             "{scene}: {}x{}, {} (built in {:.1} ms), {} thread(s), median of {} run(s) after a warm-up\n\n",
             self.width,

@@ -18,40 +18,40 @@ use crate::measure::benchmark::median;
 
 /// What to measure.
 #[derive(Debug, Clone)]
-pub struct ToErrorPlan {
+pub(crate) struct ToErrorPlan {
     /// The settings both sides share (size, shadows, lens, structure...);
     /// their N is the uniform sampling whose error is the target, and
     /// their adaptive sampling (if any) gives the minimum and maximum.
-    pub base: RenderSettings,
+    pub(crate) base: RenderSettings,
     /// N of the uniform reference.
-    pub reference_samples: u32,
+    pub(crate) reference_samples: u32,
     /// The MSE to reach (8-bit units); `None`: uniform N x N's, with its
     /// FLIP as well.
-    pub target_mse: Option<f64>,
+    pub(crate) target_mse: Option<f64>,
     /// Adaptive sampling's threshold, if fixed; `None` searches the largest
     /// that reaches the target.
-    pub noise_threshold: Option<f32>,
+    pub(crate) noise_threshold: Option<f32>,
     /// Timed frames of each side, alternated.
-    pub runs: usize,
-    pub threads: Option<usize>,
-    pub encoding: Encoding,
+    pub(crate) runs: usize,
+    pub(crate) threads: Option<usize>,
+    pub(crate) encoding: Encoding,
 }
 
 /// One way of sampling, measured.
 #[derive(Debug, Clone)]
-pub struct MeasuredSampling {
-    pub settings: RenderSettings,
+pub(crate) struct MeasuredSampling {
+    pub(crate) settings: RenderSettings,
     /// Its image against the reference.
-    pub metrics: Metrics,
+    pub(crate) metrics: Metrics,
     /// Samples per pixel, on average and at most.
-    pub spp_mean: f64,
-    pub spp_max: u32,
+    pub(crate) spp_mean: f64,
+    pub(crate) spp_max: u32,
     /// Render time of each timed frame (structure build excluded).
-    pub times: Vec<Duration>,
+    pub(crate) times: Vec<Duration>,
 }
 
 impl MeasuredSampling {
-    pub fn median(&self) -> Duration {
+    pub(crate) fn median(&self) -> Duration {
         median(&self.times)
     }
 }
@@ -59,35 +59,35 @@ impl MeasuredSampling {
 /// A render tried while looking for the cheapest setting that reaches the
 /// target.
 #[derive(Debug, Clone)]
-pub struct Attempt {
+pub(crate) struct Attempt {
     /// "uniform N = 3", "adaptive T = 0.02".
-    pub label: String,
-    pub metrics: Metrics,
-    pub spp_mean: f64,
-    pub time: Duration,
-    pub reached: bool,
+    pub(crate) label: String,
+    pub(crate) metrics: Metrics,
+    pub(crate) spp_mean: f64,
+    pub(crate) time: Duration,
+    pub(crate) reached: bool,
 }
 
 /// What [`measure`] found.
 #[derive(Debug, Clone)]
-pub struct ToError {
-    pub reference_samples: u32,
-    pub reference_time: Duration,
-    pub target_mse: f64,
+pub(crate) struct ToError {
+    pub(crate) reference_samples: u32,
+    pub(crate) reference_time: Duration,
+    pub(crate) target_mse: f64,
     /// The FLIP to reach too, when the target is uniform N x N's error.
-    pub target_flip: Option<f32>,
+    pub(crate) target_flip: Option<f32>,
     /// The cheapest uniform N that reaches the target.
-    pub uniform: MeasuredSampling,
+    pub(crate) uniform: MeasuredSampling,
     /// The largest threshold that reaches it; `None` if none down to
     /// [`SMALLEST_THRESHOLD`] does.
-    pub adaptive: Option<MeasuredSampling>,
+    pub(crate) adaptive: Option<MeasuredSampling>,
     /// Every render tried, in order.
-    pub attempts: Vec<Attempt>,
+    pub(crate) attempts: Vec<Attempt>,
 }
 
 impl ToError {
     /// Adaptive's median time over uniform's.
-    pub fn time_ratio(&self) -> Option<f64> {
+    pub(crate) fn time_ratio(&self) -> Option<f64> {
         let adaptive = self.adaptive.as_ref()?;
         Some(adaptive.median().as_secs_f64() / self.uniform.median().as_secs_f64().max(1e-9))
     }
@@ -95,12 +95,12 @@ impl ToError {
 
 /// The threshold the search starts from: halved until the target is met,
 /// or doubled while it is.
-pub const FIRST_THRESHOLD: f32 = 0.08;
+pub(crate) const FIRST_THRESHOLD: f32 = 0.08;
 /// The search gives up below this threshold.
-pub const SMALLEST_THRESHOLD: f32 = 1e-4;
+pub(crate) const SMALLEST_THRESHOLD: f32 = 1e-4;
 /// The search stops doubling at this threshold: an error of the whole
 /// display range, past which no pixel refines beyond the minimum.
-pub const LARGEST_THRESHOLD: f32 = 1.0;
+pub(crate) const LARGEST_THRESHOLD: f32 = 1.0;
 /// Bisections of the last halving's bracket (on a log scale): four leave
 /// the threshold found within 2^(1/16), 4.4%, of the largest that reaches
 /// the target. With two (19%), on balls_medium at 512 x 512, the
@@ -175,7 +175,7 @@ fn adaptive(base: &RenderSettings, threshold: f32) -> RenderSettings {
 /// Renders the reference, finds the cheapest uniform N and the largest
 /// adaptive threshold that reach the target, then times both `runs` times,
 /// alternated. `on_attempt` hears of every render tried.
-pub fn measure(
+pub(crate) fn measure(
     world: &Arc<World>,
     plan: &ToErrorPlan,
     on_attempt: &mut dyn FnMut(&Attempt),
@@ -357,7 +357,7 @@ pub fn measure(
 }
 
 /// The largest N a reference may take.
-pub fn default_reference_samples(n: u32) -> u32 {
+pub(crate) fn default_reference_samples(n: u32) -> u32 {
     (4 * n).min(MAX_SAMPLES)
 }
 

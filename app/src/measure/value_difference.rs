@@ -14,7 +14,7 @@ pub struct ValueDifference {
     /// The palette's ends are -scale and +scale: the 99th percentile of
     /// |A - B|, so a few extreme pixels do not leave the rest dark (larger
     /// differences take the end colours).
-    pub scale: f32,
+    pub(crate) scale: f32,
     pub stats: ValueStats,
 }
 
@@ -26,15 +26,15 @@ pub struct ValueStats {
     pub mean_a: f32,
     pub mean_b: f32,
     /// Mean A over mean B (infinite when B's mean is 0 and A's is not).
-    pub ratio: f32,
-    pub mean_abs_difference: f32,
-    pub max_abs_difference: f32,
+    pub(crate) ratio: f32,
+    pub(crate) mean_abs_difference: f32,
+    pub(crate) max_abs_difference: f32,
 }
 
 impl ValueDifference {
     /// The difference of `a` and `b`, values of the same view on images of
     /// the same size; `None` when they differ in size.
-    pub fn of(a: &[Option<f32>], b: &[Option<f32>]) -> Option<ValueDifference> {
+    pub(crate) fn of(a: &[Option<f32>], b: &[Option<f32>]) -> Option<ValueDifference> {
         if a.len() != b.len() {
             return None;
         }
@@ -78,7 +78,7 @@ impl ValueDifference {
 
     /// The difference as RGBA8 pixels on [`diverging_colour`]; pixels
     /// without a value get the views' [`NO_VALUE`] colour.
-    pub fn rgba8(&self) -> Vec<u8> {
+    pub(crate) fn rgba8(&self) -> Vec<u8> {
         self.values
             .iter()
             .flat_map(|d| match d {
@@ -94,7 +94,7 @@ impl ValueDifference {
 
 /// The colour of `t` in -1..=1 (clamped; NaN is 0): blue at -1, a dark grey
 /// at 0 (equal sides recede), red at +1.
-pub fn diverging_colour(t: f32) -> [u8; 3] {
+pub(crate) fn diverging_colour(t: f32) -> [u8; 3] {
     const ZERO: [f32; 3] = [30.0, 30.0, 34.0];
     const POSITIVE: [f32; 3] = [255.0, 80.0, 50.0];
     const NEGATIVE: [f32; 3] = [60.0, 140.0, 255.0];

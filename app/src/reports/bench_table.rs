@@ -8,7 +8,7 @@ use crate::measure::benchmark::Measurement;
 
 /// Which columns a table shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Columns {
+pub(crate) enum Columns {
     /// One row per structure: build cost and work per ray.
     Structures,
     /// The course's timing matrix: the features of each row, then its times.
@@ -17,7 +17,7 @@ pub enum Columns {
 
 /// Output formats of a table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
+pub(crate) enum Format {
     /// Columns aligned with spaces, for the terminal.
     Text,
     Markdown,
@@ -156,7 +156,7 @@ fn dof_cell(m: &Measurement) -> String {
 }
 
 /// The rows in `format`.
-pub fn table(rows: &[Measurement], which: Columns, format: Format) -> String {
+pub(crate) fn table(rows: &[Measurement], which: Columns, format: Format) -> String {
     let cols = columns(which);
     let headers: Vec<String> = cols.iter().map(|c| c.header.to_string()).collect();
     let cells = |raw: bool| -> Vec<Vec<String>> {
@@ -177,7 +177,7 @@ pub fn table(rows: &[Measurement], which: Columns, format: Format) -> String {
 }
 
 /// Left-aligned first column, the rest right-aligned, two spaces apart.
-pub fn text(headers: &[String], rows: &[Vec<String>]) -> String {
+pub(crate) fn text(headers: &[String], rows: &[Vec<String>]) -> String {
     let widths: Vec<usize> = (0..headers.len())
         .map(|i| {
             rows.iter()
@@ -211,7 +211,7 @@ pub fn text(headers: &[String], rows: &[Vec<String>]) -> String {
 }
 
 /// A Markdown table, numbers right-aligned.
-pub fn markdown(headers: &[String], rows: &[Vec<String>]) -> String {
+pub(crate) fn markdown(headers: &[String], rows: &[Vec<String>]) -> String {
     let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
     let rule = format!(
         "|{}|\n",
@@ -224,7 +224,7 @@ pub fn markdown(headers: &[String], rows: &[Vec<String>]) -> String {
 }
 
 /// RFC 4180: fields with a comma, quote or line break are quoted.
-pub fn csv(headers: &[String], rows: &[Vec<String>]) -> String {
+pub(crate) fn csv(headers: &[String], rows: &[Vec<String>]) -> String {
     let field = |f: &String| {
         if f.contains([',', '"', '\n']) {
             format!("\"{}\"", f.replace('"', "\"\""))

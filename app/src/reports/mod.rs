@@ -5,10 +5,10 @@
 //! course's experiments on a scene). The command line
 //! prints them, the window shows and exports them.
 
-pub mod bench_table;
-pub mod lab;
-pub mod ray_tree;
-pub mod render_stats;
-pub mod study_table;
-pub mod to_error;
-pub mod view_summary;
+pub(crate) mod bench_table;
+pub(crate) mod lab;
+pub(crate) mod ray_tree;
+pub(crate) mod render_stats;
+pub(crate) mod study_table;
+pub(crate) mod to_error;
+pub(crate) mod view_summary;

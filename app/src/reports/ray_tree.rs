@@ -14,7 +14,7 @@ use crate::figures::overlay::VisitStep;
 
 /// The ray tree of sample `sample` of pixel `(x, y)` under `settings`,
 /// reusing `index` when it was built for them.
-pub fn inspect(
+pub(crate) fn inspect(
     world: &Arc<World>,
     index: Option<Arc<SceneIndex>>,
     settings: &RenderSettings,
@@ -48,12 +48,12 @@ pub fn inspect(
 }
 
 /// A colour or vector as `(r, g, b)` with 3 decimals.
-pub fn triple(v: Vec3A) -> String {
+pub(crate) fn triple(v: Vec3A) -> String {
     format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z)
 }
 
 /// The first line: the pixel, its colour and the sum of the contributions.
-pub fn headline(tree: &RayTree) -> String {
+pub(crate) fn headline(tree: &RayTree) -> String {
     format!(
         "pixel ({}, {}), sample {}: colour {}, contributions add up to {}",
         tree.x,
@@ -66,7 +66,7 @@ pub fn headline(tree: &RayTree) -> String {
 
 /// An object as `sphere #3 (line 12:1)`: kind, index in the file and
 /// where the file declares it.
-pub fn object_name(kind: &str, index: u32, position: Option<(u32, u32)>) -> String {
+pub(crate) fn object_name(kind: &str, index: u32, position: Option<(u32, u32)>) -> String {
     match position {
         Some((line, column)) => format!("{kind} #{index} (line {line}:{column})"),
         None => format!("{kind} #{index}"),
@@ -74,7 +74,7 @@ pub fn object_name(kind: &str, index: u32, position: Option<(u32, u32)>) -> Stri
 }
 
 /// One node in one line: its kind, what it met and what it added.
-pub fn describe_node(node: &RayNode) -> String {
+pub(crate) fn describe_node(node: &RayNode) -> String {
     let kind = node.kind.name();
     let adds = format!("adds {}", triple(node.contribution));
     match &node.outcome {
@@ -115,7 +115,7 @@ pub fn describe_node(node: &RayNode) -> String {
 
 /// The tree indented two spaces per generation, children under parents,
 /// then what the eye ray's traversal visited.
-pub fn text(tree: &RayTree) -> String {
+pub(crate) fn text(tree: &RayTree) -> String {
     let mut out = nodes_text(tree);
     out.push_str(&visits_text(&tree.eye_visits));
     out
@@ -123,7 +123,7 @@ pub fn text(tree: &RayTree) -> String {
 
 /// The headline and the rays, without the traversal (which can run to a
 /// line per BVH node).
-pub fn nodes_text(tree: &RayTree) -> String {
+pub(crate) fn nodes_text(tree: &RayTree) -> String {
     let mut out = headline(tree);
     out.push('\n');
     let mut stack: Vec<(usize, usize)> = tree.children(None).map(|i| (i, 0)).collect();
@@ -140,7 +140,7 @@ pub fn nodes_text(tree: &RayTree) -> String {
 
 /// What the eye ray's traversal visited: a heading with the counts, then
 /// one line per cell, node or leaf in visiting order.
-pub fn visits_text(visits: &[Visit]) -> String {
+pub(crate) fn visits_text(visits: &[Visit]) -> String {
     let mut out = visits_heading(visits);
     out.push_str(if visits.is_empty() { "\n" } else { ":\n" });
     for visit in visits {
@@ -152,7 +152,7 @@ pub fn visits_text(visits: &[Visit]) -> String {
 }
 
 /// How many cells, or nodes and leaves, the eye ray visited.
-pub fn visits_heading(visits: &[Visit]) -> String {
+pub(crate) fn visits_heading(visits: &[Visit]) -> String {
     let nodes = visits
         .iter()
         .filter(|v| matches!(v, Visit::Node { .. }))
@@ -169,7 +169,7 @@ pub fn visits_heading(visits: &[Visit]) -> String {
 }
 
 /// One visit in one line: what it is, its box and what it tested.
-pub fn describe_visit(visit: &Visit) -> String {
+pub(crate) fn describe_visit(visit: &Visit) -> String {
     let b = visit.bounds();
     let bounds = format!("box {} .. {}", triple(b.min), triple(b.max));
     match visit {
@@ -191,7 +191,7 @@ pub fn describe_visit(visit: &Visit) -> String {
 /// against brute force's count (every one of the scene's `primitives`).
 /// At the end of the walk, with the unbounded shapes (planes) tested after
 /// it, it is the query's own count.
-pub fn step_tally(tree: &RayTree, step: VisitStep, primitives: usize) -> String {
+pub(crate) fn step_tally(tree: &RayTree, step: VisitStep, primitives: usize) -> String {
     let visits = &tree.eye_visits;
     let tally = Tally::of(&visits[..step.drawn(visits.len())]);
     let boxes = match visits.first() {
@@ -242,7 +242,7 @@ fn visit_json(visit: &Visit) -> serde_json::Value {
 }
 
 /// The tree as JSON: every node with its parent's index.
-pub fn json(tree: &RayTree) -> serde_json::Value {
+pub(crate) fn json(tree: &RayTree) -> serde_json::Value {
     let v = |v: Vec3A| [v.x, v.y, v.z];
     let nodes: Vec<serde_json::Value> = tree
         .nodes

@@ -5,7 +5,7 @@ use tracer::stats::{RenderStats, SceneCounts};
 use crate::describe::si;
 
 /// Objects by kind, e.g. "91 spheres, 2 polygons".
-pub fn describe_objects(counts: &SceneCounts) -> String {
+pub(crate) fn describe_objects(counts: &SceneCounts) -> String {
     if counts.objects_by_kind.is_empty() {
         return "no objects".to_string();
     }
@@ -30,7 +30,7 @@ fn samples_per_pixel(stats: &RenderStats) -> (f64, u32) {
 /// of one sample a pixel against N x N), "pass 7 / 11, 36.0 spp mean"
 /// (adaptive: its passes double the active pixels' samples, so the pass
 /// count is not the samples).
-pub fn sample_progress(stats: &RenderStats) -> String {
+pub(crate) fn sample_progress(stats: &RenderStats) -> String {
     match &stats.adaptive {
         Some(a) => format!(
             "pass {} / {}, {:.1} spp mean",
@@ -43,7 +43,7 @@ pub fn sample_progress(stats: &RenderStats) -> String {
 }
 
 /// The few lines `workbench render` prints after a render.
-pub fn summary(stats: &RenderStats, counts: &SceneCounts) -> String {
+pub(crate) fn summary(stats: &RenderStats, counts: &SceneCounts) -> String {
     let mut text = counts_summary(stats, counts);
     if let Some(a) = &stats.adaptive {
         let (mean, max) = samples_per_pixel(stats);
@@ -84,13 +84,9 @@ fn counts_summary(stats: &RenderStats, counts: &SceneCounts) -> String {
     )
 }
 
-/// The statistics as one JSON object.
-pub fn json(stats: &RenderStats, counts: &SceneCounts) -> String {
-    serde_json::to_string_pretty(&json_value(stats, counts)).unwrap_or_default()
-}
-
-/// [`json`] as a value, for commands that add their own fields.
-pub fn json_value(stats: &RenderStats, counts: &SceneCounts) -> serde_json::Value {
+/// The statistics as one JSON object, for commands that add their own
+/// fields.
+pub(crate) fn json_value(stats: &RenderStats, counts: &SceneCounts) -> serde_json::Value {
     let c = &stats.counters;
     let (spp_mean, spp_max) = samples_per_pixel(stats);
     let adaptive = stats.adaptive.map(|a| {

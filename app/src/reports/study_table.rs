@@ -23,7 +23,7 @@ fn spp(p: &Point) -> (f64, u32) {
 
 /// The headers and the readable cells of every row, as the text table
 /// has them (the window's table shows the same).
-pub fn rows(param: Param, points: &[Point]) -> (Vec<String>, Vec<Vec<String>>) {
+pub(crate) fn rows(param: Param, points: &[Point]) -> (Vec<String>, Vec<Vec<String>>) {
     cells(param, points, false)
 }
 
@@ -127,7 +127,7 @@ fn cells(param: Param, points: &[Point], raw: bool) -> (Vec<String>, Vec<Vec<Str
 }
 
 /// The points in `format`, in measuring order.
-pub fn table(param: Param, points: &[Point], format: Format) -> String {
+pub(crate) fn table(param: Param, points: &[Point], format: Format) -> String {
     match format {
         Format::Text => {
             let (headers, rows) = cells(param, points, false);
@@ -180,7 +180,7 @@ fn json(param: Param, points: &[Point]) -> String {
 
 /// One line per structure saying what the study found: the best value
 /// (with its time), or for the level study the log-log slope.
-pub fn summary(param: Param, points: &[Point]) -> Vec<String> {
+pub(crate) fn summary(param: Param, points: &[Point]) -> Vec<String> {
     if param == Param::Level {
         return analysis::structures(points)
             .into_iter()

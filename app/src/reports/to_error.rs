@@ -17,7 +17,7 @@ fn name(settings: &RenderSettings) -> String {
 }
 
 /// The renders tried, the two sides and the verdict, as aligned text.
-pub fn text(found: &ToError) -> String {
+pub(crate) fn text(found: &ToError) -> String {
     let mut out = String::new();
     let target = match found.target_flip {
         Some(flip) => format!(
@@ -83,7 +83,7 @@ pub fn text(found: &ToError) -> String {
 }
 
 /// Everything measured, as JSON.
-pub fn json(found: &ToError) -> serde_json::Value {
+pub(crate) fn json(found: &ToError) -> serde_json::Value {
     let side = |s: &MeasuredSampling| {
         serde_json::json!({
             "sampling": name(&s.settings),

@@ -7,7 +7,7 @@ use tracer::render::{View, ViewHeatmap, ViewSummary};
 use crate::figures::heat_map::format_number;
 
 /// The summary line of a view: its numbers and what they count.
-pub fn describe(view: View, summary: Option<&ViewSummary>, heat: &ViewHeatmap) -> String {
+pub(crate) fn describe(view: View, summary: Option<&ViewSummary>, heat: &ViewHeatmap) -> String {
     match summary {
         None if !view.is_scalar() => format!("view {}: colours, no numbers", view.name()),
         None => format!("view {}: no pixel has a value", view.name()),
@@ -26,7 +26,7 @@ pub fn describe(view: View, summary: Option<&ViewSummary>, heat: &ViewHeatmap) -
 }
 
 /// The summary as JSON (null numbers when no pixel has a value).
-pub fn summary_json(
+pub(crate) fn summary_json(
     view: View,
     summary: Option<&ViewSummary>,
     heat: &ViewHeatmap,

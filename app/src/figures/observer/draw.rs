@@ -26,20 +26,20 @@ const PIECES: usize = 24;
 
 /// One drawn piece of a segment, for the JSON report.
 #[derive(Debug, Clone, Copy)]
-pub struct Piece {
+pub(crate) struct Piece {
     /// Which segment of the figure it belongs to.
-    pub segment: usize,
-    pub ends: [Vec3A; 2],
-    pub hidden: bool,
+    pub(crate) segment: usize,
+    pub(crate) ends: [Vec3A; 2],
+    pub(crate) hidden: bool,
 }
 
 /// A camera and the settings it renders with.
-pub type Viewer<'a> = (&'a RenderSettings, &'a Camera);
+pub(crate) type Viewer<'a> = (&'a RenderSettings, &'a Camera);
 
 /// The whole figure: `world` rendered from the observer (its settings from
 /// [`super::render_settings`]), the scene's own render painted on its image
 /// plane, and `segments` drawn over both; with the pieces drawn.
-pub fn figure(
+pub(crate) fn figure(
     world: &Arc<World>,
     index: Arc<SceneIndex>,
     (scene_settings, scene_camera): Viewer,
@@ -87,7 +87,7 @@ pub fn figure(
 /// Paints `render` (the scene camera's image) onto its image plane as the
 /// observer sees it: each observer pixel whose ray meets the plane inside
 /// the image, in front of the surface it sees, takes the image's pixel.
-pub fn paint_image_plane(
+pub(crate) fn paint_image_plane(
     figure: &mut RgbImage,
     observer: &Camera,
     depth: &DepthMap,
@@ -129,7 +129,7 @@ pub fn paint_image_plane(
 
 /// Draws `segments` onto `figure` through `projector`: solid where visible,
 /// faint where `depth` says a surface hides them. Returns the pieces drawn.
-pub fn draw_segments(
+pub(crate) fn draw_segments(
     figure: &mut RgbImage,
     projector: &Projector<'_>,
     depth: &DepthMap,

@@ -5,7 +5,7 @@
 //! eye ray's walk through it. The window and `workbench observe` draw the
 //! same segments.
 
-pub mod draw;
+pub(crate) mod draw;
 
 use std::sync::Arc;
 
@@ -23,7 +23,7 @@ use crate::figures::projection::DepthMap;
 /// What a segment shows, for its colour and style.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case", tag = "part")]
-pub enum Part {
+pub(crate) enum Part {
     /// A ray of a recorded tree (a lit shadow ray among them).
     Ray { kind: RayKindName },
     /// A shadow ray ending at what blocked it.
@@ -50,7 +50,7 @@ pub enum Part {
 /// [`RayKind`]'s name, for JSON and labels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum RayKindName {
+pub(crate) enum RayKindName {
     Eye,
     Reflection,
     Refraction,
@@ -70,18 +70,18 @@ impl From<RayKind> for RayKindName {
 
 /// One straight piece of the figure.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Segment {
-    pub ends: [Vec3A; 2],
-    pub part: Part,
+pub(crate) struct Segment {
+    pub(crate) ends: [Vec3A; 2],
+    pub(crate) part: Part,
     /// 0 for side A, 1 for side B: their trees are drawn in two styles.
-    pub side: u8,
+    pub(crate) side: u8,
     /// When the animation draws it: eye rays 0, bounce generation `d` at
     /// `d`, shadow rays after every bounce; the rest at 0.
-    pub phase: u32,
+    pub(crate) phase: u32,
     /// A ray's bounces above it (the eye ray and its shadow rays: 0).
-    pub depth: u32,
+    pub(crate) depth: u32,
     /// A ray's share of its pixel ([`ray_shares`]); 1 for the rest.
-    pub share: f32,
+    pub(crate) share: f32,
 }
 
 impl Segment {
@@ -108,7 +108,7 @@ pub struct RayFilter {
     pub hide_misses: bool,
     /// Hide the rays whose share of their pixel ([`ray_shares`]) is below
     /// this, from 0 (hide nothing) to 1.
-    pub min_share: f32,
+    pub(crate) min_share: f32,
     /// The deepest bounce drawn (0: the eye rays and their shadow rays);
     /// `None` draws every bounce.
     pub max_depth: Option<u32>,
@@ -124,18 +124,11 @@ impl Default for RayFilter {
     }
 }
 
-impl RayFilter {
-    /// Whether it hides anything at all.
-    pub fn is_off(&self) -> bool {
-        *self == Self::default()
-    }
-}
-
 /// Each node's share of the pixel: the luminance of what it and the rays
 /// it spawned add to the sample's colour, over the colour's. The eye ray's
 /// is 1; a blocked shadow ray's is 0. A black sample gives every ray a
 /// share of 1, there being nothing to divide.
-pub fn ray_shares(tree: &RayTree) -> Vec<f32> {
+pub(crate) fn ray_shares(tree: &RayTree) -> Vec<f32> {
     let luminance = |c: Vec3A| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
     let mut brought: Vec<Vec3A> = tree.nodes.iter().map(|n| n.contribution).collect();
     // Parents come before their children: adding each node to its parent
@@ -167,7 +160,7 @@ pub fn ray_shares(tree: &RayTree) -> Vec<f32> {
 
 /// Length of a ray that leaves the scene, and of markers, for a scene of
 /// `world`'s size.
-pub fn stub_length(world: &World) -> f32 {
+pub(crate) fn stub_length(world: &World) -> f32 {
     world.bounds.extent().length().max(1.0) * 0.25
 }
 
@@ -175,13 +168,13 @@ pub fn stub_length(world: &World) -> f32 {
 /// (to the light sample when lit, to the occluder when blocked; a short
 /// stub when it left the scene), and a normal tick at each hit. One ray
 /// segment per node of the tree, in its order.
-pub fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
+pub(crate) fn ray_segments(tree: &RayTree, stub: f32, side: u8) -> Vec<Segment> {
     filtered_ray_segments(tree, stub, side, &RayFilter::default())
 }
 
 /// [`ray_segments`] of the nodes `filter` lets through, each with its
 /// share of the pixel (the window fades rays by it).
-pub fn filtered_ray_segments(
+pub(crate) fn filtered_ray_segments(
     tree: &RayTree,
     stub: f32,
     side: u8,
@@ -243,7 +236,7 @@ fn ray(kind: RayKind) -> Part {
 
 /// The image's four corners on the view plane, clockwise from the top
 /// left.
-pub fn image_corners(camera: &Camera) -> [Vec3A; 4] {
+pub(crate) fn image_corners(camera: &Camera) -> [Vec3A; 4] {
     let (w, h) = (camera.width() as f32, camera.height() as f32);
     [(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)].map(|(x, y)| camera.view_plane_point(x, y))
 }
@@ -251,7 +244,7 @@ pub fn image_corners(camera: &Camera) -> [Vec3A; 4] {
 /// The scene camera: its frustum from the eye through the image's corners,
 /// the image plane's outline, and with a lens its disk and the plane in
 /// focus.
-pub fn camera_segments(camera: &Camera) -> Vec<Segment> {
+pub(crate) fn camera_segments(camera: &Camera) -> Vec<Segment> {
     let eye = camera.eye();
     let corners = image_corners(camera);
     let mut segments: Vec<Segment> = corners
@@ -272,7 +265,7 @@ pub fn camera_segments(camera: &Camera) -> Vec<Segment> {
 /// area the renderer samples (an `al` light's rectangle; a point light's
 /// square of the light size, drawn facing the scene's centre, as the
 /// renderer turns it towards each shaded point).
-pub fn light_segments(world: &World, settings: &RenderSettings) -> Vec<Segment> {
+pub(crate) fn light_segments(world: &World, settings: &RenderSettings) -> Vec<Segment> {
     let stub = stub_length(world);
     let centre = world.bounds.centre();
     let mut segments = Vec::new();
@@ -305,7 +298,7 @@ pub fn light_segments(world: &World, settings: &RenderSettings) -> Vec<Segment> 
 
 /// The structure `index` renders with at `layer`, and the boxes of
 /// `visits` (an eye ray's walk) in order, those `step` draws.
-pub fn structure_segments(
+pub(crate) fn structure_segments(
     index: &SceneIndex,
     layer: Option<StructureLayer>,
     visits: &[Visit],
@@ -356,7 +349,7 @@ const FRAMED_LIGHT_REACH: f32 = 4.0;
 /// camera, far enough that the scene's bounds, the camera and the lights
 /// near the scene fit in a view `angle` degrees high and `aspect` (height
 /// over width) as tall as wide, so that every marker can be grabbed.
-pub fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> CameraPose {
+pub(crate) fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> CameraPose {
     let eye = camera.eye();
     let scene = world.bounds.grow(eye);
     let reach = (scene.extent().length() * 0.5).max(1e-3) * FRAMED_LIGHT_REACH;
@@ -385,7 +378,7 @@ pub fn framing(world: &World, camera: &Camera, angle: f32, aspect: f32) -> Camer
 /// at `width` x `height`, one sharp sample per pixel, no soft shadows and
 /// no refining, traced with a BVH ([`VIEW_ACCEL`]). It shows where rays go,
 /// not the finished image, so it renders in a fraction of the scene's time.
-pub fn render_settings(
+pub(crate) fn render_settings(
     scene: &RenderSettings,
     pose: CameraPose,
     width: u32,
@@ -408,12 +401,12 @@ pub fn render_settings(
 /// whatever the scene asks for: the view is an illustration, not the
 /// experiment (the pixels' rays follow the scene's structure), and a
 /// course file's `accel 0` over 100 000 triangles made it take minutes.
-pub const VIEW_ACCEL: AccelKind = AccelKind::Bvh;
+pub(crate) const VIEW_ACCEL: AccelKind = AccelKind::Bvh;
 
 /// Which pixels' trees a figure draws beside the pinned one: a row, a
 /// column, or a coarse grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PixelPattern {
+pub(crate) enum PixelPattern {
     Row(u32),
     Column(u32),
     /// One pixel every `STEP` in both directions.
@@ -425,7 +418,7 @@ const LINE_PIXELS: u32 = 32;
 
 /// Most segments a figure draws; the trees of further pixels are left out
 /// (and the figure says so).
-pub const MAX_SEGMENTS: usize = 20_000;
+pub(crate) const MAX_SEGMENTS: usize = 20_000;
 
 impl std::str::FromStr for PixelPattern {
     type Err = String;
@@ -447,7 +440,7 @@ impl std::str::FromStr for PixelPattern {
 impl PixelPattern {
     /// The pattern's pixels in a `width` x `height` image, or why it does
     /// not fit (the valid range named).
-    pub fn pixels(self, width: u32, height: u32) -> Result<Vec<(u32, u32)>, String> {
+    pub(crate) fn pixels(self, width: u32, height: u32) -> Result<Vec<(u32, u32)>, String> {
         let spaced = |n: u32| -> Vec<u32> {
             let count = n.min(LINE_PIXELS);
             (0..count).map(|i| (i * n + n / 2) / count).collect()
@@ -477,7 +470,7 @@ impl PixelPattern {
 
 /// The colour of each kind of ray wherever rays are drawn: over the image
 /// and in the observer view.
-pub fn ray_colour(kind: RayKindName) -> [u8; 3] {
+pub(crate) fn ray_colour(kind: RayKindName) -> [u8; 3] {
     match kind {
         RayKindName::Eye => [255, 255, 255],
         RayKindName::Reflection => [90, 200, 255],
@@ -488,7 +481,7 @@ pub fn ray_colour(kind: RayKindName) -> [u8; 3] {
 
 /// How a part is drawn: its colour, and whether dashed (blocked shadow
 /// rays, and side B's rays beside A's in compare mode).
-pub fn style(segment: &Segment, world: &World) -> ([u8; 3], bool) {
+pub(crate) fn style(segment: &Segment, world: &World) -> ([u8; 3], bool) {
     let colour = match segment.part {
         Part::Ray { kind } => ray_colour(kind),
         Part::BlockedShadow => ray_colour(RayKindName::Shadow),
@@ -512,7 +505,7 @@ pub fn style(segment: &Segment, world: &World) -> ([u8; 3], bool) {
 /// The scene rendered by `settings` (an observer's: its camera, size and
 /// shading), and how far each pixel's eye ray went: what hides a segment
 /// drawn into it.
-pub fn render_with_depth(
+pub(crate) fn render_with_depth(
     world: Arc<World>,
     index: Arc<SceneIndex>,
     settings: RenderSettings,

@@ -15,7 +15,7 @@ use super::WorkbenchApp;
 
 /// What a file fetched from the page's site is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FetchFor {
+pub(crate) enum FetchFor {
     /// A scene to open.
     Scene,
     /// A folder's index: the lessons it names are fetched next.

@@ -20,7 +20,7 @@ use crate::gui::sides::{Controls, Side, Sides};
 use crate::lessons::format::{Lesson, LessonErrors, read_bundled, read_lesson_file};
 use crate::lessons::replay::{open_scene, state_at_step};
 use crate::lessons::state::Layout;
-use crate::lessons::{LessonState, SideState};
+use crate::lessons::state::{LessonState, SideState};
 use crate::load::Loaded;
 use crate::load::SceneSource;
 
@@ -33,7 +33,7 @@ pub(super) struct PendingSetup {
 impl WorkbenchApp {
     /// Opens the lesson file `path` in the Lessons panel and sets up its
     /// first step (a dropped or opened file).
-    pub fn open_lesson(&mut self, path: &Path) {
+    pub(crate) fn open_lesson(&mut self, path: &Path) {
         self.set_up_lesson(read_lesson_file(path));
     }
 
@@ -49,7 +49,7 @@ impl WorkbenchApp {
     /// Opens the bundled lesson `name` as [`Self::open_lesson`] opens a
     /// file (a page's `?lesson=NAME&step=N`), at `step` (from 1) if given;
     /// an unknown name is said with the names there are.
-    pub fn open_bundled_lesson(&mut self, name: &str, step: Option<usize>) {
+    pub(crate) fn open_bundled_lesson(&mut self, name: &str, step: Option<usize>) {
         match crate::lessons::bundled::find(name) {
             Some(bundled) => self.set_up_lesson_at(read_bundled(bundled), step),
             None => self.messages.lasting_error(format!(
@@ -93,7 +93,7 @@ impl WorkbenchApp {
     /// Opens the lessons of folder `dir` as a class does
     /// (`workbench --lesson-folder DIR`): listed, and the folder's first
     /// lesson set up at its first step not done.
-    pub fn open_class(&mut self, dir: &Path) {
+    pub(crate) fn open_class(&mut self, dir: &Path) {
         if self.open_lesson_folder(dir) {
             self.set_up_lesson_step();
         }

@@ -43,9 +43,9 @@ impl Fetched {
 
 /// A scene being fetched from the page's site, for the scene panel's
 /// progress bar.
-pub struct SceneFetch {
-    pub url: String,
-    pub transfer: Transfer,
+pub(crate) struct SceneFetch {
+    pub(crate) url: String,
+    pub(crate) transfer: Transfer,
     id: u64,
 }
 

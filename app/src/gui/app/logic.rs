@@ -333,7 +333,7 @@ impl WorkbenchApp {
 
     /// The lab report's request for side A as it is now: its scene with
     /// the edits made, its camera and settings (N the course's 4).
-    pub fn report_request(&self) -> Option<crate::reports::lab::Request> {
+    pub(crate) fn report_request(&self) -> Option<crate::reports::lab::Request> {
         let a = &self.sides.a;
         let (scene, settings) = (a.engine.scene()?, a.settings()?);
         Some(crate::reports::lab::Request {

@@ -10,9 +10,9 @@ use crate::gui::platform::clock::Clock;
 /// How long a notice stays on screen.
 const NOTICE_TIME: Duration = Duration::from_secs(5);
 
-pub struct Messages {
+pub(crate) struct Messages {
     /// Shown above the image until dismissed.
-    pub error: Option<String>,
+    pub(crate) error: Option<String>,
     /// An error about what the user asked for rather than about the scene
     /// on screen (a lesson that does not read, a link to nothing): a
     /// scene loaded next, such as the one the window opens with, leaves
@@ -24,7 +24,7 @@ pub struct Messages {
 }
 
 impl Messages {
-    pub fn new(clock: Clock) -> Self {
+    pub(crate) fn new(clock: Clock) -> Self {
         Self {
             error: None,
             lasting: None,
@@ -35,26 +35,26 @@ impl Messages {
 
     /// Shows the error `text` until dismissed or replaced, even across a
     /// scene load.
-    pub fn lasting_error(&mut self, text: String) {
+    pub(crate) fn lasting_error(&mut self, text: String) {
         self.lasting = Some(text.clone());
         self.error = Some(text);
     }
 
     /// A scene loaded: the error of an earlier scene (a load or a render
     /// that failed) goes; a [`Self::lasting_error`] stays.
-    pub fn scene_loaded(&mut self) {
+    pub(crate) fn scene_loaded(&mut self) {
         if self.error != self.lasting {
             self.error = None;
         }
     }
 
     /// Shows `text` for a few seconds.
-    pub fn notify(&mut self, text: impl Into<String>) {
+    pub(crate) fn notify(&mut self, text: impl Into<String>) {
         self.notice = Some((text.into(), self.clock.now()));
     }
 
     /// Draws the notice while it lasts, at the top of the window.
-    pub fn show_notice(&mut self, ctx: &egui::Context) {
+    pub(crate) fn show_notice(&mut self, ctx: &egui::Context) {
         let Some((text, since)) = &self.notice else {
             return;
         };

@@ -18,8 +18,6 @@ mod testing;
 
 pub use saving::{FileDialog, FileQuestion};
 
-use tracer::render::JobState;
-
 use crate::bundled;
 use crate::load::SceneSource;
 
@@ -34,7 +32,7 @@ use super::panels::{central, stats, unfilled};
 use super::platform::clock::Clock;
 use super::platform::frame_meter::Pacing;
 use super::platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
-use super::sides::{Activity, RepaintWakers, SideId, Sides};
+use super::sides::{RepaintWakers, SideId, Sides};
 use super::windows::{ToolsAndOverlays, help};
 use messages::Messages;
 use navigation::Navigation;
@@ -84,7 +82,7 @@ impl WorkbenchApp {
     /// Creates the app, restoring the saved state when `storage` has one,
     /// and starts loading `initial` (or the last scene, or the bundled
     /// default).
-    pub fn new(
+    pub(crate) fn new(
         ctx: &egui::Context,
         storage: Option<&dyn eframe::Storage>,
         initial: Option<SceneSource>,
@@ -154,7 +152,11 @@ impl WorkbenchApp {
 
     /// Takes a screenshot as `plan` says, reports it in `outcome` and closes
     /// the window.
-    pub fn with_screenshot(mut self, plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
+    pub(crate) fn with_screenshot(
+        mut self,
+        plan: ScreenshotPlan,
+        outcome: ScreenshotOutcome,
+    ) -> Self {
         self.screenshot = Some(ScreenshotRequest::new(plan, outcome));
         self
     }
@@ -162,7 +164,10 @@ impl WorkbenchApp {
     /// Whether a scene is being fetched, or a side's or the observer's
     /// engine is loading a scene or rendering: the web page, which its
     /// workers cannot wake, keeps looking while so.
-    pub fn is_rendering(&self) -> bool {
+    #[cfg(target_family = "wasm")]
+    pub(crate) fn is_rendering(&self) -> bool {
+        use super::sides::Activity;
+        use tracer::render::JobState;
         if self.fetched.scene().is_some() {
             return true;
         }
@@ -176,7 +181,7 @@ impl WorkbenchApp {
     }
 
     /// Turns the observer view on or off, as O does.
-    pub fn show_observer(&mut self, on: bool) {
+    pub(crate) fn show_observer(&mut self, on: bool) {
         self.observer.on = on;
     }
 

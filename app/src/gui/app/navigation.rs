@@ -16,26 +16,26 @@ const MOVE_SETTLE: Duration = Duration::from_millis(250);
 
 /// The camera and the image's placement.
 #[derive(Default)]
-pub struct Navigation {
+pub(crate) struct Navigation {
     /// The camera after the user moved it; `None` is the scene's own.
-    pub camera: Option<CameraPose>,
+    pub(crate) camera: Option<CameraPose>,
     /// Zoom and pan of the image; never restarts the render.
-    pub placement: Placement,
+    pub(crate) placement: Placement,
     dragging_camera: bool,
     moving_until: Option<Instant>,
     /// The image pixel under the cursor.
-    pub hovered_pixel: Option<(u32, u32)>,
+    pub(crate) hovered_pixel: Option<(u32, u32)>,
 }
 
 impl Navigation {
     /// Whether the camera moves: a drag under way, or a dolly just made.
-    pub fn is_camera_moving(&self) -> bool {
+    pub(crate) fn is_camera_moving(&self) -> bool {
         self.dragging_camera || self.moving_until.is_some_and(|t| Instant::now() < t)
     }
 
     /// Takes what happened over the image this frame: its gestures move
     /// the camera of `scene`.
-    pub fn take(&mut self, response: &ViewportResponse, scene: Option<&Scene>) {
+    pub(crate) fn take(&mut self, response: &ViewportResponse, scene: Option<&Scene>) {
         self.dragging_camera = response.dragging_camera;
         self.hovered_pixel = response.hovered_pixel;
         let Some(scene) = scene else {
@@ -58,7 +58,7 @@ impl Navigation {
     }
 
     /// Asks for a frame when a dolly's preview is due to end.
-    pub fn wake_when_settled(&mut self, ctx: &egui::Context) {
+    pub(crate) fn wake_when_settled(&mut self, ctx: &egui::Context) {
         if let Some(until) = self.moving_until {
             let now = Instant::now();
             if now < until {
@@ -70,18 +70,18 @@ impl Navigation {
     }
 
     /// A new scene: its own camera, the image fitted.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         self.camera = None;
         self.placement = Placement::default();
     }
 
     /// The image scaled to fill the view.
-    pub fn fit(&mut self) {
+    pub(crate) fn fit(&mut self) {
         self.placement = Placement::default();
     }
 
     /// One image pixel per screen pixel.
-    pub fn actual_size(&mut self) {
+    pub(crate) fn actual_size(&mut self) {
         self.placement = Placement {
             zoom: Zoom::Scale(1.0),
             ..Placement::default()

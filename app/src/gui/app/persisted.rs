@@ -19,11 +19,11 @@ const MAX_RECENT: usize = 8;
 /// What the window keeps of a session beside the controls.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
-pub struct Session {
-    pub last_scene: Option<SceneSource>,
+pub(crate) struct Session {
+    pub(crate) last_scene: Option<SceneSource>,
     /// Files opened recently, newest first.
-    pub recent: Vec<PathBuf>,
-    pub show_stats: bool,
+    pub(crate) recent: Vec<PathBuf>,
+    pub(crate) show_stats: bool,
 }
 
 impl Default for Session {
@@ -38,7 +38,7 @@ impl Default for Session {
 
 impl Session {
     /// Puts `path` first in the recent files.
-    pub fn remember(&mut self, path: PathBuf) {
+    pub(crate) fn remember(&mut self, path: PathBuf) {
         self.recent.retain(|p| p != &path);
         self.recent.insert(0, path);
         self.recent.truncate(MAX_RECENT);
@@ -80,7 +80,7 @@ impl Default for Saved {
 
 /// The controls, session and lesson progress `storage` holds, or the
 /// defaults.
-pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Record) {
+pub(crate) fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Record) {
     let saved = storage
         .and_then(|s| s.get_string(eframe::APP_KEY))
         .and_then(|text| read(&text));
@@ -103,7 +103,7 @@ pub fn restore(storage: Option<&dyn eframe::Storage>) -> (Controls, Session, Rec
 }
 
 /// Writes `controls`, `session` and the lessons' `progress` into `storage`.
-pub fn save(
+pub(crate) fn save(
     storage: &mut dyn eframe::Storage,
     controls: &Controls,
     session: &Session,

@@ -26,7 +26,7 @@ use crate::measure::study::{Param, Point};
 use super::lesson_fetch::FetchFor;
 
 /// Results of background dialogs and saves, delivered to the UI thread.
-pub enum Reply {
+pub(crate) enum Reply {
     Open(PathBuf),
     /// A folder of lessons to add to the Lessons panel's list.
     LessonFolder(PathBuf),
@@ -57,15 +57,15 @@ pub enum Reply {
 }
 
 /// An edited scene to write: which side's, and its history state then.
-pub struct SceneSave {
-    pub scene: Scene,
-    pub side: SideId,
-    pub state: u64,
+pub(crate) struct SceneSave {
+    pub(crate) scene: Scene,
+    pub(crate) side: SideId,
+    pub(crate) state: u64,
 }
 
 impl SceneSave {
     /// The scene as P3F in `path`, its skybox still found from there.
-    pub fn write(&self, path: &Path) -> anyhow::Result<()> {
+    pub(crate) fn write(&self, path: &Path) -> anyhow::Result<()> {
         let folder = match path.parent() {
             Some(p) if !p.as_os_str().is_empty() => p,
             _ => Path::new("."),
@@ -76,7 +76,7 @@ impl SceneSave {
 
     /// The name a save dialog offers: `<stem>-edited.p3f` beside the
     /// scene's file (the current folder for a bundled scene).
-    pub fn suggested(&self, source: &SceneSource) -> (PathBuf, String) {
+    pub(crate) fn suggested(&self, source: &SceneSource) -> (PathBuf, String) {
         let stem = Path::new(&source.label())
             .file_stem()
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
@@ -93,7 +93,7 @@ impl SceneSave {
 }
 
 /// What a save writes: the shown render (PNG) or the linear film (EXR).
-pub enum SaveImage {
+pub(crate) enum SaveImage {
     /// Boxed: a snapshot's statistics are far larger than the film's
     /// handle.
     Shown(Box<Snapshot>),
@@ -102,7 +102,7 @@ pub enum SaveImage {
 
 impl SaveImage {
     /// Side `side`'s render on screen, as PNG or (`exr`) its linear film.
-    pub fn of(side: &Side, exr: bool) -> anyhow::Result<Self> {
+    pub(crate) fn of(side: &Side, exr: bool) -> anyhow::Result<Self> {
         let image = if exr {
             side.engine.linear_image().map(SaveImage::Linear)
         } else {
@@ -115,7 +115,7 @@ impl SaveImage {
     }
 
     /// The image at its full resolution, encoded as its file.
-    pub fn encode(&self) -> anyhow::Result<Vec<u8>> {
+    pub(crate) fn encode(&self) -> anyhow::Result<Vec<u8>> {
         let mut bytes = Cursor::new(Vec::new());
         match self {
             SaveImage::Linear(film) => film.write_to(&mut bytes, image::ImageFormat::OpenExr)?,
@@ -138,7 +138,7 @@ pub struct FileQuestion {
     /// The filter's name ("PNG image") and its extensions.
     pub filter: (&'static str, &'static [&'static str]),
     /// Where the dialog opens.
-    pub folder: Option<PathBuf>,
+    pub(crate) folder: Option<PathBuf>,
     /// The name it offers.
     pub name: Option<String>,
 }
@@ -151,7 +151,7 @@ pub trait FileDialog: Send + Sync {
 }
 
 /// The desktop's own dialog (rfd).
-pub struct NativeDialog;
+pub(crate) struct NativeDialog;
 
 impl FileDialog for NativeDialog {
     fn ask(&self, question: &FileQuestion) -> Option<PathBuf> {
@@ -177,7 +177,7 @@ impl FileDialog for NativeDialog {
 
 /// A dialog answered with the one path it was made with: what a test
 /// chooses without a desktop to show a dialog on.
-pub struct Answer(pub PathBuf);
+pub(crate) struct Answer(pub PathBuf);
 
 impl FileDialog for Answer {
     fn ask(&self, _question: &FileQuestion) -> Option<PathBuf> {
@@ -187,10 +187,10 @@ impl FileDialog for Answer {
 
 /// The file dialogs, each asked on a thread of its own, and the channel
 /// their threads answer on.
-pub struct Dialogs {
+pub(crate) struct Dialogs {
     sender: Sender<Reply>,
     replies: Receiver<Reply>,
-    pub dialog: Arc<dyn FileDialog>,
+    pub(crate) dialog: Arc<dyn FileDialog>,
 }
 
 impl Default for Dialogs {
@@ -208,7 +208,7 @@ impl Dialogs {
     /// Reads the bytes of `file`, dropped but no file on disk (the web
     /// page's), as the platform gives them (`target::read_dropped`: at
     /// once on the desktop, later on the page), and replies with them.
-    pub fn read_dropped(&self, file: Arc<dyn egui::DroppedFile>, ctx: &egui::Context) {
+    pub(crate) fn read_dropped(&self, file: Arc<dyn egui::DroppedFile>, ctx: &egui::Context) {
         let (reply, ctx) = (self.sender.clone(), ctx.clone());
         let path = file.path().to_path_buf();
         target::read_dropped(file, move |bytes| {
@@ -220,7 +220,7 @@ impl Dialogs {
     /// Fetches `url` from the page's site (`target::fetch`, followed by
     /// `progress`) and replies with its bytes, as fetch number `id`, for
     /// what `for_what` says.
-    pub fn fetch(&self, url: &str, id: u64, for_what: FetchFor, progress: Transfer) {
+    pub(crate) fn fetch(&self, url: &str, id: u64, for_what: FetchFor, progress: Transfer) {
         let (reply, url) = (self.sender.clone(), url.to_string());
         target::fetch(&url.clone(), progress, move |bytes| {
             let _ = reply.send(Reply::Fetched {
@@ -233,7 +233,7 @@ impl Dialogs {
     }
 
     /// The replies that came in since the last frame.
-    pub fn take(&self) -> Vec<Reply> {
+    pub(crate) fn take(&self) -> Vec<Reply> {
         self.replies.try_iter().collect()
     }
 
@@ -284,7 +284,7 @@ impl Dialogs {
     }
 
     /// The native open dialog; false when no thread could be started.
-    pub fn open(&self) -> bool {
+    pub(crate) fn open(&self) -> bool {
         let question = FileQuestion {
             save: false,
             pick_folder: false,
@@ -306,7 +306,7 @@ impl Dialogs {
 
     /// The native folder dialog for a folder of lessons (the Lessons
     /// window's Lesson folder...); false when no thread could be started.
-    pub fn open_lesson_folder(&self) -> bool {
+    pub(crate) fn open_lesson_folder(&self) -> bool {
         let question = FileQuestion {
             save: false,
             pick_folder: true,
@@ -326,7 +326,7 @@ impl Dialogs {
     /// The native save dialog for the lessons' `progress` (the Lessons
     /// window's Export progress...), offered as the student's name, and
     /// the write; false when no thread could be started.
-    pub fn save_progress(&self, progress: Progress) -> bool {
+    pub(crate) fn save_progress(&self, progress: Progress) -> bool {
         let question = FileQuestion {
             save: true,
             pick_folder: false,
@@ -347,7 +347,7 @@ impl Dialogs {
     /// The native save dialog for a study's chart (its `points` of
     /// `param` on `subject`), and the chart drawn and written, off the
     /// window's thread; false when no thread could be started.
-    pub fn save_study_chart(&self, param: Param, points: Vec<Point>, subject: &str) -> bool {
+    pub(crate) fn save_study_chart(&self, param: Param, points: Vec<Point>, subject: &str) -> bool {
         let question = FileQuestion {
             save: true,
             pick_folder: false,
@@ -367,7 +367,7 @@ impl Dialogs {
 
     /// The native save dialog for `image`, named after `scene`, and the
     /// write; false when no thread could be started.
-    pub fn save(&self, image: SaveImage, scene: &str) -> bool {
+    pub(crate) fn save(&self, image: SaveImage, scene: &str) -> bool {
         let stem = Path::new(scene)
             .file_stem()
             .map_or_else(|| "render".into(), |s| s.to_string_lossy().into_owned());
@@ -395,7 +395,7 @@ impl Dialogs {
 impl Dialogs {
     /// The native save dialog for an edited scene from `source`, and the
     /// write; false when no thread could be started.
-    pub fn save_scene(&self, save: SceneSave, source: &SceneSource) -> bool {
+    pub(crate) fn save_scene(&self, save: SceneSave, source: &SceneSource) -> bool {
         let (folder, name) = save.suggested(source);
         let question = FileQuestion {
             save: true,
@@ -421,9 +421,9 @@ impl Dialogs {
 }
 
 /// `--screenshot`: where and when, and whether it was asked for already.
-pub struct ScreenshotRequest {
+pub(crate) struct ScreenshotRequest {
     plan: ScreenshotPlan,
-    pub outcome: ScreenshotOutcome,
+    pub(crate) outcome: ScreenshotOutcome,
     opened_at: Instant,
     requested: bool,
     /// Where side A's image was drawn in the last frame, in points.
@@ -436,7 +436,7 @@ pub struct ScreenshotRequest {
 }
 
 impl ScreenshotRequest {
-    pub fn new(plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
+    pub(crate) fn new(plan: ScreenshotPlan, outcome: ScreenshotOutcome) -> Self {
         Self {
             plan,
             outcome,
@@ -449,7 +449,7 @@ impl ScreenshotRequest {
 
     /// Keeps where the viewport drew side A's image this frame, for the
     /// line that reports the screenshot.
-    pub fn saw_image_at(&mut self, rect: Option<egui::Rect>) {
+    pub(crate) fn saw_image_at(&mut self, rect: Option<egui::Rect>) {
         self.layout_settled = rect == self.image_rect;
         self.image_rect = rect;
     }
@@ -457,7 +457,13 @@ impl ScreenshotRequest {
     /// Asks egui for the screenshot once it is due: after the plan's delay,
     /// or once `a`'s render is done and on screen (or `error` shows). The
     /// result comes back through `dialogs`.
-    pub fn take_when_due(&mut self, ctx: &egui::Context, a: &Side, error: bool, dialogs: &Dialogs) {
+    pub(crate) fn take_when_due(
+        &mut self,
+        ctx: &egui::Context,
+        a: &Side,
+        error: bool,
+        dialogs: &Dialogs,
+    ) {
         if self.requested {
             return;
         }

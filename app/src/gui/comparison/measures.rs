@@ -21,7 +21,7 @@ impl Comparison {
     /// changed: of the values of `view` when it is a cost view (and B a
     /// render), else of the images. Call once the sides' images are
     /// uploaded.
-    pub fn refresh(&mut self, ctx: &egui::Context, a: &Side, b: &Side, view: Option<View>) {
+    pub(crate) fn refresh(&mut self, ctx: &egui::Context, a: &Side, b: &Side, view: Option<View>) {
         let (engine_a, image_a) = (&a.engine, &a.image);
         let versions = (engine_a.version(), self.b_version(b));
         let value_view = view.filter(|v| v.is_scalar() && self.reference.is_none());

@@ -59,9 +59,9 @@ type ValuesKey = (Version, Version, View);
 pub struct Comparison {
     pub layout: CompareLayout,
     /// Divider of the split view, as a fraction of the image width.
-    pub split: f32,
+    pub(crate) split: f32,
     /// Amplification of the difference heat map.
-    pub gain: f32,
+    pub(crate) gain: f32,
     difference: Option<TextureHandle>,
     /// What the difference map was made from: the images' versions, its
     /// gain, and the view whose values it shows (`None`: the images).
@@ -79,10 +79,10 @@ pub struct Comparison {
     reference_changes: u64,
     picking: Option<PendingReference>,
     /// Why the last image picked could not be read.
-    pub picking_error: Option<String>,
+    pub(crate) picking_error: Option<String>,
     /// B adaptive at A's cost: it renders once A is done, stopped at A's
     /// samples or A's time.
-    pub b_matches: Option<Match>,
+    pub(crate) b_matches: Option<Match>,
 }
 
 impl Default for Comparison {
@@ -108,7 +108,7 @@ impl Default for Comparison {
 
 impl Comparison {
     /// Makes `reference` side B (or a render again with `None`).
-    pub fn set_reference(&mut self, reference: Option<ReferenceImage>) {
+    pub(crate) fn set_reference(&mut self, reference: Option<ReferenceImage>) {
         self.reference = reference;
         self.reference_changes += 1;
         self.forget_results();
@@ -117,7 +117,7 @@ impl Comparison {
     /// Makes the image at `path` side B; why it cannot be read shows under
     /// the reference controls. Read on the calling thread (the file dialog
     /// reads on its own).
-    pub fn open_reference(&mut self, path: &Path, encoding: Encoding) {
+    pub(crate) fn open_reference(&mut self, path: &Path, encoding: Encoding) {
         match ReferenceImage::open(path, encoding) {
             Ok(reference) => {
                 self.picking_error = None;
@@ -128,7 +128,7 @@ impl Comparison {
     }
 
     /// Whether the reference image is resized to A's size.
-    pub fn set_fit(&mut self, fit: bool) {
+    pub(crate) fn set_fit(&mut self, fit: bool) {
         if let Some(reference) = &mut self.reference {
             reference.fit = fit;
             self.reference_changes += 1;
@@ -143,17 +143,17 @@ impl Comparison {
 
     /// Opens the file dialog for an image as B; `encoding` is A's, for EXR
     /// files.
-    pub fn pick_reference(&mut self, encoding: Encoding, ctx: &egui::Context) {
+    pub(crate) fn pick_reference(&mut self, encoding: Encoding, ctx: &egui::Context) {
         self.picking = PendingReference::pick(encoding, waker(ctx));
     }
 
     /// Whether the file dialog for an image is open.
-    pub fn is_picking(&self) -> bool {
+    pub(crate) fn is_picking(&self) -> bool {
         self.picking.is_some()
     }
 
     /// Takes the image the dialog read, once it is done.
-    pub fn receive_picked(&mut self) {
+    pub(crate) fn receive_picked(&mut self) {
         let Some(outcome) = self.picking.as_ref().and_then(PendingReference::poll) else {
             return;
         };
@@ -179,7 +179,7 @@ impl Comparison {
 
     /// B's textures at A's `size`, bottom first: the reference image, or
     /// B's render over its backdrop.
-    pub fn b_layers(
+    pub(crate) fn b_layers(
         &mut self,
         ctx: &egui::Context,
         b: &Side,
@@ -194,12 +194,12 @@ impl Comparison {
     /// Whether B's textures cover its image with opaque pixels: a finished
     /// first pass (or backdrop) of its render; a reference image may have
     /// transparent pixels of its own.
-    pub fn b_is_opaque(&self, b: &Side) -> bool {
+    pub(crate) fn b_is_opaque(&self, b: &Side) -> bool {
         self.reference.is_none() && b.image.is_opaque()
     }
 
     /// A opened another scene: what was measured of the last one goes.
-    pub fn forget_results(&mut self) {
+    pub(crate) fn forget_results(&mut self) {
         self.metrics = None;
         self.metrics_of = None;
         self.pending = None;
@@ -223,7 +223,7 @@ impl Comparison {
     }
 
     /// Whether the metrics are being computed.
-    pub fn is_measuring(&self) -> bool {
+    pub(crate) fn is_measuring(&self) -> bool {
         self.pending.is_some()
     }
 }

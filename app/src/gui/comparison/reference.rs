@@ -15,11 +15,11 @@ use crate::measure::ab::{FittedReference, fit_reference, read_reference};
 
 /// The image side B shows.
 pub struct ReferenceImage {
-    pub path: PathBuf,
+    pub(crate) path: PathBuf,
     /// As read from the file (EXR already encoded like A).
     original: RgbImage,
     /// Resize it to A's size instead of refusing a mismatch.
-    pub fit: bool,
+    pub(crate) fit: bool,
     fitted: Option<Fitted>,
     texture: Option<TextureHandle>,
 }
@@ -35,11 +35,14 @@ struct Fitted {
 type Picked = Option<Result<(PathBuf, RgbImage), String>>;
 
 /// A file dialog and the read, on their own thread.
-pub struct PendingReference(Receiver<Picked>);
+pub(crate) struct PendingReference(Receiver<Picked>);
 
 impl PendingReference {
     /// Asks for an image file and reads it (`None` when cancelled).
-    pub fn pick(encoding: Encoding, wake: impl Fn() + Send + 'static) -> Option<PendingReference> {
+    pub(crate) fn pick(
+        encoding: Encoding,
+        wake: impl Fn() + Send + 'static,
+    ) -> Option<PendingReference> {
         let (tx, rx) = channel();
         target::spawn("reference-dialog", move || {
             let picked = target::FileDialog::new()
@@ -55,7 +58,7 @@ impl PendingReference {
 
     /// The dialog's outcome once there is one: `Some(None)` when nothing
     /// was picked.
-    pub fn poll(&self) -> Option<Option<Result<ReferenceImage, String>>> {
+    pub(crate) fn poll(&self) -> Option<Option<Result<ReferenceImage, String>>> {
         let picked = self.0.try_recv().ok()?;
         Some(picked.map(|r| r.map(|(path, image)| ReferenceImage::new(path, image))))
     }
@@ -69,7 +72,7 @@ fn read(path: &Path, encoding: Encoding) -> Result<(PathBuf, RgbImage), String> 
 }
 
 impl ReferenceImage {
-    pub fn new(path: PathBuf, original: RgbImage) -> Self {
+    pub(crate) fn new(path: PathBuf, original: RgbImage) -> Self {
         Self {
             path,
             original,
@@ -80,7 +83,7 @@ impl ReferenceImage {
     }
 
     /// Reads `path` on the calling thread (tests, and files given by name).
-    pub fn open(path: &Path, encoding: Encoding) -> Result<Self, String> {
+    pub(crate) fn open(path: &Path, encoding: Encoding) -> Result<Self, String> {
         read(path, encoding).map(|(path, image)| Self::new(path, image))
     }
 
@@ -94,7 +97,7 @@ impl ReferenceImage {
     }
 
     /// The image at A's `size`, or why it cannot be compared at it.
-    pub fn at_size(&mut self, size: (u32, u32)) -> &Result<FittedReference, String> {
+    pub(crate) fn at_size(&mut self, size: (u32, u32)) -> &Result<FittedReference, String> {
         let stale = !matches!(&self.fitted, Some(f) if f.size == size && f.fit == self.fit);
         if stale {
             self.fitted = None;
@@ -113,7 +116,7 @@ impl ReferenceImage {
 
     /// The texture of what B shows: the fitted image, or the file's own
     /// when it cannot be fitted (the numbers then say why).
-    pub fn texture(&mut self, ctx: &egui::Context, size: (u32, u32)) -> TextureHandle {
+    pub(crate) fn texture(&mut self, ctx: &egui::Context, size: (u32, u32)) -> TextureHandle {
         self.at_size(size);
         if let Some(texture) = &self.texture {
             return texture.clone();

@@ -21,7 +21,7 @@ const GRAB_RADIUS: f32 = 12.0;
 
 /// What a drag in the observer view holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Grab {
+pub(crate) enum Grab {
     Light(usize),
     Object(usize),
 }
@@ -31,7 +31,7 @@ impl Editor {
     /// shows `a`'s scene: selections, and the edits of A that drags make
     /// (only while the editor edits A: `edits_a`). The gestures left in
     /// `response` move the observer's camera.
-    pub fn observer_input(
+    pub(crate) fn observer_input(
         &mut self,
         ui: &Ui,
         response: &mut ViewportResponse,
@@ -116,7 +116,7 @@ impl Editor {
 
     /// Draws the selected object's box and a ring round the selected
     /// light over the observer's image in `rect`.
-    pub fn paint_in_observer(&mut self, ui: &Ui, observer: &Observer, a: &Side, rect: Rect) {
+    pub(crate) fn paint_in_observer(&mut self, ui: &Ui, observer: &Observer, a: &Side, rect: Rect) {
         let Some(scene) = a.engine.scene() else {
             return;
         };

@@ -25,7 +25,7 @@ use crate::figures::projection::Projector;
 use crate::load::SceneSource;
 use crate::reports::ray_tree;
 
-pub use panel::window;
+pub(crate) use panel::window;
 
 /// The selection's colour, on the image and in the observer view.
 const SELECTION_COLOUR: Color32 = Color32::from_rgb(255, 170, 0);
@@ -47,23 +47,23 @@ pub struct Editor {
     /// The selected light.
     pub light: Option<usize>,
     /// The object list's filter.
-    pub search: String,
+    pub(crate) search: String,
     /// For a material several objects share: whether edits go to all of
     /// them (true) or the selected object alone, asked once per selection.
-    pub shared_scope: Option<(usize, bool)>,
+    pub(crate) shared_scope: Option<(usize, bool)>,
     /// The pixel whose eye hit the next selection takes (a click).
-    pub pick_at: Option<(u32, u32)>,
+    pub(crate) pick_at: Option<(u32, u32)>,
     /// Left drag on the image moves the selected object instead of the
     /// camera.
     pub move_mode: bool,
     /// An open or reload waiting for the user's word on unsaved edits.
     pub pending: Option<Pending>,
     /// Why the last edit was refused.
-    pub message: Option<String>,
+    pub(crate) message: Option<String>,
     /// What the drag under way in the observer view holds.
     grab: Option<in_observer::Grab>,
     /// A light was selected outside the panel: its list opens.
-    pub reveal_lights: bool,
+    pub(crate) reveal_lights: bool,
     /// The selected object's box, and what it was made for (the world's
     /// address, the object).
     outline: Option<((usize, usize), Aabb)>,
@@ -72,7 +72,7 @@ pub struct Editor {
 impl Editor {
     /// Selects `object` (or nothing): the shared-material question is
     /// asked again for it.
-    pub fn select(&mut self, object: Option<usize>) {
+    pub(crate) fn select(&mut self, object: Option<usize>) {
         if self.selected != object {
             self.shared_scope = None;
         }
@@ -81,7 +81,7 @@ impl Editor {
 
     /// Draws the selected object's bounding box over the image of `engine`
     /// in `rect`, through the camera it renders with.
-    pub fn paint_outline(&mut self, ui: &Ui, engine: &Engine, rect: Rect) {
+    pub(crate) fn paint_outline(&mut self, ui: &Ui, engine: &Engine, rect: Rect) {
         let (Some(scene), Some(settings)) = (engine.scene(), engine.settings()) else {
             return;
         };
@@ -92,7 +92,7 @@ impl Editor {
 
     /// Draws the selected object's bounding box through `camera`, whose
     /// image fills `rect`.
-    pub fn paint_outline_through(
+    pub(crate) fn paint_outline_through(
         &mut self,
         ui: &Ui,
         world: &Arc<World>,
@@ -142,7 +142,7 @@ impl Editor {
     /// In move mode, turns a drag over the image (`image_rect`, the image
     /// of `side`) into a translation of the selected object parallel to
     /// the image plane; returns the gestures that still move the camera.
-    pub fn take_drag(
+    pub(crate) fn take_drag(
         &mut self,
         gestures: Vec<Gesture>,
         side: &Side,
@@ -193,7 +193,7 @@ impl Editor {
 
 /// The object the eye ray of `engine`'s render through `pixel` meets
 /// first, if any.
-pub fn object_at(engine: &Engine, pixel: (u32, u32)) -> Option<usize> {
+pub(crate) fn object_at(engine: &Engine, pixel: (u32, u32)) -> Option<usize> {
     let (scene, settings) = (engine.scene()?, engine.settings()?);
     let tree = ray_tree::inspect(&scene.world, engine.index(), settings, pixel, 0).ok()?;
     match &tree.nodes.first()?.outcome {

@@ -19,15 +19,15 @@ const LIST_HEIGHT: f32 = 180.0;
 
 /// What the window did beyond the edits it applied.
 #[derive(Default)]
-pub struct EditorOutcome {
+pub(crate) struct EditorOutcome {
     /// A camera field changed: the scene's camera is the one to render,
     /// not the orbit's.
-    pub camera_edited: bool,
+    pub(crate) camera_edited: bool,
 }
 
 /// The editor window while open; edits go to `side` (the side the panel
 /// edits), commands (undo, redo, save) into `commands`.
-pub fn window(
+pub(crate) fn window(
     ctx: &egui::Context,
     editor: &mut Editor,
     side: &mut Side,

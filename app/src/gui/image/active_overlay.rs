@@ -27,7 +27,7 @@ pub struct ActiveOverlay {
 
 impl ActiveOverlay {
     /// The side panel's switch, beside the adaptive controls.
-    pub fn ui(&mut self, ui: &mut Ui) {
+    pub(crate) fn ui(&mut self, ui: &mut Ui) {
         ui.checkbox(&mut self.on, "Show active pixels")
             .on_hover_text(
                 "Tint the pixels adaptive sampling still refines over side A's image; they \
@@ -45,7 +45,7 @@ impl ActiveOverlay {
     }
 
     /// Tints `engine`'s active pixels over `image_rect`.
-    pub fn paint(&mut self, ui: &Ui, engine: &Engine, image_rect: Rect) {
+    pub(crate) fn paint(&mut self, ui: &Ui, engine: &Engine, image_rect: Rect) {
         if !self.on {
             return;
         }

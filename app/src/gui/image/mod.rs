@@ -3,8 +3,8 @@
 //! sampling's active pixels) and the
 //! per-pixel views the image can show instead of the render.
 
-pub mod active_overlay;
-pub mod pixel_views;
-pub mod ray_paths;
-pub mod structure_overlay;
-pub mod viewport;
+pub(crate) mod active_overlay;
+pub(crate) mod pixel_views;
+pub(crate) mod ray_paths;
+pub(crate) mod structure_overlay;
+pub(crate) mod viewport;

@@ -18,7 +18,7 @@ use crate::gui::sides::{Engine, Version};
 pub struct PixelViews {
     pub view: View,
     pub scale: HeatScale,
-    pub log: bool,
+    pub(crate) log: bool,
     /// Fitted over both sides; refitted when an image or the choice changes.
     heat: Option<ViewHeatmap>,
     summaries: [Option<ViewSummary>; 2],
@@ -50,12 +50,12 @@ impl From<HeatScale> for ScaleKey {
 
 impl PixelViews {
     /// Whether renders must measure views: any view but the shaded image.
-    pub fn measures(&self) -> bool {
+    pub(crate) fn measures(&self) -> bool {
         self.view != View::Shaded
     }
 
     /// The next view (the `V` key).
-    pub fn cycle(&mut self) {
+    pub(crate) fn cycle(&mut self) {
         self.view = self.view.next();
     }
 
@@ -63,7 +63,7 @@ impl PixelViews {
     /// with the heat map fitted over side A and, in compare mode, side B
     /// together, so both read on one scale. Refits only when an image
     /// changed.
-    pub fn fit(
+    pub(crate) fn fit(
         &mut self,
         ctx: &egui::Context,
         a: &Engine,
@@ -122,7 +122,7 @@ impl PixelViews {
 
     /// The side panel's section: the selector, the scale, the legend and
     /// the numbers.
-    pub fn ui(&mut self, ui: &mut Ui, comparing: bool) {
+    pub(crate) fn ui(&mut self, ui: &mut Ui, comparing: bool) {
         ui.label("View (V cycles)")
             .on_hover_text("What the image shows per pixel");
         ui.horizontal_wrapped(|ui| {
@@ -228,7 +228,7 @@ fn describe(view: View) -> &'static str {
 
 /// The readout of a scalar view's raw value under the cursor; `None`
 /// while the image shows no numbers.
-pub fn readout(engine: &Engine, view: View, x: u32, y: u32) -> Option<String> {
+pub(crate) fn readout(engine: &Engine, view: View, x: u32, y: u32) -> Option<String> {
     if !view.is_scalar() {
         return None;
     }

@@ -12,7 +12,7 @@ use crate::gui::sides::Engine;
 /// `engine`'s render, coloured by kind; shadow rays to their light sample,
 /// dashed when blocked; rays that leave the scene as a short stub. Returns
 /// the segments drawn.
-pub fn paint(ui: &Ui, tree: &RayTree, engine: &Engine, image_rect: Rect) -> usize {
+pub(crate) fn paint(ui: &Ui, tree: &RayTree, engine: &Engine, image_rect: Rect) -> usize {
     let (Some(settings), Some(scene)) = (engine.settings(), engine.scene()) else {
         return 0;
     };
@@ -48,7 +48,7 @@ pub fn paint(ui: &Ui, tree: &RayTree, engine: &Engine, image_rect: Rect) -> usiz
 
 /// A ray's segment on screen: dashed where it was blocked or hidden, the
 /// same dashes in the image and in the observer view.
-pub fn segment(painter: &egui::Painter, [a, b]: [Pos2; 2], stroke: Stroke, dashed: bool) {
+pub(crate) fn segment(painter: &egui::Painter, [a, b]: [Pos2; 2], stroke: Stroke, dashed: bool) {
     if dashed {
         painter.extend(egui::Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
     } else {

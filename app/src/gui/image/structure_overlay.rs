@@ -15,11 +15,11 @@ use crate::gui::sides::Engine;
 /// The overlay's controls and the segments of the structure it draws.
 #[derive(Default)]
 pub struct StructureOverlay {
-    pub on: bool,
+    pub(crate) on: bool,
     /// BVH depth to draw (the root is 0).
-    pub depth: u32,
+    pub(crate) depth: u32,
     /// Draw every BVH leaf instead of one depth.
-    pub leaves: bool,
+    pub(crate) leaves: bool,
     /// The segments and what they were made from.
     cache: Option<(CacheKey, Vec<[Vec3A; 2]>)>,
     /// Cells or nodes of the inspected pixel's eye ray drawn in the last
@@ -32,7 +32,7 @@ type CacheKey = (usize, StructureLayer);
 
 impl StructureOverlay {
     /// The side panel's controls.
-    pub fn ui(&mut self, ui: &mut Ui) {
+    pub(crate) fn ui(&mut self, ui: &mut Ui) {
         ui.checkbox(&mut self.on, "Structure overlay")
             .on_hover_text("Draw the BVH's boxes or the grid's cells over the image");
         if self.on {
@@ -47,7 +47,7 @@ impl StructureOverlay {
     }
 
     /// The layer for the structure `engine` renders with, if it has one.
-    pub fn layer(&self, kind: AccelKind) -> Option<StructureLayer> {
+    pub(crate) fn layer(&self, kind: AccelKind) -> Option<StructureLayer> {
         match kind {
             AccelKind::Bvh if self.leaves => Some(StructureLayer::BvhLeaves),
             AccelKind::Bvh => Some(StructureLayer::BvhDepth(self.depth)),
@@ -69,7 +69,7 @@ impl StructureOverlay {
     /// through the camera of its current settings, and over it the cells
     /// or nodes of `visits` (the inspected pixel's eye ray) that `step`
     /// draws, yellow to red in visiting order.
-    pub fn paint(
+    pub(crate) fn paint(
         &mut self,
         ui: &Ui,
         engine: &Engine,

@@ -6,7 +6,7 @@ use egui::{Color32, Pos2, Rect, Sense, TextureHandle, Vec2, pos2, vec2};
 
 /// How the image is scaled.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Zoom {
+pub(crate) enum Zoom {
     /// As large as the view allows.
     Fit,
     /// Screen pixels per image pixel.
@@ -15,7 +15,7 @@ pub enum Zoom {
 
 /// A camera gesture made over the image.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Gesture {
+pub(crate) enum Gesture {
     /// Left drag: turn around `at` (radians).
     Orbit { yaw: f32, pitch: f32 },
     /// Shift + left drag or middle drag: slide the camera (fractions of the
@@ -27,10 +27,10 @@ pub enum Gesture {
 
 /// Zoom and pan of the view; never restarts the render.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Placement {
-    pub zoom: Zoom,
+pub(crate) struct Placement {
+    pub(crate) zoom: Zoom,
     /// Offset of the image centre from the view centre, in points.
-    pub offset: Vec2,
+    pub(crate) offset: Vec2,
 }
 
 impl Default for Placement {
@@ -44,19 +44,19 @@ impl Default for Placement {
 
 /// What happened over the image this frame.
 #[derive(Debug, Default)]
-pub struct ViewportResponse {
-    pub gestures: Vec<Gesture>,
+pub(crate) struct ViewportResponse {
+    pub(crate) gestures: Vec<Gesture>,
     /// True while a camera drag is in progress.
-    pub dragging_camera: bool,
+    pub(crate) dragging_camera: bool,
     /// The image pixel under the cursor, in the displayed image's pixels.
-    pub hovered_pixel: Option<(u32, u32)>,
+    pub(crate) hovered_pixel: Option<(u32, u32)>,
     /// Where the (first) image is drawn on screen, for overlays.
-    pub image_rect: Option<Rect>,
+    pub(crate) image_rect: Option<Rect>,
 }
 
 impl ViewportResponse {
     /// What happened over either of two views showing the same camera.
-    pub fn merge(mut self, other: ViewportResponse) -> ViewportResponse {
+    pub(crate) fn merge(mut self, other: ViewportResponse) -> ViewportResponse {
         self.gestures.extend(other.gestures);
         self.dragging_camera |= other.dragging_camera;
         self.hovered_pixel = self.hovered_pixel.or(other.hovered_pixel);
@@ -66,28 +66,28 @@ impl ViewportResponse {
 }
 
 /// The textures a view stacks, bottom first, each stretched over the image.
-pub struct Layers<'a> {
-    pub textures: Vec<&'a TextureHandle>,
+pub(crate) struct Layers<'a> {
+    pub(crate) textures: Vec<&'a TextureHandle>,
     /// Whether together they cover the image with opaque pixels (no hole
     /// of a first pass shows through). Then the view's background is
     /// painted only around the image: on a software rasterizer every
     /// fragment of every frame costs, and under the image it was a third
     /// of a progress frame's (llvmpipe, 1280 x 820).
-    pub opaque: bool,
+    pub(crate) opaque: bool,
 }
 
 /// A second image drawn right of a draggable divider (the compare mode's
 /// split view).
-pub struct SplitWith<'a> {
-    pub texture: &'a TextureHandle,
+pub(crate) struct SplitWith<'a> {
+    pub(crate) texture: &'a TextureHandle,
     /// Where the divider is, as a fraction of the image width.
-    pub at: &'a mut f32,
+    pub(crate) at: &'a mut f32,
 }
 
 /// Shows `layers` (the top one an image of `image_size` pixels standing for
 /// a render of `full_size`) in the available space, and `split`'s image
 /// right of its divider.
-pub fn show(
+pub(crate) fn show(
     ui: &mut egui::Ui,
     view: &mut Placement,
     layers: &Layers<'_>,
@@ -100,7 +100,7 @@ pub fn show(
 
 /// [`show`] for an image named `name` for screen readers (and for tests
 /// that look for it): "Render", "Observer".
-pub fn show_named(
+pub(crate) fn show_named(
     ui: &mut egui::Ui,
     name: &str,
     view: &mut Placement,

@@ -12,17 +12,18 @@ use web_time::SystemTime;
 
 use crate::gui::platform::target;
 use crate::lessons::progress::Record;
-use crate::lessons::{self, Lesson, LessonState, Verdict};
+use crate::lessons::state::LessonState;
+use crate::lessons::{self, Lesson, Verdict};
 use crate::reports::lab::machine::utc_date;
 
-pub use panel::show;
+pub(crate) use panel::show;
 
 /// The Lessons panel.
 pub struct Lessons {
     pub open: bool,
     lessons: Vec<Lesson>,
     /// A bundled lesson that did not read (a build of a broken file).
-    pub problem: Option<String>,
+    pub(crate) problem: Option<String>,
     current: usize,
     step: usize,
     hints_shown: usize,
@@ -79,7 +80,7 @@ impl Lessons {
 
     /// Adds `lesson` (a teacher's file) and makes it current; a lesson of
     /// the same name is replaced.
-    pub fn add(&mut self, lesson: Lesson) {
+    pub(crate) fn add(&mut self, lesson: Lesson) {
         let at = match self.lessons.iter().position(|l| l.name == lesson.name) {
             Some(i) => {
                 self.lessons[i] = lesson;
@@ -97,7 +98,7 @@ impl Lessons {
     /// replaced), in chapter order after the bundled ones of the same
     /// chapter, and shows the folder's first: the teacher's class opens on
     /// the teacher's lesson. A folder with none keeps the lesson shown.
-    pub fn add_folder(&mut self, lessons: Vec<Lesson>) {
+    pub(crate) fn add_folder(&mut self, lessons: Vec<Lesson>) {
         let shown = self.lesson().map(|l| l.name.clone());
         let added: Vec<String> = lessons.iter().map(|l| l.name.clone()).collect();
         for lesson in lessons {
@@ -119,7 +120,7 @@ impl Lessons {
     }
 
     /// Makes lesson `index` current, at its first step not done.
-    pub fn choose(&mut self, index: usize) {
+    pub(crate) fn choose(&mut self, index: usize) {
         if index >= self.lessons.len() {
             return;
         }
@@ -131,7 +132,7 @@ impl Lessons {
     }
 
     /// Shows step `step` of the current lesson, its hints hidden, no answer.
-    pub fn go_to(&mut self, step: usize) {
+    pub(crate) fn go_to(&mut self, step: usize) {
         let steps = self.lesson().map_or(0, |l| l.steps.len());
         self.step = step.min(steps.saturating_sub(1));
         self.hints_shown = 0;
@@ -151,7 +152,7 @@ impl Lessons {
     }
 
     /// Forgets every step done of the current lesson.
-    pub fn reset_progress(&mut self) {
+    pub(crate) fn reset_progress(&mut self) {
         if let Some(name) = self.lesson().map(|l| l.name.clone()) {
             self.progress.forget(&name);
         }
@@ -159,13 +160,13 @@ impl Lessons {
     }
 
     /// Checks the answer typed or picked.
-    pub fn submit(&mut self) {
+    pub(crate) fn submit(&mut self) {
         let answer = self.answer.trim();
         self.submitted = (!answer.is_empty()).then(|| answer.to_string());
     }
 
     /// Shows one more hint.
-    pub fn more_hint(&mut self) {
+    pub(crate) fn more_hint(&mut self) {
         self.hints_shown += 1;
     }
 
@@ -175,7 +176,7 @@ impl Lessons {
     /// measurement renders. Takes a finished verdict, marking the step
     /// done with the time and the answer submitted: a done step stays
     /// done. `wake` asks for a frame when the verdict arrives.
-    pub fn keep_checking(
+    pub(crate) fn keep_checking(
         &mut self,
         looked_at: u64,
         state: impl FnOnce() -> Option<LessonState>,

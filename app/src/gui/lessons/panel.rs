@@ -17,20 +17,20 @@ const DONE: Color32 = Color32::from_rgb(90, 200, 110);
 
 /// What the window asks of the app this frame.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
-pub struct Asked {
+pub(crate) struct Asked {
     /// Restore the step's scene, settings and layout.
-    pub set_up: bool,
+    pub(crate) set_up: bool,
     /// Ask for a folder of lessons to add to the list.
-    pub folder: bool,
+    pub(crate) folder: bool,
     /// Ask where to save the progress (Export progress...).
-    pub export: bool,
+    pub(crate) export: bool,
 }
 
 /// Draws the panel when it is open: docked at the right of the image, so
 /// the image shrinks beside the step's text instead of hiding under it (a
 /// floating window covered the right of the image, where a teacher's
 /// lesson had put the object the step was about).
-pub fn show(ui: &mut Ui, lessons: &mut Lessons) -> Asked {
+pub(crate) fn show(ui: &mut Ui, lessons: &mut Lessons) -> Asked {
     let mut asked = Asked::default();
     if !lessons.open {
         return asked;

@@ -12,7 +12,7 @@ use crate::lessons::actions::SettingsLine;
 
 /// Where a link's scene or lesson comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Source {
+pub(crate) enum Source {
     /// A bundled scene's or lesson's name (`balls_low`, `shadows`).
     Bundled(String),
     /// A file on the page's own site, by a URL relative to the page
@@ -48,21 +48,21 @@ impl Source {
 
 /// What a page's query asks the window to open.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct Link {
+pub(crate) struct Link {
     /// A lesson: opened in the Lessons panel, its step set up.
-    pub lesson: Option<Source>,
+    pub(crate) lesson: Option<Source>,
     /// A class's folder, by the URL of its index file (`lessons.index`,
     /// one lesson file a line): its lessons listed, the first set up.
-    pub folder: Option<String>,
+    pub(crate) folder: Option<String>,
     /// The lesson's step to set up, counted from 1 as the Lessons panel
     /// counts them (the first when not given).
-    pub step: Option<usize>,
+    pub(crate) step: Option<usize>,
     /// A scene: opened as the scene picker or a dropped file would.
-    pub scene: Option<Source>,
+    pub(crate) scene: Option<Source>,
     /// Render settings in the command line's words, in the link's order:
     /// a flag's name without its `--` (`spp`, `accel`, `set`) and its
     /// value (empty for a switch such as `aa`).
-    pub settings: Vec<(String, String)>,
+    pub(crate) settings: Vec<(String, String)>,
 }
 
 impl Link {
@@ -74,7 +74,7 @@ impl Link {
     /// know, a value the flag refuses, a lesson, step or scene given twice
     /// or empty is an error naming it: a link that silently opened
     /// something else would mislead a whole class.
-    pub fn parse(query: &str) -> Result<Self, String> {
+    pub(crate) fn parse(query: &str) -> Result<Self, String> {
         let mut link = Link::default();
         let query = query.strip_prefix('?').unwrap_or(query);
         for pair in query.split('&').filter(|p| !p.is_empty()) {
@@ -138,7 +138,7 @@ impl Link {
     /// as a lesson writes them), or the word or value refused ("the
     /// link's `fast` is not a setting ..."). No command-line parser reads
     /// them, so a renamed flag breaks no link a teacher sent.
-    pub fn settings_line(&self) -> Result<SettingsLine, String> {
+    pub(crate) fn settings_line(&self) -> Result<SettingsLine, String> {
         if self.settings.iter().any(|(key, _)| key == "srgb") {
             return Err("the link's settings: the window shows sRGB always; drop srgb".into());
         }
@@ -165,7 +165,7 @@ impl Link {
 
     /// The query that opens this link (`?scene=balls_low&spp=4`), its
     /// values percent-encoded; empty when it opens nothing.
-    pub fn query(&self) -> String {
+    pub(crate) fn query(&self) -> String {
         let mut pairs = Vec::new();
         if let Some(lesson) = &self.lesson {
             pairs.push(format!("lesson={}", encode(lesson.text())));
@@ -197,7 +197,7 @@ impl Link {
 /// [`Link::settings`]: only what differs, so a link stays short. What no
 /// flag sets (the camera moved, soft shadows turned off when the scene
 /// has them, Keep refining) is left out.
-pub fn settings_flags(now: &RenderSettings, base: &RenderSettings) -> Vec<(String, String)> {
+pub(crate) fn settings_flags(now: &RenderSettings, base: &RenderSettings) -> Vec<(String, String)> {
     let mut flags = Vec::new();
     let mut flag = |key: &str, value: String| flags.push((key.to_string(), value));
     if now.width != base.width || now.height != base.height {
@@ -263,7 +263,7 @@ pub fn settings_flags(now: &RenderSettings, base: &RenderSettings) -> Vec<(Strin
 
 /// `relative` read beside `url`, as a page reads a relative link:
 /// `beside("class/lessons.index", "prism.toml")` is `class/prism.toml`.
-pub fn beside(url: &str, relative: &str) -> String {
+pub(crate) fn beside(url: &str, relative: &str) -> String {
     match url.rfind('/') {
         Some(slash) => format!("{}/{relative}", &url[..slash]),
         None => relative.to_string(),

@@ -8,7 +8,7 @@ use web_time::Instant;
 #[derive(Debug, Clone)]
 pub struct Animation {
     /// Phases (ray generations) drawn per second.
-    pub speed: f32,
+    pub(crate) speed: f32,
     /// How far it got, in phases; `None` at rest (everything drawn).
     time: Option<f32>,
     playing: bool,
@@ -30,19 +30,19 @@ impl Default for Animation {
 
 impl Animation {
     /// Starts again from the eye rays.
-    pub fn play(&mut self) {
+    pub(crate) fn play(&mut self) {
         self.time = Some(0.0);
         self.playing = true;
         self.advanced_at = None;
     }
 
     /// Holds where it is (or, at rest, stays at rest).
-    pub fn pause(&mut self) {
+    pub(crate) fn pause(&mut self) {
         self.playing = false;
     }
 
     /// Goes on from where it was paused.
-    pub fn resume(&mut self) {
+    pub(crate) fn resume(&mut self) {
         if self.time.is_some() {
             self.playing = true;
             self.advanced_at = None;
@@ -55,14 +55,14 @@ impl Animation {
 
     /// Shows the next generation whole, paused; after the last, the whole
     /// tree at rest.
-    pub fn step(&mut self, phases: u32) {
+    pub(crate) fn step(&mut self, phases: u32) {
         self.playing = false;
         let next = self.time.map_or(1.0, |t| t.floor() + 1.0);
         self.time = (next < phases as f32).then_some(next);
     }
 
     /// The animation at rest: every ray whole.
-    pub fn rest(&mut self) {
+    pub(crate) fn rest(&mut self) {
         self.time = None;
         self.playing = false;
     }
@@ -71,7 +71,7 @@ impl Animation {
     /// play or resume starts counting from it); at the end of `phases` it
     /// comes to rest. True while it still plays (the window asks for
     /// another frame).
-    pub fn advance(&mut self, now: Instant, phases: u32) -> bool {
+    pub(crate) fn advance(&mut self, now: Instant, phases: u32) -> bool {
         let (true, Some(time)) = (self.playing, self.time) else {
             return false;
         };
@@ -88,7 +88,7 @@ impl Animation {
 
     /// How much of a segment of `phase` is drawn: 0 before its turn, 1
     /// once it is whole.
-    pub fn fraction(&self, phase: u32) -> f32 {
+    pub(crate) fn fraction(&self, phase: u32) -> f32 {
         self.time
             .map_or(1.0, |t| (t - phase as f32).clamp(0.0, 1.0))
     }

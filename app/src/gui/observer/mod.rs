@@ -20,12 +20,12 @@ use crate::reports::ray_tree;
 use super::image::viewport::{Gesture, Placement, ViewportResponse};
 use super::sides::{Activity, Engine, LiveImage, RepaintWakers, Side, Version};
 
-pub use animation::Animation;
-pub use paint::paint;
+pub(crate) use animation::Animation;
+pub(crate) use paint::paint;
 
 /// Where the observer view goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ObserverLayout {
+pub(crate) enum ObserverLayout {
     /// Beside the camera's image.
     Beside,
     /// Instead of it.
@@ -38,20 +38,20 @@ const MAX_PATTERN_PIXELS: usize = 256;
 /// The observer's state.
 pub struct Observer {
     pub on: bool,
-    pub layout: ObserverLayout,
+    pub(crate) layout: ObserverLayout,
     /// Width of the observer's render in pixels; its height follows the
     /// view's shape.
-    pub resolution: u32,
+    pub(crate) resolution: u32,
     /// More pixels whose rays are drawn beside the pinned one.
-    pub pattern: Option<PixelPattern>,
+    pub(crate) pattern: Option<PixelPattern>,
     pub animation: Animation,
     /// Which recorded rays are drawn.
     pub filter: RayFilter,
     /// Fade each ray by its share of the pixel, so the rays that make the
     /// colour stand out.
-    pub fade: bool,
+    pub(crate) fade: bool,
     /// Zoom and pan of the observer's image.
-    pub placement: Placement,
+    pub(crate) placement: Placement,
     /// `None` until framed on the scene (and after a reset).
     pose: Option<CameraPose>,
     engine: Engine,
@@ -76,7 +76,7 @@ pub struct Observer {
 type TreesKey = (Vec<(RenderSettings, usize)>, Vec<(u32, u32)>, u32);
 
 impl Observer {
-    pub fn new(wakes: &RepaintWakers) -> Self {
+    pub(crate) fn new(wakes: &RepaintWakers) -> Self {
         let mut engine = wakes.engine();
         // The observer renders in the time the sides leave: it never slows
         // the render it explains.
@@ -109,7 +109,7 @@ impl Observer {
     }
 
     /// Back to the framing on the scene and its camera.
-    pub fn reset_camera(&mut self) {
+    pub(crate) fn reset_camera(&mut self) {
         self.pose = None;
         self.placement = Placement::default();
     }
@@ -132,7 +132,7 @@ impl Observer {
 
     /// Keeps the observer rendering side A's scene from its camera, framed
     /// on first use; nothing while the view is off.
-    pub fn sync(&mut self, a: &Side) -> Result<(), String> {
+    pub(crate) fn sync(&mut self, a: &Side) -> Result<(), String> {
         if !self.on {
             return Ok(());
         }
@@ -216,7 +216,7 @@ impl Observer {
 
     /// Uploads the observer's image at the progress pace, and keeps the
     /// distances of its finished render.
-    pub fn refresh(&mut self, ctx: &egui::Context, a: &Side, interval: std::time::Duration) {
+    pub(crate) fn refresh(&mut self, ctx: &egui::Context, a: &Side, interval: std::time::Duration) {
         if !self.on {
             return;
         }
@@ -247,7 +247,7 @@ impl Observer {
 
     /// Takes what happened over the observer's image: gestures move its
     /// camera (never the sides'), and the area's shape sizes its render.
-    pub fn take(&mut self, response: &ViewportResponse, area: egui::Rect) {
+    pub(crate) fn take(&mut self, response: &ViewportResponse, area: egui::Rect) {
         self.dragging = response.dragging_camera;
         if area.width() > 1.0 {
             self.aspect = (area.height() / area.width()).clamp(0.2, 5.0);
@@ -268,7 +268,7 @@ impl Observer {
     /// Records the trees to draw: side A's (and B's) of the pinned pixel and
     /// the pattern's pixels, again when a side's settings or the pixels
     /// change. A tree takes microseconds, so this runs on the UI thread.
-    pub fn record(&mut self, sides: &[&Side], pinned: Option<(u32, u32)>, sample: u32) {
+    pub(crate) fn record(&mut self, sides: &[&Side], pinned: Option<(u32, u32)>, sample: u32) {
         if !self.on {
             return;
         }

@@ -26,7 +26,7 @@ const PLANE_CELLS: usize = 12;
 
 /// Paints the figure over the observer's image in `rect`, the eye ray's
 /// walk as far as `step`; returns the segments painted.
-pub fn paint(
+pub(crate) fn paint(
     ui: &Ui,
     rect: Rect,
     observer: &Observer,

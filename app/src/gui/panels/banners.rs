@@ -11,7 +11,7 @@ use tracer::stats::SceneCounts;
 use crate::measure::cost::BruteForceCost;
 
 /// The error, wrapped to the panel's width, with its Dismiss button.
-pub fn error(ui: &mut Ui, error: &mut Option<String>) {
+pub(crate) fn error(ui: &mut Ui, error: &mut Option<String>) {
     let Some(message) = error.clone() else {
         return;
     };
@@ -43,7 +43,7 @@ fn banner(ui: &mut Ui, fill: Color32, contents: impl FnOnce(&mut Ui)) {
 /// Shows the banner when `settings` would be slow on a scene of `counts`
 /// (`side` prefixes its text: "B: "); true when the user asked to switch to
 /// the BVH.
-pub fn brute_force(
+pub(crate) fn brute_force(
     ui: &mut Ui,
     side: &str,
     settings: &RenderSettings,

@@ -21,28 +21,28 @@ const FLIP_KEY: egui::Key = egui::Key::X;
 const STATUS_HEIGHT: f32 = 22.0;
 
 /// What the image area shows and edits.
-pub struct CentralView<'a> {
-    pub sides: &'a Sides,
-    pub comparison: &'a mut Comparison,
-    pub placement: &'a mut Placement,
-    pub tools: &'a mut ToolsAndOverlays,
-    pub error: &'a mut Option<String>,
+pub(crate) struct CentralView<'a> {
+    pub(crate) sides: &'a Sides,
+    pub(crate) comparison: &'a mut Comparison,
+    pub(crate) placement: &'a mut Placement,
+    pub(crate) tools: &'a mut ToolsAndOverlays,
+    pub(crate) error: &'a mut Option<String>,
     /// The camera moves: the status line says the image is a preview.
-    pub moving: bool,
-    pub observer: &'a mut Observer,
+    pub(crate) moving: bool,
+    pub(crate) observer: &'a mut Observer,
 }
 
 /// What the user did in the image area.
-pub struct CentralOutcome {
+pub(crate) struct CentralOutcome {
     /// Gestures, hover and the camera drag over the image.
-    pub viewport: ViewportResponse,
+    pub(crate) viewport: ViewportResponse,
     /// Sides whose brute-force banner's "Switch to BVH" was clicked.
-    pub switch_to_bvh: Vec<SideId>,
+    pub(crate) switch_to_bvh: Vec<SideId>,
     /// Edits of side A dragged in the observer view.
-    pub observer_edits: Vec<Edit>,
+    pub(crate) observer_edits: Vec<Edit>,
 }
 
-pub fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
+pub(crate) fn show(ui: &mut Ui, view: CentralView<'_>) -> CentralOutcome {
     let CentralView {
         sides,
         comparison,

@@ -19,7 +19,7 @@ use crate::measure::value_difference::{ValueStats, diverging_colour};
 /// "A: grid off", "B: grid on, m = 4": what differs between the sides
 /// (or what A is, beside B's image), and the scene edits one side has and
 /// the other has not ("B: sphere #2 T 0.9").
-pub fn labels(comparison: &Comparison, a: &Side, b: &Side) -> Option<(String, String)> {
+pub(crate) fn labels(comparison: &Comparison, a: &Side, b: &Side) -> Option<(String, String)> {
     let settings_a = a.settings()?;
     let view_a = &a.engine.scene()?.scene.view;
     if let Some(reference) = comparison.reference() {
@@ -71,7 +71,7 @@ fn with_edits(settings: String, edits: &[String]) -> String {
 
 /// Above the images in compare mode: the layout, B as an image, what each
 /// side is, and the difference view's gain and legend.
-pub fn header(ui: &mut Ui, comparison: &mut Comparison, a: &Side, b: &Side) {
+pub(crate) fn header(ui: &mut Ui, comparison: &mut Comparison, a: &Side, b: &Side) {
     ui.horizontal(|ui| {
         for layout in CompareLayout::ALL {
             ui.selectable_value(&mut comparison.layout, layout, layout.label());
@@ -147,7 +147,7 @@ fn match_controls(ui: &mut Ui, comparison: &mut Comparison) {
 }
 
 /// The numbers of both sides and their difference.
-pub fn numbers(ui: &mut Ui, comparison: &Comparison, a: &Side, b: &Side) {
+pub(crate) fn numbers(ui: &mut Ui, comparison: &Comparison, a: &Side, b: &Side) {
     let labels = labels(comparison, a, b).unwrap_or_default();
     let a = a.image.shown();
     // An image has no time or rays.

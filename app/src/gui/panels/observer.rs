@@ -10,7 +10,7 @@ use crate::figures::observer::PixelPattern;
 use crate::gui::commands::Command;
 use crate::gui::observer::{Observer, ObserverLayout};
 
-pub fn show(ui: &mut Ui, observer: &mut Observer, commands: &mut Vec<Command>) {
+pub(crate) fn show(ui: &mut Ui, observer: &mut Observer, commands: &mut Vec<Command>) {
     command_toggle(ui, observer.on, Command::ToggleObserver, commands);
     if !observer.on {
         return;

@@ -27,21 +27,21 @@ use crate::gui::commands::Command;
 const CATALOG_DELAY: Duration = Duration::from_secs(3);
 
 /// What the list shows beside the bundled scenes' names.
-pub struct SceneList {
-    pub catalog: Catalog,
+pub(crate) struct SceneList {
+    pub(crate) catalog: Catalog,
     /// Files in `scenes/` when the window opened.
     disk_scenes: Vec<PathBuf>,
     opened_at: Instant,
     /// Counting starts this long after opening even if the first render
     /// still runs.
-    pub delay: Duration,
+    pub(crate) delay: Duration,
     /// Times the delay.
     clock: Clock,
 }
 
 impl SceneList {
     /// The list as the window opens, `clock` timing its counting's delay.
-    pub fn new(clock: Clock) -> Self {
+    pub(crate) fn new(clock: Clock) -> Self {
         Self {
             catalog: Catalog::default(),
             disk_scenes: scene_files(Path::new("scenes")),
@@ -56,7 +56,7 @@ impl SceneList {
     /// at the latest: parsing them took a noticeable share of a short first
     /// render's CPU on two cores, its thread's lowest priority
     /// notwithstanding. `wake` redraws as counts arrive.
-    pub fn count_when_due(&mut self, busy: bool, wake: impl Fn() + Send + 'static) {
+    pub(crate) fn count_when_due(&mut self, busy: bool, wake: impl Fn() + Send + 'static) {
         if self.catalog.is_started() || (busy && self.clock.now() - self.opened_at < self.delay) {
             return;
         }
@@ -66,14 +66,14 @@ impl SceneList {
 
 /// Object counts of the bundled scenes, parsed once on a background thread
 /// so the list opens at once even with a 262k-triangle mesh among them.
-pub struct Catalog {
+pub(crate) struct Catalog {
     /// A size summary per scene name; `None` for a scene that does not parse.
     summaries: Arc<Mutex<HashMap<&'static str, Option<String>>>>,
     started: bool,
     /// Whether the counting thread yields to everything else (the
     /// window's default); tests waiting for the counts turn it off, as
     /// beside a build on two cores the lowest priority gets almost nothing.
-    pub lowest_priority: bool,
+    pub(crate) lowest_priority: bool,
 }
 
 impl Default for Catalog {
@@ -89,7 +89,7 @@ impl Default for Catalog {
 impl Catalog {
     /// Starts counting, once; `wake` asks the window to redraw as counts
     /// arrive. Until then the list shows no counts.
-    pub fn start(&mut self, wake: impl Fn() + Send + 'static) {
+    pub(crate) fn start(&mut self, wake: impl Fn() + Send + 'static) {
         if std::mem::replace(&mut self.started, true) {
             return;
         }
@@ -113,7 +113,7 @@ impl Catalog {
     }
 
     /// Whether [`Catalog::start`] was called.
-    pub fn is_started(&self) -> bool {
+    pub(crate) fn is_started(&self) -> bool {
         self.started
     }
 
@@ -122,13 +122,13 @@ impl Catalog {
     /// counting one, which on the web page is an error ("Atomics.wait
     /// cannot be called in this context"); a count being written shows
     /// on the next frame.
-    pub fn summary(&self, name: &str) -> Option<String> {
+    pub(crate) fn summary(&self, name: &str) -> Option<String> {
         self.summaries.try_lock().ok()?.get(name).cloned().flatten()
     }
 
     /// Whether every bundled scene was counted (false while the counting
     /// thread writes, as [`Self::summary`] does not wait).
-    pub fn is_complete(&self) -> bool {
+    pub(crate) fn is_complete(&self) -> bool {
         self.summaries
             .try_lock()
             .is_ok_and(|counts| counts.len() == bundled::SCENES.len())
@@ -158,7 +158,7 @@ fn summary(scene: &Scene) -> String {
 }
 
 /// Scene files in `dir` (not recursive), sorted.
-pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
+pub(crate) fn scene_files(dir: &Path) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .map(|entries| {
             entries
@@ -174,7 +174,7 @@ pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
 
 /// Whether `path` looks like a scene file, or a mesh file the window
 /// frames into one.
-pub fn is_scene_file(path: &Path) -> bool {
+pub(crate) fn is_scene_file(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("p3f") || e.eq_ignore_ascii_case("nff"))
@@ -182,7 +182,7 @@ pub fn is_scene_file(path: &Path) -> bool {
 }
 
 /// What the user picked in the list.
-pub enum Picked {
+pub(crate) enum Picked {
     /// A scene to open as it is.
     Scene(SceneSource),
     /// A scene beside the page, to fetch first.
@@ -190,16 +190,16 @@ pub enum Picked {
 }
 
 /// What the picker shows beside its list.
-pub struct Shown<'a> {
+pub(crate) struct Shown<'a> {
     /// The scene open on side A.
-    pub current: Option<&'a SceneSource>,
-    pub recent: &'a [PathBuf],
+    pub(crate) current: Option<&'a SceneSource>,
+    pub(crate) recent: &'a [PathBuf],
     /// The scene being fetched from the page's site, and its progress.
-    pub fetching: Option<(&'a str, &'a Transfer)>,
+    pub(crate) fetching: Option<(&'a str, &'a Transfer)>,
 }
 
 /// Draws the picker; returns the scene the user chose, if any.
-pub fn show(
+pub(crate) fn show(
     ui: &mut Ui,
     list: &SceneList,
     shown: Shown<'_>,

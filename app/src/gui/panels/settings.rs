@@ -75,7 +75,7 @@ fn accel_label(kind: AccelKind) -> &'static str {
 
 /// A toggle bound to a command: clicking it records the command, so the
 /// key and the checkbox do exactly the same thing.
-pub fn command_toggle(ui: &mut Ui, on: bool, command: Command, commands: &mut Vec<Command>) {
+pub(crate) fn command_toggle(ui: &mut Ui, on: bool, command: Command, commands: &mut Vec<Command>) {
     let mut value = on;
     let text = format!("{} ({})", command.label(), command.shortcut_text(ui.ctx()));
     if ui
@@ -88,7 +88,7 @@ pub fn command_toggle(ui: &mut Ui, on: bool, command: Command, commands: &mut Ve
 }
 
 /// A button bound to a command.
-pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>) {
+pub(crate) fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>) {
     let tip = format!(
         "{} ({})",
         command.description(),
@@ -109,7 +109,7 @@ pub fn command_button(ui: &mut Ui, command: Command, commands: &mut Vec<Command>
 /// `controls` directly.
 /// `scene_view` is the side's scene's view (none before one loads): it owns
 /// the lens, which the sliders show and a moved slider overrides.
-pub fn show(
+pub(crate) fn show(
     ui: &mut Ui,
     controls: &mut Controls,
     scene_view: Option<&Viewpoint>,

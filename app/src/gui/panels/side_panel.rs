@@ -20,29 +20,33 @@ use crate::gui::sides::{Controls, SideId};
 use crate::load::SceneSource;
 
 /// What the side panel shows and edits.
-pub struct SidePanelView<'a> {
-    pub scene_list: &'a SceneList,
-    pub current: Option<&'a SceneSource>,
-    pub recent: &'a [PathBuf],
+pub(crate) struct SidePanelView<'a> {
+    pub(crate) scene_list: &'a SceneList,
+    pub(crate) current: Option<&'a SceneSource>,
+    pub(crate) recent: &'a [PathBuf],
     /// The scene being fetched from the page's site, and its progress.
-    pub fetching: Option<(&'a str, &'a Transfer)>,
-    pub counts: Option<&'a SceneCounts>,
+    pub(crate) fetching: Option<(&'a str, &'a Transfer)>,
+    pub(crate) counts: Option<&'a SceneCounts>,
     /// `Some` in compare mode: the side being edited.
-    pub editing: Option<&'a mut SideId>,
+    pub(crate) editing: Option<&'a mut SideId>,
     /// The edited side's controls.
-    pub controls: &'a mut Controls,
+    pub(crate) controls: &'a mut Controls,
     /// The edited side's view, once its scene is loaded: the lens the
     /// sliders show unless the controls override it.
-    pub scene_view: Option<&'a Viewpoint>,
-    pub paused: bool,
-    pub views: &'a mut PixelViews,
-    pub overlay: &'a mut StructureOverlay,
-    pub active: &'a mut ActiveOverlay,
-    pub observer: &'a mut Observer,
+    pub(crate) scene_view: Option<&'a Viewpoint>,
+    pub(crate) paused: bool,
+    pub(crate) views: &'a mut PixelViews,
+    pub(crate) overlay: &'a mut StructureOverlay,
+    pub(crate) active: &'a mut ActiveOverlay,
+    pub(crate) observer: &'a mut Observer,
 }
 
 /// Draws the panel's contents; returns the scene the user picked.
-pub fn show(ui: &mut Ui, view: SidePanelView<'_>, commands: &mut Vec<Command>) -> Option<Picked> {
+pub(crate) fn show(
+    ui: &mut Ui,
+    view: SidePanelView<'_>,
+    commands: &mut Vec<Command>,
+) -> Option<Picked> {
     let shown = scene_list::Shown {
         current: view.current,
         recent: view.recent,

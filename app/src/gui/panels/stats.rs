@@ -14,18 +14,18 @@ use crate::gui::platform::target;
 use crate::gui::sides::Sides;
 
 /// Everything the panel shows.
-pub struct StatsView<'a> {
-    pub stats: &'a RenderStats,
-    pub counts: &'a SceneCounts,
-    pub accel: Option<&'a AccelInfo>,
-    pub load_time: std::time::Duration,
+pub(crate) struct StatsView<'a> {
+    pub(crate) stats: &'a RenderStats,
+    pub(crate) counts: &'a SceneCounts,
+    pub(crate) accel: Option<&'a AccelInfo>,
+    pub(crate) load_time: std::time::Duration,
     /// The window's own frame rate and work per frame.
-    pub frame_meter: &'a FrameMeter,
+    pub(crate) frame_meter: &'a FrameMeter,
 }
 
 /// The statistics panel: compare mode's numbers of both sides, then side
 /// A's statistics.
-pub fn panel(ui: &mut Ui, sides: &Sides, comparison: &Comparison, frame_meter: &FrameMeter) {
+pub(crate) fn panel(ui: &mut Ui, sides: &Sides, comparison: &Comparison, frame_meter: &FrameMeter) {
     if let Some(b) = &sides.b {
         ui.heading("Comparison");
         super::comparison::numbers(ui, comparison, &sides.a, b);
@@ -60,7 +60,7 @@ fn row(ui: &mut Ui, name: &str, value: String) -> egui::Response {
     response
 }
 
-pub fn show(ui: &mut Ui, view: &StatsView) {
+pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
     let s = view.stats;
     let c = &s.counters;
     ui.heading("Statistics");

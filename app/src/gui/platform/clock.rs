@@ -19,7 +19,7 @@ pub struct Clock {
 
 impl Clock {
     /// The wall clock.
-    pub fn wall() -> Self {
+    pub(crate) fn wall() -> Self {
         Self::default()
     }
 
@@ -30,7 +30,7 @@ impl Clock {
         }
     }
 
-    pub fn now(&self) -> Instant {
+    pub(crate) fn now(&self) -> Instant {
         match &self.stopped {
             Some(time) => *time.lock().unwrap_or_else(PoisonError::into_inner),
             None => Instant::now(),

@@ -10,14 +10,14 @@ use std::time::Duration;
 
 /// CPU time used so far by the whole process and by its render threads.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct CpuTimes {
-    pub process: Duration,
-    pub render: Duration,
+pub(crate) struct CpuTimes {
+    pub(crate) process: Duration,
+    pub(crate) render: Duration,
 }
 
 impl CpuTimes {
     /// The times now; `None` where the OS has no per-process CPU clock.
-    pub fn now() -> Option<CpuTimes> {
+    pub(crate) fn now() -> Option<CpuTimes> {
         Some(CpuTimes {
             process: cpu_clock(CpuClock::Process)?,
             render: Duration::from_nanos(RENDER_CPU_NANOS.load(Ordering::Relaxed)),
@@ -31,7 +31,7 @@ static RENDER_CPU_NANOS: AtomicU64 = AtomicU64::new(0);
 /// Counts the CPU time the calling render thread used since its previous
 /// call as render time. Render threads call it with every progress report,
 /// so the window can tell its own cost from the render's.
-pub fn count_render_thread_cpu() {
+pub(crate) fn count_render_thread_cpu() {
     thread_local! {
         static COUNTED: Cell<Duration> = const { Cell::new(Duration::ZERO) };
     }

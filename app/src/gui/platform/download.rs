@@ -15,7 +15,7 @@ use crate::gui::app::{FileDialog as AskFile, FileQuestion};
 /// Why a page greys out what opens or writes files on the computer
 /// ([`super::file_button`]): it has no file dialog or folder picker, and
 /// may read only what is dropped on it or fetched from its site.
-pub const NO_FILES: Option<&str> = Some(
+pub(crate) const NO_FILES: Option<&str> = Some(
     "a web page cannot open or write files and folders on this computer: \
      drop a scene (.p3f, .nff) or a lesson (.toml) on the page, or open one by link \
      (?scene=, ?lesson=); images, the report and progress save as downloads",
@@ -26,30 +26,30 @@ pub const NO_FILES: Option<&str> = Some(
 static QUEUED: Mutex<Vec<(String, Vec<u8>)>> = Mutex::new(Vec::new());
 
 /// Where bytes the user saves go on the page: a download under this name.
-pub struct SaveTo(String);
+pub(crate) struct SaveTo(String);
 
 impl SaveTo {
     /// A download named as `question` offers (the page asks nothing:
     /// the browser saves downloads where its user said).
-    pub fn ask(_dialog: &dyn AskFile, question: &FileQuestion) -> Option<Self> {
+    pub(crate) fn ask(_dialog: &dyn AskFile, question: &FileQuestion) -> Option<Self> {
         Some(Self(
             question.name.clone().unwrap_or_else(|| "download".into()),
         ))
     }
 
     /// A download named `name`, asking no one.
-    pub fn named(name: String) -> Self {
+    pub(crate) fn named(name: String) -> Self {
         Self(name)
     }
 
     /// Where the bytes go, as the window says it.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         format!("{} (a download)", self.0)
     }
 
     /// Queues `bytes` as the download, given to the browser by the page's
     /// thread on its next frame (which background work keeps coming).
-    pub fn write(&self, bytes: &[u8]) -> anyhow::Result<()> {
+    pub(crate) fn write(&self, bytes: &[u8]) -> anyhow::Result<()> {
         QUEUED
             .lock()
             .map_err(|_| anyhow::anyhow!("the download queue is broken"))?
@@ -61,7 +61,7 @@ impl SaveTo {
 /// Gives the queued downloads to the browser; on the page's thread,
 /// which may not wait: when a worker holds the queue, true (look again
 /// next frame).
-pub fn give_downloads() -> bool {
+pub(crate) fn give_downloads() -> bool {
     let Ok(mut queued) = QUEUED.try_lock() else {
         return true;
     };

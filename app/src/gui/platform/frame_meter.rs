@@ -14,12 +14,12 @@ use std::time::Duration;
 
 use web_time::Instant;
 
-pub use super::cpu_clock::CpuTimes;
+pub(crate) use super::cpu_clock::CpuTimes;
 
 /// The span over which frames are counted.
 const WINDOW: Duration = Duration::from_secs(1);
 /// Fastest refresh of the progressive image: 30 Hz.
-pub const MIN_PROGRESS_INTERVAL: Duration = Duration::from_millis(33);
+pub(crate) const MIN_PROGRESS_INTERVAL: Duration = Duration::from_millis(33);
 /// Slowest refresh of the progressive image, however costly drawing is.
 const MAX_PROGRESS_INTERVAL: Duration = Duration::from_secs(2);
 /// Progress redraws may take at most 1 / PAINT_SHARE of the CPU the render
@@ -31,28 +31,28 @@ const CPU_SPAN: Duration = Duration::from_secs(2);
 
 /// The frame meter and the progress pace it sets, frame by frame.
 #[derive(Default)]
-pub struct Pacing {
-    pub frame_meter: FrameMeter,
+pub(crate) struct Pacing {
+    pub(crate) frame_meter: FrameMeter,
     /// How often render progress may redraw the window.
-    pub progress_pace: ProgressPace,
+    pub(crate) progress_pace: ProgressPace,
 }
 
 impl Pacing {
     /// A frame starts; `cpu_usage` is eframe's measure of the previous one.
-    pub fn begin(&mut self, cpu_usage: Option<f32>) {
+    pub(crate) fn begin(&mut self, cpu_usage: Option<f32>) {
         self.frame_meter
             .begin(Instant::now(), cpu_usage, CpuTimes::now());
     }
 
     /// The frame is drawn: the pace follows what frames cost.
-    pub fn end(&mut self) {
+    pub(crate) fn end(&mut self) {
         self.frame_meter.end(Instant::now());
         self.progress_pace.set(self.frame_meter.progress_interval());
     }
 }
 
 #[derive(Debug, Default, Clone)]
-pub struct FrameMeter {
+pub(crate) struct FrameMeter {
     /// Start times of the frames of the last [`WINDOW`].
     starts: VecDeque<Instant>,
     current: Option<Instant>,
@@ -88,7 +88,12 @@ impl FrameMeter {
     /// previous frame took from start to painted (eframe's `cpu_usage`:
     /// the UI's work, tessellation and painting, waiting for vsync aside);
     /// `cpu` the CPU times now ([`CpuTimes::now`]).
-    pub fn begin(&mut self, now: Instant, previous_cost: Option<f32>, cpu: Option<CpuTimes>) {
+    pub(crate) fn begin(
+        &mut self,
+        now: Instant,
+        previous_cost: Option<f32>,
+        cpu: Option<CpuTimes>,
+    ) {
         while self
             .starts
             .front()
@@ -118,7 +123,7 @@ impl FrameMeter {
     }
 
     /// Marks the end, at `now`, of the frame begun last.
-    pub fn end(&mut self, now: Instant) {
+    pub(crate) fn end(&mut self, now: Instant) {
         if let Some(start) = self.current.take() {
             self.last_work = now.duration_since(start).as_secs_f32();
             self.work = smooth(self.work, self.last_work);
@@ -127,12 +132,12 @@ impl FrameMeter {
 
     /// Frames begun during the last second. The window redraws only when
     /// something changes, so an idle window shows a low rate.
-    pub fn frames_per_second(&self) -> usize {
+    pub(crate) fn frames_per_second(&self) -> usize {
         self.starts.len()
     }
 
     /// Smoothed time the UI thread spends on one frame, seconds.
-    pub fn work_per_frame(&self) -> f32 {
+    pub(crate) fn work_per_frame(&self) -> f32 {
         self.work
     }
 
@@ -140,7 +145,7 @@ impl FrameMeter {
     /// (the UI's work, tessellation, the rasterizer's threads), averaged
     /// over the frames of the last two seconds; `None` until measured (or
     /// where the OS has no CPU clocks).
-    pub fn cpu_per_frame(&self) -> Option<Duration> {
+    pub(crate) fn cpu_per_frame(&self) -> Option<Duration> {
         let (first, last, frames) = self.cpu_span()?;
         let process = last.process.saturating_sub(first.process);
         let render = last.render.saturating_sub(first.render);
@@ -175,7 +180,7 @@ impl FrameMeter {
 
     /// What a frame costs: [`FrameMeter::cpu_per_frame`] where measured,
     /// else the UI thread's time to build and paint it.
-    pub fn frame_cost(&self) -> Duration {
+    pub(crate) fn frame_cost(&self) -> Duration {
         self.cpu_per_frame()
             .unwrap_or_else(|| Duration::from_secs_f32(self.work + self.paint))
     }
@@ -184,7 +189,7 @@ impl FrameMeter {
     /// 30 Hz when drawing is cheap, slower when it is costly, so that
     /// redraws take at most 1 / [`PAINT_SHARE`] of the CPU the render gets
     /// (all cores on an idle machine, less when other programs run).
-    pub fn progress_interval(&self) -> Duration {
+    pub(crate) fn progress_interval(&self) -> Duration {
         let interval = match self.cpu_per_frame() {
             Some(cpu) => {
                 let cores = self
@@ -203,7 +208,7 @@ impl FrameMeter {
 /// The progress interval, shared with the render threads that ask for
 /// redraws.
 #[derive(Debug, Clone)]
-pub struct ProgressPace(Arc<AtomicU64>);
+pub(crate) struct ProgressPace(Arc<AtomicU64>);
 
 impl Default for ProgressPace {
     fn default() -> Self {
@@ -214,11 +219,11 @@ impl Default for ProgressPace {
 }
 
 impl ProgressPace {
-    pub fn set(&self, interval: Duration) {
+    pub(crate) fn set(&self, interval: Duration) {
         self.0.store(interval.as_micros() as u64, Ordering::Relaxed);
     }
 
-    pub fn get(&self) -> Duration {
+    pub(crate) fn get(&self) -> Duration {
         Duration::from_micros(self.0.load(Ordering::Relaxed))
     }
 }

@@ -19,14 +19,14 @@ use crate::load::SceneSource;
 pub use rfd::FileDialog;
 
 /// The desktop opens and writes any file (see [`super::file_button`]).
-pub const NO_FILES: Option<&str> = None;
+pub(crate) const NO_FILES: Option<&str> = None;
 
 /// Background work wakes the window itself (egui's repaint works from
 /// any thread).
-pub const WORK_WAKES_WINDOW: bool = true;
+pub(crate) const WORK_WAKES_WINDOW: bool = true;
 
 /// Runs `work` in the background on a thread called `name`.
-pub fn spawn(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+pub(crate) fn spawn(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
     std::thread::Builder::new()
         .name(name.into())
         .spawn(work)
@@ -35,32 +35,32 @@ pub fn spawn(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Resul
 
 /// [`spawn`] for work that measures for long: the desktop has threads
 /// for it.
-pub fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+pub(crate) fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
     spawn(name, work)
 }
 
 /// Where the window renders a render, when the statistics panel should
 /// say it: never on the desktop, where it is always the machine's cores.
-pub fn rendered_on(_: &RenderStats) -> Option<String> {
+pub(crate) fn rendered_on(_: &RenderStats) -> Option<String> {
     None
 }
 
 /// A pool of render threads at `priority`, one per core, for an engine's
 /// jobs.
-pub fn render_pool(priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>, String> {
+pub(crate) fn render_pool(priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>, String> {
     pool_of(None, priority).map(Some).map_err(|e| e.to_string())
 }
 
 /// Lets the calling background thread run only when nothing else wants
 /// the cores (best effort).
-pub fn lowest_priority() {
+pub(crate) fn lowest_priority() {
     let _ = thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Min);
 }
 
 /// Where a lesson's step set up puts its scene (`scene`, edits included):
 /// a P3F file named after the lesson in the temp folder, which the window
 /// opens as any scene file (its paths written relative to that folder).
-pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
+pub(crate) fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
     let dir = std::env::temp_dir().join("whitted-workbench-lessons");
     std::fs::create_dir_all(&dir).with_context(|| format!("{}", dir.display()))?;
     let path = dir.join(format!("{name}.p3f"));
@@ -72,18 +72,18 @@ pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
 /// Reads the file a link names (`url`, relative to the current folder as
 /// a page's is to the page) and gives its bytes to `done`, at once: no
 /// progress to follow.
-pub fn fetch(url: &str, _: Transfer, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
+pub(crate) fn fetch(url: &str, _: Transfer, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
     done(std::fs::read(url).map_err(|e| format!("{url}: {e}")));
 }
 
 /// Where Copy link's query goes after: the page's file, as the desktop
 /// has no address of its own (the query is the same as a page's).
-pub fn page_address() -> String {
+pub(crate) fn page_address() -> String {
     "index.html".into()
 }
 
 /// Reads a dropped file's bytes and gives them to `done`, at once.
-pub fn read_dropped(
+pub(crate) fn read_dropped(
     file: Arc<dyn egui::DroppedFile>,
     done: impl FnOnce(Result<Vec<u8>, String>) + 'static,
 ) {
@@ -92,23 +92,23 @@ pub fn read_dropped(
 
 /// Where bytes the user saves go on the desktop: the file chosen in the
 /// save dialog.
-pub struct SaveTo(PathBuf);
+pub(crate) struct SaveTo(PathBuf);
 
 impl SaveTo {
     /// Asks `dialog` where to save (offering `question`'s name); `None`
     /// when cancelled.
-    pub fn ask(dialog: &dyn AskFile, question: &FileQuestion) -> Option<Self> {
+    pub(crate) fn ask(dialog: &dyn AskFile, question: &FileQuestion) -> Option<Self> {
         dialog.ask(question).map(Self)
     }
 
     /// Where the bytes go, as the window says it.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         self.0.display().to_string()
     }
 
     /// Writes `bytes` there, whole or not at all (a temporary file
     /// renamed over it).
-    pub fn write(&self, bytes: &[u8]) -> anyhow::Result<()> {
+    pub(crate) fn write(&self, bytes: &[u8]) -> anyhow::Result<()> {
         crate::image_file::write_atomically(&self.0, |file| {
             std::io::Write::write_all(file, bytes)?;
             Ok(())

@@ -32,7 +32,7 @@ use super::target;
 
 /// The page mode `query` asks for, if any. (`web/index.html` knows the
 /// modes' keys too: it asks no WebGL for them.)
-pub fn asked(query: &str) -> Option<PageMode> {
+pub(crate) fn asked(query: &str) -> Option<PageMode> {
     let pairs: Vec<(&str, &str)> = (query.strip_prefix('?')?.split('&'))
         .map(|pair| pair.split_once('=').unwrap_or((pair, "")))
         .collect();
@@ -63,7 +63,7 @@ pub fn asked(query: &str) -> Option<PageMode> {
 
 /// A page that shows words instead of the window.
 #[derive(Debug, Clone)]
-pub enum PageMode {
+pub(crate) enum PageMode {
     /// Every bundled lesson replayed, step by step.
     Replay,
     /// `workbench bench --structures bvh --runs RUNS`'s frame of a scene:
@@ -89,7 +89,7 @@ impl PageMode {
     /// page's `#status` as they come and, at the end, its verdict in
     /// `<body data-replay>` (`passed`, `failed: N steps`) or
     /// `<body data-bench>` (the rays per second, or `error: …`).
-    pub async fn run(self) -> Result<(), JsValue> {
+    pub(crate) async fn run(self) -> Result<(), JsValue> {
         let (tx, rx) = mpsc::channel();
         let (attribute, spawned) = match self {
             PageMode::Replay => (

@@ -13,12 +13,12 @@
 //! A GPU driver has no such threads; then nothing changes.
 
 /// How much lower than the rest of the process a rasterizer thread runs.
-pub const NICENESS: i32 = 5;
+pub(crate) const NICENESS: i32 = 5;
 
 /// Lowers the priority of the process's software rasterizer threads by
 /// [`NICENESS`] (once each: a thread already lowered is skipped); returns
 /// how many it lowered. Call once the window's graphics device exists.
-pub fn lower_software_rasterizer() -> usize {
+pub(crate) fn lower_software_rasterizer() -> usize {
     lower_threads_named(is_software_rasterizer)
 }
 

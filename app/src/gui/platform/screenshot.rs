@@ -13,15 +13,15 @@ use crate::describe::si;
 use crate::image_file::save_png;
 use crate::reports::render_stats::sample_progress;
 
-pub use crate::cli::ScreenshotPlan;
+pub(crate) use crate::cli::ScreenshotPlan;
 
 /// What became of the screenshot, for the process's exit status: the line
 /// to print, or why it failed.
-pub type ScreenshotOutcome = Arc<Mutex<Option<Result<String, String>>>>;
+pub(crate) type ScreenshotOutcome = Arc<Mutex<Option<Result<String, String>>>>;
 
 /// The render a screenshot shows, in a line: what the statistics panel says
 /// of it, so a script can compare the window's speed with a headless render.
-pub fn describe(shown: &Snapshot) -> String {
+pub(crate) fn describe(shown: &Snapshot) -> String {
     let s = &shown.stats;
     format!(
         "{} x {}, {}, {} rays in {:.3} s ({} rays/s)",
@@ -37,7 +37,7 @@ pub fn describe(shown: &Snapshot) -> String {
 /// Where the image is on the screenshot, in its pixels (`rect` in points,
 /// `pixels_per_point` the display's scale): a test then probes the image
 /// where the layout put it, not where it used to be.
-pub fn describe_rect(rect: egui::Rect, pixels_per_point: f32) -> String {
+pub(crate) fn describe_rect(rect: egui::Rect, pixels_per_point: f32) -> String {
     let r = rect * pixels_per_point;
     format!(
         "drawn at {:.0},{:.0} to {:.0},{:.0}",
@@ -46,7 +46,7 @@ pub fn describe_rect(rect: egui::Rect, pixels_per_point: f32) -> String {
 }
 
 /// Writes the window's pixels to `path` as an RGB PNG.
-pub fn save(image: &egui::ColorImage, path: &Path) -> Result<()> {
+pub(crate) fn save(image: &egui::ColorImage, path: &Path) -> Result<()> {
     let [width, height] = image.size;
     let rgb: Vec<u8> = image
         .pixels

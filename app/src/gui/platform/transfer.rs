@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 /// One fetch's progress, shared by the fetch and the window (cloning
 /// shares it). Atomics, not a lock: the page's thread must never wait.
 #[derive(Debug, Clone, Default)]
-pub struct Transfer(Arc<State>);
+pub(crate) struct Transfer(Arc<State>);
 
 #[derive(Debug, Default)]
 struct State {
@@ -26,7 +26,7 @@ impl Transfer {
         not(any(target_family = "wasm", test)),
         expect(dead_code, reason = "the page's fetch calls it")
     )]
-    pub fn set_total(&self, total: Option<u64>) {
+    pub(crate) fn set_total(&self, total: Option<u64>) {
         self.0.total.store(total.unwrap_or(0), Ordering::Relaxed);
     }
 
@@ -35,29 +35,29 @@ impl Transfer {
         not(any(target_family = "wasm", test)),
         expect(dead_code, reason = "the page's fetch calls it")
     )]
-    pub fn add(&self, bytes: u64) {
+    pub(crate) fn add(&self, bytes: u64) {
         self.0.received.fetch_add(bytes, Ordering::Relaxed);
     }
 
-    pub fn received(&self) -> u64 {
+    pub(crate) fn received(&self) -> u64 {
         self.0.received.load(Ordering::Relaxed)
     }
 
     /// The announced size, once the response said it.
-    pub fn total(&self) -> Option<u64> {
+    pub(crate) fn total(&self) -> Option<u64> {
         Some(self.0.total.load(Ordering::Relaxed)).filter(|&t| t > 0)
     }
 
     /// The share received, from 0 to 1; `None` while the total is
     /// unknown. At most 1: a compressed response announces fewer bytes
     /// than its body gives.
-    pub fn fraction(&self) -> Option<f32> {
+    pub(crate) fn fraction(&self) -> Option<f32> {
         let total = self.total()?;
         Some((self.received() as f64 / total as f64).min(1.0) as f32)
     }
 
     /// "212.0 kB of 423.7 kB", or "212.0 kB" while the total is unknown.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         match self.total() {
             Some(total) => format!("{} of {}", bytes(self.received()), bytes(total)),
             None => bytes(self.received()),
@@ -66,7 +66,7 @@ impl Transfer {
 
     /// The window no longer wants the file: the fetch stops at its next
     /// chunk.
-    pub fn cancel(&self) {
+    pub(crate) fn cancel(&self) {
         self.0.cancelled.store(true, Ordering::Relaxed);
     }
 
@@ -74,14 +74,14 @@ impl Transfer {
         not(any(target_family = "wasm", test)),
         expect(dead_code, reason = "the page's fetch calls it")
     )]
-    pub fn is_cancelled(&self) -> bool {
+    pub(crate) fn is_cancelled(&self) -> bool {
         self.0.cancelled.load(Ordering::Relaxed)
     }
 }
 
 /// A size in bytes as the scene list says it: "980 B", "423.7 kB",
 /// "8.6 MB" (decimal units, as a browser's downloads say them).
-pub fn bytes(n: u64) -> String {
+pub(crate) fn bytes(n: u64) -> String {
     match n {
         n if n < 1000 => format!("{n} B"),
         n if n < 1_000_000 => format!("{:.1} kB", n as f64 / 1e3),

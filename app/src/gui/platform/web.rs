@@ -18,8 +18,8 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 use super::super::WorkbenchApp;
-pub use super::download::{NO_FILES, SaveTo};
-pub use super::web_link::{fetch, page_address};
+pub(crate) use super::download::{NO_FILES, SaveTo};
+pub(crate) use super::web_link::{fetch, page_address};
 use crate::load::SceneSource;
 use tracer::scene::Scene;
 use tracer::stats::RenderStats;
@@ -28,7 +28,7 @@ use tracer::stats::RenderStats;
 /// reads the page's clock through `window`, which a worker lacks (it
 /// panicked "should have a Window"). The page polls instead while a
 /// render runs ([`Page`]).
-pub const WORK_WAKES_WINDOW: bool = false;
+pub(crate) const WORK_WAKES_WINDOW: bool = false;
 
 /// Background work started and not finished ([`spawn`]): while any is,
 /// the page keeps looking for its results ([`busy`]).
@@ -54,7 +54,7 @@ impl Drop for InFlight {
 /// Runs `work` in the background on one of the page's workers; on a page
 /// without workers, at once on the page's thread (a render it waits for
 /// runs there to its end: `Host::Slices`).
-pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+pub(crate) fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
     if !has_workers() {
         work();
         return Ok(());
@@ -70,7 +70,7 @@ pub fn spawn(_name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Resu
 /// [`spawn`] for work that measures for long (a benchmark, a study, the
 /// lab report): refused on a page without workers, where it would hold
 /// the page's only thread for minutes, with its times taking in the page's.
-pub fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
+pub(crate) fn spawn_long(name: &str, work: impl FnOnce() + Send + 'static) -> std::io::Result<()> {
     if !has_workers() {
         return Err(std::io::Error::new(
             std::io::ErrorKind::Unsupported,
@@ -88,7 +88,7 @@ fn busy() -> bool {
 
 /// Where the page renders `stats`' render, for the statistics panel: on
 /// how many workers, and the tiles each took.
-pub fn rendered_on(stats: &RenderStats) -> Option<String> {
+pub(crate) fn rendered_on(stats: &RenderStats) -> Option<String> {
     let tiles = tiles_by_worker(stats);
     Some(match WORKERS.load(Ordering::Relaxed) {
         0 => "page thread, in slices (the page is not cross-origin isolated: no workers)".into(),
@@ -105,16 +105,16 @@ fn tiles_by_worker(stats: &RenderStats) -> String {
 
 /// No pool of the engine's own: a page's jobs render on the global pool
 /// of its workers (`Host::Global`, the tracer's default on the web).
-pub fn render_pool(_priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>, String> {
+pub(crate) fn render_pool(_priority: Priority) -> Result<Option<Arc<rayon::ThreadPool>>, String> {
     Ok(None)
 }
 
 /// Workers have no priorities.
-pub fn lowest_priority() {}
+pub(crate) fn lowest_priority() {}
 
 /// Where a lesson's step set up puts its scene (`scene`, edits included):
 /// in memory, as P3F text named after the lesson, as a page has no files.
-pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
+pub(crate) fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
     Ok(SceneSource::Written {
         name: format!("{name}.p3f"),
         text: tracer::scene::write_p3f_in(scene, Path::new("")),
@@ -123,7 +123,7 @@ pub fn lesson_scene(name: &str, scene: &Scene) -> anyhow::Result<SceneSource> {
 
 /// Reads a dropped file's bytes, which a page gives only asynchronously,
 /// and gives them to `done` on the page's thread once read.
-pub fn read_dropped(
+pub(crate) fn read_dropped(
     file: Arc<dyn egui::DroppedFile>,
     done: impl FnOnce(Result<Vec<u8>, String>) + 'static,
 ) {
@@ -137,35 +137,35 @@ pub fn read_dropped(
 pub struct FileDialog;
 
 impl FileDialog {
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self
     }
 
-    pub fn add_filter(self, _name: &str, _extensions: &[&str]) -> Self {
+    pub(crate) fn add_filter(self, _name: &str, _extensions: &[&str]) -> Self {
         self
     }
 
-    pub fn set_directory(self, _folder: impl Into<PathBuf>) -> Self {
+    pub(crate) fn set_directory(self, _folder: impl Into<PathBuf>) -> Self {
         self
     }
 
-    pub fn set_file_name(self, _name: impl Into<String>) -> Self {
+    pub(crate) fn set_file_name(self, _name: impl Into<String>) -> Self {
         self
     }
 
-    pub fn set_title(self, _title: impl Into<String>) -> Self {
+    pub(crate) fn set_title(self, _title: impl Into<String>) -> Self {
         self
     }
 
-    pub fn pick_file(self) -> Option<PathBuf> {
+    pub(crate) fn pick_file(self) -> Option<PathBuf> {
         None
     }
 
-    pub fn pick_folder(self) -> Option<PathBuf> {
+    pub(crate) fn pick_folder(self) -> Option<PathBuf> {
         None
     }
 
-    pub fn save_file(self) -> Option<PathBuf> {
+    pub(crate) fn save_file(self) -> Option<PathBuf> {
         None
     }
 }

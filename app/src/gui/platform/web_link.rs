@@ -11,7 +11,11 @@ use super::transfer::Transfer;
 /// Fetches `url` (relative to the page) and gives its bytes, or why there
 /// are none (a 404 said with the URL), to `done` on the page's thread;
 /// `progress` follows it as it arrives, and stops it when cancelled.
-pub fn fetch(url: &str, progress: Transfer, done: impl FnOnce(Result<Vec<u8>, String>) + 'static) {
+pub(crate) fn fetch(
+    url: &str,
+    progress: Transfer,
+    done: impl FnOnce(Result<Vec<u8>, String>) + 'static,
+) {
     let url = url.to_string();
     wasm_bindgen_futures::spawn_local(async move {
         let bytes = fetched(&url, &progress).await.map_err(|e| {
@@ -27,7 +31,7 @@ pub fn fetch(url: &str, progress: Transfer, done: impl FnOnce(Result<Vec<u8>, St
 /// The bytes at `url` (relative to the page), or why there are none,
 /// read chunk by chunk as they arrive: `progress` counts them against
 /// the response's `Content-Length`, and its cancel stops the reading.
-pub async fn fetched(url: &str, progress: &Transfer) -> Result<Vec<u8>, JsValue> {
+pub(crate) async fn fetched(url: &str, progress: &Transfer) -> Result<Vec<u8>, JsValue> {
     let window = web_sys::window().ok_or_else(|| JsValue::from_str("no window"))?;
     let response: web_sys::Response = JsFuture::from(window.fetch_with_str(url))
         .await
@@ -67,7 +71,7 @@ pub async fn fetched(url: &str, progress: &Transfer) -> Result<Vec<u8>, JsValue>
 }
 
 /// The page's address without its query, for Copy link.
-pub fn page_address() -> String {
+pub(crate) fn page_address() -> String {
     web_sys::window()
         .map(|w| w.location())
         .and_then(|l| Some(format!("{}{}", l.origin().ok()?, l.pathname().ok()?)))

@@ -21,9 +21,9 @@ pub struct Controls {
     /// Image size as a fraction of the scene's resolution.
     pub resolution_scale: f32,
     /// Display and save with the sRGB curve instead of linear values.
-    pub srgb: bool,
+    pub(crate) srgb: bool,
     /// The structure `g` switches back to when the grid is turned off.
-    pub accel_without_grid: AccelKind,
+    pub(crate) accel_without_grid: AccelKind,
 }
 
 impl Default for Controls {
@@ -41,13 +41,13 @@ impl Controls {
     /// Adopts what a newly opened scene asks for (see
     /// [`RenderSettings::adopt_scene`]); everything else keeps the user's
     /// choice.
-    pub fn adopt_scene(&mut self, scene: &Scene) {
+    pub(crate) fn adopt_scene(&mut self, scene: &Scene) {
         self.render.adopt_scene(scene);
         self.set_accel(self.render.accel);
     }
 
     /// Turns the uniform grid on, or back to the previous structure.
-    pub fn toggle_grid(&mut self) {
+    pub(crate) fn toggle_grid(&mut self) {
         if self.render.accel == AccelKind::Grid {
             self.render.accel = self.accel_without_grid;
         } else {
@@ -57,7 +57,7 @@ impl Controls {
 
     /// Selects a structure, remembering it for [`Controls::toggle_grid`]
     /// unless it is the grid.
-    pub fn set_accel(&mut self, accel: AccelKind) {
+    pub(crate) fn set_accel(&mut self, accel: AccelKind) {
         if accel != AccelKind::Grid {
             self.accel_without_grid = accel;
         } else if self.render.accel != AccelKind::Grid {
@@ -77,7 +77,7 @@ impl Controls {
     /// The render settings for `scene` seen from `camera`. A preview (while
     /// the camera moves) renders a quarter of the resolution with one
     /// sample per pixel, so the view follows the mouse.
-    pub fn render_settings(
+    pub(crate) fn render_settings(
         &self,
         scene: &Scene,
         camera: Option<CameraPose>,
@@ -106,7 +106,11 @@ impl Controls {
     /// scene `scene_width` pixels wide: so a setting is changed in one
     /// place (a study parameter's `apply`) for the command line and the
     /// window alike. A changed width becomes the resolution scale.
-    pub fn change_settings(&mut self, scene_width: u32, change: impl FnOnce(&mut RenderSettings)) {
+    pub(crate) fn change_settings(
+        &mut self,
+        scene_width: u32,
+        change: impl FnOnce(&mut RenderSettings),
+    ) {
         let scene_width = scene_width.max(1);
         let width = ((scene_width as f32 * self.resolution_scale).round() as u32).max(1);
         let mut changed = RenderSettings {

@@ -29,7 +29,7 @@ struct UndoStep {
 
 /// Undo and redo of one side's scene.
 #[derive(Debug, Clone)]
-pub struct History {
+pub(crate) struct History {
     done: Vec<UndoStep>,
     undone: Vec<UndoStep>,
     /// The state on disk ([`History::state`]); `None` when none of the
@@ -78,7 +78,7 @@ fn slot(edit: &Edit) -> String {
 impl History {
     /// A freshly opened scene: no edits, as on disk; `clock` times the
     /// merging of changes into one step.
-    pub fn new(clock: Clock) -> Self {
+    pub(crate) fn new(clock: Clock) -> Self {
         Self {
             done: Vec::new(),
             undone: Vec::new(),
@@ -90,7 +90,7 @@ impl History {
 
     /// Records `edit`, applied, with its `inverse`. A change of the same
     /// field right after the last one joins its step.
-    pub fn push(&mut self, edit: Edit, inverse: Edit) {
+    pub(crate) fn push(&mut self, edit: Edit, inverse: Edit) {
         let slot = slot(&edit);
         let now = self.clock.now();
         self.undone.clear();
@@ -116,13 +116,13 @@ impl History {
 
     /// Names the scene as it stands: equal states, equal scenes (0: as
     /// opened).
-    pub fn state(&self) -> u64 {
+    pub(crate) fn state(&self) -> u64 {
         self.done.last().map_or(0, |s| s.id)
     }
 
     /// The edit that undoes the last step, taken off it (apply it, then
     /// [`History::undone`] with what that returns).
-    pub fn undo(&mut self) -> Option<Edit> {
+    pub(crate) fn undo(&mut self) -> Option<Edit> {
         let step = self.done.pop()?;
         let inverse = step.inverse.clone();
         self.undone.push(step);
@@ -130,7 +130,7 @@ impl History {
     }
 
     /// The edit that redoes the last undone step.
-    pub fn redo(&mut self) -> Option<Edit> {
+    pub(crate) fn redo(&mut self) -> Option<Edit> {
         let step = self.undone.pop()?;
         let edit = step.edit.clone();
         self.done.push(step);
@@ -139,7 +139,7 @@ impl History {
 
     /// Puts back a step [`History::undo`] or [`History::redo`] took when
     /// its edit was refused, so nothing is lost.
-    pub fn refused(&mut self, undoing: bool) {
+    pub(crate) fn refused(&mut self, undoing: bool) {
         if undoing {
             if let Some(step) = self.undone.pop() {
                 self.done.push(step);
@@ -149,32 +149,32 @@ impl History {
         }
     }
 
-    pub fn can_undo(&self) -> bool {
+    pub(crate) fn can_undo(&self) -> bool {
         !self.done.is_empty()
     }
 
-    pub fn can_redo(&self) -> bool {
+    pub(crate) fn can_redo(&self) -> bool {
         !self.undone.is_empty()
     }
 
     /// Whether the scene differs from the file it came from.
-    pub fn is_modified(&self) -> bool {
+    pub(crate) fn is_modified(&self) -> bool {
         self.saved != Some(self.state())
     }
 
     /// The scene in `state` was written to disk (saving takes a dialog:
     /// the user may edit on meanwhile).
-    pub fn mark_saved(&mut self, state: u64) {
+    pub(crate) fn mark_saved(&mut self, state: u64) {
         self.saved = Some(state);
     }
 
     /// A freshly opened scene: no edits, as on disk.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         *self = History::new(self.clock.clone());
     }
 
     /// The edits made, in order, as `--set` arguments for the command line.
-    pub fn set_lines(&self) -> String {
+    pub(crate) fn set_lines(&self) -> String {
         self.texts()
             .iter()
             .map(|text| format!("--set '{text}'"))
@@ -183,22 +183,22 @@ impl History {
     }
 
     /// The edits made, in order, in `--set`'s words (`object 5 ior 1.33`).
-    pub fn texts(&self) -> Vec<String> {
+    pub(crate) fn texts(&self) -> Vec<String> {
         self.done.iter().map(|s| s.edit.to_string()).collect()
     }
 
     /// The edits made, described against `scene` ("sphere #5 ior 1.33"),
     /// for the labels of compare mode.
-    pub fn describe(&self, scene: &Scene) -> Vec<String> {
+    pub(crate) fn describe(&self, scene: &Scene) -> Vec<String> {
         self.done.iter().map(|s| s.edit.describe(scene)).collect()
     }
 
     /// Steps that can be undone.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.done.len()
     }
 
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.done.is_empty()
     }
 }

@@ -37,7 +37,7 @@ pub struct LiveImage {
 }
 
 impl LiveImage {
-    pub fn new(name: &'static str) -> Self {
+    pub(crate) fn new(name: &'static str) -> Self {
         Self {
             name,
             texture: None,
@@ -56,7 +56,7 @@ impl LiveImage {
     /// most every `interval` while it renders; asks for a later frame when
     /// it must wait. A finished render (or its last pass) is uploaded at
     /// once: its last image must reach the screen.
-    pub fn refresh(
+    pub(crate) fn refresh(
         &mut self,
         ctx: &egui::Context,
         engine: &Engine,
@@ -122,7 +122,7 @@ impl LiveImage {
 
     /// Shows `view` (with its heat map) instead of the shaded image from
     /// the next refresh on; `None` for the shaded image.
-    pub fn set_view(&mut self, view: Option<(View, ViewHeatmap)>) {
+    pub(crate) fn set_view(&mut self, view: Option<(View, ViewHeatmap)>) {
         self.view = view;
     }
 
@@ -139,7 +139,7 @@ impl LiveImage {
 
     /// The textures to draw, bottom first: the backdrop while the render
     /// has holes, then the render.
-    pub fn layers(&self) -> Layers<'_> {
+    pub(crate) fn layers(&self) -> Layers<'_> {
         Layers {
             textures: self.backdrop.iter().chain(&self.texture).collect(),
             opaque: self.is_opaque(),
@@ -148,18 +148,18 @@ impl LiveImage {
 
     /// Whether the layers have no hole: the render or its backdrop has a
     /// sample in every pixel.
-    pub fn is_opaque(&self) -> bool {
+    pub(crate) fn is_opaque(&self) -> bool {
         let backdrop_covers = self.backdrop.is_some() && self.backdrop_covered;
         backdrop_covers || self.shown.as_ref().is_some_and(is_covered)
     }
 
     /// The render's own texture (without the backdrop).
-    pub fn texture(&self) -> Option<&TextureHandle> {
+    pub(crate) fn texture(&self) -> Option<&TextureHandle> {
         self.texture.as_ref()
     }
 
     /// The snapshot on screen.
-    pub fn shown(&self) -> Option<&Snapshot> {
+    pub(crate) fn shown(&self) -> Option<&Snapshot> {
         self.shown.as_ref()
     }
 
@@ -170,7 +170,7 @@ impl LiveImage {
 
     /// Forgets the snapshot (a new scene): the texture stays on screen
     /// until the new image replaces it.
-    pub fn forget(&mut self) {
+    pub(crate) fn forget(&mut self) {
         self.shown = None;
     }
 }

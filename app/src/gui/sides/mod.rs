@@ -17,8 +17,8 @@ use tracer::scene::edit::{Edit, Effect};
 
 pub use controls::Controls;
 pub use engine::{Activity, Engine, Version, Wake};
-pub use history::History;
-pub use live_image::LiveImage;
+pub(crate) use history::History;
+pub(crate) use live_image::LiveImage;
 
 use super::platform::clock::Clock;
 use super::platform::frame_meter::ProgressPace;
@@ -33,7 +33,7 @@ pub enum SideId {
 }
 
 impl SideId {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             SideId::A => "A",
             SideId::B => "B",
@@ -44,19 +44,19 @@ impl SideId {
 /// How render threads wake the window: at the progress pace, or at once
 /// for a render's last pass.
 #[derive(Clone)]
-pub struct RepaintWakers {
+pub(crate) struct RepaintWakers {
     paced: Wake,
     now: Wake,
 }
 
 impl RepaintWakers {
     /// An engine that wakes the window so.
-    pub fn engine(&self) -> Engine {
+    pub(crate) fn engine(&self) -> Engine {
         Engine::with_wakes(self.paced.clone(), self.now.clone())
     }
 
     /// Wakers that redraw `ctx` at `pace` (and at once for last passes).
-    pub fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
+    pub(crate) fn of(ctx: &egui::Context, pace: &ProgressPace) -> Self {
         Self {
             paced: Arc::new(paced_waker(ctx, pace)),
             now: Arc::new(waker(ctx)),
@@ -66,12 +66,12 @@ impl RepaintWakers {
 
 /// One side: what it renders with and what it shows.
 pub struct Side {
-    pub id: SideId,
+    pub(crate) id: SideId,
     pub engine: Engine,
-    pub image: LiveImage,
+    pub(crate) image: LiveImage,
     pub controls: Controls,
     /// The edits of this side's scene.
-    pub history: History,
+    pub(crate) history: History,
     /// This frame's settings, made once per frame by [`Side::plan`].
     plan: Option<Plan>,
 }
@@ -104,20 +104,20 @@ impl Side {
     /// structure unless the edit moved shapes, refitting it around shapes
     /// moved in place) and records it for undo.
     /// A refused edit changes nothing and says why.
-    pub fn edit(&mut self, edit: Edit) -> Result<Effect, String> {
+    pub(crate) fn edit(&mut self, edit: Edit) -> Result<Effect, String> {
         let inverse = self.apply(&edit)?;
         self.history.push(edit.clone(), inverse);
         Ok(edit.kind())
     }
 
     /// Undoes the last step; `None` when there is none.
-    pub fn undo(&mut self) -> Result<Option<Effect>, String> {
+    pub(crate) fn undo(&mut self) -> Result<Option<Effect>, String> {
         let step = self.history.undo();
         self.replay(step, true)
     }
 
     /// Redoes the last undone step; `None` when there is none.
-    pub fn redo(&mut self) -> Result<Option<Effect>, String> {
+    pub(crate) fn redo(&mut self) -> Result<Option<Effect>, String> {
         let step = self.history.redo();
         self.replay(step, false)
     }
@@ -164,7 +164,7 @@ impl Side {
 
     /// Makes this frame's settings from the controls, the scene and the
     /// shared `camera`, previews while the camera is `moving`.
-    pub fn plan(&mut self, camera: Option<CameraPose>, moving: bool) {
+    pub(crate) fn plan(&mut self, camera: Option<CameraPose>, moving: bool) {
         self.plan = self.engine.scene().map(|scene| Plan {
             target: self.controls.render_settings(&scene.scene, camera, false),
             rendered: self.controls.render_settings(&scene.scene, camera, moving),
@@ -174,7 +174,7 @@ impl Side {
     /// Switches the controls to adaptive sampling (with anti-aliasing
     /// unless depth of field spreads the samples), as compare mode's B
     /// at A's cost is.
-    pub fn make_adaptive(&mut self) {
+    pub(crate) fn make_adaptive(&mut self) {
         let render = &mut self.controls.render;
         render.antialiasing |= !render.depth_of_field;
         render.sample_adaptively(|_| {});
@@ -182,7 +182,7 @@ impl Side {
 
     /// Stops this frame's plan, when adaptive, at `budget` (the cost of
     /// A's finished render).
-    pub fn limit(&mut self, budget: Budget) {
+    pub(crate) fn limit(&mut self, budget: Budget) {
         let Some(plan) = &mut self.plan else {
             return;
         };
@@ -201,7 +201,7 @@ impl Side {
 
     /// Keeps the engine rendering this frame's settings (a new job only
     /// when they changed), measuring views when `views` is on.
-    pub fn render(&mut self, views: bool) -> Result<(), String> {
+    pub(crate) fn render(&mut self, views: bool) -> Result<(), String> {
         self.engine.set_views(views);
         match &self.plan {
             Some(plan) => self.engine.render(&plan.rendered),
@@ -210,7 +210,7 @@ impl Side {
     }
 
     /// Throws the samples away and renders this frame's settings again.
-    pub fn restart(&mut self) -> Result<(), String> {
+    pub(crate) fn restart(&mut self) -> Result<(), String> {
         match &self.plan {
             Some(plan) => self.engine.restart(&plan.rendered),
             None => Ok(()),
@@ -219,7 +219,7 @@ impl Side {
 
     /// Uploads the engine's image at most every `interval`, as the shaded
     /// image or as `view`.
-    pub fn refresh(
+    pub(crate) fn refresh(
         &mut self,
         ctx: &egui::Context,
         interval: std::time::Duration,
@@ -232,15 +232,15 @@ impl Side {
 }
 
 /// Side A, side B while comparing, and which one the panel edits.
-pub struct Sides {
-    pub a: Side,
-    pub b: Option<Side>,
+pub(crate) struct Sides {
+    pub(crate) a: Side,
+    pub(crate) b: Option<Side>,
     /// The side the panel and the feature keys change (B only while it
     /// exists).
-    pub editing: SideId,
+    pub(crate) editing: SideId,
     /// Opening a scene adopts its settings; restoring the last session
     /// keeps the saved ones.
-    pub adopt_loaded_scene: bool,
+    pub(crate) adopt_loaded_scene: bool,
     wakes: RepaintWakers,
     /// Times the merging of edits into undo steps.
     clock: Clock,
@@ -248,7 +248,7 @@ pub struct Sides {
 
 impl Sides {
     /// Side A alone, with `controls`.
-    pub fn new(controls: Controls, wakes: RepaintWakers, clock: Clock) -> Self {
+    pub(crate) fn new(controls: Controls, wakes: RepaintWakers, clock: Clock) -> Self {
         Self {
             a: Side::new(SideId::A, controls, &wakes, &clock),
             b: None,
@@ -260,17 +260,17 @@ impl Sides {
     }
 
     /// A, then B while comparing.
-    pub fn each(&self) -> impl Iterator<Item = &Side> {
+    pub(crate) fn each(&self) -> impl Iterator<Item = &Side> {
         std::iter::once(&self.a).chain(&self.b)
     }
 
     /// A, then B while comparing.
-    pub fn each_mut(&mut self) -> impl Iterator<Item = &mut Side> {
+    pub(crate) fn each_mut(&mut self) -> impl Iterator<Item = &mut Side> {
         std::iter::once(&mut self.a).chain(&mut self.b)
     }
 
     /// The side the panel edits.
-    pub fn active(&self) -> &Side {
+    pub(crate) fn active(&self) -> &Side {
         match (&self.b, self.editing) {
             (Some(b), SideId::B) => b,
             _ => &self.a,
@@ -278,7 +278,7 @@ impl Sides {
     }
 
     /// The side the panel edits.
-    pub fn active_mut(&mut self) -> &mut Side {
+    pub(crate) fn active_mut(&mut self) -> &mut Side {
         match (&mut self.b, self.editing) {
             (Some(b), SideId::B) => b,
             _ => &mut self.a,
@@ -287,7 +287,7 @@ impl Sides {
 
     /// Turns compare mode on (B starts as a copy of A's controls on A's
     /// scene, and is the side edited) or off.
-    pub fn toggle_b(&mut self) {
+    pub(crate) fn toggle_b(&mut self) {
         if self.b.take().is_some() {
             self.editing = SideId::A;
             return;
@@ -304,7 +304,7 @@ impl Sides {
 
     /// Exchanges A and B, renders and all, so nothing renders again; false
     /// without B.
-    pub fn swap(&mut self) -> bool {
+    pub(crate) fn swap(&mut self) -> bool {
         let Some(b) = &mut self.b else {
             return false;
         };
@@ -315,7 +315,7 @@ impl Sides {
 
     /// Gives B the controls of A, and A's scene with its edits; false
     /// without B.
-    pub fn copy_a_to_b(&mut self) -> bool {
+    pub(crate) fn copy_a_to_b(&mut self) -> bool {
         let Some(b) = &mut self.b else {
             return false;
         };
@@ -328,7 +328,7 @@ impl Sides {
     }
 
     /// A opened `scene`: B shows it too, and neither has edits.
-    pub fn follow_scene(&mut self, scene: &Loaded) {
+    pub(crate) fn follow_scene(&mut self, scene: &Loaded) {
         self.a.history.reset();
         if let Some(b) = &mut self.b {
             b.engine.show(scene.clone());

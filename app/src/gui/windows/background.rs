@@ -19,7 +19,7 @@ use crate::gui::platform::file_button;
 use crate::gui::platform::target;
 
 /// Work running on its own thread, sending updates of type `U`.
-pub struct Background<U> {
+pub(crate) struct Background<U> {
     cancel: Arc<AtomicBool>,
     updates: Receiver<U>,
 }
@@ -28,7 +28,7 @@ impl<U: Send + 'static> Background<U> {
     /// Starts `work` on a thread called `name`; it gets the cancel flag
     /// and the sender of its updates. Refused where work that measures
     /// for long cannot run (`target::spawn_long`).
-    pub fn spawn(
+    pub(crate) fn spawn(
         name: &str,
         work: impl FnOnce(&AtomicBool, &Sender<U>) + Send + 'static,
     ) -> std::io::Result<Self> {
@@ -40,19 +40,24 @@ impl<U: Send + 'static> Background<U> {
     }
 
     /// Asks the work to stop.
-    pub fn cancel(&self) {
+    pub(crate) fn cancel(&self) {
         self.cancel.store(true, Ordering::Relaxed);
     }
 
     /// The next update, if one has come.
-    pub fn try_recv(&self) -> Option<U> {
+    pub(crate) fn try_recv(&self) -> Option<U> {
         self.updates.try_recv().ok()
     }
 }
 
 /// `image` shrunk to at most `side` pixels a side (aspect kept) as a
 /// texture called `name`.
-pub fn thumbnail(ctx: &egui::Context, image: &RgbImage, side: u32, name: String) -> TextureHandle {
+pub(crate) fn thumbnail(
+    ctx: &egui::Context,
+    image: &RgbImage,
+    side: u32,
+    name: String,
+) -> TextureHandle {
     let (w, h) = image.dimensions();
     let scale = (side as f32 / w.max(h).max(1) as f32).min(1.0);
     let size = |n: u32| ((n as f32 * scale).round() as u32).max(1);
@@ -66,14 +71,14 @@ pub fn thumbnail(ctx: &egui::Context, image: &RgbImage, side: u32, name: String)
 
 /// An export into a folder the user picks, run off the UI thread.
 #[derive(Default)]
-pub struct Export {
+pub(crate) struct Export {
     pending: Option<Receiver<Result<PathBuf, String>>>,
 }
 
 impl Export {
     /// Asks for a folder (dialog `title`) on a thread, then runs `write`
     /// into it there.
-    pub fn start(
+    pub(crate) fn start(
         &mut self,
         title: &str,
         write: impl FnOnce(&Path) -> anyhow::Result<PathBuf> + Send + 'static,
@@ -91,7 +96,7 @@ impl Export {
     }
 
     /// Once the export is over: where it went, or why it did not.
-    pub fn finished(&mut self) -> Option<String> {
+    pub(crate) fn finished(&mut self) -> Option<String> {
         let result = self.pending.as_ref()?.try_recv().ok()?;
         self.pending = None;
         Some(match result {
@@ -103,7 +108,7 @@ impl Export {
 
 /// What a measuring thread tells its window: how far it has come (`P`),
 /// one more thing measured (`M`), or the end.
-pub enum Update<P, M> {
+pub(crate) enum Update<P, M> {
     Progress(P),
     Measured(Box<M>),
     /// Whether it was cancelled, or why it failed.
@@ -111,14 +116,14 @@ pub enum Update<P, M> {
 }
 
 /// A measured thing and its thumbnail.
-pub struct Row<M> {
-    pub measured: M,
-    pub thumbnail: TextureHandle,
+pub(crate) struct Row<M> {
+    pub(crate) measured: M,
+    pub(crate) thumbnail: TextureHandle,
 }
 
 impl<M> Row<M> {
     /// The thumbnail shrunk to at most `side` points a side.
-    pub fn show_thumbnail(&self, ui: &mut egui::Ui, side: f32) {
+    pub(crate) fn show_thumbnail(&self, ui: &mut egui::Ui, side: f32) {
         let [w, h] = self.thumbnail.size();
         let fit = side / w.max(h).max(1) as f32;
         ui.image((
@@ -131,11 +136,11 @@ impl<M> Row<M> {
 /// A measuring window's run (the benchmark matrix, a study): its thread,
 /// the rows measured so far, how far it is, the message under the
 /// buttons and the last export.
-pub struct Measuring<P, M> {
-    pub rows: Vec<Row<M>>,
-    pub progress: Option<P>,
+pub(crate) struct Measuring<P, M> {
+    pub(crate) rows: Vec<Row<M>>,
+    pub(crate) progress: Option<P>,
     task: Option<Background<Update<P, M>>>,
-    pub message: Option<String>,
+    pub(crate) message: Option<String>,
     exported: Export,
 }
 
@@ -152,12 +157,12 @@ impl<P, M> Default for Measuring<P, M> {
 }
 
 impl<P: Send + 'static, M: Send + 'static> Measuring<P, M> {
-    pub fn is_running(&self) -> bool {
+    pub(crate) fn is_running(&self) -> bool {
         self.task.is_some()
     }
 
     /// Asks a running thread to stop; the rows measured stay.
-    pub fn stop(&self) {
+    pub(crate) fn stop(&self) {
         if let Some(task) = &self.task {
             task.cancel();
         }
@@ -167,7 +172,7 @@ impl<P: Send + 'static, M: Send + 'static> Measuring<P, M> {
     /// gets the cancel flag and `send`, which passes an update to the
     /// window and wakes it; it returns whether it was cancelled, and that
     /// or its error ends the run. Says whether the thread started.
-    pub fn start(
+    pub(crate) fn start(
         &mut self,
         name: &str,
         wake: impl Fn() + Send + 'static,
@@ -196,7 +201,7 @@ impl<P: Send + 'static, M: Send + 'static> Measuring<P, M> {
     /// the image and texture name `picture` gives it (with its row's
     /// index); at the end `finished` says what was done (cancelled or
     /// not, with the rows' count).
-    pub fn receive(
+    pub(crate) fn receive(
         &mut self,
         ctx: &egui::Context,
         side: u32,
@@ -232,7 +237,7 @@ impl<P: Send + 'static, M: Send + 'static> Measuring<P, M> {
     /// Cancel while running, else Run (which sets `start`), and Export...
     /// once rows are measured and the run is over; says whether Export...
     /// was clicked.
-    pub fn buttons(&mut self, ui: &mut egui::Ui, start: &mut bool) -> bool {
+    pub(crate) fn buttons(&mut self, ui: &mut egui::Ui, start: &mut bool) -> bool {
         if self.is_running() {
             if ui.button("Cancel").clicked() {
                 self.stop();
@@ -247,7 +252,7 @@ impl<P: Send + 'static, M: Send + 'static> Measuring<P, M> {
 
     /// Runs `write` into a folder the user picks (see [`Export::start`]);
     /// where it went, or why not, becomes the message.
-    pub fn export(
+    pub(crate) fn export(
         &mut self,
         title: &str,
         write: impl FnOnce(&Path) -> anyhow::Result<PathBuf> + Send + 'static,

@@ -31,7 +31,7 @@ type Update = super::background::Update<MatrixProgress, Measurement>;
 
 /// The window's state.
 pub struct BenchWindow {
-    pub open: bool,
+    pub(crate) open: bool,
     /// Frames per configuration.
     runs: usize,
     cases: Vec<Case>,
@@ -63,7 +63,7 @@ impl BenchWindow {
     /// Starts the matrix over `world` with `base` settings (the current
     /// scene, camera and sizes; N is the course report's 4); `wake` asks
     /// the window to redraw.
-    pub fn start(
+    pub(crate) fn start(
         &mut self,
         world: Arc<World>,
         base: &RenderSettings,
@@ -85,13 +85,8 @@ impl BenchWindow {
             });
     }
 
-    /// Cancels a running matrix; the finished rows stay.
-    pub fn stop(&mut self) {
-        self.measuring.stop();
-    }
-
     /// Takes the thread's updates; call once per frame.
-    pub fn receive(&mut self, ctx: &egui::Context) {
+    pub(crate) fn receive(&mut self, ctx: &egui::Context) {
         self.measuring.receive(
             ctx,
             THUMBNAIL,
@@ -104,7 +99,7 @@ impl BenchWindow {
     }
 
     /// Draws the window; `start` is called when the user asks for a run.
-    pub fn show(&mut self, ctx: &egui::Context, scene_name: &str, start: &mut bool) {
+    pub(crate) fn show(&mut self, ctx: &egui::Context, scene_name: &str, start: &mut bool) {
         let mut open = self.open;
         egui::Window::new("Benchmark matrix")
             .open(&mut open)
@@ -198,7 +193,7 @@ impl BenchWindow {
 }
 
 /// The table as `table.md` and `table.csv` and each image as PNG in `dir`.
-pub fn write_export(dir: &Path, measurements: &[Measurement]) -> anyhow::Result<PathBuf> {
+pub(crate) fn write_export(dir: &Path, measurements: &[Measurement]) -> anyhow::Result<PathBuf> {
     use anyhow::Context;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for (name, format) in [("table.md", Format::Markdown), ("table.csv", Format::Csv)] {

@@ -4,7 +4,7 @@
 use crate::gui::commands::Command;
 
 /// Shows the help while `open`; its close button clears `open`.
-pub fn window(ctx: &egui::Context, open: &mut bool) {
+pub(crate) fn window(ctx: &egui::Context, open: &mut bool) {
     egui::Window::new("Keyboard shortcuts and mouse")
         .open(open)
         .collapsible(false)

@@ -2,12 +2,12 @@
 //! benchmark matrix, the studies, the report's export, the help; and what
 //! the measuring windows share ([`background`]).
 
-pub mod background;
-pub mod benchmark;
-pub mod help;
-pub mod ray_tree;
-pub mod report;
-pub mod studies;
+pub(crate) mod background;
+pub(crate) mod benchmark;
+pub(crate) mod help;
+pub(crate) mod ray_tree;
+pub(crate) mod report;
+pub(crate) mod studies;
 
 use benchmark::BenchWindow;
 use ray_tree::Inspector;
@@ -21,20 +21,20 @@ use super::image::structure_overlay::StructureOverlay;
 
 /// The tools a user opens beside the render, and what they draw over it.
 #[derive(Default)]
-pub struct ToolsAndOverlays {
-    pub bench: BenchWindow,
-    pub studies: StudiesWindow,
+pub(crate) struct ToolsAndOverlays {
+    pub(crate) bench: BenchWindow,
+    pub(crate) studies: StudiesWindow,
     /// Export report...: the lab report measured in the background.
-    pub report: ReportExport,
+    pub(crate) report: ReportExport,
     /// The pinned pixel's ray tree.
-    pub inspector: Inspector,
+    pub(crate) inspector: Inspector,
     /// The acceleration structure drawn over the image.
-    pub overlay: StructureOverlay,
+    pub(crate) overlay: StructureOverlay,
     /// Adaptive sampling's active pixels tinted over the image.
-    pub active: ActiveOverlay,
+    pub(crate) active: ActiveOverlay,
     /// Which per-pixel view the images show.
-    pub views: PixelViews,
-    pub help_open: bool,
+    pub(crate) views: PixelViews,
+    pub(crate) help_open: bool,
     /// The scene editor and its selection.
-    pub editor: Editor,
+    pub(crate) editor: Editor,
 }

@@ -18,13 +18,13 @@ use crate::reports::ray_tree::{
 pub struct Inspector {
     pub pinned: Option<(u32, u32)>,
     /// Which of the pixel's samples.
-    pub sample: u32,
+    pub(crate) sample: u32,
     trees: [Option<Inspected>; 2],
     /// Ray paths drawn over the image in the last frame.
     pub paths_drawn: usize,
     /// How far through side A's eye ray walk the structure overlay and the
     /// observer draw it; a new pixel's walk is shown at the same step.
-    pub step: VisitStep,
+    pub(crate) step: VisitStep,
 }
 
 /// A tree and what it was recorded for.
@@ -39,7 +39,7 @@ struct Inspected {
 
 impl Inspector {
     /// Pins `pixel`: the panel opens on its tree.
-    pub fn pin(&mut self, pixel: (u32, u32)) {
+    pub(crate) fn pin(&mut self, pixel: (u32, u32)) {
         self.pinned = Some(pixel);
     }
 
@@ -62,7 +62,7 @@ impl Inspector {
     /// runs on the UI thread. A side's full-resolution settings, not its
     /// engine's: while the camera moves the engine renders a small
     /// preview, and the tree follows the camera at the pixel pinned.
-    pub fn update(&mut self, a: &Side, b: Option<&Side>) {
+    pub(crate) fn update(&mut self, a: &Side, b: Option<&Side>) {
         let Some(pixel) = self.pinned else {
             self.trees = [None, None];
             return;
@@ -98,7 +98,7 @@ impl Inspector {
     /// The ray tree docked under the image while a pixel is pinned, so the
     /// image, the rays drawn over it, the tree and the observer show
     /// together; A's and B's trees side by side in compare mode.
-    pub fn panel(&mut self, ui: &mut Ui, comparing: bool) {
+    pub(crate) fn panel(&mut self, ui: &mut Ui, comparing: bool) {
         let Some((x, y)) = self.pinned else {
             return;
         };

@@ -48,7 +48,7 @@ impl ReportExport {
     /// Asks `dialog` where to save the page, on a thread (the dialog must
     /// not block the window): a file on the desktop, a download on the
     /// page; [`ReportExport::chosen`] gives the answer.
-    pub fn choose_file(&mut self, dialog: Arc<dyn FileDialog>) {
+    pub(crate) fn choose_file(&mut self, dialog: Arc<dyn FileDialog>) {
         let (tx, rx) = channel();
         let spawned = target::spawn("report file", move || {
             let _ = tx.send(SaveTo::ask(&*dialog, &question()));
@@ -61,7 +61,7 @@ impl ReportExport {
 
     /// Answers the file dialog with `path` without showing it: what a
     /// test does, having no desktop to show it on.
-    pub fn choose(&mut self, path: PathBuf) {
+    pub(crate) fn choose(&mut self, path: PathBuf) {
         let (tx, rx) = channel();
         let _ = tx.send(SaveTo::ask(&Answer(path), &question()));
         self.choosing = Some(rx);
@@ -69,7 +69,7 @@ impl ReportExport {
 
     /// Where the user chose to save, once chosen; a dismissed dialog says
     /// so.
-    pub fn chosen(&mut self) -> Option<SaveTo> {
+    pub(crate) fn chosen(&mut self) -> Option<SaveTo> {
         let answer = self.choosing.as_ref()?.try_recv().ok()?;
         self.choosing = None;
         if answer.is_none() {
@@ -80,7 +80,7 @@ impl ReportExport {
 
     /// Measures `request` and saves its page `to` the file or download
     /// chosen, on a thread; `wake` asks the window to redraw.
-    pub fn start(&mut self, request: Request, to: SaveTo, wake: impl Fn() + Send + 'static) {
+    pub(crate) fn start(&mut self, request: Request, to: SaveTo, wake: impl Fn() + Send + 'static) {
         self.cancel();
         self.message = None;
         self.progress = None;
@@ -107,14 +107,14 @@ impl ReportExport {
     }
 
     /// Stops a running export; nothing is written.
-    pub fn cancel(&self) {
+    pub(crate) fn cancel(&self) {
         if let Some(task) = &self.task {
             task.cancel();
         }
     }
 
     /// Takes the thread's updates; call once per frame.
-    pub fn receive(&mut self) {
+    pub(crate) fn receive(&mut self) {
         while let Some(update) = self.task.as_ref().and_then(Background::try_recv) {
             match update {
                 Update::Progress(p) => self.progress = Some(p),
@@ -133,7 +133,7 @@ impl ReportExport {
     }
 
     /// The export's window, while it runs or has something to say.
-    pub fn show(&mut self, ctx: &egui::Context) {
+    pub(crate) fn show(&mut self, ctx: &egui::Context) {
         if self.task.is_none() && self.message.is_none() {
             return;
         }

@@ -8,13 +8,13 @@ use super::quantity::{Field, Quantity, SETTINGS, TREE_FIGURES};
 
 /// How many objects and materials are listed one by one; past that the
 /// list says how many more there are (a mesh scene has thousands).
-pub const LISTED_PARTS: usize = 16;
+pub(crate) const LISTED_PARTS: usize = 16;
 
 /// The quantities readable on `scene` without a pinned pixel: settings,
 /// counts, the camera, the layout, the first [`LISTED_PARTS`] objects and
 /// materials, the grid, the structure's brute-force cost and the samples a
 /// render takes.
-pub fn without_pixel(scene: &Scene) -> Vec<Quantity> {
+pub(crate) fn without_pixel(scene: &Scene) -> Vec<Quantity> {
     let mut list: Vec<Quantity> = SETTINGS
         .iter()
         .map(|&(_, s)| Quantity::Setting(s))
@@ -55,7 +55,7 @@ pub fn without_pixel(scene: &Scene) -> Vec<Quantity> {
 
 /// The quantities that read the pinned pixel: its ray tree's figures, the
 /// blocker of each light, its eye ray's walk, its samples.
-pub fn at_pixel(scene: &Scene) -> Vec<Quantity> {
+pub(crate) fn at_pixel(scene: &Scene) -> Vec<Quantity> {
     let mut list: Vec<Quantity> = TREE_FIGURES
         .iter()
         .map(|&(_, f)| Quantity::Tree(f))

@@ -27,7 +27,7 @@ impl Display for Value {
 }
 
 /// A number as people write it: `4`, `1.5`, `0.333`.
-pub fn number(n: f64) -> String {
+pub(crate) fn number(n: f64) -> String {
     let text = format!("{n:.4}");
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
@@ -35,7 +35,7 @@ pub fn number(n: f64) -> String {
 impl Value {
     /// Reads what a person typed: a number, on/off (yes/no, true/false),
     /// or a word (lower-cased).
-    pub fn parse(text: &str) -> Option<Value> {
+    pub(crate) fn parse(text: &str) -> Option<Value> {
         let text = text.trim();
         if text.is_empty() {
             return None;
@@ -69,7 +69,7 @@ pub enum Tolerance {
 
 impl Tolerance {
     /// `"2%"` or `"0.01"`.
-    pub fn parse(text: &str) -> Result<Tolerance, String> {
+    pub(crate) fn parse(text: &str) -> Result<Tolerance, String> {
         let text = text.trim();
         let (digits, relative) = match text.strip_suffix('%') {
             Some(digits) => (digits.trim(), true),
@@ -86,7 +86,7 @@ impl Tolerance {
 
     /// Whether `value` is within this tolerance of `expected`. Exact
     /// comparisons still allow the last bits of an f32 setting.
-    pub fn holds(self, value: f64, expected: f64) -> bool {
+    pub(crate) fn holds(self, value: f64, expected: f64) -> bool {
         let slack = match self {
             Tolerance::Absolute(a) => a,
             Tolerance::Relative(r) => r * expected.abs(),
@@ -120,7 +120,7 @@ pub enum Expect {
 /// An expectation as TOML gives it: `is = 4`, `is = true`, `is = ">= 4"`.
 #[derive(Deserialize)]
 #[serde(untagged)]
-pub enum RawExpect {
+pub(crate) enum RawExpect {
     Bool(bool),
     Integer(i64),
     Float(f64),
@@ -142,7 +142,7 @@ impl TryFrom<RawExpect> for Expect {
 
 impl Expect {
     /// `">= 4"`, `"< 0.05"`, `"1.33 +- 2%"`, `"on"`, `"grid"`, `"3"`.
-    pub fn parse(text: &str) -> Result<Expect, String> {
+    pub(crate) fn parse(text: &str) -> Result<Expect, String> {
         let trimmed = text.trim();
         let bound = |rest: &str, make: fn(f64) -> Expect| {
             rest.trim()
@@ -180,7 +180,7 @@ impl Expect {
     }
 
     /// Whether `value` meets the expectation.
-    pub fn holds(&self, value: &Value) -> bool {
+    pub(crate) fn holds(&self, value: &Value) -> bool {
         let n = value.as_number();
         match self {
             Expect::Is(Value::Number(e)) => {

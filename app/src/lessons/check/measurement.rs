@@ -47,7 +47,7 @@ pub enum Metric {
 
 impl By {
     /// The word a lesson writes after `by =`.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             By::Work => "work",
             By::Time => "time",
@@ -57,7 +57,7 @@ impl By {
 
 impl Metric {
     /// The word a lesson writes after `metric =`.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Metric::Speedup => "speedup",
             Metric::Flip => "flip",
@@ -67,13 +67,13 @@ impl Metric {
 }
 
 /// A figure measured, with words saying what it came from.
-pub struct Measured {
-    pub value: f64,
-    pub detail: String,
+pub(crate) struct Measured {
+    pub(crate) value: f64,
+    pub(crate) detail: String,
 }
 
 /// Measures `metric` on `state`; `values` are the sweep's multipliers.
-pub fn measure(
+pub(crate) fn measure(
     metric: Metric,
     by: By,
     values: &[f32],

@@ -4,18 +4,18 @@
 //! which control was touched. [`evaluate`] is a pure function of a
 //! [`LessonState`], so the window and `lesson check` agree.
 
-pub mod catalogue;
+pub(crate) mod catalogue;
 mod expect;
 mod measurement;
 mod quantity;
-pub mod written;
+pub(crate) mod written;
 
 #[cfg(test)]
 mod tests;
 
-pub use expect::{Expect, Tolerance, Value};
-pub use measurement::{By, Metric, measure};
-pub use quantity::{Part, Quantity, Reads};
+pub(crate) use expect::{Expect, Tolerance, Value};
+pub(crate) use measurement::{By, Metric, measure};
+pub(crate) use quantity::{Part, Quantity};
 
 use super::state::{LessonState, Which};
 
@@ -71,7 +71,7 @@ impl Verdict {
     }
 
     /// The words, whatever the verdict.
-    pub fn reason(&self) -> &str {
+    pub(crate) fn reason(&self) -> &str {
         match self {
             Verdict::Done(r) | Verdict::NotYet(r) | Verdict::Wrong(r) => r,
         }
@@ -82,7 +82,7 @@ impl Check {
     /// What an answer check (or one inside an `all`) grades against, and
     /// on which side: what `lesson check` shows a teacher when a recorded
     /// answer is wrong.
-    pub fn answer_of(&self) -> Option<(&Quantity, Which)> {
+    pub(crate) fn answer_of(&self) -> Option<(&Quantity, Which)> {
         match self {
             Check::Answer { of, side, .. } => Some((of, *side)),
             Check::All { checks } => checks.iter().find_map(Check::answer_of),
@@ -91,7 +91,7 @@ impl Check {
     }
 
     /// The question a step asks, when its check is an answer (or holds one).
-    pub fn question(&self) -> Option<(&str, &[String])> {
+    pub(crate) fn question(&self) -> Option<(&str, &[String])> {
         match self {
             Check::Answer {
                 question, choices, ..

@@ -128,7 +128,7 @@ pub(super) const TREE_FIGURES: [(&str, TreeFigure); 12] = [
 /// A numbered part of the scene that a quantity, or a check's reference,
 /// names: validated against the scene when the lesson loads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Part {
+pub(crate) enum Part {
     Object(usize),
     Material(usize),
     Light(usize),
@@ -201,7 +201,7 @@ fn index(word: Option<&str>, what: &str) -> Result<usize, String> {
 
 impl Quantity {
     /// Reads a quantity's name; the error lists what exists.
-    pub fn parse(text: &str) -> Result<Quantity, String> {
+    pub(crate) fn parse(text: &str) -> Result<Quantity, String> {
         let words: Vec<&str> = text.split_whitespace().collect();
         let quantity = match words.as_slice() {
             ["objects"] => Quantity::Objects,
@@ -257,7 +257,7 @@ impl Quantity {
     /// What kind of value it reads, for checking a lesson's `is` and
     /// choices when it loads and for saying its values in the format's
     /// words.
-    pub fn reads(&self) -> Reads {
+    pub(crate) fn reads(&self) -> Reads {
         match self {
             Quantity::Setting(Setting::Aa | Setting::SoftShadows | Setting::Dof) => Reads::OnOff,
             Quantity::Setting(Setting::Accel) => Reads::Word(vec!["none", "grid", "bvh"]),
@@ -278,7 +278,7 @@ impl Quantity {
 
     /// The part of the scene it names and which of its words is the
     /// number: `object 3 kd` names object 3 in word 1.
-    pub fn part(&self) -> Option<(Part, usize)> {
+    pub(crate) fn part(&self) -> Option<(Part, usize)> {
         match *self {
             Quantity::Object(n, _) | Quantity::FocusError(n) => Some((Part::Object(n), 1)),
             Quantity::Material(n, _) => Some((Part::Material(n), 1)),
@@ -287,21 +287,9 @@ impl Quantity {
         }
     }
 
-    /// Whether reading it needs a pinned pixel.
-    pub fn needs_pixel(&self) -> bool {
-        matches!(
-            self,
-            Quantity::Tree(_)
-                | Quantity::Blocker(_)
-                | Quantity::EyeSteps
-                | Quantity::EyeTests
-                | Quantity::PixelSamples
-        )
-    }
-
     /// Its value in `state`, on side `which`; why it cannot be read
     /// otherwise (no side B, no pixel pinned, no such object).
-    pub fn read(&self, state: &LessonState, which: Which) -> Result<Value, String> {
+    pub(crate) fn read(&self, state: &LessonState, which: Which) -> Result<Value, String> {
         let side = state.side(which)?;
         let pixel = || state.pixel.ok_or_else(|| "no pixel is pinned".to_string());
         match *self {
@@ -401,7 +389,7 @@ impl Quantity {
     /// A tree figure (`tree ...`, `tree blocker L`) read from a tree
     /// already recorded on `scene`, so that `lesson explain --find` records
     /// each pixel's tree once; `None` for any other quantity.
-    pub fn read_tree(&self, scene: &Scene, tree: &RayTree) -> Option<Value> {
+    pub(crate) fn read_tree(&self, scene: &Scene, tree: &RayTree) -> Option<Value> {
         match *self {
             Quantity::Tree(figure) => Some(tree_figure(scene, tree, figure)),
             Quantity::Blocker(light) => Some(blocker(tree, light)),
@@ -445,7 +433,7 @@ const OBJECT_KINDS: [&str; 8] = [
 
 /// What kind of value a quantity reads.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Reads {
+pub(crate) enum Reads {
     Number,
     /// A switch: on or off.
     OnOff,
@@ -461,12 +449,12 @@ pub enum Reads {
 
 impl Reads {
     /// Whether a tolerance means something for it.
-    pub fn is_numeric(&self) -> bool {
+    pub(crate) fn is_numeric(&self) -> bool {
         matches!(self, Reads::Number | Reads::NumberOrOff)
     }
 
     /// Its values in the lesson format's words.
-    pub fn words(&self) -> String {
+    pub(crate) fn words(&self) -> String {
         match self {
             Reads::Number => "a number".into(),
             Reads::OnOff => "on or off".into(),
@@ -479,7 +467,7 @@ impl Reads {
 
     /// Whether `expect` can hold for one of its values; the error says
     /// what it is and what to write.
-    pub fn accepts(&self, expect: &Expect) -> Result<(), String> {
+    pub(crate) fn accepts(&self, expect: &Expect) -> Result<(), String> {
         let comparison = !matches!(expect, Expect::Is(_));
         let fits = match (self, expect) {
             (Reads::Number | Reads::NumberOrOff, _) if comparison => true,
@@ -509,7 +497,7 @@ impl Reads {
 
     /// A value as the format says it: yes/no for facts, on/off for
     /// switches.
-    pub fn show(&self, value: &Value) -> String {
+    pub(crate) fn show(&self, value: &Value) -> String {
         match (self, value) {
             (Reads::YesNo, Value::Bool(true)) => "yes".into(),
             (Reads::YesNo, Value::Bool(false)) => "no".into(),
@@ -518,7 +506,7 @@ impl Reads {
     }
 
     /// An expectation in the same words.
-    pub fn show_expect(&self, expect: &Expect) -> String {
+    pub(crate) fn show_expect(&self, expect: &Expect) -> String {
         match expect {
             Expect::Is(value) => self.show(value),
             other => other.to_string(),

@@ -7,6 +7,7 @@ use tracer::accel::AccelKind;
 use tracer::render::{AdaptiveSampling, Sampling};
 use tracer::scene::{Limits, parse_scene};
 
+use super::quantity::Reads;
 use super::*;
 use crate::lessons::state::{LessonState, SideState};
 use crate::load::{self, Loaded, SceneSource};
@@ -576,19 +577,6 @@ fn a_quantity_names_the_part_of_the_scene_it_reads() {
     assert_eq!(part("material 4 ior"), Some((Part::Material(4), 1)));
     assert_eq!(part("tree blocker 1"), Some((Part::Light(1), 2)));
     assert_eq!(part("spp"), None);
-    let needs = |of: &str| Quantity::parse(of).unwrap().needs_pixel();
-    for of in [
-        "tree eye-kind",
-        "tree blocker 0",
-        "eye steps",
-        "eye tests",
-        "pixel samples",
-    ] {
-        assert!(needs(of), "{of}");
-    }
-    for of in ["spp", "samples mean", "grid cells", "object 0 kind"] {
-        assert!(!needs(of), "{of}");
-    }
 }
 
 #[test]

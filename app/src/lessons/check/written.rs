@@ -16,22 +16,22 @@ use super::quantity::{Part, Quantity, Reads};
 use super::{Check, Which};
 
 /// A mistake at a byte range of the lesson file.
-pub type Mistake = (Range<usize>, String);
+pub(crate) type Mistake = (Range<usize>, String);
 
 /// A number in a check naming a part of the scene, with the side it is
 /// read on and where it is written.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Reference {
-    pub part: Part,
-    pub side: Which,
-    pub span: Range<usize>,
+pub(crate) struct Reference {
+    pub(crate) part: Part,
+    pub(crate) side: Which,
+    pub(crate) span: Range<usize>,
 }
 
 /// An answer or a choice as a teacher writes it: `3`, `1.5`, `true`,
 /// `"sphere"`.
 #[derive(Deserialize)]
 #[serde(untagged)]
-pub enum WrittenValue {
+pub(crate) enum WrittenValue {
     Integer(i64),
     Float(f64),
     Bool(bool),
@@ -40,7 +40,7 @@ pub enum WrittenValue {
 
 impl WrittenValue {
     /// The text a student would type for it.
-    pub fn into_text(self) -> String {
+    pub(crate) fn into_text(self) -> String {
         match self {
             WrittenValue::Integer(i) => i.to_string(),
             WrittenValue::Float(f) => f.to_string(),
@@ -54,7 +54,7 @@ impl WrittenValue {
 /// misplaced is said in the format's words.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct WrittenCheck {
+pub(crate) struct WrittenCheck {
     kind: Spanned<String>,
     of: Option<Spanned<String>>,
     is: Option<Spanned<RawExpect>>,
@@ -80,15 +80,15 @@ const KINDS: [(&str, &[&str]); 4] = [
 ];
 
 /// Reads a check, collecting its mistakes and the scene parts it names.
-pub struct Reader<'a> {
+pub(crate) struct Reader<'a> {
     /// The lesson file's text, to find a word inside a quoted value.
     text: &'a str,
-    pub mistakes: Vec<Mistake>,
-    pub references: Vec<Reference>,
+    pub(crate) mistakes: Vec<Mistake>,
+    pub(crate) references: Vec<Reference>,
 }
 
 impl<'a> Reader<'a> {
-    pub fn new(text: &'a str) -> Self {
+    pub(crate) fn new(text: &'a str) -> Self {
         Reader {
             text,
             mistakes: Vec::new(),
@@ -97,7 +97,7 @@ impl<'a> Reader<'a> {
     }
 
     /// The check `written` describes, or `None` after recording why not.
-    pub fn check(&mut self, written: Spanned<WrittenCheck>) -> Option<Check> {
+    pub(crate) fn check(&mut self, written: Spanned<WrittenCheck>) -> Option<Check> {
         let table = written.span();
         let mut w = written.into_inner();
         let kind = w.kind.get_ref().as_str();

@@ -16,16 +16,16 @@ use super::{heading, step_state};
 
 /// One condition of `--find`: a tree figure and what it must be.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Condition {
-    pub of: Quantity,
-    pub is: Expect,
+pub(crate) struct Condition {
+    pub(crate) of: Quantity,
+    pub(crate) is: Expect,
 }
 
 impl Condition {
     /// `tir=yes`, `tree eye-object=2`, `rays>=6`, `blocker 0=1`: a tree
     /// figure (the `tree ` in front may be left out) and an expectation as
     /// a check's `is` writes it.
-    pub fn parse(text: &str) -> Result<Condition, String> {
+    pub(crate) fn parse(text: &str) -> Result<Condition, String> {
         let Some(at) = text.find(['=', '<', '>']) else {
             return Err(format!(
                 "`{text}`: expected QUANTITY=VALUE, such as `tir=yes` or `eye-object=2`"
@@ -53,7 +53,7 @@ impl Condition {
 /// The pixels of step `number`'s image where every condition holds on
 /// side A, row by row, and the one nearest their middle to pin. None found
 /// is an error, so a script can tell.
-pub fn find(lesson: &Lesson, number: usize, conditions: &[Condition]) -> Result<String> {
+pub(crate) fn find(lesson: &Lesson, number: usize, conditions: &[Condition]) -> Result<String> {
     let (step, state) = step_state(lesson, number)?;
     let side = &state.a;
     let settings = &side.settings;

@@ -6,7 +6,7 @@
 
 mod find;
 
-pub use find::{Condition, find};
+pub(crate) use find::{Condition, find};
 
 use std::fmt::Write;
 
@@ -24,7 +24,7 @@ use super::state::{LessonState, SideState, Which};
 /// Step `number` (counted from 1, as `lesson check` prints it) of
 /// `lesson`, and the state it starts from: the start, every earlier step
 /// set up and solved, its own setup.
-pub fn step_state(lesson: &Lesson, number: usize) -> Result<(&LessonStep, LessonState)> {
+pub(crate) fn step_state(lesson: &Lesson, number: usize) -> Result<(&LessonStep, LessonState)> {
     let count = lesson.steps.len();
     let Some(step) = number.checked_sub(1).and_then(|i| lesson.steps.get(i)) else {
         bail!("{} has steps 1 to {count}, no step {number}", lesson.name);
@@ -49,7 +49,7 @@ fn heading(lesson: &Lesson, number: usize, step: &LessonStep) -> String {
 
 /// The explanation of step `number`; `pixel` pins another pixel than the
 /// one the step starts with, to see what the check would read there.
-pub fn explain(lesson: &Lesson, number: usize, pixel: Option<(u32, u32)>) -> Result<String> {
+pub(crate) fn explain(lesson: &Lesson, number: usize, pixel: Option<(u32, u32)>) -> Result<String> {
     let (step, mut state) = step_state(lesson, number)?;
     let mut out = heading(lesson, number, step);
     let earlier = match number {

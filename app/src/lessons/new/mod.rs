@@ -13,7 +13,7 @@ const TEMPLATE: &str = include_str!("template.toml");
 
 /// The file `name` means: `NAME.toml`, or `name` itself when it already
 /// ends in `.toml`.
-pub fn path_for(name: &str) -> PathBuf {
+pub(crate) fn path_for(name: &str) -> PathBuf {
     let path = Path::new(name);
     if crate::load::is_lesson_file(path) {
         path.to_path_buf()
@@ -24,7 +24,7 @@ pub fn path_for(name: &str) -> PathBuf {
 
 /// The starting file's text for `path`: its title from the file's name
 /// (`light_and_shadow` becomes "Light and shadow").
-pub fn text_for(path: &Path) -> String {
+pub(crate) fn text_for(path: &Path) -> String {
     let stem = path.file_stem().map_or_else(
         || "lesson".into(),
         |s| s.to_string_lossy().replace(['_', '-'], " "),
@@ -40,7 +40,7 @@ pub fn text_for(path: &Path) -> String {
 
 /// Writes the starting file for `name`, never over an existing file;
 /// returns where.
-pub fn write(name: &str) -> Result<PathBuf> {
+pub(crate) fn write(name: &str) -> Result<PathBuf> {
     if name.trim().is_empty() {
         bail!("expected a lesson name, such as `light_and_shadow`");
     }

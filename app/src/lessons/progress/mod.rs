@@ -3,7 +3,7 @@
 //! as lesson files have) that `workbench lesson progress` reads, turns into
 //! tables and merges for a class. A record, not a proof: anyone can edit it.
 
-pub mod table;
+pub(crate) mod table;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -12,40 +12,40 @@ use anyhow::{Context, Result, anyhow, bail};
 use serde::{Deserialize, Serialize};
 
 /// The version of the exported file this workbench writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub(crate) const FORMAT_VERSION: u32 = 1;
 
 /// The steps done, per lesson name, counted from 0: what the panel colours
 /// and what persists across restarts.
-pub type StepsDone = BTreeMap<String, BTreeSet<usize>>;
+pub(crate) type StepsDone = BTreeMap<String, BTreeSet<usize>>;
 
 /// What the window noted when a step turned done, per lesson name and
 /// step (from 0). States saved before it was kept have none.
-pub type StepNotes = BTreeMap<String, BTreeMap<usize, StepNote>>;
+pub(crate) type StepNotes = BTreeMap<String, BTreeMap<usize, StepNote>>;
 
 /// When a step turned done, and the answer it was done with.
 #[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(default)]
-pub struct StepNote {
+pub(crate) struct StepNote {
     /// The wall clock then, `YYYY-MM-DD HH:MM UTC`.
-    pub done_at: Option<String>,
+    pub(crate) done_at: Option<String>,
     /// The answer submitted, as typed or picked, when the step asked one.
-    pub answer: Option<String>,
+    pub(crate) answer: Option<String>,
 }
 
 /// What the window keeps of the lessons across restarts: the name the
 /// student typed, the steps done and what was noted when each turned done.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Record {
-    pub student: String,
+    pub(crate) student: String,
     pub done: StepsDone,
-    pub notes: StepNotes,
+    pub(crate) notes: StepNotes,
 }
 
 impl Record {
     /// Marks step `step` (from 0) of `lesson` done, noting `done_at` and
     /// the `answer` it was done with the first time only: a step done again
     /// keeps when it was first done.
-    pub fn mark_done(
+    pub(crate) fn mark_done(
         &mut self,
         lesson: &str,
         step: usize,
@@ -70,13 +70,13 @@ impl Record {
     }
 
     /// Forgets every step done of `lesson`.
-    pub fn forget(&mut self, lesson: &str) {
+    pub(crate) fn forget(&mut self, lesson: &str) {
         self.done.remove(lesson);
         self.notes.remove(lesson);
     }
 
     /// The exported file's form: steps from 1, a blank name as none.
-    pub fn export(&self) -> Progress {
+    pub(crate) fn export(&self) -> Progress {
         let student = self.student.trim();
         let lessons = (self.done.iter())
             .filter(|(_, steps)| !steps.is_empty())
@@ -107,7 +107,7 @@ impl Record {
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub struct Progress {
-    pub format_version: u32,
+    pub(crate) format_version: u32,
     /// The name the student typed in the panel, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub student: Option<String>,
@@ -137,7 +137,7 @@ pub struct StepDone {
 
 impl Progress {
     /// The exported file's text.
-    pub fn to_json(&self) -> String {
+    pub(crate) fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("progress serializes") + "\n"
     }
 
@@ -174,7 +174,7 @@ impl Progress {
     }
 
     /// The student's name: the file's `student`, else `fallback`.
-    pub fn student_or<'a>(&'a self, fallback: &'a str) -> &'a str {
+    pub(crate) fn student_or<'a>(&'a self, fallback: &'a str) -> &'a str {
         self.student.as_deref().unwrap_or(fallback)
     }
 }
@@ -212,7 +212,7 @@ struct SavedLessons {
 
 /// Where the window keeps its state (eframe's storage file), as eframe
 /// finds it for the window's title; `None` without a home folder.
-pub fn window_state_file() -> Option<PathBuf> {
+pub(crate) fn window_state_file() -> Option<PathBuf> {
     let folder = if cfg!(target_os = "macos") {
         std::env::home_dir()?.join("Library/Application Support/Whitted-Workbench")
     } else if cfg!(windows) {
@@ -229,7 +229,7 @@ pub fn window_state_file() -> Option<PathBuf> {
 
 /// Reads the progress in `file`: an exported file, or (a `.ron` file) the
 /// window's saved state.
-pub fn read(file: &Path) -> Result<Progress> {
+pub(crate) fn read(file: &Path) -> Result<Progress> {
     let text = std::fs::read_to_string(file)
         .with_context(|| format!("cannot read the progress file {}", file.display()))?;
     if file.extension().is_some_and(|e| e == "ron") {

@@ -14,12 +14,12 @@ use crate::reports::lab::html;
 /// One student's file in a class: the name shown and what it holds.
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub struct Student {
+pub(crate) struct Student {
     /// The file's `student`, or its file stem when it names none.
-    pub student: String,
+    pub(crate) student: String,
     /// The file it was read from, as given.
-    pub file: String,
-    pub lessons: Vec<LessonProgress>,
+    pub(crate) file: String,
+    pub(crate) lessons: Vec<LessonProgress>,
 }
 
 /// The headers of one student's table.
@@ -44,13 +44,13 @@ fn step_rows(progress: &Progress, student: &str) -> Vec<Vec<String>> {
 }
 
 /// One student's steps as CSV, one row per (lesson, step).
-pub fn steps_csv(progress: &Progress, student: &str) -> String {
+pub(crate) fn steps_csv(progress: &Progress, student: &str) -> String {
     let headers = STEP_HEADERS.map(String::from);
     csv(&headers, &step_rows(progress, student))
 }
 
 /// One student's steps as a self-contained HTML page.
-pub fn steps_html(progress: &Progress, student: &str) -> String {
+pub(crate) fn steps_html(progress: &Progress, student: &str) -> String {
     let rows = step_rows(progress, student)
         .into_iter()
         .map(|cells| {
@@ -102,7 +102,7 @@ fn class_rows(class: &[Student], lessons: &[String]) -> Vec<Vec<String>> {
 }
 
 /// The class as CSV: `student`, then a column per lesson.
-pub fn class_csv(class: &[Student]) -> String {
+pub(crate) fn class_csv(class: &[Student]) -> String {
     let lessons = lessons_of(class);
     let headers: Vec<String> = std::iter::once("student".to_string())
         .chain(lessons.iter().cloned())
@@ -111,7 +111,7 @@ pub fn class_csv(class: &[Student]) -> String {
 }
 
 /// The class as a self-contained HTML page.
-pub fn class_html(class: &[Student]) -> String {
+pub(crate) fn class_html(class: &[Student]) -> String {
     let lessons = lessons_of(class);
     let headers: Vec<&str> = std::iter::once("student")
         .chain(lessons.iter().map(String::as_str))
@@ -138,7 +138,7 @@ pub fn class_html(class: &[Student]) -> String {
 }
 
 /// The class as JSON: every student's file, named.
-pub fn class_json(class: &[Student]) -> String {
+pub(crate) fn class_json(class: &[Student]) -> String {
     let value = serde_json::json!({
         "format-version": FORMAT_VERSION,
         "students": class,

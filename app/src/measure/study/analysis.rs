@@ -8,7 +8,7 @@ use tracer::accel::AccelKind;
 use super::{Param, Point};
 
 /// The structures of `points`, in the order they first appear.
-pub fn structures(points: &[Point]) -> Vec<AccelKind> {
+pub(crate) fn structures(points: &[Point]) -> Vec<AccelKind> {
     let mut found = Vec::new();
     for p in points {
         if !found.contains(&p.accel()) {
@@ -19,7 +19,7 @@ pub fn structures(points: &[Point]) -> Vec<AccelKind> {
 }
 
 /// The points of one structure, by ascending x.
-pub fn series(points: &[Point], accel: AccelKind) -> Vec<&Point> {
+pub(crate) fn series(points: &[Point], accel: AccelKind) -> Vec<&Point> {
     let mut series: Vec<&Point> = points.iter().filter(|p| p.accel() == accel).collect();
     series.sort_by(|a, b| a.x.total_cmp(&b.x));
     series
@@ -28,7 +28,10 @@ pub fn series(points: &[Point], accel: AccelKind) -> Vec<&Point> {
 /// The neighbouring points of the first structure between which `count`
 /// falls the most, if it falls anywhere: where a material study's rays
 /// change most (refraction lost to total internal reflection).
-pub fn steepest_fall(points: &[Point], count: impl Fn(&Point) -> u64) -> Option<(&Point, &Point)> {
+pub(crate) fn steepest_fall(
+    points: &[Point],
+    count: impl Fn(&Point) -> u64,
+) -> Option<(&Point, &Point)> {
     let accel = *structures(points).first()?;
     let series = series(points, accel);
     series
@@ -40,7 +43,7 @@ pub fn steepest_fall(points: &[Point], count: impl Fn(&Point) -> u64) -> Option<
 
 /// Why a point is marked best.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Best {
+pub(crate) enum Best {
     /// The shortest median frame time of its structure.
     Fastest,
     /// The knee of error against time: past it, more samples buy little.
@@ -52,7 +55,7 @@ pub enum Best {
 /// `noise-threshold` the knee of error against time. Other parameters have none: their fastest value is
 /// the cheapest image (no bounce, a pinhole), not a choice to recommend;
 /// the level study has its slopes instead (see [`slope`]).
-pub fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
+pub(crate) fn best(param: Param, points: &[Point]) -> Vec<(usize, Best)> {
     structures(points)
         .into_iter()
         .filter_map(|accel| {
@@ -113,7 +116,7 @@ fn knee(curve: &[(usize, f64, f64)]) -> Option<usize> {
 /// The least-squares slope of log(frame time) against log(x) for one
 /// structure: 1 means time grows in proportion to the scene, 0 means it
 /// does not grow. `None` with fewer than two distinct positive x.
-pub fn slope(points: &[Point], accel: AccelKind) -> Option<f64> {
+pub(crate) fn slope(points: &[Point], accel: AccelKind) -> Option<f64> {
     let logs: Vec<(f64, f64)> = series(points, accel)
         .iter()
         .filter(|p| p.x > 0.0 && p.frame_ms() > 0.0)

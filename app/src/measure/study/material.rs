@@ -17,7 +17,7 @@ use crate::measure::benchmark::{Stop, Structures};
 
 /// A numeric field of the P3F material line that a study can sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Knob {
+pub(crate) enum Knob {
     Kd,
     Ks,
     Shine,
@@ -26,7 +26,7 @@ pub enum Knob {
 }
 
 impl Knob {
-    pub const ALL: [Knob; 5] = [
+    pub(crate) const ALL: [Knob; 5] = [
         Knob::Kd,
         Knob::Ks,
         Knob::Shine,
@@ -34,14 +34,14 @@ impl Knob {
         Knob::Ior,
     ];
     /// The names, as `--set` spells the fields.
-    pub const NAMES: [&str; 5] = ["kd", "ks", "shine", "t", "ior"];
+    pub(crate) const NAMES: [&str; 5] = ["kd", "ks", "shine", "t", "ior"];
 
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         Self::NAMES[self as usize]
     }
 
     /// The x axis of its chart.
-    pub fn axis(self) -> &'static str {
+    pub(crate) fn axis(self) -> &'static str {
         match self {
             Knob::Kd => "Kd (diffuse weight)",
             Knob::Ks => "Ks (highlight and mirror weight)",
@@ -52,7 +52,7 @@ impl Knob {
     }
 
     /// The field at `value`.
-    pub fn with(self, value: f32) -> MaterialField {
+    pub(crate) fn with(self, value: f32) -> MaterialField {
         match self {
             Knob::Kd => MaterialField::Kd(value),
             Knob::Ks => MaterialField::Ks(value),
@@ -63,7 +63,7 @@ impl Knob {
     }
 
     /// Values worth a first look.
-    pub fn default_values(self) -> &'static str {
+    pub(crate) fn default_values(self) -> &'static str {
         match self {
             Knob::Kd | Knob::Ks | Knob::Transmittance => "0..1:0.1",
             Knob::Shine => "1..1024:x2",

@@ -5,9 +5,9 @@
 //! of primitives is the x axis; the `spp` study also measures each image's
 //! error against a high-N reference of the same scene.
 
-pub mod analysis;
+pub(crate) mod analysis;
 mod material;
-pub mod values;
+pub(crate) mod values;
 
 use std::fmt;
 use std::str::FromStr;
@@ -26,11 +26,11 @@ use tracer::world::World;
 use crate::measure::ab::{self, Heatmap, Metrics};
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
 
-pub use material::Knob;
+pub(crate) use material::Knob;
 
 /// The setting a study sweeps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Param {
+pub(crate) enum Param {
     /// The uniform grid's cell multiplier m.
     GridM,
     /// N, with anti-aliasing on: N x N samples per pixel.
@@ -53,7 +53,7 @@ pub enum Param {
 }
 
 impl Param {
-    pub const ALL: [Param; 8] = [
+    pub(crate) const ALL: [Param; 8] = [
         Param::GridM,
         Param::Spp,
         Param::Depth,
@@ -65,7 +65,7 @@ impl Param {
     ];
 
     /// The name on the command line (`--param grid-m`).
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Param::GridM => "grid-m",
             Param::Spp => "spp",
@@ -80,7 +80,7 @@ impl Param {
     }
 
     /// The x axis of its chart, with the unit.
-    pub fn axis(self) -> &'static str {
+    pub(crate) fn axis(self) -> &'static str {
         match self {
             Param::GridM => "grid cell multiplier m",
             Param::Spp => "N (N x N samples per pixel)",
@@ -95,7 +95,7 @@ impl Param {
     }
 
     /// Whether only whole numbers make sense.
-    pub fn is_integer(self) -> bool {
+    pub(crate) fn is_integer(self) -> bool {
         matches!(
             self,
             Param::Spp | Param::Depth | Param::Resolution | Param::Level
@@ -103,7 +103,7 @@ impl Param {
     }
 
     /// Why `value` cannot be used, if it cannot.
-    pub fn check(self, value: f64) -> Result<(), String> {
+    pub(crate) fn check(self, value: f64) -> Result<(), String> {
         let name = self.name();
         let shown = values::format(value);
         if self.is_integer() && value.fract() != 0.0 {
@@ -135,7 +135,7 @@ impl Param {
     /// belongs to turned on (anti-aliasing for N, soft shadows for the
     /// light size, depth of field for a non-zero aperture). A level is not
     /// a render setting: it leaves `settings` alone.
-    pub fn apply(self, settings: &mut RenderSettings, value: f64) {
+    pub(crate) fn apply(self, settings: &mut RenderSettings, value: f64) {
         match self {
             Param::GridM => settings.grid_multiplier = value as f32,
             Param::Spp => {
@@ -166,13 +166,13 @@ impl Param {
 
     /// Whether the study measures each image's error against a uniform
     /// reference with many samples.
-    pub fn has_reference(self) -> bool {
+    pub(crate) fn has_reference(self) -> bool {
         matches!(self, Param::Spp | Param::NoiseThreshold)
     }
 
     /// The scene edit of a material study's point (none for the others,
     /// which change settings).
-    pub fn edit(self, value: f64) -> Option<Edit> {
+    pub(crate) fn edit(self, value: f64) -> Option<Edit> {
         match self {
             Param::Material { object, field } => Some(Edit::Object {
                 index: object as usize,
@@ -183,7 +183,7 @@ impl Param {
     }
 
     /// Values worth a first look, as the values syntax writes them.
-    pub fn default_values(self, base: &RenderSettings) -> String {
+    pub(crate) fn default_values(self, base: &RenderSettings) -> String {
         match self {
             Param::GridM => "0.25..8:x2".into(),
             Param::Spp => "1..6".into(),
@@ -202,7 +202,7 @@ impl Param {
 
     /// The structures a study of this parameter measures unless told:
     /// the grid for its multiplier, all three for scaling, else `current`.
-    pub fn default_structures(self, current: AccelKind) -> Vec<AccelKind> {
+    pub(crate) fn default_structures(self, current: AccelKind) -> Vec<AccelKind> {
         match self {
             Param::GridM => vec![AccelKind::Grid],
             Param::Level => AccelKind::ALL.to_vec(),
@@ -244,7 +244,7 @@ impl FromStr for Param {
 }
 
 /// What a study renders.
-pub enum Subject {
+pub(crate) enum Subject {
     /// One scene, with the settings every point starts from.
     Scene {
         world: Arc<World>,
@@ -268,32 +268,28 @@ pub enum Subject {
 
 /// A study: which parameter, which values, which structures, how measured.
 #[derive(Debug, Clone)]
-pub struct Study {
-    pub param: Param,
+pub(crate) struct Study {
+    pub(crate) param: Param,
     /// Ascending (see [`values::parse`]).
-    pub values: Vec<f64>,
-    pub structures: Vec<AccelKind>,
-    pub options: RunOptions,
-    pub encoding: Encoding,
+    pub(crate) values: Vec<f64>,
+    pub(crate) structures: Vec<AccelKind>,
+    pub(crate) options: RunOptions,
+    pub(crate) encoding: Encoding,
     /// N of the reference of the `spp` and `noise-threshold` studies;
     /// `None`: twice the largest N (the adaptive maximum's strata).
-    pub reference_samples: Option<u32>,
+    pub(crate) reference_samples: Option<u32>,
 }
 
 impl Study {
     /// How many points it measures.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.values.len() * self.structures.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     /// The points in the order they are measured: structure by structure
     /// over one scene (each structure's built ones are kept), level by
     /// level for generated scenes (each level is generated once).
-    pub fn plan(&self) -> Vec<(AccelKind, f64)> {
+    pub(crate) fn plan(&self) -> Vec<(AccelKind, f64)> {
         let mut plan = Vec::new();
         if self.param == Param::Level {
             for &value in &self.values {
@@ -309,7 +305,7 @@ impl Study {
 
     /// N of the reference image of the `spp` and `noise-threshold`
     /// studies over `base`.
-    pub fn reference_samples(&self, base: &RenderSettings) -> u32 {
+    pub(crate) fn reference_samples(&self, base: &RenderSettings) -> u32 {
         self.reference_samples.unwrap_or_else(|| {
             let largest = match self.param {
                 Param::NoiseThreshold => point_settings(base, self.param, base.accel, 0.0).strata(),
@@ -320,7 +316,7 @@ impl Study {
     }
 
     /// Refuses a study that cannot run, before anything is rendered.
-    pub fn check(&self, subject: &Subject) -> Result<()> {
+    pub(crate) fn check(&self, subject: &Subject) -> Result<()> {
         if self.values.is_empty() {
             bail!("the study has no values");
         }
@@ -410,12 +406,12 @@ pub struct Point {
     pub value: f64,
     /// Where it goes on the x axis: the value, or the primitive count for
     /// the level study.
-    pub x: f64,
+    pub(crate) x: f64,
     /// Primitives of the scene rendered.
-    pub primitives: usize,
-    pub measurement: Measurement,
+    pub(crate) primitives: usize,
+    pub(crate) measurement: Measurement,
     /// The image's error against the reference (the `spp` study).
-    pub error: Option<Metrics>,
+    pub(crate) error: Option<Metrics>,
 }
 
 impl Point {
@@ -424,21 +420,21 @@ impl Point {
     }
 
     /// The median frame time in milliseconds.
-    pub fn frame_ms(&self) -> f64 {
+    pub(crate) fn frame_ms(&self) -> f64 {
         self.measurement.median().as_secs_f64() * 1e3
     }
 }
 
 /// The `spp` study's reference image.
 #[derive(Debug, Clone)]
-pub struct ReferenceRender {
-    pub samples: u32,
-    pub image: RgbImage,
+pub(crate) struct ReferenceRender {
+    pub(crate) samples: u32,
+    pub(crate) image: RgbImage,
 }
 
 /// What a study reports while it works.
 #[derive(Debug)]
-pub enum StudyEvent<'a> {
+pub(crate) enum StudyEvent<'a> {
     /// Work before the points: generating a level's scene, rendering the
     /// reference; `fraction` (0..=1) of it done.
     Preparing { what: &'a str, fraction: f32 },
@@ -455,10 +451,10 @@ pub enum StudyEvent<'a> {
 
 /// The points measured, and whether the study stopped early.
 #[derive(Debug, Clone, Default)]
-pub struct StudyOutcome {
-    pub points: Vec<Point>,
-    pub cancelled: bool,
-    pub reference: Option<ReferenceRender>,
+pub(crate) struct StudyOutcome {
+    pub(crate) points: Vec<Point>,
+    pub(crate) cancelled: bool,
+    pub(crate) reference: Option<ReferenceRender>,
 }
 
 /// Measures every point of `study` on `subject`, in [`Study::plan`] order,
@@ -490,7 +486,7 @@ pub fn run(
 /// same scene and N (a noise-threshold study beside the `spp` study it is
 /// compared with): its points are measured against that image, which is
 /// not rendered again.
-pub fn run_with_reference(
+pub(crate) fn run_with_reference(
     study: &Study,
     subject: &Subject,
     reference: ReferenceRender,

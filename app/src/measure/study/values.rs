@@ -7,11 +7,11 @@ use std::fmt;
 
 /// Most values one study may have: beyond this a typo (`1..1000000`) is
 /// more likely than a wish.
-pub const MAX_VALUES: usize = 1000;
+pub(crate) const MAX_VALUES: usize = 1000;
 
 /// Why a values text was refused, with the piece at fault.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ValuesError(pub String);
+pub(crate) struct ValuesError(pub String);
 
 impl fmt::Display for ValuesError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -22,7 +22,7 @@ impl fmt::Display for ValuesError {
 impl std::error::Error for ValuesError {}
 
 /// The syntax, for help texts and error messages.
-pub const SYNTAX: &str = "a comma-separated list of numbers and ranges: `a..b` (a, a+1, ..., b), \
+pub(crate) const SYNTAX: &str = "a comma-separated list of numbers and ranges: `a..b` (a, a+1, ..., b), \
                           `a..b:s` (add s each step) or `a..b:xf` (multiply by f each step)";
 
 fn fail<T>(message: String) -> Result<T, ValuesError> {
@@ -40,7 +40,7 @@ fn number(text: &str, item: &str) -> Result<f64, ValuesError> {
 }
 
 /// Parses `text` into ascending values without repeats.
-pub fn parse(text: &str) -> Result<Vec<f64>, ValuesError> {
+pub(crate) fn parse(text: &str) -> Result<Vec<f64>, ValuesError> {
     if text.trim().is_empty() {
         return fail(format!("no values given (expected {SYNTAX})"));
     }
@@ -121,7 +121,7 @@ fn range(item: &str, start: &str, rest: &str, values: &mut Vec<f64>) -> Result<(
 }
 
 /// A value as a user would write it: `2`, `0.25`.
-pub fn format(value: f64) -> String {
+pub(crate) fn format(value: f64) -> String {
     let text = format!("{value:.6}");
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }

@@ -16,7 +16,7 @@ use crate::figures::study_plot::colour;
 use crate::measure::benchmark::Measurement;
 
 /// The timing table's headers; tests find columns by these names.
-pub const TIMING_HEADERS: [&str; 11] = [
+pub(crate) const TIMING_HEADERS: [&str; 11] = [
     "structure",
     "soft shadows",
     "anti-aliasing",
@@ -65,7 +65,7 @@ fn timing_row(m: &Measurement) -> (String, Vec<String>) {
     )
 }
 
-pub fn section(lab: &Lab) -> Result<String> {
+pub(crate) fn section(lab: &Lab) -> Result<String> {
     let rows: Vec<_> = lab.matrix.iter().map(timing_row).collect();
     let bars: Vec<Bar> = lab
         .matrix

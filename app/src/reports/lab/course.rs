@@ -9,12 +9,12 @@ use crate::measure::benchmark::SamplingColumn;
 
 /// One row of the course's timing table.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CourseRow {
-    pub grid: bool,
-    pub soft_shadows: bool,
-    pub sampling: SamplingColumn,
+pub(crate) struct CourseRow {
+    pub(crate) grid: bool,
+    pub(crate) soft_shadows: bool,
+    pub(crate) sampling: SamplingColumn,
     /// The reported time, in seconds (the report writes "≅ 1.03s").
-    pub seconds: f64,
+    pub(crate) seconds: f64,
 }
 
 const fn row(grid: bool, soft_shadows: bool, sampling: SamplingColumn, seconds: f64) -> CourseRow {
@@ -27,7 +27,7 @@ const fn row(grid: bool, soft_shadows: bool, sampling: SamplingColumn, seconds: 
 }
 
 /// Where [`COURSE_TIMES`] comes from.
-pub const COURSE_CITATION: &str = "P. Rodrigues, M. Duarte, Y. Cheng, \"3D Programming\", \
+pub(crate) const COURSE_CITATION: &str = "P. Rodrigues, M. Duarte, Y. Cheng, \"3D Programming\", \
     assignment 1 report, group 11, Master in Computer Science and Engineering, University of \
     Lisbon, 19 April 2020, Figure 5.1 \"Executions Time\" (file balls_medium.p3f, \
     anti-aliasing N = 4)";
@@ -36,7 +36,7 @@ pub const COURSE_CITATION: &str = "P. Rodrigues, M. Duarte, Y. Cheng, \"3D Progr
 /// `balls_medium.p3f` without and with the grid, hard and soft shadows,
 /// one sample, anti-aliasing, anti-aliasing with depth of field. See
 /// [`COURSE_CITATION`].
-pub const COURSE_TIMES: [CourseRow; 12] = [
+pub(crate) const COURSE_TIMES: [CourseRow; 12] = [
     row(false, false, SamplingColumn::Single, 1.03),
     row(false, false, SamplingColumn::Antialiasing, 14.45),
     row(false, false, SamplingColumn::AntialiasingDof, 14.82),
@@ -55,7 +55,7 @@ pub const COURSE_TIMES: [CourseRow; 12] = [
 const COURSE_SCENE: &str = "balls_medium";
 
 /// Whether `scene_name` (a path or a label) names the course's scene.
-pub fn is_course_scene(scene_name: &str) -> bool {
+pub(crate) fn is_course_scene(scene_name: &str) -> bool {
     std::path::Path::new(scene_name)
         .file_stem()
         .and_then(|s| s.to_str())
@@ -70,7 +70,7 @@ fn sampling_words(s: SamplingColumn) -> &'static str {
     }
 }
 
-pub fn section(lab: &Lab) -> String {
+pub(crate) fn section(lab: &Lab) -> String {
     if !is_course_scene(&lab.request.scene_name) {
         let body = format!(
             "<p>The course measured only <code>{COURSE_SCENE}</code>; this report is of another \

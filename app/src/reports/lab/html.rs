@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use image::RgbImage;
 
 /// `text` safe inside HTML text and attribute values.
-pub fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {
@@ -24,7 +24,7 @@ pub fn escape(text: &str) -> String {
 }
 
 /// Standard base64 (RFC 4648, with padding): what a `data:` URI carries.
-pub fn base64(bytes: &[u8]) -> String {
+pub(crate) fn base64(bytes: &[u8]) -> String {
     const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for chunk in bytes.chunks(3) {
@@ -47,7 +47,7 @@ pub fn base64(bytes: &[u8]) -> String {
 
 /// `image` as an `<img>` with its PNG inline, shown `width` CSS pixels
 /// wide (pixelated when magnified, so pixels stay pixels).
-pub fn image(image: &RgbImage, alt: &str, width: u32) -> Result<String> {
+pub(crate) fn image(image: &RgbImage, alt: &str, width: u32) -> Result<String> {
     let mut png = Vec::new();
     image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
@@ -63,7 +63,7 @@ pub fn image(image: &RgbImage, alt: &str, width: u32) -> Result<String> {
 }
 
 /// A figure: `body` (an image or a chart) with a caption.
-pub fn figure(body: &str, caption: &str) -> String {
+pub(crate) fn figure(body: &str, caption: &str) -> String {
     format!(
         "<figure>{body}<figcaption>{}</figcaption></figure>\n",
         escape(caption)
@@ -71,7 +71,7 @@ pub fn figure(body: &str, caption: &str) -> String {
 }
 
 /// Name and value pairs as a table without a header (escaped here).
-pub fn facts(rows: &[(&str, String)]) -> String {
+pub(crate) fn facts(rows: &[(&str, String)]) -> String {
     let mut out = String::from("<table class=\"facts\">\n");
     for (name, value) in rows {
         let _ = writeln!(
@@ -87,7 +87,7 @@ pub fn facts(rows: &[(&str, String)]) -> String {
 
 /// A table with a header row; cells are HTML already (escape text first).
 /// `row_ids` names each row (`data-row`) so scripts and tests find them.
-pub fn table(class: &str, headers: &[&str], rows: &[(String, Vec<String>)]) -> String {
+pub(crate) fn table(class: &str, headers: &[&str], rows: &[(String, Vec<String>)]) -> String {
     let mut out = format!("<table class=\"{class}\">\n<thead><tr>");
     for h in headers {
         let _ = write!(out, "<th>{}</th>", escape(h));
@@ -105,7 +105,7 @@ pub fn table(class: &str, headers: &[&str], rows: &[(String, Vec<String>)]) -> S
 }
 
 /// A section: `<section id=...>` with its heading.
-pub fn titled_section(id: &str, title: &str, body: &str) -> String {
+pub(crate) fn titled_section(id: &str, title: &str, body: &str) -> String {
     format!(
         "<section id=\"{id}\">\n<h2>{}</h2>\n{body}</section>\n",
         escape(title)
@@ -113,7 +113,7 @@ pub fn titled_section(id: &str, title: &str, body: &str) -> String {
 }
 
 /// The whole page: `title`, then `sections` in order.
-pub fn page(title: &str, sections: &[String]) -> String {
+pub(crate) fn page(title: &str, sections: &[String]) -> String {
     let mut out =
         String::from("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
     let _ = writeln!(out, "<title>{}</title>", escape(title));

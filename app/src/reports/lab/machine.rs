@@ -5,23 +5,23 @@ use web_time::{SystemTime, UNIX_EPOCH};
 
 /// What a reader needs to compare two reports' times.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Machine {
+pub(crate) struct Machine {
     /// The CPU's model name (`/proc/cpuinfo`), or the architecture.
-    pub cpu: String,
+    pub(crate) cpu: String,
     /// Logical CPUs this process may use.
-    pub cpus: usize,
+    pub(crate) cpus: usize,
     /// The OS's name and version, and the kernel's.
-    pub os: String,
-    pub version: &'static str,
+    pub(crate) os: String,
+    pub(crate) version: &'static str,
     /// The git commit the binary was built from ("unknown" outside git).
-    pub commit: &'static str,
+    pub(crate) commit: &'static str,
     /// When the report was measured, UTC (`YYYY-MM-DD HH:MM UTC`).
-    pub date: String,
+    pub(crate) date: String,
 }
 
 impl Machine {
     /// This machine, now.
-    pub fn this() -> Machine {
+    pub(crate) fn this() -> Machine {
         let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
         let os_release = std::fs::read_to_string("/etc/os-release").unwrap_or_default();
         let kernel = std::fs::read_to_string("/proc/sys/kernel/osrelease").unwrap_or_default();
@@ -59,7 +59,7 @@ fn os_name(os_release: &str) -> Option<String> {
 
 /// `time` as `YYYY-MM-DD HH:MM UTC` (the proleptic Gregorian calendar,
 /// from days since 1970 as in Howard Hinnant's `civil_from_days`).
-pub fn utc_date(time: SystemTime) -> String {
+pub(crate) fn utc_date(time: SystemTime) -> String {
     let secs = time.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs());
     let (days, rest) = ((secs / 86_400) as i64, secs % 86_400);
     let z = days + 719_468;

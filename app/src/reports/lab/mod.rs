@@ -4,9 +4,9 @@
 //! then [`page`]; one module per section writes its part of the page.
 
 mod acceleration;
-pub mod course;
+pub(crate) mod course;
 pub(crate) mod html;
-pub mod machine;
+pub(crate) mod machine;
 mod pixel;
 mod run;
 mod sampling;
@@ -30,40 +30,40 @@ use crate::measure::benchmark::{
 use crate::measure::study::{self, Param, Study, StudyEvent, StudyOutcome, Subject, values};
 use crate::reports::bench_table::{self, Columns, Format};
 
-pub use machine::Machine;
-pub use pixel::PixelExplained;
+pub(crate) use machine::Machine;
+pub(crate) use pixel::PixelExplained;
 
 /// What to report on and how to measure it.
 #[derive(Clone)]
-pub struct Request {
+pub(crate) struct Request {
     /// The scene's name as the user gave it (a path, or the window's label).
-    pub scene_name: String,
-    pub scene: Arc<Scene>,
-    pub world: Arc<World>,
+    pub(crate) scene_name: String,
+    pub(crate) scene: Arc<Scene>,
+    pub(crate) world: Arc<World>,
     /// The settings every experiment starts from: the scene's, with the
     /// user's changes; N is the matrix's (the course's 4 unless chosen).
-    pub base: RenderSettings,
+    pub(crate) base: RenderSettings,
     /// The `--set` edits applied to the scene, in words.
-    pub edits: Vec<String>,
+    pub(crate) edits: Vec<String>,
     /// Frames per timed configuration.
-    pub runs: usize,
-    pub threads: Option<usize>,
-    pub encoding: Encoding,
+    pub(crate) runs: usize,
+    pub(crate) threads: Option<usize>,
+    pub(crate) encoding: Encoding,
     /// The pixel to explain; `None` lets the report choose one.
-    pub pixel: Option<(u32, u32)>,
+    pub(crate) pixel: Option<(u32, u32)>,
     /// Lower resolution and fewer runs (see [`QUICK_SIDE`], [`QUICK_RUNS`]).
-    pub quick: bool,
+    pub(crate) quick: bool,
 }
 
 /// The longer side of a quick report's images, in pixels.
-pub const QUICK_SIDE: u32 = 128;
+pub(crate) const QUICK_SIDE: u32 = 128;
 /// Frames per timed configuration in a quick report (at most).
-pub const QUICK_RUNS: usize = 3;
+pub(crate) const QUICK_RUNS: usize = 3;
 
 impl Request {
     /// The settings and runs actually measured: the quick report's lower
     /// resolution and fewer runs applied.
-    pub fn measured(&self) -> (RenderSettings, usize) {
+    pub(crate) fn measured(&self) -> (RenderSettings, usize) {
         // A report's frames stop at N x N and sample uniformly, as the
         // course's did, with shadows on but where section 2 turns them off,
         // whatever a window was doing.
@@ -97,7 +97,7 @@ impl Request {
     }
 
     /// The worker threads the frames run on.
-    pub fn threads_used(&self) -> usize {
+    pub(crate) fn threads_used(&self) -> usize {
         match self.threads {
             Some(n) if n > 0 => n,
             _ => rayon::current_num_threads(),
@@ -120,40 +120,40 @@ fn plain(base: &RenderSettings, accel: AccelKind) -> RenderSettings {
 }
 
 /// Everything measured for the page.
-pub struct Lab {
-    pub request: Request,
+pub(crate) struct Lab {
+    pub(crate) request: Request,
     /// The settings measured (quick ones lowered) and runs per timing.
-    pub base: RenderSettings,
-    pub runs: usize,
-    pub threads: usize,
-    pub machine: Machine,
+    pub(crate) base: RenderSettings,
+    pub(crate) runs: usize,
+    pub(crate) threads: usize,
+    pub(crate) machine: Machine,
     /// The course's timing matrix with a BVH row for each of its rows, in
     /// [`benchmark::matrix`]'s order.
-    pub matrix: Vec<Measurement>,
+    pub(crate) matrix: Vec<Measurement>,
     /// One frame of each matrix configuration over the BVH, and the plain
     /// frame over none and the grid, with per-pixel views: blocked shadow
     /// rays, the deepest bounce, tests per pixel.
-    pub views: Vec<Measurement>,
+    pub(crate) views: Vec<Measurement>,
     /// Plain frames at depth 0 without shadows (local shading only), then
     /// with hard shadows at depth 0, 1 and the scene's, timed as the matrix.
-    pub whitted: Vec<Measurement>,
+    pub(crate) whitted: Vec<Measurement>,
     /// The scene's depth with every transmittance set to 0, when something
     /// refracts: reflection without refraction, timed as the others.
-    pub opaque: Option<Measurement>,
+    pub(crate) opaque: Option<Measurement>,
     /// Error against samples: the `spp` study with its reference.
-    pub samples: StudyOutcome,
+    pub(crate) samples: StudyOutcome,
     /// Error against time with adaptive sampling: the `noise-threshold`
     /// study, against a reference of the `spp` study's N.
-    pub adaptive: StudyOutcome,
+    pub(crate) adaptive: StudyOutcome,
     /// The grid multiplier study.
-    pub grid: StudyOutcome,
-    pub pixel: PixelExplained,
+    pub(crate) grid: StudyOutcome,
+    pub(crate) pixel: PixelExplained,
 }
 
 impl Lab {
     /// The timing matrix's row of `accel` with or without soft shadows,
     /// sampled as `sampling`.
-    pub fn row(
+    pub(crate) fn row(
         &self,
         accel: AccelKind,
         soft: bool,
@@ -170,9 +170,9 @@ impl Lab {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReportProgress {
     /// 0..=1 of the whole report's work (estimated as samples traced).
-    pub fraction: f32,
+    pub(crate) fraction: f32,
     /// What is being measured, in words.
-    pub doing: String,
+    pub(crate) doing: String,
 }
 
 /// The report's stages, each with its estimated work (samples traced).
@@ -366,7 +366,7 @@ impl Tracker<'_> {
 /// Measures everything the page shows. `cancel` stops it between tiles:
 /// the result is then `None` and nothing is kept. Blocks: a window runs it
 /// on a thread of its own.
-pub fn measure(
+pub(crate) fn measure(
     request: &Request,
     cancel: &AtomicBool,
     on_progress: &mut dyn FnMut(&ReportProgress),
@@ -528,7 +528,7 @@ fn opaque_world(request: &Request) -> Result<Option<Arc<World>>> {
 }
 
 /// The page: the seven sections in the course report's order.
-pub fn page(lab: &Lab) -> Result<String> {
+pub(crate) fn page(lab: &Lab) -> Result<String> {
     let title = format!("Lab report: {}", lab.request.scene_name);
     let sections = [
         run::section(lab),
@@ -544,13 +544,13 @@ pub fn page(lab: &Lab) -> Result<String> {
 
 /// The timing matrix as `workbench bench --matrix --format json` writes
 /// it: the numbers of the page's timing table, for scripts and checks.
-pub fn matrix_json(lab: &Lab) -> String {
+pub(crate) fn matrix_json(lab: &Lab) -> String {
     bench_table::table(&lab.matrix, Columns::Matrix, Format::Json)
 }
 
 /// Writes `text` to `path` whole or not at all: a temporary file beside it,
 /// renamed over it once complete.
-pub fn write_atomically(path: &Path, text: &str) -> Result<()> {
+pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<()> {
     crate::image_file::write_atomically(path, |file| {
         use std::io::Write as _;
         file.write_all(text.as_bytes())?;

@@ -20,12 +20,12 @@ const FIGURE: (u32, u32) = (640, 480);
 const CANDIDATES: u32 = 32;
 
 /// The pixel, its tree and its figure.
-pub struct PixelExplained {
-    pub pixel: (u32, u32),
+pub(crate) struct PixelExplained {
+    pub(crate) pixel: (u32, u32),
     /// Whether the report chose it (else the user gave it).
-    pub chosen: bool,
-    pub tree: RayTree,
-    pub figure: RgbImage,
+    pub(crate) chosen: bool,
+    pub(crate) tree: RayTree,
+    pub(crate) figure: RgbImage,
 }
 
 /// Whether a pixel has both a reflection and a blocked shadow ray, one of
@@ -49,7 +49,7 @@ fn interest(tree: &RayTree) -> Interest {
 }
 
 /// Chooses (or checks) the pixel under `settings` and draws its figure.
-pub fn explain(
+pub(crate) fn explain(
     request: &Request,
     settings: &RenderSettings,
     structures: &mut Structures,
@@ -115,7 +115,7 @@ pub fn explain(
     })
 }
 
-pub fn section(lab: &Lab) -> Result<String> {
+pub(crate) fn section(lab: &Lab) -> Result<String> {
     let p = &lab.pixel;
     let (x, y) = p.pixel;
     let why = if p.chosen {

@@ -12,7 +12,7 @@ fn triple(v: glam::Vec3) -> String {
     format!("({}, {}, {})", v.x, v.y, v.z)
 }
 
-pub fn section(lab: &Lab) -> String {
+pub(crate) fn section(lab: &Lab) -> String {
     let request = &lab.request;
     let counts = &request.world.counts;
     let view = &request.scene.view;

@@ -58,7 +58,7 @@ fn shown(m: &Measurement, what: &str) -> Result<String> {
     Ok(figure(&image(&m.image, &caption, 300)?, &caption))
 }
 
-pub fn section(lab: &Lab) -> Result<String> {
+pub(crate) fn section(lab: &Lab) -> Result<String> {
     let row = |soft, sampling| lab.row(AccelKind::Bvh, soft, sampling);
     let (Some(plain), Some(aa), Some(dof), Some(soft), Some(soft_aa)) = (
         row(false, SamplingColumn::Single),

@@ -93,7 +93,7 @@ fn same_configuration(a: &Measurement, b: &Measurement) -> bool {
         && SamplingColumn::of(s) == SamplingColumn::of(t)
 }
 
-pub fn section(lab: &Lab) -> String {
+pub(crate) fn section(lab: &Lab) -> String {
     let mut text = String::new();
     for soft in [false, true] {
         for sampling in [

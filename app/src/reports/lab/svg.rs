@@ -7,12 +7,12 @@ use std::fmt::Write as _;
 use super::html::escape;
 
 /// One horizontal bar: a value with a low..high whisker.
-pub struct Bar {
-    pub label: String,
-    pub value: f64,
-    pub low: f64,
-    pub high: f64,
-    pub colour: [u8; 3],
+pub(crate) struct Bar {
+    pub(crate) label: String,
+    pub(crate) value: f64,
+    pub(crate) low: f64,
+    pub(crate) high: f64,
+    pub(crate) colour: [u8; 3],
 }
 
 fn rgb([r, g, b]: [u8; 3]) -> String {
@@ -20,7 +20,7 @@ fn rgb([r, g, b]: [u8; 3]) -> String {
 }
 
 /// A number with three significant digits at most, for ticks and labels.
-pub fn short(v: f64) -> String {
+pub(crate) fn short(v: f64) -> String {
     match v.abs() {
         0.0 => "0".into(),
         a if a >= 100.0 => format!("{v:.0}"),
@@ -32,7 +32,7 @@ pub fn short(v: f64) -> String {
 
 /// Horizontal bars, one per row, on one linear scale from 0, each with its
 /// value written after it; `unit` names the axis.
-pub fn bar_chart(bars: &[Bar], unit: &str) -> String {
+pub(crate) fn bar_chart(bars: &[Bar], unit: &str) -> String {
     const LABEL: f64 = 190.0;
     const ROW: f64 = 18.0;
     const WIDTH: f64 = 760.0;
@@ -98,15 +98,15 @@ pub fn bar_chart(bars: &[Bar], unit: &str) -> String {
 }
 
 /// One line of a line chart.
-pub struct Series {
-    pub name: String,
-    pub colour: [u8; 3],
-    pub points: Vec<(f64, f64)>,
+pub(crate) struct Series {
+    pub(crate) name: String,
+    pub(crate) colour: [u8; 3],
+    pub(crate) points: Vec<(f64, f64)>,
 }
 
 /// Where a line chart's y axis starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum YAxis {
+pub(crate) enum YAxis {
     /// At 0 (or the lowest value when one is negative): amounts such as
     /// times and errors, whose ratios the chart should show.
     FromZero,
@@ -118,7 +118,7 @@ pub enum YAxis {
 /// A line chart of `series` on linear axes, each point marked, with a
 /// legend in the top-right corner, or the bottom-right when a point lies
 /// under the top one.
-pub fn line_chart(
+pub(crate) fn line_chart(
     title: &str,
     x_label: &str,
     y_label: &str,

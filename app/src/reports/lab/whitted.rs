@@ -9,7 +9,7 @@ use super::{Lab, how_measured, ms};
 use crate::measure::benchmark::Measurement;
 
 /// Rays of each kind, the columns every per-frame table shares.
-pub fn rays_by_kind(m: &Measurement) -> Vec<String> {
+pub(crate) fn rays_by_kind(m: &Measurement) -> Vec<String> {
     let c = &m.stats.counters;
     [
         c.eye_rays,
@@ -24,7 +24,7 @@ pub fn rays_by_kind(m: &Measurement) -> Vec<String> {
 }
 
 /// Headers of [`rays_by_kind`].
-pub const RAY_HEADERS: [&str; 5] = ["eye", "shadow", "reflection", "refraction", "all rays"];
+pub(crate) const RAY_HEADERS: [&str; 5] = ["eye", "shadow", "reflection", "refraction", "all rays"];
 
 /// A frame of the section: what its settings add to the one before, in
 /// words, and its row's name and id.
@@ -80,7 +80,7 @@ fn step(m: &Measurement, deepest: u32, opaque: bool, refracts: bool) -> WhittedF
     }
 }
 
-pub fn section(lab: &Lab) -> Result<String> {
+pub(crate) fn section(lab: &Lab) -> Result<String> {
     let deepest = lab.base.max_depth;
     let mut figures = String::new();
     let mut rows = Vec::new();

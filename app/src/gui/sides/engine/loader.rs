@@ -12,14 +12,14 @@ use super::Wake;
 
 /// A scene being loaded on its thread.
 pub(super) struct SceneLoad {
-    pub label: String,
+    pub(crate) label: String,
     result: Receiver<Result<Loaded, String>>,
     /// Thousandths of a mesh file read so far, or [`NO_FRACTION`].
     per_mille: Arc<AtomicU32>,
 }
 
 /// The loading thread's name (the tests tell its wakes from a render's).
-pub const THREAD_NAME: &str = "scene-loader";
+pub(crate) const THREAD_NAME: &str = "scene-loader";
 
 /// A load that has reported no progress (a scene file, a small mesh).
 const NO_FRACTION: u32 = u32::MAX;
@@ -27,7 +27,7 @@ const NO_FRACTION: u32 = u32::MAX;
 impl SceneLoad {
     /// Starts reading `source`; `wake` is called with progress and when it
     /// is done.
-    pub fn start(source: SceneSource, wake: Wake) -> Self {
+    pub(crate) fn start(source: SceneSource, wake: Wake) -> Self {
         let (tx, rx) = channel();
         let label = source.label();
         let per_mille = Arc::new(AtomicU32::new(NO_FRACTION));
@@ -58,7 +58,7 @@ impl SceneLoad {
     }
 
     /// The loaded scene or why it failed, once the thread is done.
-    pub fn poll(&self) -> Option<Result<Loaded, String>> {
+    pub(crate) fn poll(&self) -> Option<Result<Loaded, String>> {
         match self.result.try_recv() {
             Err(TryRecvError::Empty) => None,
             Err(TryRecvError::Disconnected) => {
@@ -69,7 +69,7 @@ impl SceneLoad {
     }
 
     /// How much of a large mesh file is read, when it reports it.
-    pub fn fraction(&self) -> Option<f32> {
+    pub(crate) fn fraction(&self) -> Option<f32> {
         let per_mille = self.per_mille.load(Ordering::Relaxed);
         (per_mille != NO_FRACTION).then(|| per_mille as f32 / 1000.0)
     }

@@ -8,7 +8,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use tracer::accel::SceneIndex;
 use tracer::render::driver::Priority;
 use tracer::render::{JobOptions, JobState, RenderJob, RenderSettings};
-use tracer::stats::RenderStats;
 use tracer::world::ShapeChange;
 
 use crate::load::{Loaded, SceneSource};
@@ -79,14 +78,15 @@ pub struct Engine {
 
 impl Engine {
     /// An engine that calls `wake` whenever there is something new to show.
-    pub fn new(wake: Wake) -> Self {
+    #[cfg(test)]
+    pub(crate) fn new(wake: Wake) -> Self {
         Self::with_wakes(wake.clone(), wake)
     }
 
     /// An engine that calls `wake` when a render progresses (the UI paces
     /// its redraws) and `wake_now` when its last pass is in, which the UI
     /// should show at once.
-    pub fn with_wakes(wake: Wake, wake_now: Wake) -> Self {
+    pub(crate) fn with_wakes(wake: Wake, wake_now: Wake) -> Self {
         Self {
             scene: None,
             job: None,
@@ -111,13 +111,13 @@ impl Engine {
 
     /// Starts reading `source` on a background thread; the current scene
     /// keeps rendering until the new one is ready.
-    pub fn load(&mut self, source: SceneSource) {
+    pub(crate) fn load(&mut self, source: SceneSource) {
         self.loading = Some(SceneLoad::start(source, self.wake.clone()));
     }
 
     /// Takes a finished load, if any: `Some(Ok(scene))`, now the current
     /// scene, or `Some(Err(message))` when it failed.
-    pub fn poll_load(&mut self) -> Option<Result<&Loaded, String>> {
+    pub(crate) fn poll_load(&mut self) -> Option<Result<&Loaded, String>> {
         let result = self.loading.as_ref()?.poll()?;
         self.loading = None;
         match result {
@@ -131,7 +131,7 @@ impl Engine {
 
     /// Makes `scene` the current scene (loaded elsewhere, e.g. by the
     /// other side of a comparison); nothing renders until asked.
-    pub fn show(&mut self, scene: Loaded) {
+    pub(crate) fn show(&mut self, scene: Loaded) {
         self.retire_job();
         self.index = None;
         self.settings = None;
@@ -145,7 +145,7 @@ impl Engine {
     /// says moved in place ([`SceneIndex::refit`]: no Building phase; on
     /// this thread, as a refit costs a fraction of a build), and built anew by
     /// the next job when the refit refuses or the shapes were renumbered.
-    pub fn edit_scene(&mut self, scene: Loaded, shapes: ShapeChange) {
+    pub(crate) fn edit_scene(&mut self, scene: Loaded, shapes: ShapeChange) {
         let index = self.index();
         let index = match shapes {
             ShapeChange::None => index,
@@ -161,7 +161,7 @@ impl Engine {
     /// The scene was saved as `path`: it is that file's now, with nothing
     /// rendered anew. Its skybox name stays relative to the folder it came
     /// from, which is where the next save finds it.
-    pub fn saved_as(&mut self, path: &std::path::Path) {
+    pub(crate) fn saved_as(&mut self, path: &std::path::Path) {
         if let Some(loaded) = &mut self.scene {
             loaded.source = SceneSource::File(path.to_path_buf());
         }
@@ -182,7 +182,7 @@ impl Engine {
     /// right after opening a 262k-triangle mesh started one per frame, and
     /// the memory grew by gigabytes). Call again once the build reports;
     /// the window does on every frame.
-    pub fn render(&mut self, settings: &RenderSettings) -> Result<(), String> {
+    pub(crate) fn render(&mut self, settings: &RenderSettings) -> Result<(), String> {
         if self.settings.as_ref() == Some(settings) && self.job.is_some() && !self.views_changed {
             self.restart_waiting.store(false, Ordering::Relaxed);
             return Ok(());
@@ -205,7 +205,7 @@ impl Engine {
     }
 
     /// Starts a new job with `settings` whatever runs now.
-    pub fn restart(&mut self, settings: &RenderSettings) -> Result<(), String> {
+    pub(crate) fn restart(&mut self, settings: &RenderSettings) -> Result<(), String> {
         let Some(world) = self.scene.as_ref().map(|s| s.world.clone()) else {
             return Ok(());
         };
@@ -265,13 +265,13 @@ impl Engine {
     }
 
     /// Drops cancelled jobs that have finished; call once per frame.
-    pub fn collect_retired(&mut self) {
+    pub(crate) fn collect_retired(&mut self) {
         self.retired.retain(|job| !job.is_finished());
     }
 
     /// Holds the render between tiles (and before building a structure),
     /// or lets it go on; jobs started later start so.
-    pub fn set_paused(&mut self, paused: bool) {
+    pub(crate) fn set_paused(&mut self, paused: bool) {
         self.paused = paused;
         if let Some(job) = &self.job {
             job.set_paused(paused);
@@ -286,7 +286,7 @@ impl Engine {
 
     /// The next jobs render only in the time the other engines' renders
     /// leave (the observer's, beside the sides').
-    pub fn set_idle_priority(&mut self, idle: bool) {
+    pub(crate) fn set_idle_priority(&mut self, idle: bool) {
         if idle != self.idle_priority {
             self.pool = None;
         }
@@ -312,19 +312,20 @@ impl Engine {
 
     /// The next jobs pause themselves once `tiles` tiles are in (`None`:
     /// they run on): a first pass held half done, whatever the machine.
-    pub fn pause_after_tiles(&mut self, tiles: Option<u64>) {
+    pub(crate) fn pause_after_tiles(&mut self, tiles: Option<u64>) {
         self.pause_after_tiles = tiles;
     }
 
     /// Whether the current job rendered its last pass: its image is final
     /// even while the job still reports itself rendering.
-    pub fn is_complete(&self) -> bool {
+    pub(crate) fn is_complete(&self) -> bool {
         self.job.is_some() && self.complete.load(Ordering::Relaxed)
     }
 
     /// The current job's statistics as they stand, not as last shown: for
     /// a script asking a page whose frames stop while its tab is hidden.
-    pub fn live_stats(&self) -> Option<RenderStats> {
+    #[cfg(target_family = "wasm")]
+    pub(crate) fn live_stats(&self) -> Option<tracer::stats::RenderStats> {
         self.job.as_ref().map(RenderJob::stats)
     }
 
@@ -340,14 +341,14 @@ impl Engine {
     /// Lends this engine the structure another engine built over the same
     /// scene (the observer renders A's scene): its next job skips the
     /// build when the structure fits its settings.
-    pub fn share_index(&mut self, index: Arc<SceneIndex>) {
+    pub(crate) fn share_index(&mut self, index: Arc<SceneIndex>) {
         if self.index.as_ref().is_none_or(|i| !Arc::ptr_eq(i, &index)) {
             self.index = Some(index);
         }
     }
 
     /// Whether jobs measure the views; a change renders again.
-    pub fn set_views(&mut self, on: bool) {
+    pub(crate) fn set_views(&mut self, on: bool) {
         self.views_changed |= on != self.views;
         self.views = on;
     }
@@ -367,7 +368,7 @@ impl Engine {
 
     /// Why the current job failed (a panic in the tracer, an invalid
     /// camera), once per job, so the window reports it a single time.
-    pub fn take_failure(&mut self) -> Option<String> {
+    pub(crate) fn take_failure(&mut self) -> Option<String> {
         if self.failure_taken {
             return None;
         }

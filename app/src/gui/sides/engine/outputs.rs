@@ -30,7 +30,7 @@ impl Engine {
 
     /// The current image under `view` (the shaded image while the job
     /// does not measure views).
-    pub fn view_snapshot(
+    pub(crate) fn view_snapshot(
         &self,
         view: View,
         heat: &ViewHeatmap,
@@ -53,7 +53,7 @@ impl Engine {
 
     /// The current job's image size and the pixels its adaptive sampling
     /// still refines (row-major); `None` for uniform sampling or no job.
-    pub fn active_pixels(&self) -> Option<([usize; 2], Vec<bool>)> {
+    pub(crate) fn active_pixels(&self) -> Option<([usize; 2], Vec<bool>)> {
         let settings = self.settings.as_ref()?;
         let mask = self.job.as_ref()?.active_pixels()?;
         Some(([settings.width as usize, settings.height as usize], mask))
@@ -65,7 +65,7 @@ impl Engine {
     }
 
     /// What was built for the current job, once built.
-    pub fn accel_info(&self) -> Option<AccelInfo> {
+    pub(crate) fn accel_info(&self) -> Option<AccelInfo> {
         self.job
             .as_ref()
             .and_then(|j| j.index())

@@ -12,18 +12,18 @@ use crate::measure::study::Param;
 
 /// A point's settings, for the main view.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Applied {
-    pub param: Param,
-    pub value: f64,
-    pub accel: AccelKind,
+pub(crate) struct Applied {
+    pub(crate) param: Param,
+    pub(crate) value: f64,
+    pub(crate) accel: AccelKind,
     /// The generator of a level study's point.
-    pub generator: Option<GeneratorName>,
+    pub(crate) generator: Option<GeneratorName>,
 }
 
 impl Applied {
     /// Sets `controls` to the point's structure and value; `scene_width`
     /// turns a resolution into the controls' scale.
-    pub fn apply_to(&self, controls: &mut Controls, scene_width: u32) {
+    pub(crate) fn apply_to(&self, controls: &mut Controls, scene_width: u32) {
         controls.change_settings(scene_width, |settings| {
             settings.accel = self.accel;
             self.param.apply(settings, self.value);
@@ -32,7 +32,7 @@ impl Applied {
 
     /// For a level study's point, its generated scene written as P3F in
     /// the temporary folder (with the point's structure), to open.
-    pub fn scene_file(&self) -> anyhow::Result<Option<PathBuf>> {
+    pub(crate) fn scene_file(&self) -> anyhow::Result<Option<PathBuf>> {
         let Some(generator) = self.generator else {
             return Ok(None);
         };

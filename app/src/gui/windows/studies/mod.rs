@@ -96,7 +96,7 @@ impl StudiesWindow {
     /// can run), or for the level study on the
     /// generator's scenes with `controls` applied to each. `wake` asks the
     /// window to redraw.
-    pub fn start(
+    pub(crate) fn start(
         &mut self,
         world: Option<Arc<World>>,
         base: &RenderSettings,
@@ -155,12 +155,12 @@ impl StudiesWindow {
     }
 
     /// Cancels a running study; the measured points stay.
-    pub fn stop(&mut self) {
+    pub(crate) fn stop(&mut self) {
         self.measuring.stop();
     }
 
     /// Takes the thread's updates; call once per frame.
-    pub fn receive(&mut self, ctx: &egui::Context) {
+    pub(crate) fn receive(&mut self, ctx: &egui::Context) {
         let total = self.study.as_ref().map_or(0, Study::len);
         self.measuring.receive(
             ctx,
@@ -175,7 +175,7 @@ impl StudiesWindow {
 
     /// Draws the window. `start` is set when the user asks for a run; the
     /// point the user picked, if any, is returned for the main view.
-    pub fn show(
+    pub(crate) fn show(
         &mut self,
         ctx: &egui::Context,
         base: &RenderSettings,
@@ -334,7 +334,7 @@ impl StudiesWindow {
 
     /// Once Save chart... was clicked: the study's parameter, its points
     /// and its subject's name, for the window's save dialog.
-    pub fn chart_to_save(&mut self) -> Option<(Param, Vec<Point>, String)> {
+    pub(crate) fn chart_to_save(&mut self) -> Option<(Param, Vec<Point>, String)> {
         if !std::mem::take(&mut self.chart_asked) {
             return None;
         }
@@ -367,5 +367,5 @@ mod task;
 #[cfg(test)]
 mod tests;
 
-pub use applied::Applied;
-pub use task::write_export;
+pub(crate) use applied::Applied;
+pub(crate) use task::write_export;

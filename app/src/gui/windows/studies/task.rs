@@ -17,7 +17,7 @@ use super::{StudyProgress, Update};
 
 /// The table as `table.md` and `table.csv` and the chart as `chart.png`
 /// in `dir/study-<param>-<subject>`; returns that folder.
-pub fn write_export(
+pub(crate) fn write_export(
     dir: &Path,
     param: Param,
     points: &[Point],
