@@ -3,9 +3,11 @@
 `workbench bench SCENE --structures bvh --threads 1 --format json` and the
 page's `?bench=SCENE&workers=N` (the same frame: workbench bench's
 settings, BVH) on 1 and on 2 workers, alternated, each page in a fresh
-headless Chromium. Prints each round's rays/s, then the medians of the
-pairs' ratios: web 1 worker / desktop 1 thread, and web 2 workers / web
-1 worker. Needs web/dist/ (scripts/build-web.sh) and the workbench binary.
+headless Chromium, and the desktop's on 2 threads too. Prints each
+round's rays/s, then the medians of the pairs' ratios: web 1 worker /
+desktop 1 thread, web 2 workers / web 1 worker, and desktop 2 threads /
+1 thread: what the machine itself gives a second thread, the ceiling of
+the web's. Needs web/dist/ (scripts/build-web.sh) and the workbench binary.
 
     scripts/bench_web.py [--workbench target/release/workbench]
                          [--rounds 3] [--runs 5] SCENE...
@@ -34,11 +36,11 @@ BENCH = "(() => JSON.stringify({bench: document.body ? (document.body.dataset.be
 BENCH += " render: document.body ? (document.body.dataset.render || '') : ''}))()"
 
 
-def native(workbench, scene, runs):
-    """Rays per second of the desktop's frame on one thread."""
+def native(workbench, scene, runs, threads=1):
+    """Rays per second of the desktop's frame on `threads` threads."""
     out = subprocess.run(
         [workbench, "bench", os.path.join(ROOT, "scenes", f"{scene}.p3f"), "--structures", "bvh",
-         "--threads", "1", "--runs", str(runs), "--format", "json"],
+         "--threads", str(threads), "--runs", str(runs), "--format", "json"],
         check=True, capture_output=True, text=True,
     ).stdout
     return json.loads(out)[0]["rays_per_second"]
@@ -83,18 +85,23 @@ def main():
     threading.Thread(target=httpd.serve_forever, daemon=True).start()
     base = f"http://127.0.0.1:{httpd.server_port}"
     for scene in args.scenes:
-        to_native, two_to_one = [], []
+        to_native, two_to_one, native_two = [], [], []
         for round_no in range(1, args.rounds + 1):
             desktop = native(args.workbench, scene, args.runs)
             one = web(base, scene, args.runs, 1, args.chromium)
             two = web(base, scene, args.runs, 2, args.chromium)
+            desktop2 = native(args.workbench, scene, args.runs, threads=2)
             to_native.append(one / desktop)
             two_to_one.append(two / one)
+            native_two.append(desktop2 / desktop)
             print(f"{scene} round {round_no}: desktop 1 thread {desktop / 1e6:.2f} M rays/s, "
-                  f"web 1 worker {one / 1e6:.2f}, web 2 workers {two / 1e6:.2f}", flush=True)
+                  f"web 1 worker {one / 1e6:.2f}, web 2 workers {two / 1e6:.2f}, "
+                  f"desktop 2 threads {desktop2 / 1e6:.2f}", flush=True)
         print(f"{scene}: web 1 worker / desktop 1 thread, median {statistics.median(to_native):.2f} "
               f"({', '.join(f'{r:.2f}' for r in to_native)}); web 2 / 1 workers, median "
-              f"{statistics.median(two_to_one):.2f} ({', '.join(f'{r:.2f}' for r in two_to_one)})")
+              f"{statistics.median(two_to_one):.2f} ({', '.join(f'{r:.2f}' for r in two_to_one)}); "
+              f"desktop 2 / 1 threads, median {statistics.median(native_two):.2f} "
+              f"({', '.join(f'{r:.2f}' for r in native_two)})")
 
 
 if __name__ == "__main__":

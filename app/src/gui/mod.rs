@@ -29,7 +29,8 @@ pub use commands::Command;
 pub use comparison::{CompareLayout, Comparison, ReferenceImage};
 pub use editor::{Editor, Pending};
 pub use platform::clock::Clock;
-pub(crate) use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
+#[cfg(not(target_family = "wasm"))]
+use platform::screenshot::{ScreenshotOutcome, ScreenshotPlan};
 pub use sides::{Activity, Controls, Engine, Side, SideId};
 
 #[cfg(not(target_family = "wasm"))]

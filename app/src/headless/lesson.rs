@@ -13,9 +13,10 @@ use anyhow::{Context as _, Result, anyhow, bail};
 use crate::cli::{
     ExplainArgs, LessonArgs, LessonCommand, MetricsFormat, ProgressArgs, ProgressFormat,
 };
+use crate::lessons::format::LessonErrors;
 use crate::lessons::progress::table as tables;
 use crate::lessons::replay::replay;
-use crate::lessons::{Lesson, LessonErrors, bundled};
+use crate::lessons::{Lesson, bundled};
 use crate::lessons::{explain, folder, progress};
 
 pub fn run(args: &LessonArgs) -> Result<()> {

@@ -18,4 +18,4 @@ pub(crate) mod replay;
 pub(crate) mod state;
 
 pub use check::{Check, Verdict, evaluate};
-pub(crate) use format::{Lesson, LessonErrors};
+pub(crate) use format::Lesson;

@@ -6,6 +6,7 @@
 
 mod find;
 
+#[cfg(not(target_family = "wasm"))]
 pub(crate) use find::{Condition, find};
 
 use std::fmt::Write;
