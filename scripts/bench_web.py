@@ -7,10 +7,12 @@ headless Chromium, and the desktop's on 2 threads too. Prints each
 round's rays/s, then the medians of the pairs' ratios: web 1 worker /
 desktop 1 thread, web 2 workers / web 1 worker, and desktop 2 threads /
 1 thread: what the machine itself gives a second thread, the ceiling of
-the web's. Needs web/dist/ (scripts/build-web.sh) and the workbench binary.
+the web's. The page times its runs after untimed warm-up frames (its
+`warmup`, default 10), as the browser's optimising compiler catches up.
+Needs web/dist/ (scripts/build-web.sh) and the workbench binary.
 
     scripts/bench_web.py [--workbench target/release/workbench]
-                         [--rounds 3] [--runs 5] SCENE...
+                         [--rounds 3] [--runs 15] SCENE...
 
 A SCENE is a name in scenes/ (balls_medium, mount_high).
 """
@@ -77,7 +79,7 @@ def main():
     parser.add_argument("scenes", nargs="+")
     parser.add_argument("--workbench", default=os.path.join(ROOT, "target", "release", "workbench"))
     parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--runs", type=int, default=15)
     parser.add_argument("--dist", default=os.path.join(ROOT, "web", "dist"))
     parser.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     args = parser.parse_args()

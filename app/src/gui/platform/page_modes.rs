@@ -57,8 +57,12 @@ pub(crate) fn asked(query: &str) -> Option<PageMode> {
     }
     let scene = value("bench")?.to_string();
     // `workers` is web/index.html's: the pool is made before the module runs.
-    let runs = value("runs").and_then(|r| r.parse().ok()).unwrap_or(5);
-    Some(PageMode::Bench { scene, runs })
+    let count = |key, default| value(key).and_then(|r| r.parse().ok()).unwrap_or(default);
+    Some(PageMode::Bench {
+        scene,
+        runs: count("runs", 5),
+        warmup: count("warmup", WARMUP_FRAMES),
+    })
 }
 
 /// A page that shows words instead of the window.
@@ -69,8 +73,13 @@ pub(crate) enum PageMode {
     /// `workbench bench --structures bvh --runs RUNS`'s frame of a scene:
     /// a bundled one by name, else `scenes/NAME.p3f` beside the page. The
     /// page starts one worker more than `&workers=N` asks for, which this
-    /// task blocks while it waits for each frame.
-    Bench { scene: String, runs: usize },
+    /// task blocks while it waits for each frame. `warmup` frames are
+    /// rendered first, untimed ([`WARMUP_FRAMES`]).
+    Bench {
+        scene: String,
+        runs: usize,
+        warmup: usize,
+    },
     /// `workbench compare SCENE --a A --b B`'s metrics, the scene found
     /// as for [`PageMode::Bench`].
     Compare { scene: String, a: String, b: String },
@@ -96,9 +105,13 @@ impl PageMode {
                 "data-replay",
                 target::spawn("lesson replay", move || replay_all(&tx)),
             ),
-            PageMode::Bench { scene, runs } => {
+            PageMode::Bench {
+                scene,
+                runs,
+                warmup,
+            } => {
                 let source = scene_source(scene).await?;
-                let spawned = target::spawn("bench", move || bench(source, runs, &tx));
+                let spawned = target::spawn("bench", move || bench(source, runs, warmup, &tx));
                 ("data-bench", spawned)
             }
             PageMode::Compare { scene, a, b } => {
@@ -146,8 +159,17 @@ enum Said {
     Finished(String),
 }
 
-/// Times the benchmark frame of `source` with the BVH, `runs` times.
-fn bench(source: SceneSource, runs: usize, tx: &mpsc::Sender<Said>) {
+/// Untimed frames a page benchmark renders first. V8 runs a module's
+/// functions on its baseline compiler until its optimising tier has
+/// compiled them, on background threads that take the cores the workers
+/// render on: timed over the page's first five frames, two workers were
+/// no faster than one on the 2-core VM; over thirty, 1.7 times as fast
+/// (docs/PERFORMANCE.md).
+const WARMUP_FRAMES: usize = 10;
+
+/// Times the benchmark frame of `source` with the BVH, `runs` times,
+/// after `warmup` frames untimed.
+fn bench(source: SceneSource, runs: usize, warmup: usize, tx: &mpsc::Sender<Said>) {
     let say = |line: String| {
         let _ = tx.send(Said::Line(line));
     };
@@ -157,25 +179,37 @@ fn bench(source: SceneSource, runs: usize, tx: &mpsc::Sender<Said>) {
         let cases = benchmark::structures(&settings, &[AccelKind::Bvh], Encoding::default());
         // This task holds one worker while it waits for each frame.
         say(format!(
-            "{}: {}x{}, {runs} run(s), {} worker(s) rendering",
+            "{}: {}x{}, {runs} run(s) after {warmup} untimed, {} worker(s) rendering",
             loaded.source.label(),
             settings.width,
             settings.height,
             rayon::current_num_threads() - 1
         ));
-        let options = RunOptions {
-            runs,
-            threads: None,
-        };
         let cancel = AtomicBool::new(false);
-        let outcome = benchmark::run(&loaded.world, &cases, options, &cancel, &mut |_| {})?;
+        let frames = |runs| {
+            let options = RunOptions {
+                runs,
+                threads: None,
+            };
+            benchmark::run(&loaded.world, &cases, options, &cancel, &mut |_| {})
+        };
+        if warmup > 0 {
+            frames(warmup)?;
+        }
+        let outcome = frames(runs)?;
         let measured = outcome.measurements.into_iter().next();
         measured.context("no frame was measured")
     })();
     let verdict = measured.map(|m| {
+        let times: Vec<String> = m
+            .times
+            .iter()
+            .map(|t| format!("{:.3}", t.as_secs_f64()))
+            .collect();
         say(format!(
-            "bvh: median {:.4} s, {} rays, {:.0} rays/s",
+            "bvh: median {:.4} s of {} s, {} rays, {:.0} rays/s",
             m.median().as_secs_f64(),
+            times.join(", "),
             m.rays(),
             m.rays_per_second()
         ));
