@@ -4,6 +4,7 @@
 
 use std::ops::Range;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use tracer::accel::{AccelKind, SceneIndex};
 use tracer::render::strategy::{PassEnd, SamplingStrategy, TileSamples};
@@ -23,10 +24,12 @@ s 0 0 0.7 0.7
 ";
 
 /// Samples the left half of the image only, one sample a pass in uniform
-/// sampling's order, for `passes` passes.
+/// sampling's order, for `passes` passes; past them, when `stalls`, it
+/// samples nothing and asks for more passes for ever.
 struct LeftHalf {
     width: u32,
     passes: u32,
+    stalls: bool,
 }
 
 impl SamplingStrategy for LeftHalf {
@@ -42,7 +45,13 @@ impl SamplingStrategy for LeftHalf {
         let left = self.width / 2;
         let ranges: Vec<Range<u32>> = (tile.y..tile.y + tile.height)
             .flat_map(|_| tile.x..tile.x + tile.width)
-            .map(|x| if x < left { pass..pass + 1 } else { pass..pass })
+            .map(|x| {
+                if x < left && pass < self.passes {
+                    pass..pass + 1
+                } else {
+                    pass..pass
+                }
+            })
             .collect();
         Some(TileSamples::Each(ranges))
     }
@@ -52,7 +61,7 @@ impl SamplingStrategy for LeftHalf {
     }
 
     fn end_pass(&mut self, pass: u32, _: &mut Film, _: &mut RenderStats, _: bool) -> PassEnd {
-        if pass + 1 == self.passes {
+        if pass + 1 == self.passes && !self.stalls {
             PassEnd::Done
         } else {
             PassEnd::More
@@ -60,8 +69,8 @@ impl SamplingStrategy for LeftHalf {
     }
 }
 
-#[test]
-fn a_strategy_of_the_callers_renders_through_the_loop() {
+/// The test scene's world, its BVH, and uniform 2 x 2's settings.
+fn scene() -> (Arc<World>, Arc<SceneIndex>, RenderSettings) {
     let scene = parse_scene(SCENE, None, &Limits::default()).unwrap();
     let world = Arc::new(World::build(&scene));
     let index = Arc::new(SceneIndex::build(&world.shapes, AccelKind::Bvh, 2.0));
@@ -70,26 +79,43 @@ fn a_strategy_of_the_callers_renders_through_the_loop() {
         samples: 2,
         ..RenderSettings::from_scene(&scene)
     };
-    let strategy = Box::new(LeftHalf {
-        width: settings.width,
-        passes: 4,
-    });
-    let job = RenderJob::start_with(
+    (world, index, settings)
+}
+
+/// Starts a job of `strategy` on two threads.
+fn start(
+    (world, index, settings): &(Arc<World>, Arc<SceneIndex>, RenderSettings),
+    strategy: LeftHalf,
+) -> RenderJob {
+    let options = JobOptions {
+        threads: Some(2),
+        ..JobOptions::default()
+    };
+    RenderJob::start_with(
         world.clone(),
         Some(index.clone()),
         settings.clone(),
-        strategy,
-        JobOptions {
-            threads: Some(2),
-            ..JobOptions::default()
-        },
+        Box::new(strategy),
+        options,
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn a_strategy_of_the_callers_renders_through_the_loop() {
+    let scene = scene();
+    let strategy = LeftHalf {
+        width: scene.2.width,
+        passes: 4,
+        stalls: false,
+    };
+    let job = start(&scene, strategy);
     let (film, stats, state) = job.wait();
     assert_eq!(state, JobState::Done);
     assert_eq!((stats.passes_done, stats.passes_target), (4, 4));
 
     // The left half took uniform 2 x 2's very samples, the right none.
+    let (world, index, settings) = scene;
     let (uniform, _) = render(world, index, settings, Some(2)).unwrap();
     let (width, height) = (film.width(), film.height());
     let mut checked = 0;
@@ -105,4 +131,37 @@ fn a_strategy_of_the_callers_renders_through_the_loop() {
         }
     }
     assert_eq!(checked, 40 * 30);
+}
+
+#[test]
+fn a_strategy_that_samples_nothing_yet_asks_for_more_fails_the_render() {
+    let scene = scene();
+    let strategy = LeftHalf {
+        width: scene.2.width,
+        passes: 2,
+        stalls: true,
+    };
+    let job = start(&scene, strategy);
+    // Without the loop's check the render would never end: give up (and
+    // fail) after a minute instead of hanging the suite.
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while !job.is_finished() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let finished = job.is_finished();
+    job.cancel();
+    assert!(finished, "the render was still going after a minute");
+    let (film, stats, state) = job.wait();
+    assert_eq!(
+        state,
+        JobState::Failed(
+            "pass 3 sampled no pixel, yet the sampling strategy asked for another: \
+             the render would never end"
+                .into()
+        )
+    );
+    // The two passes that sampled were recorded, the empty third not.
+    assert_eq!(stats.passes_done, 2);
+    assert_eq!(stats.pass_rays.len(), 2);
+    assert_eq!(film.samples(0, 0), 2);
 }

@@ -525,7 +525,6 @@ impl Job {
                 .pool
                 .install(|| slices::block_on(passes::run(&plan, strategy, &cx))),
         }
-        Ok(())
     }
 
     /// The job's index: the one it was given, or one built now, while

@@ -55,12 +55,15 @@ impl Deadline {
 }
 
 /// Runs passes until `strategy` says done or the job is cancelled. Never
-/// gives way unless [`LoopContext::sliced`].
+/// gives way unless [`LoopContext::sliced`]. Fails when a pass sampled no
+/// pixel and the strategy still asks for another: it decides from the
+/// film alone, which that pass left as it was, so every later pass would
+/// sample nothing too, and the render would never end.
 pub(super) async fn run(
     plan: &RenderPlan,
     strategy: &mut dyn SamplingStrategy,
     cx: &LoopContext<'_>,
-) {
+) -> Result<(), String> {
     let limit = match plan.settings.adaptive().and_then(|a| a.budget) {
         Some(Budget::Time(limit)) => Some(limit),
         _ => None,
@@ -70,9 +73,11 @@ pub(super) async fn run(
         before: Duration::ZERO,
         pass_start: Duration::ZERO,
     };
-    for pass in 0.. {
+    // u32::MAX passes at most (one with every pass counted): keep refining
+    // at a thousand passes a second would take 50 days.
+    for pass in 0..u32::MAX {
         if cx.control.cancelled() {
-            return;
+            return Ok(());
         }
         deadline.pass_start = cx.clock.now();
         let rays_before = lock(cx.outputs).stats.counters.total_rays();
@@ -98,7 +103,7 @@ pub(super) async fn run(
         if cx.sliced {
             for tile in &plan.tiles {
                 if !proceed_in_slices(cx.control).await {
-                    return;
+                    return Ok(());
                 }
                 render_tile(tile);
                 if slices::spent() {
@@ -108,10 +113,11 @@ pub(super) async fn run(
         } else {
             plan.tiles.par_iter().for_each(render_tile);
         }
-        if cx.control.cancelled() || end_pass(pass, strategy, &mut deadline, rays_before, cx) {
-            return;
+        if cx.control.cancelled() || end_pass(pass, strategy, &mut deadline, rays_before, cx)? {
+            return Ok(());
         }
     }
+    Ok(())
 }
 
 /// [`Control::proceed`] for a loop in time slices, which may not block
@@ -130,14 +136,15 @@ pub(super) async fn proceed_in_slices(control: &Control) -> bool {
 }
 
 /// Ends pass `pass`: the strategy decides, the pass's figures are
-/// recorded and the pass listener told. True when the render is done.
+/// recorded and the pass listener told. True when the render is done; an
+/// error when the pass sampled nothing and the strategy wants more.
 fn end_pass(
     pass: u32,
     strategy: &mut dyn SamplingStrategy,
     deadline: &mut Deadline,
     rays_before: u64,
     cx: &LoopContext,
-) -> bool {
+) -> Result<bool, String> {
     let done = {
         let mut outputs = lock(cx.outputs);
         let outputs = &mut *outputs;
@@ -148,11 +155,17 @@ fn end_pass(
         let elapsed = cx.clock.now().saturating_sub(deadline.pass_start);
         deadline.before += elapsed;
         let stats = &mut outputs.stats;
+        let traced = stats.counters.total_rays() - rays_before;
+        if traced == 0 && end == PassEnd::More {
+            return Err(format!(
+                "pass {} sampled no pixel, yet the sampling strategy asked for another: \
+                 the render would never end",
+                pass + 1
+            ));
+        }
         stats.passes_done = pass + 1;
         stats.pass_times.push(elapsed);
-        stats
-            .pass_rays
-            .push(stats.counters.total_rays() - rays_before);
+        stats.pass_rays.push(traced);
         stats.render_time = deadline.before;
         if let Some(observe) = cx.on_pass {
             observe(pass + 1, &outputs.film, end == PassEnd::Done);
@@ -160,5 +173,5 @@ fn end_pass(
         end == PassEnd::Done
     };
     cx.control.notify();
-    done
+    Ok(done)
 }
