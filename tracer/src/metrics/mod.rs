@@ -275,4 +275,44 @@ mod tests {
         let plain = diff_heatmap(&a, &b, f32::NAN).unwrap();
         assert_eq!(plain, diff_heatmap(&a, &b, 1.0).unwrap());
     }
+
+    #[test]
+    fn magma_takes_the_step_nearest_t_times_255() {
+        // 0.5 -> 127.5, rounded up to 128; 0.75 -> 191.25, to 191.
+        assert_eq!(Palette::Magma.colour(0.5).0, flip::MAGMA_LUT[128]);
+        assert_eq!(Palette::Magma.colour(0.75).0, flip::MAGMA_LUT[191]);
+    }
+
+    #[test]
+    fn heatmap_maps_the_largest_channel_difference_times_the_gain() {
+        let a = flat(2, 1, 100);
+        let mut b = a.clone();
+        // Differences 10, 3, 0: the largest, 10, times 4 over 255, is
+        // 3 * 40 / 255 of the way to white, 0.47 of red: 120.
+        b.put_pixel(0, 0, Rgb([110, 97, 100]));
+        let map = diff_heatmap(&a, &b, 4.0).unwrap();
+        assert_eq!(map.get_pixel(0, 0).0, [120, 0, 0]);
+        assert_eq!(map.get_pixel(1, 0).0, [0, 0, 0]);
+        // A gain of 0 or below falls back to 1: 3 * 10 / 255 of red, 30.
+        for gain in [0.0, -4.0] {
+            let map = diff_heatmap(&a, &b, gain).unwrap();
+            assert_eq!(map.get_pixel(0, 0).0, [30, 0, 0], "gain {gain}");
+        }
+    }
+
+    #[test]
+    fn flip_map_draws_each_pixels_error_where_it_is() {
+        // Not square, so an index off by rows or columns shows.
+        let (a, b) = (picture(24, 16, 40), picture(24, 16, 250));
+        let errors = flip::error_map(&a, &b, flip::DEFAULT_PIXELS_PER_DEGREE);
+        let map = flip_map(&a, &b).unwrap();
+        for (i, &e) in errors.iter().enumerate() {
+            let (x, y) = ((i % 24) as u32, (i / 24) as u32);
+            assert_eq!(
+                *map.image.get_pixel(x, y),
+                Palette::Magma.colour(e),
+                "({x}, {y})"
+            );
+        }
+    }
 }

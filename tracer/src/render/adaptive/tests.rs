@@ -433,3 +433,84 @@ fn errors_pool_over_the_window_own_four_times_and_costs_per_pixel() {
     // sqrt(4 * 0.2^2 / 3 / 4) = 0.115, 3's none).
     assert_eq!(active, [false, true, true, false]);
 }
+
+/// Two pixels of one sample each, below a minimum of 4: both active.
+fn below_the_minimum() -> (Film, AdaptiveSampling) {
+    let mut film = Film::with_error_estimate(2, 1);
+    add_pass(&mut film, &[&[0.5], &[0.5]]);
+    (film, settings(0.01, 4, 64))
+}
+
+#[test]
+fn the_strategy_expects_its_schedule_and_at_least_one_pass_more() {
+    let (mut film, a) = below_the_minimum();
+    let mut strategy = Adaptive::new(a);
+    // 0, 1, 2, 4, 8, 16, 32, 64 samples: 7 passes, before any decision.
+    assert_eq!(strategy.passes_target(), 7);
+    // After pass 1 (the second), pixels still active: at least pass 2,
+    // 3 passes in all, whatever the target said.
+    let mut stats = RenderStats::default();
+    let end = strategy.end_pass(1, &mut film, &mut stats, false);
+    assert_eq!((end, stats.passes_target), (PassEnd::More, 3));
+    assert_eq!(stats.adaptive.map(|s| s.active_pixels), Some(2));
+    // A budget the driver saw spent ends it there, pixels left active.
+    let end = strategy.end_pass(1, &mut film, &mut stats, true);
+    assert_eq!((end, stats.passes_target), (PassEnd::Done, 2));
+    assert_eq!(stats.adaptive.map(|s| s.active_pixels), Some(2));
+}
+
+#[test]
+fn a_budget_refines_the_largest_errors_that_fit() {
+    // 3 x 2 pixels of 2 + 2 samples, each halves' means apart by d: an
+    // error of d * sqrt(2 * 2) / 4 = d / 2, here 0.05, 0, 0.4 over 0.1,
+    // 0.3, 0.
+    let mut film = Film::with_error_estimate(3, 2);
+    add_pass(
+        &mut film,
+        &[
+            &[0.5; 2], &[0.3; 2], &[0.9; 2], &[0.5; 2], &[0.8; 2], &[0.6; 2],
+        ],
+    );
+    add_pass(
+        &mut film,
+        &[
+            &[0.4; 2], &[0.3; 2], &[0.1; 2], &[0.3; 2], &[0.2; 2], &[0.6; 2],
+        ],
+    );
+    let a = settings(0.0, 4, 64);
+    let all = vec![true; 6];
+    // 24 samples taken, 4 more each to 8: 48 fits every pixel.
+    assert_eq!(
+        within_budget(&film, all.clone(), &a, 48),
+        (all.clone(), false)
+    );
+    // 32 fits two: the largest errors, (2, 0) and (1, 1).
+    let cut = within_budget(&film, all, &a, 32);
+    assert_eq!(cut, (vec![false, false, true, false, true, false], true));
+}
+
+#[test]
+fn the_summary_counts_every_pixel_and_the_rms_of_the_measured_errors() {
+    // Pixel 0: 2 + 2 samples, halves 0.5 and 0.1, error 0.4 * 2 / 4 =
+    // 0.2; pixel 1: 1 + 1, flat, 0; pixel 2: one pass, not measured.
+    let mut film = Film::with_error_estimate(3, 1);
+    add_pass(&mut film, &[&[0.5, 0.5], &[0.3], &[]]);
+    add_pass(&mut film, &[&[0.1, 0.1], &[0.3], &[0.7]]);
+    film.set_active(vec![true, false, true]);
+    let stats = summary(&film);
+    assert_eq!(
+        (
+            stats.pixels,
+            stats.samples,
+            stats.max_spp,
+            stats.active_pixels
+        ),
+        (3, 7, 4, 2)
+    );
+    // sqrt((0.2^2 + 0^2) / 2).
+    let rms = 0.02f32.sqrt();
+    assert!((stats.error - rms).abs() < 1e-6, "{stats:?}");
+    // No pixel measured: infinite, not 0 / 0.
+    let (film, _) = below_the_minimum();
+    assert_eq!(summary(&film).error, f32::INFINITY);
+}

@@ -7,8 +7,8 @@ use super::{index, world};
 use crate::accel::AccelKind;
 use crate::render::adaptive;
 use crate::render::{
-    AdaptiveSampling, Budget, Film, JobOptions, JobState, LensOverride, RenderJob, RenderPlan,
-    RenderSettings, Sampling, render,
+    AdaptiveSampling, Budget, Encoding, Film, JobOptions, JobState, LensOverride, RenderJob,
+    RenderPlan, RenderSettings, Sampling, render,
 };
 use crate::stats::Counters;
 
@@ -348,6 +348,28 @@ fn a_jobs_active_pixels_go_from_all_to_none() {
     };
     let job = RenderJob::start(w, Some(idx), uniform, JobOptions::default()).unwrap();
     assert_eq!(job.active_pixels(), None);
+}
+
+/// The finished image the render threads make tile by tile is the
+/// adaptive film resolved at the end: any pass may be a tile's last (a
+/// neighbour's noise may bring it back), so each makes its bytes.
+#[test]
+fn an_adaptive_jobs_finished_image_is_its_resolved_film() {
+    let job = RenderJob::start(
+        world(SCENE),
+        None,
+        adaptive(0.02, 4, 16),
+        JobOptions {
+            threads: Some(2),
+            finished_image: Some(Encoding::Srgb),
+            ..JobOptions::default()
+        },
+    )
+    .unwrap();
+    let done = job.wait_with_image();
+    assert_eq!(done.state, JobState::Done);
+    let image = done.image.expect("a finished image");
+    assert!(image == done.film.to_image(Encoding::Srgb));
 }
 
 /// Compare mode's "equal samples": with a budget of 12 samples per pixel
