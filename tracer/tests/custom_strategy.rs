@@ -82,11 +82,17 @@ fn scene() -> (Arc<World>, Arc<SceneIndex>, RenderSettings) {
     (world, index, settings)
 }
 
-/// Starts a job of `strategy` on two threads.
+/// Starts a job of [`LeftHalf`] on two threads.
 fn start(
     (world, index, settings): &(Arc<World>, Arc<SceneIndex>, RenderSettings),
-    strategy: LeftHalf,
+    passes: u32,
+    stalls: bool,
 ) -> RenderJob {
+    let strategy = LeftHalf {
+        width: settings.width,
+        passes,
+        stalls,
+    };
     let options = JobOptions {
         threads: Some(2),
         ..JobOptions::default()
@@ -104,12 +110,7 @@ fn start(
 #[test]
 fn a_strategy_of_the_callers_renders_through_the_loop() {
     let scene = scene();
-    let strategy = LeftHalf {
-        width: scene.2.width,
-        passes: 4,
-        stalls: false,
-    };
-    let job = start(&scene, strategy);
+    let job = start(&scene, 4, false);
     let (film, stats, state) = job.wait();
     assert_eq!(state, JobState::Done);
     assert_eq!((stats.passes_done, stats.passes_target), (4, 4));
@@ -136,12 +137,7 @@ fn a_strategy_of_the_callers_renders_through_the_loop() {
 #[test]
 fn a_strategy_that_samples_nothing_yet_asks_for_more_fails_the_render() {
     let scene = scene();
-    let strategy = LeftHalf {
-        width: scene.2.width,
-        passes: 2,
-        stalls: true,
-    };
-    let job = start(&scene, strategy);
+    let job = start(&scene, 2, true);
     // Without the loop's check the render would never end: give up (and
     // fail) after a minute instead of hanging the suite.
     let deadline = Instant::now() + Duration::from_secs(60);
