@@ -205,7 +205,11 @@ pub fn passes(a: &AdaptiveSampling) -> u32 {
     let mut samples = 0;
     let mut passes = 0;
     while samples < a.max_spp {
-        samples = next_count(samples, a);
+        let next = next_count(samples, a);
+        // Valid settings (1 <= minimum <= maximum) make every pass add
+        // samples: a count that stood still would loop here for ever.
+        debug_assert!(next > samples, "next_count({samples}) is {next}");
+        samples = next;
         passes += 1;
     }
     passes
