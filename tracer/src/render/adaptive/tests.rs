@@ -106,7 +106,8 @@ fn one_pass_says_nothing_and_threshold_zero_refines_to_the_maximum() {
 fn the_schedule_doubles_to_the_minimum_then_to_the_maximum() {
     let a = settings(0.01, 4, 64);
     let mut counts = vec![0];
-    while *counts.last().unwrap() < a.max_spp {
+    // Bounded: a count that stood still would loop here for ever.
+    while *counts.last().unwrap() < a.max_spp && counts.len() <= 16 {
         counts.push(next_count(*counts.last().unwrap(), &a));
     }
     assert_eq!(counts, [0, 1, 2, 4, 8, 16, 32, 64]);
