@@ -73,8 +73,8 @@ pub(super) async fn run(
         before: Duration::ZERO,
         pass_start: Duration::ZERO,
     };
-    // u32::MAX passes at most (one with every pass counted): keep refining
-    // at a thousand passes a second would take 50 days.
+    // Passes are counted in a u32, so u32::MAX at most: keep refining at
+    // a thousand passes a second would take 50 days to reach it.
     for pass in 0..u32::MAX {
         if cx.control.cancelled() {
             return Ok(());
