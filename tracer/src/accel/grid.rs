@@ -240,7 +240,12 @@ impl Grid {
         );
         let mut mailbox = [u32::MAX; MAILBOX_SLOTS];
         let mut nearest = f32::INFINITY;
-        loop {
+        // Each step moves one axis one cell towards its `stop`, so a walk
+        // visits at most x + y + z - 2 cells and the bound never binds. It
+        // is there so a broken step (one that never reaches `stop`) shows
+        // as wrong hits in the tests instead of a render that hangs.
+        let most_cells = self.cells.element_sum();
+        for _ in 0..most_cells {
             counters.nodes_visited += 1;
             log.step(TraversalStep::Cell(cell), counters.intersection_tests);
             let i = (cell.x + self.cells.x * (cell.y + self.cells.y * cell.z)) as usize;
