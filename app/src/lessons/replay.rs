@@ -239,3 +239,6 @@ pub(crate) fn replay(
     }
     Ok(replays)
 }
+
+#[cfg(test)]
+mod tests;
