@@ -161,6 +161,27 @@ fn replay_checks_each_step_before_and_after_its_solution() {
 }
 
 #[test]
+fn a_wrong_answer_in_a_solution_shows_what_the_workbench_computes() {
+    let text = LESSON
+        .replace(
+            r#"check = { kind = "value", of = "CHECKED", is = 3 }"#,
+            r#"check = { kind = "answer", question = "Objects:", of = "objects" }"#,
+        )
+        .replace(
+            r#"solution = { settings = "--spp 3" }"#,
+            "solution = { answer = 3 }",
+        );
+    let walked = replay(&lesson(&text), &mut |_, _| {}).unwrap();
+    assert_eq!(walked[0].computed, None);
+    assert_eq!(walked[1].computed.as_deref(), Some("2"));
+    let failure = walked[1].failure().unwrap();
+    assert!(
+        failure.ends_with(" (the workbench computes 2)"),
+        "{failure}"
+    );
+}
+
+#[test]
 fn a_failure_says_which_side_of_the_step_is_wrong() {
     let step = |before: Verdict, after: Verdict, computed: Option<&str>| StepReplay {
         title: "t".into(),
