@@ -49,6 +49,11 @@ fn replayed() -> Lesson {
     lesson(&LESSON.replace("CHECKED", "spp"))
 }
 
+/// `lesson`'s steps replayed, each checked before and after its solution.
+fn walk(lesson: &Lesson) -> Vec<StepReplay> {
+    replay(lesson, &mut |_, _| {}).unwrap()
+}
+
 /// The lesson's error from opening `lesson`'s scene.
 fn scene_error(lesson: &Lesson) -> String {
     let Err(e) = open_scene(lesson) else {
@@ -141,7 +146,7 @@ fn a_step_starts_from_its_setup_after_the_earlier_solutions() {
 
 #[test]
 fn replay_checks_each_step_before_and_after_its_solution() {
-    let walked = replay(&replayed(), &mut |_, _| {}).unwrap();
+    let walked = walk(&replayed());
     assert_eq!(walked.len(), 2);
     for step in &walked {
         assert!(!step.before.is_done() && step.after.is_done(), "{step:?}");
@@ -152,7 +157,7 @@ fn replay_checks_each_step_before_and_after_its_solution() {
         "setup = { settings = \"--spp 2\" }",
         "setup = { settings = \"--spp 3\" }",
     );
-    let walked = replay(&lesson(&solved), &mut |_, _| {}).unwrap();
+    let walked = walk(&lesson(&solved));
     let failure = walked[1].failure().unwrap();
     assert!(
         failure.starts_with("the check already holds before the student acts ("),
@@ -171,7 +176,7 @@ fn a_wrong_answer_in_a_solution_shows_what_the_workbench_computes() {
             r#"solution = { settings = "--spp 3" }"#,
             "solution = { answer = 3 }",
         );
-    let walked = replay(&lesson(&text), &mut |_, _| {}).unwrap();
+    let walked = walk(&lesson(&text));
     assert_eq!(walked[0].computed, None);
     assert_eq!(walked[1].computed.as_deref(), Some("2"));
     let failure = walked[1].failure().unwrap();
