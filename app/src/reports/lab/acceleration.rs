@@ -65,19 +65,25 @@ fn timing_row(m: &Measurement) -> (String, Vec<String>) {
     )
 }
 
-pub(crate) fn section(lab: &Lab) -> Result<String> {
-    let rows: Vec<_> = lab.matrix.iter().map(timing_row).collect();
-    let bars: Vec<Bar> = lab
-        .matrix
+/// The bar chart's bars: each row's median frame time in milliseconds,
+/// its whisker from the fastest run to the slowest.
+fn timing_bars(lab: &Lab) -> Vec<Bar> {
+    let millis = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    lab.matrix
         .iter()
         .map(|m| Bar {
             label: m.case.file_stem().replace('_', " "),
-            value: m.median().as_secs_f64() * 1e3,
-            low: m.min().as_secs_f64() * 1e3,
-            high: m.max().as_secs_f64() * 1e3,
+            value: millis(m.median()),
+            low: millis(m.min()),
+            high: millis(m.max()),
             colour: colour(m.case.settings.accel),
         })
-        .collect();
+        .collect()
+}
+
+pub(crate) fn section(lab: &Lab) -> Result<String> {
+    let rows: Vec<_> = lab.matrix.iter().map(timing_row).collect();
+    let bars = timing_bars(lab);
     let body = format!(
         "<h3>The timing table</h3>\n<p>The course's table (Figure 5.1): brute force (none) and \
          the uniform grid, hard and soft shadows, one sample, anti-aliasing N = {n}, and \
@@ -238,3 +244,6 @@ fn builds(lab: &Lab) -> String {
         ),
     )
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Mutation testing as CI runs it, in place (the tree must be free: each
+# mutant is written into the sources, then put back).
+#
+#   scripts/mutants-ci.sh --shard          the shard of .ci/mutants-clean
+#                                          this commit's CI runs
+#   scripts/mutants-ci.sh FILE [TESTS]     every mutant of FILE, judged as
+#                                          CI would judge it on the list
+#
+# .ci/mutants-clean lists the files already clean, each with the tests
+# that judge it. Every mutant is built at opt-level 0, in seconds, and
+# judged by its crate's library tests (the unit tests next to the code):
+# - a tracer file by those whose name holds TESTS (`render::film`), its
+#   module's own: a mutant they catch, the whole suite catches too;
+# - an app file by all of the workbench library's tests (1.3 s).
+# Judged by the whole package's tests at opt-level 3, a tracer mutant
+# took about 90 CPU-seconds and an app mutant minutes (docs/TESTING.md).
+#
+# The shard (k of N) turns with the commit count, so successive runs
+# cover every listed mutant; N gives each shard MUTANTS_PER_SHARD
+# mutants (default 12). A mutant missed or timed out fails the run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Every mutant of FILE named in PICKED (their names as `--list` gives
+# them), judged by TESTS.
+judge() { # FILE TESTS [NAMES...]
+    local file=$1 tests=$2
+    shift 2
+    local select=()
+    if [ $# -gt 0 ]; then
+        # One regular expression matching exactly these names.
+        select=(--re "^($(printf '%s\n' "$@" | sed 's/[][\\.*^$+?(){}|]/\\&/g' | paste -sd '|'))\$")
+    fi
+    case $file in
+        tracer/*)
+            scripts/mutants.sh --in-place --baseline=skip "${select[@]}" --cargo-arg=--lib \
+                --cargo-arg=--config=profile.dev.package.tracer.opt-level=0 "$file" -- -- $tests # split: one filter a word
+            ;;
+        app/*)
+            scripts/mutants.sh --in-place --baseline=skip "${select[@]}" --cargo-arg=--lib \
+                --cargo-arg=--config=profile.dev.package.workbench.opt-level=0 "$file"
+            ;;
+        *)
+            echo "$file: neither tracer's nor app's" >&2
+            return 1
+            ;;
+    esac
+}
+
+case ${1:-} in
+    --shard) ;;
+    "" | -*)
+        echo "usage: scripts/mutants-ci.sh --shard | FILE [TESTS]" >&2
+        exit 1
+        ;;
+    *)
+        if [ ! -f "$1" ]; then
+            echo "$1: no such file" >&2
+            exit 1
+        fi
+        judge "$1" "${2:-}"
+        exit
+        ;;
+esac
+
+files=()
+declare -A tests=()
+while read -r file filter; do
+    case $file in '' | '#'*) continue ;; esac
+    if [[ $file == tracer/* && -z $filter ]]; then
+        echo ".ci/mutants-clean: $file names no tests to judge it by" >&2
+        exit 1
+    fi
+    files+=("$file")
+    tests[$file]=$filter
+done <.ci/mutants-clean
+mapfile -t mutants < <(scripts/mutants.sh --list "${files[@]}")
+if [ ${#mutants[@]} -eq 0 ]; then
+    echo ".ci/mutants-clean: its ${#files[@]} files have no mutant" >&2
+    exit 1
+fi
+per_shard=${MUTANTS_PER_SHARD:-12}
+shards=$(((${#mutants[@]} + per_shard - 1) / per_shard))
+shard=$(($(git rev-list --count HEAD) % shards))
+picked=("${mutants[@]:shard*per_shard:per_shard}")
+echo "shard $shard of $shards: ${#picked[@]} of ${#mutants[@]} mutants in ${#files[@]} files"
+for file in "${files[@]}"; do
+    mapfile -t names < <(printf '%s\n' "${picked[@]}" | awk -v f="$file:" 'index($0, f) == 1')
+    if [ ${#names[@]} -gt 0 ]; then
+        echo "== $file: ${#names[@]} mutants; tests: ${tests[$file]:-all the library has}"
+        judge "$file" "${tests[$file]}" "${names[@]}"
+    fi
+done
