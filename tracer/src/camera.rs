@@ -548,6 +548,8 @@ mod tests {
             "{origin}"
         );
         assert!(!Camera::new(&v, 11, 11, 0.0, 2.0).unwrap().has_lens());
+        let wide = Camera::new(&v, 16, 9, 0.0, 1.0).unwrap();
+        assert_eq!((wide.width(), wide.height()), (16, 9));
     }
 
     #[test]
