@@ -68,6 +68,10 @@ files=()
 declare -A tests=()
 while read -r file filter; do
     case $file in '' | '#'*) continue ;; esac
+    if [ ! -f "$file" ]; then
+        echo ".ci/mutants-clean: $file: no such file" >&2
+        exit 1
+    fi
     if [[ $file == tracer/* && -z $filter ]]; then
         echo ".ci/mutants-clean: $file names no tests to judge it by" >&2
         exit 1
