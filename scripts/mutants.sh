@@ -4,6 +4,7 @@
 # each one the tests let through. docs/TESTING.md says how to read it.
 #
 #   scripts/mutants.sh [OPTIONS...] FILES...
+#   scripts/mutants.sh --install       installs cargo-mutants, if missing
 #
 # FILES are source files (tracer/src/optics.rs ...); OPTIONS go to
 # `cargo mutants` as they are (`--shard 3/20`, `--in-place`, `--list`).
@@ -30,6 +31,8 @@ if ! cargo mutants --version 2>/dev/null | grep -qF "$version"; then
     echo "== installing cargo-mutants $version"
     cargo install --locked cargo-mutants --version "$version"
 fi
+# `--install` alone: only that (CI installs it beside its builds).
+[ "$*" = --install ] && exit 0
 
 # A word naming a file is a file to mutate; every other word goes to
 # cargo-mutants (`--shard 3/20` and `--shard=3/20` alike).
