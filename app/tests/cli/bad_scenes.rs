@@ -20,7 +20,7 @@ fn corpus() -> PathBuf {
 /// exactly as listed in the manifest. Panics, after killing it, if the
 /// child runs longer than [`RUN_TIMEOUT`].
 fn render(scene: &str, out: &Path, extra: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_workbench"));
+    let mut command = Command::new(crate::support::workbench_exe());
     command
         .current_dir(corpus())
         .args(["render", scene, "-o"])

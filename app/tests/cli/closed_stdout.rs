@@ -16,7 +16,7 @@ use crate::support::{Watchdog, scratch, write};
 fn with_stdout_closed(args: &[&str]) -> (std::process::ExitStatus, String) {
     let (reader, writer) = UnixStream::pair().unwrap();
     drop(reader);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
+    let mut child = Command::new(crate::support::workbench_exe())
         .args(args)
         .stdin(Stdio::null())
         .stdout(Stdio::from(std::os::fd::OwnedFd::from(writer)))

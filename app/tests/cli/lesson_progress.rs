@@ -33,7 +33,7 @@ const UNNAMED: &str = r#"{
 /// `workbench args` with the data folder in `home`: stdout, which must
 /// succeed.
 fn with_data_folder(home: &Path, args: &[&str]) -> String {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_workbench"));
+    let mut command = Command::new(crate::support::workbench_exe());
     command
         .args(args)
         .env("XDG_DATA_HOME", home)

@@ -158,7 +158,7 @@ fn a_sweep_with_brute_force_over_a_large_scene_warns_first() {
 
     let dir = scratch("sweep-brute");
     let scene = write(&dir, "terrain.p3f", &large_brute_force_scene());
-    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
+    let mut child = Command::new(crate::support::workbench_exe())
         .args([
             "sweep",
             scene.to_str().unwrap(),

@@ -20,10 +20,20 @@ pub use tracer::scratch::Scratch;
 /// The workspace's one bound on a test's wait.
 pub const RUN_TIMEOUT: Duration = tracer::waiting::PATIENCE;
 
+/// The binary under test: cargo's build of it, or the one `WORKBENCH_BIN`
+/// names. CI runs the command-line tests a second time on its build
+/// without the window: cargo cannot build that beside these tests, whose
+/// dev-dependencies (egui_kittest) would compile the GPU stack a second
+/// time with other features.
+pub fn workbench_exe() -> PathBuf {
+    std::env::var_os("WORKBENCH_BIN")
+        .map_or_else(|| env!("CARGO_BIN_EXE_workbench").into(), PathBuf::from)
+}
+
 /// Runs `workbench` with `args` and waits for it, for at most
 /// [`RUN_TIMEOUT`].
 pub fn workbench(args: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_workbench"));
+    let mut command = Command::new(workbench_exe());
     command.args(args);
     output_within(command, RUN_TIMEOUT).unwrap_or_else(|e| panic!("workbench {args:?}: {e}"))
 }
@@ -187,7 +197,7 @@ pub fn interrupted(args: &[&str], said: &str) -> Interrupted {
     use std::os::fd::OwnedFd;
 
     let (mut ours, theirs, filler) = full_socket();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_workbench"))
+    let mut child = Command::new(workbench_exe())
         .args(args)
         .stdout(Stdio::from(OwnedFd::from(theirs)))
         .stderr(Stdio::piped())
