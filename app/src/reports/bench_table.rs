@@ -33,11 +33,13 @@ struct Column {
     raw: fn(&Measurement) -> String,
 }
 
-fn ms(d: Duration) -> f64 {
+/// A duration in milliseconds, the unit every report's times are in.
+pub(crate) fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
-fn yes_no(b: bool) -> String {
+/// A switch as the course's tables word it.
+pub(crate) fn yes_no(b: bool) -> String {
     if b { "yes" } else { "no" }.to_string()
 }
 

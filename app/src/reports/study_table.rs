@@ -1,16 +1,10 @@
 //! A study as a table (aligned text, Markdown, CSV, JSON) with one row per
 //! (structure, value), and a summary in words of what it shows.
 
-use std::time::Duration;
-
 use crate::describe::si;
 use crate::measure::study::analysis::{self, Best};
 use crate::measure::study::{Knob, Param, Point, values};
-use crate::reports::bench_table::{self, Format};
-
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
-}
+use crate::reports::bench_table::{self, Format, ms};
 
 /// Samples per pixel a point's frame took, on average and at most.
 fn spp(p: &Point) -> (f64, u32) {

@@ -14,6 +14,7 @@ use crate::describe::si;
 use crate::figures::heat_map::{view_image, with_legend};
 use crate::figures::study_plot::colour;
 use crate::measure::benchmark::Measurement;
+use crate::reports::bench_table::{self, yes_no};
 
 /// The timing table's headers; tests find columns by these names.
 pub(crate) const TIMING_HEADERS: [&str; 11] = [
@@ -29,10 +30,6 @@ pub(crate) const TIMING_HEADERS: [&str; 11] = [
     "rays",
     "rays/s",
 ];
-
-fn yes_no(b: bool) -> String {
-    if b { "yes" } else { "no" }.into()
-}
 
 /// One row of the timing table, as the course's table words it.
 fn timing_row(m: &Measurement) -> (String, Vec<String>) {
@@ -68,14 +65,13 @@ fn timing_row(m: &Measurement) -> (String, Vec<String>) {
 /// The bar chart's bars: each row's median frame time in milliseconds,
 /// its whisker from the fastest run to the slowest.
 fn timing_bars(lab: &Lab) -> Vec<Bar> {
-    let millis = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     lab.matrix
         .iter()
         .map(|m| Bar {
             label: m.case.file_stem().replace('_', " "),
-            value: millis(m.median()),
-            low: millis(m.min()),
-            high: millis(m.max()),
+            value: bench_table::ms(m.median()),
+            low: bench_table::ms(m.min()),
+            high: bench_table::ms(m.max()),
             colour: colour(m.case.settings.accel),
         })
         .collect()
