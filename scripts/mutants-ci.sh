@@ -28,30 +28,27 @@ cd "$(dirname "$0")/.."
 # which CI's CARGO_INCREMENTAL=0 chose for its one-off builds).
 export CARGO_INCREMENTAL=1
 
-# Every mutant of FILE named in PICKED (their names as `--list` gives
-# them), judged by TESTS.
+# The mutants of FILE named NAMES (as `--list` gives them; all of them if
+# none), judged by TESTS (none: every test of the library).
 judge() { # FILE TESTS [NAMES...]
-    local file=$1 tests=$2
+    local file=$1 tests=$2 package
     shift 2
-    local select=()
-    if [ $# -gt 0 ]; then
-        # One regular expression matching exactly these names.
-        select=(--re "^($(printf '%s\n' "$@" | sed 's/[][\\.*^$+?(){}|]/\\&/g' | paste -sd '|'))\$")
-    fi
     case $file in
-        tracer/*)
-            scripts/mutants.sh --in-place --baseline=skip "${select[@]}" --cargo-arg=--lib \
-                --cargo-arg=--config=profile.dev.package.tracer.opt-level=0 "$file" -- -- $tests # split: one filter a word
-            ;;
-        app/*)
-            scripts/mutants.sh --in-place --baseline=skip "${select[@]}" --cargo-arg=--lib \
-                --cargo-arg=--config=profile.dev.package.workbench.opt-level=0 "$file"
-            ;;
+        tracer/*) package=tracer ;;
+        app/*) package=workbench ;;
         *)
             echo "$file: neither tracer's nor app's" >&2
             return 1
             ;;
     esac
+    local select=()
+    if [ $# -gt 0 ]; then
+        # One regular expression matching exactly these names.
+        select=(--re "^($(printf '%s\n' "$@" | sed 's/[][\\.*^$+?(){}|]/\\&/g' | paste -sd '|'))\$")
+    fi
+    # $tests split: one filter a word.
+    scripts/mutants.sh --in-place --baseline=skip "${select[@]}" --cargo-arg=--lib \
+        --cargo-arg=--config=profile.dev.package.$package.opt-level=0 "$file" -- -- $tests
 }
 
 case ${1:-} in
