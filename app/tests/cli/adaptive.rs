@@ -176,8 +176,9 @@ fn compare_matches_adaptive_b_to_a() {
             .contains(&format!("at most {} samples", taken("a"))),
         "B's label names its budget: {equal}"
     );
-    // At A's time: B's label names a time budget, and B's first pass (the
-    // floor of 4 samples a pixel) always completes, however short A was.
+    // At A's time: B's label names a time budget, and B's first pass (one
+    // sample a pixel: the schedule doubles 1, 2, 4 to the minimum) always
+    // completes, however short A was; later ones only if A's time allows.
     let timed = run("time", adaptive);
     let label = timed["b"]["label"].as_str().expect("B's label");
     let budget = label
@@ -191,7 +192,7 @@ fn compare_matches_adaptive_b_to_a() {
         "B's budget is not a time: {label}"
     );
     let b_taken = timed["b"]["samples_taken"].as_u64().expect("samples_taken");
-    assert!((4 * 32 * 24..=36 * 32 * 24).contains(&b_taken), "{timed}");
+    assert!((32 * 24..=36 * 32 * 24).contains(&b_taken), "{timed}");
     assert!(workbench_fails(&args("samples", "--aa")).contains("needs B adaptive"));
 }
 
