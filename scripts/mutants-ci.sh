@@ -4,14 +4,16 @@
 #
 #   scripts/mutants-ci.sh --shard          the shard of .ci/mutants-clean
 #                                          this commit's CI runs
-#   scripts/mutants-ci.sh FILE [TESTS]     every mutant of FILE, judged as
+#   scripts/mutants-ci.sh FILE [TESTS...]  every mutant of FILE, judged as
 #                                          CI would judge it on the list
 #
 # .ci/mutants-clean lists the files already clean, each with the tests
 # that judge it. Every mutant is built at opt-level 0, in seconds, and
 # judged by its crate's library tests (the unit tests next to the code):
 # - a tracer file by those whose name holds TESTS (`render::film`), its
-#   module's own: a mutant they catch, the whole suite catches too;
+#   module's own: a mutant they catch, the whole suite catches too
+#   (TESTS are the test program's arguments: `--skip NAME` leaves out a
+#   test too slow to judge every mutant by);
 # - an app file by all of the workbench library's tests (1.3 s).
 # Judged by the whole package's tests at opt-level 3, a tracer mutant
 # took about 90 CPU-seconds and an app mutant minutes (docs/TESTING.md).
@@ -27,6 +29,10 @@ cd "$(dirname "$0")/.."
 # compilation is for (2-3 s a tracer mutant, against 10-14 s without,
 # which CI's CARGO_INCREMENTAL=0 chose for its one-off builds).
 export CARGO_INCREMENTAL=1
+# A property test that fails judges its mutant at once: shrinking the case
+# (minutes at opt-level 0, grid.rs's took 130 s) tells nothing more, and
+# the failing seeds of mutants are no regressions to keep in the tree.
+export PROPTEST_MAX_SHRINK_ITERS=0 PROPTEST_DISABLE_FAILURE_PERSISTENCE=1
 
 # The mutants of FILE named NAMES (as `--list` gives them; all of them if
 # none), judged by TESTS (none: every test of the library).
@@ -54,7 +60,7 @@ judge() { # FILE TESTS [NAMES...]
 case ${1:-} in
     --shard) ;;
     "" | -*)
-        echo "usage: scripts/mutants-ci.sh --shard | FILE [TESTS]" >&2
+        echo "usage: scripts/mutants-ci.sh --shard | FILE [TESTS...]" >&2
         exit 1
         ;;
     *)
@@ -62,7 +68,7 @@ case ${1:-} in
             echo "$1: no such file" >&2
             exit 1
         fi
-        judge "$1" "${2:-}"
+        judge "$1" "${*:2}"
         exit
         ;;
 esac
