@@ -273,7 +273,11 @@ pub(crate) fn permute(i: u32, len: u32, key: u32) -> u32 {
     let mask = u32::MAX >> (len - 1).leading_zeros();
     let shift = (mask.count_ones() / 2).max(1);
     let mut x = i & mask;
-    loop {
+    // Walked from `i`, a bijection passes at most the `mask + 1 - len`
+    // (fewer than `len`) values outside before it lands inside: `len`
+    // steps always suffice. The bound makes a broken step (one that is no
+    // bijection) a wrong answer in the tests, not a hang.
+    for _ in 0..len {
         x ^= key & mask;
         x = x.wrapping_mul(0x9e37_79b1) & mask;
         x ^= x >> shift;
@@ -284,6 +288,7 @@ pub(crate) fn permute(i: u32, len: u32, key: u32) -> u32 {
             return x;
         }
     }
+    x
 }
 
 /// Maps the unit square onto the unit disk preserving strata (Shirley and
@@ -432,6 +437,58 @@ mod tests {
         }
         // Patterns differ.
         assert_ne!(multi_jittered(3, 4, 1), multi_jittered(3, 4, 2));
+    }
+
+    #[test]
+    fn multi_jittered_patterns_are_many() {
+        // A pattern's rows take their sub-columns, and its columns their
+        // sub-rows, from permutations its bits choose: the random patterns
+        // of 512 pixels give many arrangements, not a few repeated.
+        let n = 16;
+        let arrangements = |axis: usize| {
+            let mut seen: Vec<Vec<u32>> = (0..512)
+                .map(|k| {
+                    let pattern = mix64(k) as u32;
+                    (0..n)
+                        .map(|line| {
+                            // Along column 0 for the rows, row 0 for the columns.
+                            let index = [line * n, line][axis];
+                            let (_, column, row) = fine_cells(multi_jittered(index, n, pattern), n);
+                            [column, row][axis] % n
+                        })
+                        .collect()
+                })
+                .collect();
+            seen.sort_unstable();
+            seen.dedup();
+            seen.len()
+        };
+        for axis in [0, 1] {
+            let count = arrangements(axis);
+            assert!(
+                count >= 64,
+                "axis {axis}: {count} (125 today; at most 32 with a salt's `^` as `|` or `&`)"
+            );
+        }
+    }
+
+    #[test]
+    fn permutations_are_those_an_independent_port_computes() {
+        // Every image's samples are drawn through these permutations. The
+        // values come from an independent port of `permute`'s description
+        // (`scripts/permute_oracle.py` prints them), not from this code.
+        let table = |len: u32, key: u32, count: u32| -> Vec<u32> {
+            (0..count).map(|i| permute(i, len, key)).collect()
+        };
+        assert_eq!(
+            table(16, 0x2545_f491, 16),
+            [2, 6, 10, 14, 3, 13, 11, 5, 0, 4, 8, 12, 1, 15, 9, 7]
+        );
+        assert_eq!(
+            table(100, 0xdead_beef, 16),
+            [49, 22, 73, 31, 66, 90, 40, 6, 67, 91, 4, 42, 15, 58, 72, 39]
+        );
+        assert_eq!(table(5, 0x9e37_79b9, 5), [0, 1, 2, 4, 3]);
     }
 
     #[test]
@@ -601,6 +658,26 @@ mod tests {
             );
             assert!(!points[..k].contains(&points[k]), "{points:?}");
         }
+    }
+
+    #[test]
+    fn every_kind_of_draw_takes_the_next_dimension() {
+        // From dimension 0, as a shading point draws: j draws of any kind
+        // leave the stream where j plain draws leave it.
+        let start = SampleStream::new(7, 3, 1);
+        let (mut bits, mut pairs, mut plain) = (start, start, start);
+        for _ in 0..4 {
+            bits.next_u32();
+            plain.next_1d();
+        }
+        assert_eq!(bits.next_1d(), plain.next_1d());
+        let mut plain = start;
+        let firsts: Vec<Vec2> = (0..3).map(|_| pairs.next_2d()).collect();
+        let by_ones: Vec<Vec2> = (0..3)
+            .map(|_| Vec2::new(plain.next_1d(), plain.next_1d()))
+            .collect();
+        assert_eq!(firsts, by_ones);
+        assert!(firsts.iter().all(|p| p.x > 0.0 && p.y > 0.0), "{firsts:?}");
     }
 
     #[test]
