@@ -613,6 +613,33 @@ mod tests {
     }
 
     #[test]
+    fn concentric_disk_maps_square_rings_to_circles_and_sides_to_quarter_arcs() {
+        // Shirley and Chiu's mapping: the square's ring at distance r from
+        // its centre goes to the circle of radius r, each side to a quarter
+        // of it, the angle moving linearly along the side: -pi/4 to pi/4
+        // on the right side, pi/4 to 3 pi/4 on the top, and so on.
+        use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+        for ring in [0.25f32, 0.5, 1.0] {
+            for step in 0..=8 {
+                let t = step as f32 / 4.0 - 1.0;
+                // Counter-clockwise from the right side, each with the
+                // angle at its middle.
+                let sides = [
+                    (Vec2::new(ring, ring * t), 0.0),
+                    (Vec2::new(-ring * t, ring), FRAC_PI_2),
+                    (Vec2::new(-ring, -ring * t), PI),
+                    (Vec2::new(ring * t, -ring), -FRAC_PI_2),
+                ];
+                for (p, middle) in sides {
+                    let d = concentric_disk((p + Vec2::ONE) / 2.0);
+                    let want = Vec2::from_angle(middle + FRAC_PI_4 * t) * ring;
+                    assert!((d - want).length() < 1e-5, "{p}: {d}, want {want}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn stratum_order_is_a_permutation_with_spread_prefixes() {
         for n in 1..=8 {
             let mut order = stratum_order(n);
