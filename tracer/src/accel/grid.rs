@@ -81,8 +81,12 @@ impl Grid {
         let pad = Vec3A::splat(largest * 1e-4);
         let bounds = Aabb::new(raw.min - pad, raw.max + pad);
         let mut cells = cell_counts(bounds.extent(), boxes.len(), m);
-        // Count references before allocating them: coarser cells until they fit.
-        loop {
+        // Count references before allocating them: coarser cells until they
+        // fit. Each step takes a tenth or more off every axis, a cell at
+        // least, and no axis has over 65 537 cells, so fewer than 100 steps
+        // reach one cell: the bound makes a step that shrinks nothing a
+        // grid over its limit, which the tests see, instead of a hang.
+        for _ in 0..100 {
             let refs: u64 = boxes
                 .iter()
                 .map(|(_, b)| {
@@ -480,6 +484,21 @@ mod tests {
         assert_eq!(references, references_by_hand(&grid, &shapes));
         // One step of cbrt(limit / references), not tenths until one cell.
         assert!(references > 8000, "{:?}", grid.stats());
+    }
+
+    #[test]
+    fn overlapping_objects_shrink_in_one_step_where_tenths_would_pass_by() {
+        // 500 identical spheres fill all 16 x 16 x 16 cells (2 048 000
+        // references). A limit of 800 000 shrinks them by cbrt(800 000 /
+        // 2 048 000) to 11 a side in one step (665 500; 12 would be
+        // 864 000), where steps of a tenth would go 16, 14, 12, then 10.
+        let (shapes, ids) = spheres(&[(Vec3A::ZERO, 1.0); 500]);
+        let unlimited = Grid::build(&shapes, &ids, 2.0).stats();
+        assert_eq!(unlimited.cells, [16; 3]);
+        assert_eq!(unlimited.references, 500 * 16 * 16 * 16);
+        let stats = Grid::build_within(&shapes, &ids, 2.0, 800_000).stats();
+        assert_eq!(stats.cells, [11; 3]);
+        assert_eq!(stats.references, 500 * 11 * 11 * 11);
     }
 
     #[test]
