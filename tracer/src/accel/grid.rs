@@ -421,6 +421,38 @@ mod tests {
         );
     }
 
+    /// The walk counts each cell it enters and stops in the cell that
+    /// holds the nearest hit, or where the ray ends: in the grid above, a
+    /// ray along x meets the sphere at the origin inside its first cell and
+    /// the one at (3, 3, 3) inside its second; cut at x = 0, it ends in
+    /// its first.
+    #[test]
+    fn the_walk_counts_its_cells_and_stops_at_the_nearest_hit() {
+        let (shapes, ids) = spheres(&[
+            (Vec3A::ZERO, 0.5),
+            (Vec3A::splat(3.0), 0.5),
+            (Vec3A::new(1.5, 0.0, 0.0), 0.2),
+        ]);
+        let grid = Grid::build(&shapes, &ids, 1.0);
+        let cases = [
+            ((-1.0, 0.0), f32::INFINITY, Some(0), [0, 0, 0].as_slice()),
+            ((-1.0, 3.0), f32::INFINITY, Some(1), &[0, 1, 1, 1, 1, 1]),
+            ((-1.0, 3.0), 1.0, None, &[0, 1, 1]),
+        ];
+        for ((x, yz), t_max, want, cells) in cases {
+            let ray = Ray::new(Vec3A::new(x, yz, yz), Vec3A::X);
+            let (mut counters, mut log) = (Counters::default(), Vec::new());
+            let hit = grid.closest_hit(&shapes, &ray, 0.0, t_max, &mut counters, &mut log);
+            assert_eq!(hit.map(|h| h.shape), want, "{ray:?} to {t_max}");
+            let walked: Vec<IVec3> = cells.chunks(3).map(IVec3::from_slice).collect();
+            let logged: Vec<TraversalStep> = log.iter().map(|&(step, _)| step).collect();
+            let want_steps: Vec<TraversalStep> =
+                walked.iter().map(|&c| TraversalStep::Cell(c)).collect();
+            assert_eq!(logged, want_steps, "{ray:?} to {t_max}");
+            assert_eq!(counters.nodes_visited, walked.len() as u64);
+        }
+    }
+
     /// Each sphere's references counted apart: the cells whose boxes
     /// (from the lattice) its box overlaps.
     fn references_by_hand(grid: &Grid, shapes: &[Shape]) -> u64 {
