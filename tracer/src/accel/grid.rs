@@ -524,11 +524,13 @@ mod tests {
         // references). A limit of 800 000 shrinks them by cbrt(800 000 /
         // 2 048 000) to 11 a side in one step (665 500; 12 would be
         // 864 000), where steps of a tenth would go 16, 14, 12, then 10.
+        // Not built without the limit: a broken cell formula would fill
+        // millions of cells, minutes at opt-level 0, before this failed.
         let (shapes, ids) = spheres(&[(Vec3A::ZERO, 1.0); 500]);
-        let unlimited = Grid::build(&shapes, &ids, 2.0).stats();
-        assert_eq!(unlimited.cells, [16; 3]);
-        assert_eq!(unlimited.references, 500 * 16 * 16 * 16);
-        let stats = Grid::build_within(&shapes, &ids, 2.0, 800_000).stats();
+        let grid = Grid::build_within(&shapes, &ids, 2.0, 800_000);
+        let (bounds, _) = grid.lattice();
+        assert_eq!(cell_counts(bounds.extent(), 500, 2.0), IVec3::splat(16));
+        let stats = grid.stats();
         assert_eq!(stats.cells, [11; 3]);
         assert_eq!(stats.references, 500 * 11 * 11 * 11);
     }
