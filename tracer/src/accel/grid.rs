@@ -396,14 +396,19 @@ mod tests {
     /// Three spheres in a box 4 wide: 2 cells a side (s = cbrt(3 / 4^3)
     /// = 0.36, m = 1), the faces at 1.5. One sphere per far corner cell,
     /// one across the face between cells (0, 0, 0) and (1, 0, 0).
-    #[test]
-    fn stats_and_memory_count_the_cells_by_hand() {
+    fn two_by_two_by_two() -> (Vec<Shape>, Grid) {
         let (shapes, ids) = spheres(&[
             (Vec3A::ZERO, 0.5),
             (Vec3A::splat(3.0), 0.5),
             (Vec3A::new(1.5, 0.0, 0.0), 0.2),
         ]);
         let grid = Grid::build(&shapes, &ids, 1.0);
+        (shapes, grid)
+    }
+
+    #[test]
+    fn stats_and_memory_count_the_cells_by_hand() {
+        let (_, grid) = two_by_two_by_two();
         let stats = grid.stats();
         assert_eq!(stats.cells, [2, 2, 2]);
         assert_eq!((stats.references, stats.empty_cells), (4, 5));
@@ -422,18 +427,13 @@ mod tests {
     }
 
     /// The walk counts each cell it enters and stops in the cell that
-    /// holds the nearest hit, or where the ray ends: in the grid above, a
+    /// holds the nearest hit, or where the ray ends: in the 2 x 2 x 2 grid, a
     /// ray along x meets the sphere at the origin inside its first cell and
     /// the one at (3, 3, 3) inside its second; cut at x = 0, it ends in
     /// its first.
     #[test]
     fn the_walk_counts_its_cells_and_stops_at_the_nearest_hit() {
-        let (shapes, ids) = spheres(&[
-            (Vec3A::ZERO, 0.5),
-            (Vec3A::splat(3.0), 0.5),
-            (Vec3A::new(1.5, 0.0, 0.0), 0.2),
-        ]);
-        let grid = Grid::build(&shapes, &ids, 1.0);
+        let (shapes, grid) = two_by_two_by_two();
         let cases = [
             ((-1.0, 0.0), f32::INFINITY, Some(0), [0, 0, 0].as_slice()),
             ((-1.0, 3.0), f32::INFINITY, Some(1), &[0, 1, 1, 1, 1, 1]),
