@@ -52,7 +52,7 @@ judge() { # FILE TESTS [NAMES...]
         # One regular expression matching exactly these names.
         select=(--re "^($(printf '%s\n' "$@" | sed 's/[][\\.*^$+?(){}|]/\\&/g' | paste -sd '|'))\$")
     fi
-    # $tests split: one filter a word.
+    # $tests split: one test-program argument a word (a filter, --skip NAME).
     scripts/mutants.sh --in-place --baseline=skip "${select[@]}" --cargo-arg=--lib \
         --cargo-arg=--config=profile.dev.package.$package.opt-level=0 "$file" -- -- $tests
 }
