@@ -1,8 +1,10 @@
 //! Render settings and counts in human words: a one-line label for a
 //! benchmark row, what differs between two settings to label the sides of
-//! an A/B comparison ("grid on, m = 4" against "no acceleration"), and a
-//! count with a metric suffix. Measurements label their cases with these
+//! an A/B comparison ("grid on, m = 4" against "no acceleration"), a
+//! count with a metric suffix and a time in milliseconds. Measurements label their cases with these
 //! and reports print them, so they live below both.
+
+use std::time::Duration;
 
 use tracer::accel::AccelKind;
 use tracer::render::{Budget, RenderSettings};
@@ -188,6 +190,12 @@ pub(crate) fn si(n: f64) -> String {
         n if n >= 1e3 => format!("{:.1}k", n / 1e3),
         n => format!("{n:.0}"),
     }
+}
+
+/// A duration in milliseconds, the unit every time the workbench shows is
+/// in (window, tables, reports).
+pub(crate) fn millis(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
 }
 
 #[cfg(test)]

@@ -1,9 +1,7 @@
 //! Benchmark results as tables (aligned text, Markdown, CSV) and JSON, for
 //! the terminal and for export.
 
-use std::time::Duration;
-
-use crate::describe::si;
+use crate::describe::{millis, si};
 use crate::measure::benchmark::Measurement;
 
 /// Which columns a table shows.
@@ -33,11 +31,6 @@ struct Column {
     raw: fn(&Measurement) -> String,
 }
 
-/// A duration in milliseconds, the unit every report's times are in.
-pub(crate) fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
-}
-
 /// A switch as the course's tables word it.
 pub(crate) fn yes_no(b: bool) -> String {
     if b { "yes" } else { "no" }.to_string()
@@ -50,18 +43,18 @@ const ACCEL: Column = Column {
 };
 const FRAME: Column = Column {
     header: "frame ms",
-    pretty: |m| format!("{:.1}", ms(m.median())),
-    raw: |m| format!("{:.3}", ms(m.median())),
+    pretty: |m| format!("{:.1}", millis(m.median())),
+    raw: |m| format!("{:.3}", millis(m.median())),
 };
 const RANGE: Column = Column {
     header: "min..max ms",
-    pretty: |m| format!("{:.1}..{:.1}", ms(m.min()), ms(m.max())),
-    raw: |m| format!("{:.3}..{:.3}", ms(m.min()), ms(m.max())),
+    pretty: |m| format!("{:.1}..{:.1}", millis(m.min()), millis(m.max())),
+    raw: |m| format!("{:.3}..{:.3}", millis(m.min()), millis(m.max())),
 };
 const MAD: Column = Column {
     header: "MAD ms",
-    pretty: |m| format!("{:.1}", ms(m.mad())),
-    raw: |m| format!("{:.3}", ms(m.mad())),
+    pretty: |m| format!("{:.1}", millis(m.mad())),
+    raw: |m| format!("{:.3}", millis(m.mad())),
 };
 const RAYS: Column = Column {
     header: "rays",
@@ -81,8 +74,8 @@ fn columns(which: Columns) -> Vec<Column> {
             ACCEL,
             Column {
                 header: "build ms",
-                pretty: |m| format!("{:.2}", ms(m.index.build_time)),
-                raw: |m| format!("{:.3}", ms(m.index.build_time)),
+                pretty: |m| format!("{:.2}", millis(m.index.build_time)),
+                raw: |m| format!("{:.3}", millis(m.index.build_time)),
             },
             Column {
                 header: "memory",

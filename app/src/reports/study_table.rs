@@ -1,10 +1,10 @@
 //! A study as a table (aligned text, Markdown, CSV, JSON) with one row per
 //! (structure, value), and a summary in words of what it shows.
 
-use crate::describe::si;
+use crate::describe::{millis, si};
 use crate::measure::study::analysis::{self, Best};
 use crate::measure::study::{Knob, Param, Point, values};
-use crate::reports::bench_table::{self, Format, ms};
+use crate::reports::bench_table::{self, Format};
 
 /// Samples per pixel a point's frame took, on average and at most.
 fn spp(p: &Point) -> (f64, u32) {
@@ -69,9 +69,9 @@ fn cells(param: Param, points: &[Point], raw: bool) -> (Vec<String>, Vec<Vec<Str
                 row.push(p.primitives.to_string());
             }
             row.extend([
-                format!("{:.digits$}", ms(m.index.build_time)),
-                format!("{:.digits$}", ms(m.median())),
-                format!("{:.digits$}..{:.digits$}", ms(m.min()), ms(m.max())),
+                format!("{:.digits$}", millis(m.index.build_time)),
+                format!("{:.digits$}", millis(m.median())),
+                format!("{:.digits$}..{:.digits$}", millis(m.min()), millis(m.max())),
                 m.times.len().to_string(),
                 if raw {
                     m.rays().to_string()

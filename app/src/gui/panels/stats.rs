@@ -6,7 +6,7 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 use tracer::accel::AccelInfo;
 use tracer::stats::{RenderStats, SceneCounts};
 
-use crate::describe::si;
+use crate::describe::{millis, si};
 
 use crate::gui::comparison::Comparison;
 use crate::gui::platform::frame_meter::FrameMeter;
@@ -131,9 +131,9 @@ pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
             row(
                 ui,
                 "Last pass",
-                s.pass_times.last().map_or("-".into(), |last| {
-                    format!("{:.1} ms", last.as_secs_f64() * 1e3)
-                }),
+                s.pass_times
+                    .last()
+                    .map_or("-".into(), |last| format!("{:.1} ms", millis(*last))),
             );
             row(ui, "Rays", si(c.total_rays() as f64));
             row(ui, "  eye", si(c.eye_rays as f64));
@@ -155,7 +155,7 @@ pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
                 row(
                     ui,
                     "  build time",
-                    format!("{:.1} ms", a.build_time.as_secs_f64() * 1e3),
+                    format!("{:.1} ms", millis(a.build_time)),
                 );
                 row(ui, "  memory", format!("{}B", si(a.memory_bytes as f64)));
                 if let Some(nodes) = a.bvh_nodes {
@@ -194,7 +194,7 @@ pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
             row(
                 ui,
                 "Scene load",
-                format!("{:.1} ms", view.load_time.as_secs_f64() * 1e3),
+                format!("{:.1} ms", millis(view.load_time)),
             );
             row(
                 ui,
@@ -209,10 +209,7 @@ pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
             row(
                 ui,
                 "UI CPU per frame",
-                format!(
-                    "{:.1} ms",
-                    view.frame_meter.frame_cost().as_secs_f64() * 1e3
-                ),
+                format!("{:.1} ms", millis(view.frame_meter.frame_cost())),
             )
             .on_hover_text(
                 "CPU time a frame costs on every thread but the render's: the UI's work and \
@@ -223,10 +220,7 @@ pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
             row(
                 ui,
                 "Redraw interval",
-                format!(
-                    "{:.0} ms",
-                    view.frame_meter.progress_interval().as_secs_f64() * 1e3
-                ),
+                format!("{:.0} ms", millis(view.frame_meter.progress_interval())),
             )
             .on_hover_text(
                 "How often a render's progress redraws the window: progress redraws take at \
@@ -235,7 +229,7 @@ pub(crate) fn show(ui: &mut Ui, view: &StatsView) {
         });
 
     ui.separator();
-    let times = s.pass_times.iter().map(|t| t.as_secs_f64() * 1e3).collect();
+    let times = s.pass_times.iter().copied().map(millis).collect();
     pass_plot(ui, "pass_times", "ms per pass", times);
     let rays = s
         .pass_times

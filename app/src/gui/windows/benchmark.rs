@@ -14,7 +14,7 @@ use tracer::accel::AccelKind;
 use tracer::render::{Encoding, RenderSettings};
 use tracer::world::World;
 
-use crate::describe::si;
+use crate::describe::{millis, si};
 use crate::image_file::save_png;
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions};
 use crate::reports::bench_table::{self, Columns, Format};
@@ -145,7 +145,7 @@ impl BenchWindow {
         let bars: Vec<Bar> = self
             .measurements()
             .enumerate()
-            .map(|(i, m)| Bar::new(i as f64, m.median().as_secs_f64() * 1e3).name(&m.case.label))
+            .map(|(i, m)| Bar::new(i as f64, millis(m.median())).name(&m.case.label))
             .collect();
         Plot::new("bench_bars")
             .height(140.0)
@@ -165,12 +165,8 @@ impl BenchWindow {
                         let m = &row.measured;
                         row.show_thumbnail(ui, 48.0);
                         ui.label(&m.case.label);
-                        ui.monospace(format!("{:.1} ms", m.median().as_secs_f64() * 1e3));
-                        ui.monospace(format!(
-                            "{:.1}..{:.1}",
-                            m.min().as_secs_f64() * 1e3,
-                            m.max().as_secs_f64() * 1e3
-                        ));
+                        ui.monospace(format!("{:.1} ms", millis(m.median())));
+                        ui.monospace(format!("{:.1}..{:.1}", millis(m.min()), millis(m.max())));
                         ui.monospace(si(m.rays_per_second()));
                         ui.end_row();
                     }

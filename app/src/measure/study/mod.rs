@@ -23,6 +23,7 @@ use tracer::scene::Scene;
 use tracer::scene::edit::{Edit, ObjectChange};
 use tracer::world::World;
 
+use crate::describe::millis;
 use crate::measure::ab::{self, Heatmap, Metrics};
 use crate::measure::benchmark::{self, Case, Event, Measurement, RunOptions, Stop, Structures};
 
@@ -421,7 +422,7 @@ impl Point {
 
     /// The median frame time in milliseconds.
     pub(crate) fn frame_ms(&self) -> f64 {
-        self.measurement.median().as_secs_f64() * 1e3
+        millis(self.measurement.median())
     }
 }
 

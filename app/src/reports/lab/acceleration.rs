@@ -10,11 +10,11 @@ use tracer::render::{HeatScale, View, ViewHeatmap};
 use super::html::{escape, figure, image, table, titled_section};
 use super::svg::{Bar, Series, YAxis, bar_chart, line_chart};
 use super::{Lab, how_measured, ms};
-use crate::describe::si;
+use crate::describe::{millis, si};
 use crate::figures::heat_map::{view_image, with_legend};
 use crate::figures::study_plot::colour;
 use crate::measure::benchmark::Measurement;
-use crate::reports::bench_table::{self, yes_no};
+use crate::reports::bench_table::yes_no;
 
 /// The timing table's headers; tests find columns by these names.
 pub(crate) const TIMING_HEADERS: [&str; 11] = [
@@ -69,9 +69,9 @@ fn timing_bars(lab: &Lab) -> Vec<Bar> {
         .iter()
         .map(|m| Bar {
             label: m.case.file_stem().replace('_', " "),
-            value: bench_table::ms(m.median()),
-            low: bench_table::ms(m.min()),
-            high: bench_table::ms(m.max()),
+            value: millis(m.median()),
+            low: millis(m.min()),
+            high: millis(m.max()),
             colour: colour(m.case.settings.accel),
         })
         .collect()
@@ -126,7 +126,7 @@ fn grid_study(lab: &Lab) -> String {
                     format!("{}", p.value),
                     cells,
                     ms(m.median()),
-                    format!("{:.2}", m.index.build_time.as_secs_f64() * 1e3),
+                    format!("{:.2}", millis(m.index.build_time)),
                     format!("{}B", si(m.index.memory_bytes as f64)),
                     format!("{:.2}", m.tests_per_ray()),
                     format!("{:.2}", m.steps_per_ray()),
@@ -223,7 +223,7 @@ fn builds(lab: &Lab) -> String {
                 info.kind.name().to_string(),
                 vec![
                     info.kind.name().to_string(),
-                    format!("{:.3}", info.build_time.as_secs_f64() * 1e3),
+                    format!("{:.3}", millis(info.build_time)),
                     format!("{}B", si(info.memory_bytes as f64)),
                     size,
                 ],

@@ -24,6 +24,7 @@ use tracer::render::{AdaptiveSampling, Encoding, RenderSettings, Sampling};
 use tracer::scene::Scene;
 use tracer::world::World;
 
+use crate::describe::millis;
 use crate::measure::benchmark::{
     self, Case, Event, Measurement, RunOptions, SamplingColumn, Stop, Structures,
 };
@@ -577,5 +578,5 @@ fn how_measured(lab: &Lab) -> String {
 
 /// Milliseconds with one decimal: the page's one format for frame times.
 fn ms(d: std::time::Duration) -> String {
-    format!("{:.1}", d.as_secs_f64() * 1e3)
+    format!("{:.1}", millis(d))
 }

@@ -10,6 +10,7 @@ use tracer::accel::AccelKind;
 use super::html::{escape, figure, image, table, titled_section};
 use super::svg::{Series, YAxis, line_chart};
 use super::{Lab, ms};
+use crate::describe::millis;
 use crate::measure::benchmark::{Measurement, SamplingColumn};
 use crate::measure::study::Point;
 
@@ -141,7 +142,7 @@ fn adaptive_charts(lab: &Lab) -> String {
         colour,
         points: points
             .iter()
-            .filter_map(|p| Some((p.measurement.median().as_secs_f64() * 1e3, p.error?.psnr)))
+            .filter_map(|p| Some((millis(p.measurement.median()), p.error?.psnr)))
             .filter(|(_, y)| y.is_finite())
             .collect(),
     };
