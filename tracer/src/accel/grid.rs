@@ -454,6 +454,23 @@ mod tests {
         }
     }
 
+    /// A ray that starts on the grid's far corner lies, by its cell
+    /// coordinates, one past the last cell on every axis: the walk starts
+    /// in the last cell, (1, 1, 1), where it meets the sphere at (3, 3, 3).
+    #[test]
+    fn a_walk_from_the_far_corner_starts_in_the_last_cell() {
+        let (shapes, grid) = two_by_two_by_two();
+        let corner = grid.bounds.max;
+        let past = ((corner - grid.bounds.min) * grid.inv_cell_size).floor();
+        assert_eq!(past, Vec3A::splat(2.0), "the corner, in cells");
+        let ray = Ray::new(corner, -Vec3A::ONE.normalize());
+        let (mut counters, mut log) = (Counters::default(), Vec::new());
+        let hit = grid.closest_hit(&shapes, &ray, 0.0, f32::INFINITY, &mut counters, &mut log);
+        assert_eq!(hit.map(|h| h.shape), Some(1));
+        let logged: Vec<TraversalStep> = log.iter().map(|&(step, _)| step).collect();
+        assert_eq!(logged, [TraversalStep::Cell(IVec3::ONE)]);
+    }
+
     /// Each sphere's references counted apart: the cells whose boxes
     /// (from the lattice) its box overlaps.
     fn references_by_hand(grid: &Grid, shapes: &[Shape]) -> u64 {
