@@ -2,6 +2,8 @@
 # Shows that a test fails on the break it exists for, and passes without it.
 #
 #   scripts/breaks/run.sh [NAME...]     (default: every scripts/breaks/*.patch)
+#   scripts/breaks/run.sh --check       each patch names its test and still
+#                                       applies (seconds; CI runs this)
 #
 # Each NAME.patch here is a deliberate bug: its header says what it breaks,
 # and its `Test:` line the command that must catch it. For each, this
@@ -14,6 +16,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
+check_only=false
+if [ "${1:-}" = --check ]; then
+    check_only=true
+    shift
+fi
 names=("$@")
 if [ ${#names[@]} -eq 0 ]; then
     for patch in scripts/breaks/*.patch; do
@@ -40,6 +47,10 @@ for name in "${names[@]}"; do
     fi
     if ! git apply --check "$patch" 2>"$log"; then
         echo "FAIL $name: the patch does not apply"; cat "$log"; failures=$((failures + 1)); continue
+    fi
+    if $check_only; then
+        echo "ok   $name: applies; tested by: $command"
+        continue
     fi
     git apply "$patch"
     applied=$patch
