@@ -4,6 +4,8 @@
 #
 #   scripts/mutants-ci.sh --shard          the shard of .ci/mutants-clean
 #                                          this commit's CI runs
+#   scripts/mutants-ci.sh --changed REV    the listed files' mutants on
+#                                          lines changed since REV
 #   scripts/mutants-ci.sh FILE [TESTS...]  every mutant of FILE, judged as
 #                                          CI would judge it on the list
 #
@@ -20,7 +22,12 @@
 #
 # The shard (k of N) turns with the commit count, so successive runs
 # cover every listed mutant; N gives each shard MUTANTS_PER_SHARD
-# mutants (default 12). A mutant missed or timed out fails the run.
+# mutants (default 12). --changed tries at once the mutants on the lines
+# the latest commits changed (cargo-mutants' --in-diff), which the shard
+# would reach only after a whole turn: at most MUTANTS_CHANGED_MAX
+# (default 60, about 6 minutes), the first in the list's order, saying
+# how many it left to the shards. A mutant missed or timed out fails the
+# run.
 # cargo-mutants 27.1 tries a file's "delete field" mutants whatever
 # `--re` says (10 in the listed files): a shard may try a few more.
 set -euo pipefail
@@ -59,8 +66,14 @@ judge() { # FILE TESTS [NAMES...]
 
 case ${1:-} in
     --shard) ;;
+    --changed)
+        if [ $# -ne 2 ] || ! git rev-parse --verify --quiet "$2^{commit}" >/dev/null; then
+            echo "usage: scripts/mutants-ci.sh --changed REV (a commit: ${2:-none given})" >&2
+            exit 1
+        fi
+        ;;
     "" | -*)
-        echo "usage: scripts/mutants-ci.sh --shard | FILE [TESTS...]" >&2
+        echo "usage: scripts/mutants-ci.sh --shard | --changed REV | FILE [TESTS...]" >&2
         exit 1
         ;;
     *)
@@ -88,16 +101,32 @@ while read -r file filter; do
     files+=("$file")
     tests[$file]=$filter
 done <.ci/mutants-clean
-mapfile -t mutants < <(scripts/mutants.sh --list "${files[@]}")
-if [ ${#mutants[@]} -eq 0 ]; then
-    echo ".ci/mutants-clean: its ${#files[@]} files have no mutant" >&2
-    exit 1
+if [ "$1" = --changed ]; then
+    diff=$(mktemp)
+    trap 'rm -f "$diff"' EXIT
+    git diff "$2" HEAD -- "${files[@]}" >"$diff"
+    mutants=()
+    if [ -s "$diff" ]; then
+        mapfile -t mutants < <(scripts/mutants.sh --list --in-diff="$diff" "${files[@]}")
+    fi
+    most=${MUTANTS_CHANGED_MAX:-60}
+    picked=("${mutants[@]:0:most}")
+    echo "changed since $2: ${#mutants[@]} mutants in the listed files' changed lines, trying ${#picked[@]}"
+    if [ ${#mutants[@]} -gt "$most" ]; then
+        echo "the other $((${#mutants[@]} - most)) are left to the rotating shards"
+    fi
+else
+    mapfile -t mutants < <(scripts/mutants.sh --list "${files[@]}")
+    if [ ${#mutants[@]} -eq 0 ]; then
+        echo ".ci/mutants-clean: its ${#files[@]} files have no mutant" >&2
+        exit 1
+    fi
+    per_shard=${MUTANTS_PER_SHARD:-12}
+    shards=$(((${#mutants[@]} + per_shard - 1) / per_shard))
+    shard=$(($(git rev-list --count HEAD) % shards))
+    picked=("${mutants[@]:shard*per_shard:per_shard}")
+    echo "shard $shard of $shards: ${#picked[@]} of ${#mutants[@]} mutants in ${#files[@]} files"
 fi
-per_shard=${MUTANTS_PER_SHARD:-12}
-shards=$(((${#mutants[@]} + per_shard - 1) / per_shard))
-shard=$(($(git rev-list --count HEAD) % shards))
-picked=("${mutants[@]:shard*per_shard:per_shard}")
-echo "shard $shard of $shards: ${#picked[@]} of ${#mutants[@]} mutants in ${#files[@]} files"
 for file in "${files[@]}"; do
     mapfile -t names < <(printf '%s\n' "${picked[@]}" | awk -v f="$file:" 'index($0, f) == 1')
     if [ ${#names[@]} -gt 0 ]; then
